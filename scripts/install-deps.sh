@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian bookworm packages fleetmap builds and tests with.
+# Idempotent: asks apt only for what is missing, so a second run is a quick no-op.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build ccache pkg-config
+  # DDS: Fast DDS 2.9, its code generator and the fastdds CLI.
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  # Geometry, images, configuration, command line, logging, JSON.
+  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
+  # Persistence and compression.
+  libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev
+  # Tests and benchmarks.
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  # Spatial indexes (Boost.Geometry R-tree, header-only).
+  libboost-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
+  sudo="sudo"
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
