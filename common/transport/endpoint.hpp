@@ -1,0 +1,64 @@
+#pragma once
+
+// Internal to transport: the DDS entities behind one typed reader or writer, created in one
+// checked step and deleted in reverse order.
+
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <memory>
+#include <string>
+
+#include "common/core/status.hpp"
+#include "common/transport/participant.hpp"
+
+namespace fleetmap::transport {
+
+class WriterEndpoint {
+ public:
+  static StatusOr<std::unique_ptr<WriterEndpoint>> Create(
+      Participant& participant, const std::string& topic_name,
+      eprosima::fastdds::dds::TypeSupport type, const eprosima::fastdds::dds::DataWriterQos& qos);
+  ~WriterEndpoint();
+  WriterEndpoint(const WriterEndpoint&) = delete;
+  WriterEndpoint& operator=(const WriterEndpoint&) = delete;
+
+  eprosima::fastdds::dds::DataWriter* writer() const { return writer_; }
+  const std::string& topic_name() const { return topic_name_; }
+
+ private:
+  WriterEndpoint(Participant& participant, std::string topic_name)
+      : participant_(participant), topic_name_(std::move(topic_name)) {}
+
+  Participant& participant_;
+  std::string topic_name_;
+  eprosima::fastdds::dds::Topic* topic_ = nullptr;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+};
+
+class ReaderEndpoint {
+ public:
+  // `listener` must outlive the endpoint; it is detached before the reader is deleted.
+  static StatusOr<std::unique_ptr<ReaderEndpoint>> Create(
+      Participant& participant, const std::string& topic_name,
+      eprosima::fastdds::dds::TypeSupport type, const eprosima::fastdds::dds::DataReaderQos& qos,
+      eprosima::fastdds::dds::DataReaderListener* listener);
+  ~ReaderEndpoint();
+  ReaderEndpoint(const ReaderEndpoint&) = delete;
+  ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
+
+  eprosima::fastdds::dds::DataReader* reader() const { return reader_; }
+  const std::string& topic_name() const { return topic_name_; }
+
+ private:
+  ReaderEndpoint(Participant& participant, std::string topic_name)
+      : participant_(participant), topic_name_(std::move(topic_name)) {}
+
+  Participant& participant_;
+  std::string topic_name_;
+  eprosima::fastdds::dds::Topic* topic_ = nullptr;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,41 @@
+#include "common/transport/occupancy_grid_writer.hpp"
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+
+#include "common/transport/conversions.hpp"
+#include "common/transport/endpoint.hpp"
+#include "common/transport/qos.hpp"
+#include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+
+namespace fleetmap::transport {
+
+namespace dds = eprosima::fastdds::dds;
+
+StatusOr<std::unique_ptr<OccupancyGridWriter>> OccupancyGridWriter::Create(
+    Participant& participant, const std::string& topic_name) {
+  std::unique_ptr<OccupancyGridWriter> self(new OccupancyGridWriter());
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      WriterEndpoint::Create(participant, topic_name,
+                             dds::TypeSupport(new nav_msgs::msg::dds_::OccupancyGrid_PubSubType()),
+                             OccupancyGridQos().writer));
+  return self;
+}
+
+OccupancyGridWriter::~OccupancyGridWriter() = default;
+
+StatusOr<size_t> OccupancyGridWriter::Write(const MapMessage& message) {
+  auto sample = ToIdl(message);
+  if (!endpoint_->writer()->write(&sample)) {
+    return UnavailableError("could not write the map on " + endpoint_->topic_name());
+  }
+  return nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
+}
+
+int OccupancyGridWriter::matched_readers() const {
+  dds::PublicationMatchedStatus matched;
+  endpoint_->writer()->get_publication_matched_status(matched);
+  return matched.current_count;
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,165 @@
+#include "common/transport/participant.hpp"
+
+#include <cstdlib>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
+#include <string>
+
+namespace fleetmap::transport {
+namespace {
+
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+
+constexpr int kMaxDomainId = 232;  // the highest domain whose RTPS ports fit in 16 bits
+// Participants on one host that unicast discovery reaches: each announces to this many
+// participant ids on 127.0.0.1.
+constexpr uint32_t kLocalhostParticipants = 64;
+
+bool EnvironmentFlag(const char* name) {
+  const char* value = std::getenv(name);
+  return value != nullptr && std::string(value) == "1";
+}
+
+eprosima::fastrtps::Duration_t ToDuration(std::chrono::milliseconds ms) {
+  return eprosima::fastrtps::Duration_t(static_cast<double>(ms.count()) / 1000.0);
+}
+
+dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localhost_only) {
+  dds::DomainParticipantQos qos;
+  qos.name(options.name);
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.leaseDuration = ToDuration(options.participant_lease);
+  discovery.leaseDuration_announcementperiod = ToDuration(options.participant_lease / 4);
+  if (localhost_only) {
+    // UDP on loopback only, unicast discovery through initial peers: no packet leaves the host,
+    // and no multicast is needed (the loopback interface has none).
+    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    udp->interfaceWhiteList.emplace_back("127.0.0.1");
+    udp->maxInitialPeersRange = kLocalhostParticipants;
+    qos.transport().use_builtin_transports = false;
+    qos.transport().user_transports.push_back(udp);
+
+    Locator_t peer;
+    peer.kind = LOCATOR_KIND_UDPv4;
+    IPLocator::setIPv4(peer, 127, 0, 0, 1);
+    qos.wire_protocol().builtin.initialPeersList.push_back(peer);
+
+    Locator_t unicast;
+    unicast.kind = LOCATOR_KIND_UDPv4;
+    IPLocator::setIPv4(unicast, 127, 0, 0, 1);
+    qos.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(unicast);
+    qos.wire_protocol().default_unicast_locator_list.push_back(unicast);
+  }
+  return qos;
+}
+
+}  // namespace
+
+StatusOr<int> ResolveDomainId(const std::optional<int>& requested) {
+  int domain = 0;
+  std::string source = "the default";
+  if (requested.has_value()) {
+    domain = *requested;
+    source = "the domain option";
+  } else if (const char* env = std::getenv("FLEETMAP_DOMAIN"); env != nullptr && *env != '\0') {
+    char* end = nullptr;
+    const long value = std::strtol(env, &end, 10);
+    if (*end != '\0') {
+      return InvalidArgumentError("FLEETMAP_DOMAIN=\"" + std::string(env) + "\" is not an integer");
+    }
+    domain = static_cast<int>(value);
+    source = "FLEETMAP_DOMAIN";
+  }
+  if (domain < 0 || domain > kMaxDomainId) {
+    return InvalidArgumentError("DDS domain " + std::to_string(domain) + " from " + source +
+                                " is outside 0.." + std::to_string(kMaxDomainId));
+  }
+  return domain;
+}
+
+bool ResolveLocalhostOnly(const std::optional<bool>& requested) {
+  if (requested.has_value()) return *requested;
+  return EnvironmentFlag("FLEETMAP_LOCALHOST_ONLY") || EnvironmentFlag("ROS_LOCALHOST_ONLY");
+}
+
+StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOptions& options) {
+  FLEETMAP_ASSIGN_OR_RETURN(const int domain_id, ResolveDomainId(options.domain_id));
+
+  eprosima::fastrtps::LibrarySettingsAttributes library;
+  library.intraprocess_delivery = options.intraprocess_delivery
+                                      ? eprosima::fastrtps::INTRAPROCESS_FULL
+                                      : eprosima::fastrtps::INTRAPROCESS_OFF;
+  eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(library);
+
+  std::unique_ptr<Participant> self(new Participant());
+  self->domain_id_ = domain_id;
+  self->localhost_only_ = ResolveLocalhostOnly(options.localhost_only);
+
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  self->participant_ =
+      factory->create_participant(domain_id, MakeQos(options, self->localhost_only_));
+  if (self->participant_ == nullptr) {
+    return UnavailableError("could not create a DDS participant on domain " +
+                            std::to_string(domain_id));
+  }
+  self->publisher_ = self->participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  self->subscriber_ = self->participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (self->publisher_ == nullptr || self->subscriber_ == nullptr) {
+    return UnavailableError("could not create a DDS publisher/subscriber on domain " +
+                            std::to_string(domain_id));
+  }
+  return self;
+}
+
+Participant::~Participant() {
+  if (participant_ == nullptr) return;
+  // Readers and writers are gone by contract; this also removes any topic still held.
+  participant_->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+StatusOr<dds::Topic*> Participant::AcquireTopic(const std::string& name, dds::TypeSupport type) {
+  auto it = topics_.find(name);
+  if (it != topics_.end()) {
+    if (it->second.topic->get_type_name() != type.get_type_name()) {
+      return InvalidArgumentError("topic " + name + " already has type " +
+                                  it->second.topic->get_type_name() + ", not " +
+                                  type.get_type_name());
+    }
+    ++it->second.users;
+    return it->second.topic;
+  }
+  if (participant_->find_type(type.get_type_name()).empty()) {
+    if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+      return UnavailableError("could not register DDS type " + type.get_type_name());
+    }
+  }
+  dds::Topic* topic =
+      participant_->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) return UnavailableError("could not create DDS topic " + name);
+  topics_[name] = TopicEntry{topic, 1};
+  return topic;
+}
+
+void Participant::ReleaseTopic(dds::Topic* topic) {
+  for (auto it = topics_.begin(); it != topics_.end(); ++it) {
+    if (it->second.topic != topic) continue;
+    if (--it->second.users == 0) {
+      participant_->delete_topic(topic);
+      topics_.erase(it);
+    }
+    return;
+  }
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "common/core/status.hpp"
+
+namespace eprosima::fastdds::dds {
+class DomainParticipant;
+class Publisher;
+class Subscriber;
+class Topic;
+class TypeSupport;
+}  // namespace eprosima::fastdds::dds
+
+namespace fleetmap::transport {
+
+struct ParticipantOptions {
+  // Unset: the FLEETMAP_DOMAIN environment variable, else 0. Valid DDS domains are 0..232.
+  std::optional<int> domain_id;
+  std::string name = "fleetmap";
+  // Unset: true when FLEETMAP_LOCALHOST_ONLY or ROS_LOCALHOST_ONLY is "1". Localhost-only uses UDP
+  // on 127.0.0.1 with unicast discovery and sends nothing to any other interface.
+  std::optional<bool> localhost_only;
+  // Fast DDS hands samples between entities of one process without the wire by default. Tests
+  // that must exercise serialization and UDP turn it off; the setting is process-wide.
+  bool intraprocess_delivery = true;
+  // How long a silent participant is kept before its endpoints are dropped.
+  std::chrono::milliseconds participant_lease{6000};
+};
+
+// Resolves the domain id from the options and the environment; an error names the bad value.
+StatusOr<int> ResolveDomainId(const std::optional<int>& requested);
+bool ResolveLocalhostOnly(const std::optional<bool>& requested);
+
+// One DDS domain participant with one publisher and one subscriber, and the topics its readers
+// and writers share. Not thread-safe: create readers and writers from one thread (the node's).
+// Readers and writers must be destroyed before their participant.
+class Participant {
+ public:
+  static StatusOr<std::unique_ptr<Participant>> Create(const ParticipantOptions& options);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  int domain_id() const { return domain_id_; }
+  bool localhost_only() const { return localhost_only_; }
+
+  // For transport's own readers and writers: the topic `name` of `type` (registering the type
+  // on first use); each AcquireTopic is paired with one ReleaseTopic.
+  StatusOr<eprosima::fastdds::dds::Topic*> AcquireTopic(const std::string& name,
+                                                        eprosima::fastdds::dds::TypeSupport type);
+  void ReleaseTopic(eprosima::fastdds::dds::Topic* topic);
+
+  eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
+  eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
+
+ private:
+  Participant() = default;
+
+  struct TopicEntry {
+    eprosima::fastdds::dds::Topic* topic = nullptr;
+    int users = 0;
+  };
+
+  int domain_id_ = 0;
+  bool localhost_only_ = false;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, TopicEntry> topics_;
+};
+
+}  // namespace fleetmap::transport

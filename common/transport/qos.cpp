@@ -1,0 +1,66 @@
+#include "common/transport/qos.hpp"
+
+namespace fleetmap::transport {
+namespace {
+
+namespace dds = eprosima::fastdds::dds;
+
+eprosima::fastrtps::Duration_t ToDuration(std::chrono::milliseconds ms) {
+  return eprosima::fastrtps::Duration_t(static_cast<double>(ms.count()) / 1000.0);
+}
+
+// Reliable, transient local, keep last 1 per instance and as many instances as there are: the
+// 10-instance default silently drops robot 11.
+template <typename Qos>
+void StateTopic(Qos& qos) {
+  qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+  qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+  qos.history().depth = 1;
+  qos.resource_limits().max_instances = 0;  // <= 0: unlimited
+  qos.resource_limits().max_samples = 0;
+  qos.resource_limits().max_samples_per_instance = 1;
+  qos.resource_limits().allocated_samples = 16;
+}
+
+}  // namespace
+
+EndpointQos RobotStatusQos() {
+  EndpointQos qos;
+  StateTopic(qos.writer);
+  StateTopic(qos.reader);
+  qos.writer.liveliness().kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  qos.writer.liveliness().lease_duration = ToDuration(kRobotLivelinessLease);
+  qos.writer.liveliness().announcement_period = ToDuration(kRobotLivelinessLease / 3);
+  qos.reader.liveliness().kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  qos.reader.liveliness().lease_duration = ToDuration(kRobotLivelinessLease);
+  // Keep the instance registered when a robot's writer vanishes, so the reader sees the
+  // NOT_ALIVE_NO_WRITERS transition instead of a silent removal.
+  qos.writer.writer_data_lifecycle().autodispose_unregistered_instances = false;
+  return qos;
+}
+
+EndpointQos OccupancyGridQos() {
+  EndpointQos qos;
+  StateTopic(qos.writer);
+  StateTopic(qos.reader);
+  qos.writer.publish_mode().kind = dds::ASYNCHRONOUS_PUBLISH_MODE;
+  qos.writer.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  qos.reader.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return qos;
+}
+
+EndpointQos VectorTileQos() {
+  EndpointQos qos;
+  StateTopic(qos.writer);
+  StateTopic(qos.reader);
+  qos.writer.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  qos.reader.endpoint().history_memory_policy =
+      eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return qos;
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,31 @@
+#pragma once
+
+// One QoS definition per topic, shared by its writer and reader so the two always match.
+// Internal to transport: the nodes never see Fast DDS types. docs/topics.md mirrors this file.
+
+#include <chrono>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+
+#include "common/transport/robot_status_reader.hpp"
+
+namespace fleetmap::transport {
+
+struct EndpointQos {
+  eprosima::fastdds::dds::DataWriterQos writer;
+  eprosima::fastdds::dds::DataReaderQos reader;
+};
+
+// rt/fleetmap/robot_status: reliable, transient local, keep last 1 per robot, no instance limit,
+// automatic liveliness with a 1.5 s lease so a dead agent is noticed in about 2 s.
+EndpointQos RobotStatusQos();
+
+// rt/<robot>/map and rt/fleetmap/map: what nav2's map_server uses for /map (reliable, transient
+// local, keep last 1), published asynchronously since a grid is often larger than one datagram.
+EndpointQos OccupancyGridQos();
+
+// rt/fleetmap/robot_tiles and rt/fleetmap/fused_tiles: reliable, transient local, keep last 1
+// per tile instance, no instance limit (a map has thousands of tiles).
+EndpointQos VectorTileQos();
+
+}  // namespace fleetmap::transport

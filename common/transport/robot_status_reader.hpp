@@ -1,0 +1,57 @@
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "common/core/robot_status.hpp"
+#include "common/core/status.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/wake_up.hpp"
+
+namespace fleetmap::transport {
+
+class ReaderEndpoint;
+
+// How long a robot's status writer may stay silent before the robot is reported lost.
+inline constexpr std::chrono::milliseconds kRobotLivelinessLease{1500};
+
+// What the fleet says about its robots.
+struct RobotEvent {
+  enum class Kind {
+    kStatus,    // a status sample: the robot is alive (joined, or still there)
+    kLeft,      // the robot disposed its status: it left on purpose
+    kLost,      // its writer's liveliness lapsed or it vanished: it died or was cut off
+    kRejected,  // a malformed status sample; `error` says what was wrong
+  };
+  Kind kind = Kind::kStatus;
+  RobotId robot;
+  RobotStatus status;  // for kStatus
+  Status error;        // for kRejected
+
+  static RobotEvent Alive(RobotStatus status);
+  static RobotEvent Gone(Kind kind, RobotId robot);
+  static RobotEvent Rejected(Status error);
+};
+
+const char* RobotEventKindName(RobotEvent::Kind kind);
+
+// The server's reader of rt/fleetmap/robot_status. The DDS listener only drains samples into a
+// queue and wakes the worker; Drain() hands them over. Drain() may be called from one thread.
+class RobotStatusReader {
+ public:
+  static StatusOr<std::unique_ptr<RobotStatusReader>> Create(
+      Participant& participant, std::shared_ptr<WakeUp> wake_up = nullptr);
+  ~RobotStatusReader();
+
+  std::vector<RobotEvent> Drain();
+
+ private:
+  class Listener;
+  RobotStatusReader() = default;
+
+  std::unique_ptr<Listener> listener_;
+  std::unique_ptr<ReaderEndpoint> endpoint_;
+};
+
+}  // namespace fleetmap::transport

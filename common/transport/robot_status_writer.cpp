@@ -1,0 +1,56 @@
+#include "common/transport/robot_status_writer.hpp"
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+
+#include "common/transport/conversions.hpp"
+#include "common/transport/endpoint.hpp"
+#include "common/transport/qos.hpp"
+#include "common/transport/topics.hpp"
+#include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+
+namespace fleetmap::transport {
+
+namespace dds = eprosima::fastdds::dds;
+
+StatusOr<std::unique_ptr<RobotStatusWriter>> RobotStatusWriter::Create(
+    Participant& participant) {
+  std::unique_ptr<RobotStatusWriter> self(new RobotStatusWriter());
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      WriterEndpoint::Create(participant, kRobotStatusTopic,
+                             dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
+                             RobotStatusQos().writer));
+  return self;
+}
+
+RobotStatusWriter::~RobotStatusWriter() = default;
+
+Status RobotStatusWriter::Write(const RobotStatus& status) {
+  auto sample = ToIdl(status);
+  if (!endpoint_->writer()->write(&sample)) {
+    return UnavailableError("could not write RobotStatus of " + status.robot.value);
+  }
+  written_.insert(status.robot);
+  return Status::Ok();
+}
+
+Status RobotStatusWriter::Leave(const RobotId& robot) {
+  if (written_.erase(robot) == 0) return Status::Ok();  // never announced: nothing to dispose
+  fleetmap_msgs::msg::dds_::RobotStatus_ key;
+  key.robot_id(robot.value);
+  // HANDLE_NIL: the instance is found from the key (lookup_instance is not implemented in 2.9).
+  if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not dispose RobotStatus of " + robot.value);
+  }
+  // The process usually exits right after leaving: give the readers a moment to hear it.
+  endpoint_->writer()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1.0));
+  return Status::Ok();
+}
+
+int RobotStatusWriter::matched_readers() const {
+  dds::PublicationMatchedStatus matched;
+  endpoint_->writer()->get_publication_matched_status(matched);
+  return matched.current_count;
+}
+
+}  // namespace fleetmap::transport

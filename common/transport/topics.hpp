@@ -1,0 +1,20 @@
+#pragma once
+
+// DDS topic names. ROS 2 maps a topic /a/b to the DDS topic rt/a/b, so ROS 2 tools see these as
+// /fleetmap/robot_status, /<robot>/map and so on. docs/topics.md lists type, key and QoS of each.
+
+#include <string>
+
+#include "common/core/ids.hpp"
+
+namespace fleetmap::transport {
+
+inline constexpr char kRobotStatusTopic[] = "rt/fleetmap/robot_status";
+inline constexpr char kRobotTilesTopic[] = "rt/fleetmap/robot_tiles";
+inline constexpr char kFusedTilesTopic[] = "rt/fleetmap/fused_tiles";
+inline constexpr char kFleetMapTopic[] = "rt/fleetmap/map";
+
+// Where a robot publishes its own grid: what a ROS 2 robot named `robot` publishes as /<robot>/map.
+inline std::string RobotMapTopic(const RobotId& robot) { return "rt/" + robot.value + "/map"; }
+
+}  // namespace fleetmap::transport
