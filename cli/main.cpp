@@ -1,0 +1,15 @@
+// fleetmap: the offline map tool. Each subcommand lives in its own <name>_command.{hpp,cpp}.
+
+#include <CLI/CLI.hpp>
+
+#include "cli/exit_codes.hpp"
+#include "cli/info_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
+  app.require_subcommand(1);
+  int exit_code = fleetmap::cli::kExitOk;
+  fleetmap::cli::AddInfoCommand(app, &exit_code);
+  CLI11_PARSE(app, argc, argv);
+  return exit_code;
+}
