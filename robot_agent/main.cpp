@@ -1,0 +1,63 @@
+// fleetmap-agent: publishes one robot's map and status to the fleet.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <vector>
+
+#include "robot_agent/agent_node.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void OnSignal(int /*signal*/) { g_stop.store(true); }
+
+fleetmap::Pose2 PoseFrom(const std::vector<double>& values) {
+  return {values.at(0), values.at(1), values.at(2)};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fleetmap-agent: publishes one robot's map and status to the fleet over DDS"};
+  fleetmap::agent::AgentOptions options;
+  std::vector<double> fleet_from_map = {0.0, 0.0, 0.0};
+  std::vector<double> pose = {0.0, 0.0, 0.0};
+  double duration_s = 0.0;
+  int domain = -1;
+  bool localhost_only = false;
+  app.add_option("--robot-id", options.robot.value, "robot name, e.g. alpha")->required();
+  app.add_option("--map", options.map_path, "ROS map_server YAML of the robot's map")->required();
+  app.add_option("--fleet-from-map", fleet_from_map, "x y yaw of the map frame in the fleet frame")
+      ->expected(3);
+  app.add_option("--pose", pose, "x y yaw of the robot in its map frame")->expected(3);
+  app.add_option("--duration", duration_s, "seconds to run before leaving (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  app.add_flag("--localhost-only", localhost_only,
+               "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
+  CLI11_PARSE(app, argc, argv);
+
+  options.fleet_from_map = PoseFrom(fleet_from_map);
+  options.map_from_robot = PoseFrom(pose);
+  options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
+  if (domain >= 0) options.dds.domain_id = domain;
+  if (localhost_only) options.dds.localhost_only = true;
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+
+  auto node = fleetmap::agent::AgentNode::Create(std::move(options));
+  if (!node.ok()) {
+    spdlog::error("fleetmap-agent: {}", node.status().message());
+    return node.status().code() == fleetmap::StatusCode::kUnavailable ? 1 : 2;
+  }
+  const fleetmap::Status run = (*node)->Run(g_stop);
+  if (!run.ok()) {
+    spdlog::error("fleetmap-agent: {}", run.message());
+    return 1;
+  }
+  return 0;
+}

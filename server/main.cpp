@@ -1,0 +1,49 @@
+// fleetmap-server: follows the fleet and keeps every robot's latest map.
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+
+#include "server/server_node.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void OnSignal(int /*signal*/) { g_stop.store(true); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"fleetmap-server: follows the robot fleet over DDS and keeps its maps"};
+  fleetmap::server::ServerOptions options;
+  double duration_s = 0.0;
+  int domain = -1;
+  bool localhost_only = false;
+  app.add_option("--duration", duration_s, "seconds to run (0: until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  app.add_flag("--localhost-only", localhost_only,
+               "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
+  CLI11_PARSE(app, argc, argv);
+
+  options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
+  if (domain >= 0) options.dds.domain_id = domain;
+  if (localhost_only) options.dds.localhost_only = true;
+
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+
+  auto node = fleetmap::server::ServerNode::Create(std::move(options));
+  if (!node.ok()) {
+    spdlog::error("fleetmap-server: {}", node.status().message());
+    return node.status().code() == fleetmap::StatusCode::kUnavailable ? 1 : 2;
+  }
+  const fleetmap::Status run = (*node)->Run(g_stop);
+  if (!run.ok()) {
+    spdlog::error("fleetmap-server: {}", run.message());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,235 @@
+// DDS on UDP loopback between real processes: fleetmap-agent and fleetmap-server binaries, and
+// readers/writers in this test process with intra-process delivery off. Each test uses its own
+// random domain so parallel runs never meet.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <set>
+#include <string>
+#include <thread>
+
+#include "common/grid/map_io.hpp"
+#include "common/transport/occupancy_grid_reader.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/robot_status_reader.hpp"
+#include "common/transport/robot_status_writer.hpp"
+#include "common/transport/topics.hpp"
+#include "tests/support/subprocess.hpp"
+
+namespace fleetmap {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+using testing::RandomDomainId;
+using testing::Subprocess;
+
+const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
+const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
+const std::string kMap = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/tb3_world.yaml";
+const std::string kOtherMap = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/strands_kth.yaml";
+// Generous deadlines for a loaded 2-core CI machine; they bound waits, they are not assertions.
+constexpr seconds kDeadline{20};
+
+class FleetDdsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    domain_ = RandomDomainId();
+    env_ = {{"FLEETMAP_DOMAIN", std::to_string(domain_)}, {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  }
+
+  std::unique_ptr<transport::Participant> MakeParticipant() {
+    transport::ParticipantOptions options;
+    options.domain_id = domain_;
+    options.localhost_only = true;
+    options.intraprocess_delivery = false;  // exercise serialization and UDP, even in-process
+    auto participant = transport::Participant::Create(options);
+    EXPECT_TRUE(participant.ok()) << participant.status();
+    return participant.ok() ? std::move(participant).value() : nullptr;
+  }
+
+  std::unique_ptr<Subprocess> StartAgent(const std::string& robot, const std::string& map) {
+    auto agent = std::make_unique<Subprocess>(
+        std::vector<std::string>{kAgent, "--robot-id", robot, "--map", map}, env_);
+    EXPECT_TRUE(agent->started());
+    return agent;
+  }
+
+  // Waits for the first event of `kind` about `robot`, draining the reader.
+  static bool WaitForEvent(transport::RobotStatusReader& reader, transport::WakeUp& wake_up,
+                           const std::string& robot, transport::RobotEvent::Kind kind,
+                           std::vector<transport::RobotEvent>* seen = nullptr) {
+    const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+    while (std::chrono::steady_clock::now() < deadline) {
+      wake_up.WaitFor(milliseconds(100));
+      for (const transport::RobotEvent& event : reader.Drain()) {
+        if (seen != nullptr) seen->push_back(event);
+        if (event.robot.value == robot && event.kind == kind) return true;
+      }
+    }
+    return false;
+  }
+
+  static std::optional<transport::MapMessage> WaitForMap(transport::OccupancyGridReader& reader,
+                                                         transport::WakeUp& wake_up) {
+    const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+    while (std::chrono::steady_clock::now() < deadline) {
+      wake_up.WaitFor(milliseconds(100));
+      for (StatusOr<transport::MapMessage>& map : reader.Drain()) {
+        EXPECT_TRUE(map.ok()) << map.status();
+        if (map.ok()) return std::move(map).value();
+      }
+    }
+    return std::nullopt;
+  }
+
+  int domain_ = 0;
+  std::map<std::string, std::string> env_;
+};
+
+TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
+  auto agent = StartAgent("alpha", kMap);
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader = transport::OccupancyGridReader::Create(
+      *participant, transport::RobotMapTopic(RobotId{"alpha"}), wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+
+  const std::optional<transport::MapMessage> received = WaitForMap(**reader, *wake_up);
+  ASSERT_TRUE(received.has_value()) << agent->Output();
+
+  const auto expected = grid::LoadMap(kMap);
+  ASSERT_TRUE(expected.ok()) << expected.status();
+  EXPECT_EQ(received->frame_id, "alpha/map");
+  EXPECT_EQ(received->grid.width(), expected->grid.width());
+  EXPECT_EQ(received->grid.height(), expected->grid.height());
+  EXPECT_FLOAT_EQ(received->grid.resolution(), expected->grid.resolution());
+  EXPECT_NEAR(received->grid.origin().x, expected->grid.origin().x, 1e-9);
+  EXPECT_NEAR(received->grid.origin().y, expected->grid.origin().y, 1e-9);
+  EXPECT_EQ(received->grid.data(), expected->grid.data());
+  EXPECT_GT(received->serialized_bytes, received->grid.data().size());
+}
+
+TEST_F(FleetDdsTest, LateJoiningReaderReceivesTransientLocalMap) {
+  auto agent = StartAgent("late", kMap);
+  ASSERT_TRUE(agent->WaitForOutput("in the fleet", kDeadline)) << agent->Output();
+  // The map was published before this reader existed: durability must deliver it.
+  std::this_thread::sleep_for(milliseconds(500));
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader = transport::OccupancyGridReader::Create(
+      *participant, transport::RobotMapTopic(RobotId{"late"}), wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+  const auto received = WaitForMap(**reader, *wake_up);
+  ASSERT_TRUE(received.has_value()) << agent->Output();
+  EXPECT_EQ(received->grid.cell_count(), 384 * 384);
+}
+
+TEST_F(FleetDdsTest, FiftyRobotsAllArrive) {
+  auto writer_side = MakeParticipant();
+  auto reader_side = MakeParticipant();
+  ASSERT_NE(writer_side, nullptr);
+  ASSERT_NE(reader_side, nullptr);
+  auto writer = transport::RobotStatusWriter::Create(*writer_side);
+  ASSERT_TRUE(writer.ok()) << writer.status();
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader = transport::RobotStatusReader::Create(*reader_side, wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+
+  constexpr int kRobots = 50;
+  for (int i = 0; i < kRobots; ++i) {
+    RobotStatus status;
+    status.robot = RobotId{"robot_" + std::to_string(i)};
+    status.map_width = static_cast<uint32_t>(i);
+    ASSERT_TRUE((*writer)->Write(status).ok());
+  }
+
+  std::set<std::string> seen;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (seen.size() < kRobots && std::chrono::steady_clock::now() < deadline) {
+    wake_up->WaitFor(milliseconds(100));
+    for (const transport::RobotEvent& event : (*reader)->Drain()) {
+      ASSERT_EQ(event.kind, transport::RobotEvent::Kind::kStatus);
+      EXPECT_EQ(event.robot.value, "robot_" + std::to_string(event.status.map_width));
+      seen.insert(event.robot.value);
+    }
+  }
+  EXPECT_EQ(seen.size(), static_cast<size_t>(kRobots));
+}
+
+TEST_F(FleetDdsTest, KilledAgentIsReportedLost) {
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+
+  auto agent = StartAgent("doomed", kMap);
+  ASSERT_TRUE(WaitForEvent(**reader, *wake_up, "doomed", transport::RobotEvent::Kind::kStatus))
+      << agent->Output();
+  agent->Signal(SIGKILL);
+  std::vector<transport::RobotEvent> seen;
+  EXPECT_TRUE(
+      WaitForEvent(**reader, *wake_up, "doomed", transport::RobotEvent::Kind::kLost, &seen));
+  for (const auto& event : seen) EXPECT_NE(event.kind, transport::RobotEvent::Kind::kLeft);
+}
+
+TEST_F(FleetDdsTest, StoppedAgentLeavesOnPurpose) {
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+
+  auto agent = StartAgent("polite", kMap);
+  ASSERT_TRUE(WaitForEvent(**reader, *wake_up, "polite", transport::RobotEvent::Kind::kStatus));
+  agent->Signal(SIGTERM);
+  EXPECT_EQ(agent->Wait(kDeadline), 0) << agent->Output();
+  EXPECT_TRUE(WaitForEvent(**reader, *wake_up, "polite", transport::RobotEvent::Kind::kLeft));
+}
+
+TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
+  Subprocess server({kServer, "--duration", "60"}, env_);
+  ASSERT_TRUE(server.WaitForOutput("listening", kDeadline)) << server.Output();
+  auto alpha = StartAgent("alpha", kMap);
+  auto beta = StartAgent("beta", kOtherMap);
+
+  EXPECT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("robot beta joined", kDeadline)) << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("map from alpha: 384 x 384 cells", kDeadline))
+      << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline))
+      << server.Output();
+
+  beta->Signal(SIGKILL);
+  EXPECT_TRUE(server.WaitForOutput("robot beta lost", kDeadline)) << server.Output();
+  alpha->Signal(SIGTERM);
+  EXPECT_TRUE(server.WaitForOutput("robot alpha left", kDeadline)) << server.Output();
+
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  const std::string output = server.Output();
+  EXPECT_NE(output.find("alpha            left"), std::string::npos) << output;
+  EXPECT_NE(output.find("beta             lost"), std::string::npos) << output;
+}
+
+TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
+  const auto result = testing::RunCommand(
+      {kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml", "--domain",
+       std::to_string(domain_), "--localhost-only"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.output.find("/nonexistent/map.yaml"), std::string::npos) << result.output;
+}
+
+TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
+  const auto result = testing::RunCommand({kAgent, "--robot-id", "no/slash", "--map", kMap});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.output.find("no/slash"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace fleetmap

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fleetmap::testing {
+
+// A real child process for integration tests: started with posix_spawn, its stdout and stderr
+// captured in a temporary file that the test can poll. Killed (SIGKILL) on destruction if still
+// running. Use from one thread.
+class Subprocess {
+ public:
+  // `env` entries are added to (or override) the test's own environment.
+  Subprocess(std::vector<std::string> argv, std::map<std::string, std::string> env = {});
+  ~Subprocess();
+  Subprocess(const Subprocess&) = delete;
+  Subprocess& operator=(const Subprocess&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
+
+  // Everything the process printed so far.
+  std::string Output() const;
+  // Waits until Output() contains `text`; false on timeout or if the process exited without it.
+  bool WaitForOutput(const std::string& text, std::chrono::milliseconds timeout) const;
+
+  void Signal(int signal) const;
+  // The exit code (or 128 + signal), or nullopt if still running after `timeout`.
+  std::optional<int> Wait(std::chrono::milliseconds timeout);
+
+ private:
+  bool Running() const;
+
+  pid_t pid_ = -1;
+  std::string output_path_;
+  mutable std::optional<int> exit_code_;
+};
+
+// The result of running a command to completion.
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr, interleaved
+};
+
+CommandResult RunCommand(std::vector<std::string> argv,
+                         std::chrono::milliseconds timeout = std::chrono::seconds(60));
+
+// A DDS domain id for one test, random so that tests running in parallel never meet.
+int RandomDomainId();
+
+}  // namespace fleetmap::testing

@@ -1,0 +1,122 @@
+#include "common/transport/conversions.hpp"
+#include "common/transport/participant.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace fleetmap::transport {
+namespace {
+
+MapMessage SmallMap() {
+  MapMessage message;
+  message.grid = grid::OccupancyGrid(3, 2, 0.05, Pose2{-1.5, 2.25, std::numbers::pi / 2});
+  message.grid.at(0, 0) = grid::kOccupiedValue;
+  message.grid.at(2, 1) = grid::kFreeValue;
+  message.grid.at(1, 1) = 42;
+  message.frame_id = "alpha/map";
+  message.stamp = Timestamp(std::chrono::seconds(1700000000) + std::chrono::nanoseconds(123456789));
+  return message;
+}
+
+TEST(ConversionsTest, OccupancyGridRoundTripsAsRos2LaysItOut) {
+  const MapMessage original = SmallMap();
+  const auto idl = ToIdl(original);
+  EXPECT_EQ(idl.info().width(), 3u);
+  EXPECT_EQ(idl.info().height(), 2u);
+  EXPECT_EQ(idl.header().frame_id(), "alpha/map");
+  EXPECT_EQ(idl.header().stamp().sec(), 1700000000);
+  EXPECT_EQ(idl.header().stamp().nanosec(), 123456789u);
+  // Row-major from the origin: cell (x, y) at y * width + x.
+  EXPECT_EQ(idl.data()[0], 100);
+  EXPECT_EQ(idl.data()[1 * 3 + 2], 0);
+  EXPECT_NEAR(idl.info().origin().orientation().z(), std::sin(std::numbers::pi / 4), 1e-12);
+
+  const auto back = FromIdl(idl);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->grid.data(), original.grid.data());
+  EXPECT_FLOAT_EQ(back->grid.resolution(), 0.05);
+  EXPECT_NEAR(back->grid.origin().yaw, std::numbers::pi / 2, 1e-12);
+  EXPECT_EQ(back->stamp, original.stamp);
+}
+
+TEST(ConversionsTest, RejectsCellCountMismatch) {
+  auto idl = ToIdl(SmallMap());
+  idl.data().pop_back();
+  const auto back = FromIdl(idl);
+  ASSERT_FALSE(back.ok());
+  EXPECT_EQ(back.status().message(), "OccupancyGrid says 3 x 2 cells but carries 5");
+}
+
+TEST(ConversionsTest, RejectsOverflowingDimensions) {
+  auto idl = ToIdl(SmallMap());
+  idl.info().width(0x10000);
+  idl.info().height(0x10000);  // 2^32 cells would wrap a 32-bit product to 0
+  idl.data().clear();
+  EXPECT_FALSE(FromIdl(idl).ok());
+}
+
+TEST(ConversionsTest, RejectsBadResolutionOriginAndValues) {
+  auto bad_resolution = ToIdl(SmallMap());
+  bad_resolution.info().resolution(std::numeric_limits<float>::quiet_NaN());
+  EXPECT_NE(FromIdl(bad_resolution).status().message().find("resolution"), std::string::npos);
+
+  auto zero_resolution = ToIdl(SmallMap());
+  zero_resolution.info().resolution(0.0f);
+  EXPECT_FALSE(FromIdl(zero_resolution).ok());
+
+  auto tilted = ToIdl(SmallMap());
+  tilted.info().origin().orientation().x(0.7071);
+  tilted.info().origin().orientation().w(0.7071);
+  tilted.info().origin().orientation().z(0.0);
+  EXPECT_NE(FromIdl(tilted).status().message().find("origin"), std::string::npos);
+
+  auto out_of_range = ToIdl(SmallMap());
+  out_of_range.data()[2] = 101;
+  out_of_range.data()[3] = -2;
+  EXPECT_EQ(FromIdl(out_of_range).status().message(),
+            "OccupancyGrid has 2 cells outside -1..100");
+}
+
+TEST(ConversionsTest, RobotStatusRoundTripsAndValidatesName) {
+  RobotStatus status;
+  status.robot = RobotId{"alpha"};
+  status.fleet_from_map = Pose2{1.0, 2.0, 0.5};
+  status.map_from_robot = Pose2{-3.0, 4.0, -1.0};
+  status.map_topic = "rt/alpha/map";
+  status.map_width = 10;
+  status.maps_published = 3;
+  status.bytes_published = 1ull << 40;
+  status.sequence_number = 7;
+  const auto back = FromIdl(ToIdl(status));
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->robot, status.robot);
+  EXPECT_EQ(back->fleet_from_map, status.fleet_from_map);
+  EXPECT_EQ(back->map_from_robot, status.map_from_robot);
+  EXPECT_EQ(back->bytes_published, status.bytes_published);
+  EXPECT_EQ(back->sequence_number, 7u);
+
+  auto bad = ToIdl(status);
+  bad.robot_id("../etc");
+  EXPECT_FALSE(FromIdl(bad).ok());
+  auto nan_pose = ToIdl(status);
+  nan_pose.fleet_from_map().x(std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(FromIdl(nan_pose).ok());
+}
+
+TEST(ParticipantOptionsTest, DomainComesFromOptionThenEnvironment) {
+  EXPECT_EQ(*ResolveDomainId(7), 7);
+  EXPECT_FALSE(ResolveDomainId(233).ok());
+  EXPECT_FALSE(ResolveDomainId(-1).ok());
+  setenv("FLEETMAP_DOMAIN", "12", 1);
+  EXPECT_EQ(*ResolveDomainId(std::nullopt), 12);
+  setenv("FLEETMAP_DOMAIN", "twelve", 1);
+  EXPECT_NE(ResolveDomainId(std::nullopt).status().message().find("twelve"), std::string::npos);
+  unsetenv("FLEETMAP_DOMAIN");
+  EXPECT_EQ(*ResolveDomainId(std::nullopt), 0);
+}
+
+}  // namespace
+}  // namespace fleetmap::transport
