@@ -375,8 +375,16 @@ StatusOr<MapMetadata> ReadMapYaml(const std::string& yaml_path, const MapLoadOpt
   std::error_code error;
   const fs::file_status file_status = fs::status(yaml_path, error);
   if (!fs::exists(file_status)) return NotFoundError(yaml_path + ": no such file");
-  if (fs::is_directory(file_status)) {
-    return InvalidArgumentError(yaml_path + ": is a directory, expected a map YAML file");
+  if (!fs::is_regular_file(file_status)) {
+    return InvalidArgumentError(yaml_path + ": is not a regular file, expected a map YAML file");
+  }
+  // A map YAML is a few hundred bytes; refuse to parse something enormous by mistake.
+  constexpr uintmax_t kMaxYamlBytes = 1 << 20;
+  const uintmax_t yaml_bytes = fs::file_size(yaml_path, error);
+  if (!error && yaml_bytes > kMaxYamlBytes) {
+    return ResourceExhaustedError(yaml_path + ": YAML file is " + std::to_string(yaml_bytes) +
+                                  " bytes, more than the limit of " +
+                                  std::to_string(kMaxYamlBytes));
   }
   YAML::Node root;
   try {

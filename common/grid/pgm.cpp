@@ -314,8 +314,8 @@ StatusOr<PgmImage> ReadPgm(const std::string& path, const PgmReadOptions& option
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (!std::filesystem::exists(status)) return NotFoundError(path + ": no such file");
-  if (std::filesystem::is_directory(status)) {
-    return InvalidArgumentError(path + ": is a directory, expected a PGM file");
+  if (!std::filesystem::is_regular_file(status)) {
+    return InvalidArgumentError(path + ": is not a regular file, expected a PGM file");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) return NotFoundError(path + ": cannot open for reading");

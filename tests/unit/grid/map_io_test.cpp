@@ -179,6 +179,9 @@ TEST(MapIoTest, MissingFilesAreNotFoundAndNamed) {
   Status status = LoadError(DataPath("no_such_map.yaml"));
   EXPECT_EQ(status.code(), StatusCode::kNotFound);
   EXPECT_EQ(status.message(), DataPath("no_such_map.yaml") + ": no such file");
+  status = LoadError(FLEETMAP_TEST_DATA_DIR);
+  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(status.message(), HasSubstr("is not a regular file"));
   status = LoadError(DataPath("missing_image.yaml"));
   EXPECT_EQ(status.code(), StatusCode::kNotFound);
   EXPECT_EQ(status.message(), DataPath("does_not_exist.pgm") + ": no such file (the image of " +
@@ -319,6 +322,9 @@ TEST(MapIoTest, RejectsBadKeys) {
     EXPECT_THAT(status.message(), StartsWith(path + ": ")) << c.yaml;
     EXPECT_THAT(status.message(), HasSubstr(c.message)) << c.yaml;
   }
+  const Status huge = LoadError(dir.Write("huge.yaml", "# " + std::string(2 << 20, 'x') + "\n"));
+  EXPECT_EQ(huge.code(), StatusCode::kResourceExhausted);
+  EXPECT_THAT(huge.message(), HasSubstr("huge.yaml: YAML file is"));
   // negate also accepts booleans; unknown keys are ignored, as in nav2.
   EXPECT_TRUE(LoadMap(dir.Write("ok.yaml", image + resolution + origin + "negate: true\n" +
                                                thresholds + "extra: 1\n"))
