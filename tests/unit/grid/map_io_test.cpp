@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
@@ -52,7 +53,9 @@ Status LoadError(const std::string& yaml_path, const MapLoadOptions& options = {
 // A fresh directory per test for files the test writes.
 class TempDir {
  public:
-  explicit TempDir(const std::string& name) : path_(fs::path(::testing::TempDir()) / name) {
+  // The process id keeps concurrent runs (two build trees, ctest -j) apart.
+  explicit TempDir(const std::string& name)
+      : path_(fs::path(::testing::TempDir()) / (name + "_" + std::to_string(getpid()))) {
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -234,7 +235,8 @@ TEST(PgmTest, EncodeDecodeRoundTripsBothEncodingsAndDepths) {
 TEST(PgmTest, WritesFilesThatReadBack) {
   std::mt19937 rng(11);
   const PgmImage image = RandomImage(rng, 65535);
-  const std::string path = ::testing::TempDir() + "/pgm_test_write.pgm";
+  const std::string path =
+      ::testing::TempDir() + "/pgm_test_write_" + std::to_string(getpid()) + ".pgm";
   ASSERT_TRUE(WritePgm(image, path, PgmEncoding::kBinary).ok());
   const StatusOr<PgmImage> read = ReadPgm(path);
   ASSERT_TRUE(read.ok()) << read.status();
