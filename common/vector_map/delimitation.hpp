@@ -1,0 +1,69 @@
+#pragma once
+
+// The obstacle delimitation P of a grid (ALGORITHMS.md 1): centres of occupied cells with at least
+// one 4-neighbour that is not occupied. Cells outside the grid count as not occupied, so an
+// obstacle touching the grid border is delimited there too (the grid says nothing beyond it).
+
+#include <cstdint>
+#include <vector>
+
+#include "common/grid/occupancy_grid.hpp"
+
+namespace fleetmap::vector_map {
+
+// A rectangle of cells [x0, x0 + width) x [y0, y0 + height), e.g. a tile.
+struct CellRect {
+  int x0 = 0;
+  int y0 = 0;
+  int width = 0;
+  int height = 0;
+
+  bool Contains(int x, int y) const {
+    return x >= x0 && y >= y0 && x < x0 + width && y < y0 + height;
+  }
+  bool empty() const { return width <= 0 || height <= 0; }
+  int64_t cell_count() const { return static_cast<int64_t>(width) * height; }
+  friend bool operator==(const CellRect&, const CellRect&) = default;
+};
+
+// The whole grid as a rectangle.
+CellRect FullRect(const grid::OccupancyGrid& grid);
+
+// Occupancy and delimitation flags of a window of a grid (a rectangle plus a margin, clamped to the
+// grid). Outside the window, queries fall back to reading the grid. Not thread-safe to build;
+// const queries may run concurrently.
+class Delimitation {
+ public:
+  Delimitation(const grid::OccupancyGrid& grid, const CellRect& rect, int margin,
+               const grid::StateThresholds& thresholds);
+
+  // False outside the grid.
+  bool Occupied(int x, int y) const {
+    if (window_.Contains(x, y)) return (flags_[Index(x, y)] & kOccupiedFlag) != 0;
+    return OccupiedInGrid(x, y);
+  }
+  // True for cells of P (occupied with a 4-neighbour not occupied).
+  bool IsDelimitation(int x, int y) const {
+    if (window_.Contains(x, y)) return (flags_[Index(x, y)] & kDelimitationFlag) != 0;
+    return DelimitationInGrid(x, y);
+  }
+  const CellRect& window() const { return window_; }
+  const grid::OccupancyGrid& grid() const { return *grid_; }
+
+ private:
+  static constexpr uint8_t kOccupiedFlag = 1;
+  static constexpr uint8_t kDelimitationFlag = 2;
+
+  size_t Index(int x, int y) const {
+    return static_cast<size_t>(y - window_.y0) * window_.width + (x - window_.x0);
+  }
+  bool OccupiedInGrid(int x, int y) const;
+  bool DelimitationInGrid(int x, int y) const;
+
+  const grid::OccupancyGrid* grid_;
+  grid::StateThresholds thresholds_;
+  CellRect window_;
+  std::vector<uint8_t> flags_;
+};
+
+}  // namespace fleetmap::vector_map

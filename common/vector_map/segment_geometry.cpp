@@ -1,0 +1,71 @@
+#include "common/vector_map/segment_geometry.hpp"
+
+#include <utility>
+#include <vector>
+
+namespace fleetmap::vector_map {
+
+double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point2& b) {
+  const Point2 ab = b - a;
+  const double length_squared = ab.squaredNorm();
+  if (length_squared == 0.0) return (p - a).squaredNorm();
+  const double t = std::clamp((p - a).dot(ab) / length_squared, 0.0, 1.0);
+  return (p - (a + t * ab)).squaredNorm();
+}
+
+bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
+                       const Delimitation& delimitation) {
+  const double eps2 = ToleratedSquare(epsilon);
+  const double length = (b - a).norm();
+  if (length < kDistanceTolerance) {
+    bool found = false;
+    ForEachCellNearSegment(a, a, epsilon, [&](int x, int y) {
+      if (!found && delimitation.IsDelimitation(x, y) && (Point2(x, y) - a).squaredNorm() <= eps2) {
+        found = true;
+      }
+    });
+    return found;
+  }
+  const Point2 direction = (b - a) / length;
+  thread_local std::vector<std::pair<double, double>> intervals;
+  intervals.clear();
+  ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
+    if (!delimitation.IsDelimitation(x, y)) return;
+    const Point2 w = Point2(x, y) - a;
+    const double along = w.dot(direction);
+    const double across2 = w.squaredNorm() - along * along;
+    const double half2 = eps2 - across2;
+    if (half2 < 0.0) return;
+    const double half = std::sqrt(half2);
+    if (along + half < 0.0 || along - half > length) return;
+    intervals.emplace_back(along - half, along + half);
+  });
+  std::sort(intervals.begin(), intervals.end());
+  double covered = 0.0;  // [0, covered] is inside the union so far
+  for (const auto& [start, end] : intervals) {
+    if (start > covered + kDistanceTolerance) return false;
+    covered = std::max(covered, end);
+    if (covered >= length) return true;
+  }
+  return covered >= length - kDistanceTolerance;
+}
+
+double SampledMaxDistanceToDelimitation(const Point2& a, const Point2& b,
+                                        const Delimitation& delimitation, double search_radius,
+                                        double step) {
+  const double length = (b - a).norm();
+  const int samples = std::max(1, static_cast<int>(std::ceil(length / step)));
+  double worst = 0.0;
+  for (int i = 0; i <= samples; ++i) {
+    const Point2 q = a + (b - a) * (static_cast<double>(i) / samples);
+    double best2 = search_radius * search_radius;
+    ForEachCellNearSegment(q, q, search_radius, [&](int x, int y) {
+      if (delimitation.IsDelimitation(x, y))
+        best2 = std::min(best2, (Point2(x, y) - q).squaredNorm());
+    });
+    worst = std::max(worst, std::sqrt(best2));
+  }
+  return worst;
+}
+
+}  // namespace fleetmap::vector_map

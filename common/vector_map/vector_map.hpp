@@ -1,0 +1,55 @@
+#pragma once
+
+// The in-memory vector map: obstacle polylines and explored free space in the map frame (metres).
+// Deliberately plain (vectors of points) so that the DDS codec can turn it into a
+// structure-of-arrays tile without knowing anything about how it was made. docs/vector-maps.md
+// explains the constraints a vector map made by the Vectorizer satisfies.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "common/core/types.hpp"
+
+namespace fleetmap::vector_map {
+
+// An obstacle boundary as a chain of vertices; each consecutive pair is one segment (an edge of
+// the paper's graph). `closed` adds the segment from the last vertex back to the first. A polyline
+// with a single vertex is a point obstacle (a zero-length segment, e.g. an isolated occupied cell).
+struct Polyline {
+  std::vector<Point2> points;
+  bool closed = false;
+
+  // Segments it stands for: 0 for a point, n - 1 open, n closed (n >= 3).
+  size_t SegmentCount() const;
+  friend bool operator==(const Polyline&, const Polyline&) = default;
+};
+
+// Explored free space: a simple outer ring (not repeated at the end) with simple holes.
+struct FreePolygon {
+  std::vector<Point2> outer;
+  std::vector<std::vector<Point2>> holes;
+  friend bool operator==(const FreePolygon&, const FreePolygon&) = default;
+};
+
+struct VectorMap {
+  std::string frame_id = "map";
+  double resolution = 0.05;  // of the grid it was made from (metres per cell)
+  double epsilon = 0.0;      // the error bound both constraints were built with (metres)
+  std::vector<Polyline> obstacles;
+  std::vector<FreePolygon> free_space;
+
+  // Sum of the obstacle polylines' vertex counts (a vertex shared by two polylines counts twice,
+  // as it is stored twice).
+  size_t ObstacleVertexCount() const;
+  size_t ObstacleSegmentCount() const;
+  size_t FreeVertexCount() const;
+
+  // Appends another map's geometry (e.g. the tiles of one grid into one map).
+  void Append(const VectorMap& other);
+};
+
+// sqrt(2) * resolution: the smallest distance joining a cell centre to its 8 neighbours.
+double DefaultEpsilon(double resolution);
+
+}  // namespace fleetmap::vector_map

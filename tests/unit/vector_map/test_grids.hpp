@@ -1,0 +1,136 @@
+#pragma once
+
+// Grids for the vector-map tests: ASCII pictures and the real maps of ../shared/data/maps.
+
+#include <cstdint>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/grid/occupancy_grid.hpp"
+
+namespace fleetmap::vector_map::testing {
+
+// '#' occupied, '.' free, anything else unknown. The first string is the TOP row (largest y).
+inline grid::OccupancyGrid GridFromPicture(const std::vector<std::string>& rows,
+                                           double resolution = 0.05, Pose2 origin = {}) {
+  const int height = static_cast<int>(rows.size());
+  const int width = height == 0 ? 0 : static_cast<int>(rows[0].size());
+  grid::OccupancyGrid grid(width, height, resolution, origin);
+  for (int r = 0; r < height; ++r) {
+    for (int x = 0; x < width; ++x) {
+      const char c = rows[r][x];
+      grid.at(x, height - 1 - r) =
+          c == '#' ? grid::kOccupiedValue : (c == '.' ? grid::kFreeValue : grid::kUnknownValue);
+    }
+  }
+  return grid;
+}
+
+// Fills the rectangle [x0, x1] x [y0, y1] (inclusive) with `value`.
+inline void FillRect(grid::OccupancyGrid& grid, int x0, int y0, int x1, int y1, int8_t value) {
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      if (grid.Contains(x, y)) grid.at(x, y) = value;
+    }
+  }
+}
+
+// A thick line of occupied cells: cells whose centre lies within half_width of segment a-b.
+inline void DrawLine(grid::OccupancyGrid& grid, double ax, double ay, double bx, double by,
+                     double half_width) {
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const double dx = bx - ax, dy = by - ay;
+      const double len2 = dx * dx + dy * dy;
+      double t = len2 > 0 ? ((x - ax) * dx + (y - ay) * dy) / len2 : 0.0;
+      t = t < 0 ? 0 : (t > 1 ? 1 : t);
+      const double ex = ax + t * dx - x, ey = ay + t * dy - y;
+      if (ex * ex + ey * ey <= half_width * half_width) grid.at(x, y) = grid::kOccupiedValue;
+    }
+  }
+}
+
+// Random grid: each cell occupied with probability p_occupied, else free or unknown.
+inline grid::OccupancyGrid NoiseGrid(int width, int height, double p_occupied, uint32_t seed) {
+  grid::OccupancyGrid grid(width, height, 0.05);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (auto& v : grid.mutable_data()) {
+    const double s = u(rng);
+    v = s < p_occupied ? grid::kOccupiedValue : (s < 0.8 ? grid::kFreeValue : grid::kUnknownValue);
+  }
+  return grid;
+}
+
+// A synthetic floor plan: rooms with walls 1 to 4 cells thick, a diagonal wall, a pillar, speckle.
+inline grid::OccupancyGrid FloorPlan() {
+  grid::OccupancyGrid grid(120, 90, 0.05);
+  FillRect(grid, 0, 0, 119, 89, grid::kFreeValue);
+  FillRect(grid, 2, 2, 117, 3, grid::kOccupiedValue);     // 2 thick
+  FillRect(grid, 2, 86, 117, 86, grid::kOccupiedValue);   // 1 thick
+  FillRect(grid, 2, 2, 4, 86, grid::kOccupiedValue);      // 3 thick
+  FillRect(grid, 114, 2, 117, 86, grid::kOccupiedValue);  // 4 thick
+  FillRect(grid, 60, 2, 61, 50, grid::kOccupiedValue);
+  DrawLine(grid, 62, 50, 100, 80, 0.8);
+  FillRect(grid, 20, 30, 34, 44, grid::kOccupiedValue);  // solid blob
+  grid.at(45, 70) = grid::kOccupiedValue;                // speckle
+  grid.at(47, 71) = grid::kOccupiedValue;
+  FillRect(grid, 80, 10, 100, 20, grid::kUnknownValue);
+  return grid;
+}
+
+// The real maps (ROS map_server YAML + PGM), read with a small trinary reader so that these tests
+// do not depend on the map_io module.
+inline const std::vector<std::string>& RealMapNames() {
+  static const std::vector<std::string> names = {
+      "intel_lab",   "aces3_austin",    "nav2_warehouse", "willow_garage_2010",
+      "strands_kth", "aws_small_house", "tb3_world"};
+  return names;
+}
+
+inline bool LoadRealMap(const std::string& name, grid::OccupancyGrid& out) {
+  const std::string dir = FLEETMAP_SHARED_MAPS_DIR;
+  std::ifstream yaml(dir + "/" + name + ".yaml");
+  if (!yaml) return false;
+  double resolution = 0.05, occupied = 0.65, free = 0.196;
+  std::string line;
+  while (std::getline(yaml, line)) {
+    auto value = [&](const std::string& key, double& v) {
+      if (line.rfind(key + ":", 0) == 0) v = std::stod(line.substr(key.size() + 1));
+    };
+    value("resolution", resolution);
+    value("occupied_thresh", occupied);
+    value("free_thresh", free);
+  }
+  std::ifstream pgm(dir + "/" + name + ".pgm", std::ios::binary);
+  std::string magic;
+  int width = 0, height = 0, maxval = 0;
+  auto next = [&](auto& v) {
+    while (pgm >> std::ws && pgm.peek() == '#') pgm.ignore(1 << 20, '\n');
+    pgm >> v;
+  };
+  next(magic);
+  next(width);
+  next(height);
+  next(maxval);
+  pgm.get();
+  if (magic != "P5" || maxval != 255) return false;
+  std::vector<unsigned char> pixels(static_cast<size_t>(width) * height);
+  pgm.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
+  if (!pgm) return false;
+  out = grid::OccupancyGrid(width, height, resolution);
+  for (int row = 0; row < height; ++row) {
+    for (int x = 0; x < width; ++x) {
+      const double p = (255.0 - pixels[static_cast<size_t>(row) * width + x]) / 255.0;
+      out.at(x, height - 1 - row) = p > occupied ? grid::kOccupiedValue
+                                    : p < free   ? grid::kFreeValue
+                                                 : grid::kUnknownValue;
+    }
+  }
+  return true;
+}
+
+}  // namespace fleetmap::vector_map::testing

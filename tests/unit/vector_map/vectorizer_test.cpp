@@ -1,0 +1,299 @@
+#include "common/vector_map/vectorizer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <utility>
+
+#include "common/vector_map/cell_frame.hpp"
+#include "common/vector_map/validator.hpp"
+#include "tests/unit/vector_map/test_grids.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+using grid::OccupancyGrid;
+using testing::DrawLine;
+using testing::FillRect;
+using testing::GridFromPicture;
+
+VectorMap VectorizeOrDie(const OccupancyGrid& grid, VectorizerOptions options = {}) {
+  auto map = Vectorizer(options).Vectorize(grid);
+  EXPECT_TRUE(map.ok()) << map.status();
+  return map.ok() ? *map : VectorMap{};
+}
+
+ValidationReport ValidateOrDie(const VectorMap& map, const OccupancyGrid& grid) {
+  auto report = Validator().Validate(map, grid);
+  EXPECT_TRUE(report.ok()) << report.status();
+  return report.ok() ? *report : ValidationReport{};
+}
+
+void ExpectValid(const VectorMap& map, const OccupancyGrid& grid) {
+  const ValidationReport report = ValidateOrDie(map, grid);
+  EXPECT_EQ(report.uncovered_points, 0) << "worst point distance " << report.worst_point_distance;
+  EXPECT_EQ(report.discontinuous_segments, 0)
+      << "worst segment distance " << report.worst_segment_distance;
+}
+
+TEST(VectorizerTest, EmptyGridGivesEmptyMap) {
+  const OccupancyGrid grid(0, 0, 0.05);
+  const VectorMap map = VectorizeOrDie(grid);
+  EXPECT_TRUE(map.obstacles.empty());
+  EXPECT_TRUE(map.free_space.empty());
+  EXPECT_DOUBLE_EQ(map.epsilon, DefaultEpsilon(0.05));
+}
+
+TEST(VectorizerTest, AllUnknownGivesNothing) {
+  const OccupancyGrid grid(17, 9, 0.05);
+  const VectorMap map = VectorizeOrDie(grid);
+  EXPECT_TRUE(map.obstacles.empty());
+  EXPECT_TRUE(map.free_space.empty());
+}
+
+TEST(VectorizerTest, AllFreeGivesOneFreePolygon) {
+  const OccupancyGrid grid(17, 9, 0.05, {}, grid::kFreeValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  EXPECT_TRUE(map.obstacles.empty());
+  ASSERT_EQ(map.free_space.size(), 1u);
+  EXPECT_EQ(map.free_space[0].outer.size(), 4u);
+  EXPECT_TRUE(map.free_space[0].holes.empty());
+}
+
+TEST(VectorizerTest, OneByOneOccupiedIsAPoint) {
+  const OccupancyGrid grid(1, 1, 0.1, Pose2{1.0, 2.0, 0.0}, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  ASSERT_EQ(map.obstacles[0].points.size(), 1u);
+  EXPECT_TRUE(map.obstacles[0].points[0].isApprox(Point2(1.05, 2.05)));
+  ExpectValid(map, grid);
+}
+
+TEST(VectorizerTest, IsolatedCellIsAPointObstacle) {
+  const OccupancyGrid grid = GridFromPicture({".....", ".....", "..#..", ".....", "....."});
+  const VectorMap map = VectorizeOrDie(grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  EXPECT_EQ(map.obstacles[0].points.size(), 1u);
+  EXPECT_EQ(map.ObstacleSegmentCount(), 0u);
+  ExpectValid(map, grid);
+}
+
+TEST(VectorizerTest, AllOccupiedIsOutlinedAtTheGridBorder) {
+  const OccupancyGrid grid(30, 20, 0.05, {}, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  EXPECT_LE(map.ObstacleVertexCount(), 6u);
+}
+
+class ThinWallTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(ThinWallTest, WallUpToThreeCellsIsOneCentreLine) {
+  const int thickness = GetParam();
+  OccupancyGrid grid(60, 20, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 8, 54, 8 + thickness - 1, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  EXPECT_EQ(map.obstacles[0].points.size(), 2u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Thickness, ThinWallTest, ::testing::Values(1, 2, 3));
+
+TEST(VectorizerTest, VerticalAndDiagonalWallsAreCentreLines) {
+  OccupancyGrid grid(80, 80, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 10, 5, 11, 70, grid::kOccupiedValue);
+  DrawLine(grid, 20, 10, 70, 60, 0.75);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  EXPECT_EQ(map.obstacles.size(), 2u);
+  EXPECT_LE(map.ObstacleVertexCount(), 5u);
+}
+
+TEST(VectorizerTest, ThickBlobGetsAnOutline) {
+  OccupancyGrid grid(40, 40, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 8, 10, 30, 28, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  EXPECT_LE(map.ObstacleVertexCount(), 6u);
+}
+
+TEST(VectorizerTest, RoomWallsFormOneRing) {
+  OccupancyGrid grid(50, 40, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 5, 44, 6, grid::kOccupiedValue);
+  FillRect(grid, 5, 33, 44, 34, grid::kOccupiedValue);
+  FillRect(grid, 5, 5, 6, 34, grid::kOccupiedValue);
+  FillRect(grid, 43, 5, 44, 34, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  EXPECT_TRUE(map.obstacles[0].closed);
+  EXPECT_LE(map.obstacles[0].points.size(), 5u);
+}
+
+TEST(VectorizerTest, FloorPlanHoldsBothConstraints) {
+  const OccupancyGrid grid = testing::FloorPlan();
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+}
+
+TEST(VectorizerTest, NoiseHoldsBothConstraints) {
+  for (const double density : {0.05, 0.2, 0.45, 0.7}) {
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+      const OccupancyGrid grid = testing::NoiseGrid(64, 48, density, seed);
+      SCOPED_TRACE(::testing::Message() << "density " << density << " seed " << seed);
+      ExpectValid(VectorizeOrDie(grid), grid);
+    }
+  }
+}
+
+TEST(VectorizerTest, LargerEpsilonGivesFewerVertices) {
+  OccupancyGrid grid(100, 100, 0.05, {}, grid::kFreeValue);
+  for (int k = 0; k < 8; ++k)
+    DrawLine(grid, 50, 50, 50 + 45 * std::cos(k), 50 + 45 * std::sin(k), 1.0);
+  DrawLine(grid, 5, 5, 95, 20, 0.6);
+  const VectorMap fine = VectorizeOrDie(grid);
+  VectorizerOptions coarse_options;
+  coarse_options.epsilon = 0.15;
+  const VectorMap coarse = VectorizeOrDie(grid, coarse_options);
+  ExpectValid(fine, grid);
+  ExpectValid(coarse, grid);
+  EXPECT_LE(coarse.ObstacleVertexCount(), fine.ObstacleVertexCount());
+}
+
+TEST(VectorizerTest, RejectsTinyEpsilonAndBadRect) {
+  const OccupancyGrid grid(10, 10, 0.05);
+  VectorizerOptions options;
+  options.epsilon = 0.01;
+  EXPECT_EQ(Vectorizer(options).Vectorize(grid).status().code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(Vectorizer().VectorizeTile(grid, CellRect{5, 5, 6, 2}).status().code(),
+            StatusCode::kInvalidArgument);
+}
+
+TEST(VectorizerTest, PaperMethodRunsAndKeepsContinuityOfItsGraph) {
+  const OccupancyGrid grid = testing::FloorPlan();
+  VectorizerOptions options;
+  options.method = VectorizeMethod::kPaper;
+  const VectorMap paper = VectorizeOrDie(grid, options);
+  const VectorMap ours = VectorizeOrDie(grid);
+  EXPECT_GT(paper.ObstacleVertexCount(), 0u);
+  EXPECT_LT(ours.ObstacleVertexCount(), paper.ObstacleVertexCount());
+}
+
+TEST(VectorizerTest, PaperMethodCanBreakTheEpsilonErrorConstraint) {
+  // A gentle arc: each shortcut only checks the removed vertex, so folded points drift away.
+  OccupancyGrid grid(200, 120, 0.05, {}, grid::kFreeValue);
+  for (int x = 0; x < 200; ++x) grid.at(x, 10 + x * x / 400) = grid::kOccupiedValue;
+  VectorizerOptions options;
+  options.method = VectorizeMethod::kPaper;
+  const ValidationReport paper = ValidateOrDie(VectorizeOrDie(grid, options), grid);
+  EXPECT_GT(paper.uncovered_points, 0);
+  ExpectValid(VectorizeOrDie(grid), grid);
+}
+
+// Tiles --------------------------------------------------------------------------------------
+
+struct TileRun {
+  VectorMap whole;
+  std::map<std::pair<int, int>, VectorMap> tiles;
+};
+
+TileRun VectorizeInTiles(const OccupancyGrid& grid, int tile) {
+  TileRun run;
+  const Vectorizer vectorizer;
+  for (int ty = 0; ty * tile < grid.height(); ++ty) {
+    for (int tx = 0; tx * tile < grid.width(); ++tx) {
+      const CellRect rect{tx * tile, ty * tile, std::min(tile, grid.width() - tx * tile),
+                          std::min(tile, grid.height() - ty * tile)};
+      auto map = vectorizer.VectorizeTile(grid, rect);
+      EXPECT_TRUE(map.ok());
+      run.tiles[{tx, ty}] = *map;
+      run.whole.epsilon = map->epsilon;
+      run.whole.resolution = map->resolution;
+      run.whole.Append(*map);
+    }
+  }
+  return run;
+}
+
+// Polyline end points of `map` lying on the line x = line (vertical) or y = line, cell units.
+std::multiset<std::pair<double, double>> EndsOnLine(const VectorMap& map, const OccupancyGrid& grid,
+                                                    bool vertical, double line) {
+  const CellFrame frame(grid);
+  std::multiset<std::pair<double, double>> ends;
+  for (const Polyline& polyline : map.obstacles) {
+    if (polyline.closed) continue;
+    for (const Point2* p : {&polyline.points.front(), &polyline.points.back()}) {
+      const Point2 c = frame.ToCell(*p);
+      if (std::abs((vertical ? c.x() : c.y()) - line) < 1e-9) {
+        ends.insert({p->x(), p->y()});  // map-frame coordinates, compared exactly
+      }
+    }
+  }
+  return ends;
+}
+
+OccupancyGrid SeamGrid() {
+  OccupancyGrid grid(64, 64, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 2, 20, 61, 21, grid::kOccupiedValue);   // horizontal, 2 thick: crosses x borders
+  FillRect(grid, 37, 2, 37, 61, grid::kOccupiedValue);   // vertical, 1 thick
+  FillRect(grid, 10, 40, 28, 42, grid::kOccupiedValue);  // 3 thick across x = 16
+  DrawLine(grid, 3, 57, 57, 3, 0.7);                     // diagonal (not through a corner)
+  return grid;
+}
+
+TEST(VectorizerTileTest, TilesHoldConstraintsAndStitchWithoutSeams) {
+  const OccupancyGrid grid = SeamGrid();
+  const int tile = 16;
+  const TileRun run = VectorizeInTiles(grid, tile);
+  ExpectValid(run.whole, grid);
+  for (const auto& [key, map] : run.tiles) {
+    ValidatorOptions options;
+    options.rect = CellRect{key.first * tile, key.second * tile, tile, tile};
+    auto report = Validator(options).Validate(map, grid);
+    ASSERT_TRUE(report.ok());
+    EXPECT_TRUE(report->ok()) << "tile " << key.first << "," << key.second;
+  }
+  int shared_ends = 0;
+  for (const auto& [key, map] : run.tiles) {
+    const auto right = run.tiles.find({key.first + 1, key.second});
+    if (right != run.tiles.end()) {
+      const double line = (key.first + 1) * tile - 0.5;
+      const auto mine = EndsOnLine(map, grid, true, line);
+      EXPECT_EQ(mine, EndsOnLine(right->second, grid, true, line))
+          << "border right of tile " << key.first << "," << key.second;
+      shared_ends += static_cast<int>(mine.size());
+    }
+    const auto up = run.tiles.find({key.first, key.second + 1});
+    if (up != run.tiles.end()) {
+      const double line = (key.second + 1) * tile - 0.5;
+      const auto mine = EndsOnLine(map, grid, false, line);
+      EXPECT_EQ(mine, EndsOnLine(up->second, grid, false, line))
+          << "border above tile " << key.first << "," << key.second;
+      shared_ends += static_cast<int>(mine.size());
+    }
+  }
+  EXPECT_GE(shared_ends, 8);
+}
+
+TEST(VectorizerTileTest, ChangedTileIsRevectorizedAlone) {
+  OccupancyGrid grid = SeamGrid();
+  const int tile = 16;
+  TileRun run = VectorizeInTiles(grid, tile);
+  // Change the inside of tile (1, 1) only (not its border rows and columns).
+  FillRect(grid, 19, 19, 28, 28, grid::kFreeValue);
+  FillRect(grid, 20, 24, 27, 25, grid::kOccupiedValue);
+  auto changed = Vectorizer().VectorizeTile(grid, CellRect{16, 16, 16, 16});
+  ASSERT_TRUE(changed.ok());
+  VectorMap merged;
+  merged.epsilon = run.whole.epsilon;
+  merged.resolution = run.whole.resolution;
+  for (auto& [key, map] : run.tiles) {
+    if (key == std::make_pair(1, 1)) map = *changed;
+    merged.Append(map);
+  }
+  ExpectValid(merged, grid);
+}
+
+}  // namespace
+}  // namespace fleetmap::vector_map
