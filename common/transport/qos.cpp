@@ -29,10 +29,13 @@ EndpointQos RobotStatusQos() {
   EndpointQos qos;
   StateTopic(qos.writer);
   StateTopic(qos.reader);
-  qos.writer.liveliness().kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  // MANUAL_BY_TOPIC: each status sample asserts its writer's liveliness. With AUTOMATIC, Fast DDS
+  // 2.9 lets one live participant's heartbeats keep a dead one's writers alive (measured: a killed
+  // agent went unnoticed until the other agent left), and a hung agent would look alive too.
+  qos.writer.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
   qos.writer.liveliness().lease_duration = ToDuration(kRobotLivelinessLease);
   qos.writer.liveliness().announcement_period = ToDuration(kRobotLivelinessLease / 3);
-  qos.reader.liveliness().kind = dds::AUTOMATIC_LIVELINESS_QOS;
+  qos.reader.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
   qos.reader.liveliness().lease_duration = ToDuration(kRobotLivelinessLease);
   // Keep the instance registered when a robot's writer vanishes, so the reader sees the
   // NOT_ALIVE_NO_WRITERS transition instead of a silent removal.

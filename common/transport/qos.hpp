@@ -17,7 +17,8 @@ struct EndpointQos {
 };
 
 // rt/fleetmap/robot_status: reliable, transient local, keep last 1 per robot, no instance limit,
-// automatic liveliness with a 1.5 s lease so a dead agent is noticed in about 2 s.
+// manual-by-topic liveliness with a 1.5 s lease (each status sample renews it), so a dead or
+// hung agent is noticed in about 2 s. Agents must write their status more often than the lease.
 EndpointQos RobotStatusQos();
 
 // rt/<robot>/map and rt/fleetmap/map: what nav2's map_server uses for /map (reliable, transient

@@ -161,21 +161,31 @@ TEST_F(FleetDdsTest, FiftyRobotsAllArrive) {
   EXPECT_EQ(seen.size(), static_cast<size_t>(kRobots));
 }
 
-TEST_F(FleetDdsTest, KilledAgentIsReportedLost) {
+TEST_F(FleetDdsTest, KilledAgentIsReportedLostWhileOthersLive) {
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
   auto wake_up = std::make_shared<transport::WakeUp>();
   auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
 
-  auto agent = StartAgent("doomed", kMap);
-  ASSERT_TRUE(WaitForEvent(**reader, *wake_up, "doomed", transport::RobotEvent::Kind::kStatus))
-      << agent->Output();
-  agent->Signal(SIGKILL);
+  // A live neighbour must not keep the dead robot alive (it did with AUTOMATIC liveliness).
+  auto survivor = StartAgent("survivor", kMap);
+  auto doomed = StartAgent("doomed", kMap);
   std::vector<transport::RobotEvent> seen;
+  ASSERT_TRUE(
+      WaitForEvent(**reader, *wake_up, "survivor", transport::RobotEvent::Kind::kStatus, &seen));
+  ASSERT_TRUE(WaitForEvent(**reader, *wake_up, "doomed", transport::RobotEvent::Kind::kStatus))
+      << doomed->Output();
+  doomed->Signal(SIGKILL);
+  seen.clear();
   EXPECT_TRUE(
       WaitForEvent(**reader, *wake_up, "doomed", transport::RobotEvent::Kind::kLost, &seen));
-  for (const auto& event : seen) EXPECT_NE(event.kind, transport::RobotEvent::Kind::kLeft);
+  for (const auto& event : seen) {
+    EXPECT_NE(event.kind, transport::RobotEvent::Kind::kLeft);
+    if (event.robot.value == "survivor") {
+      EXPECT_EQ(event.kind, transport::RobotEvent::Kind::kStatus);
+    }
+  }
 }
 
 TEST_F(FleetDdsTest, StoppedAgentLeavesOnPurpose) {

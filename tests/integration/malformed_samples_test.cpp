@@ -4,6 +4,8 @@
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "common/transport/endpoint.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/qos.hpp"
@@ -40,6 +42,22 @@ nav_msgs::msg::dds_::OccupancyGrid_ Grid(uint32_t width, uint32_t height, size_t
   return grid;
 }
 
+// Writes `sample` every 200 ms until the server prints `text`, as a live robot keeps talking
+// (status liveliness is renewed by writing; a single early sample could lapse before matching).
+// `keep_alive` is called on every round too (to renew the robot's status while its map goes).
+template <typename Sample>
+bool WriteUntilServerSays(dds::DataWriter* writer, Sample& sample,
+                          const testing::Subprocess& server, const std::string& text,
+                          const std::function<void()>& keep_alive = [] {}) {
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (std::chrono::steady_clock::now() < deadline) {
+    keep_alive();
+    if (!writer->write(&sample)) return false;
+    if (server.WaitForOutput(text, std::chrono::milliseconds(200))) return true;
+  }
+  return false;
+}
+
 TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   const int domain = testing::RandomDomainId();
   const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
@@ -66,24 +84,28 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
 
   // A robot name that is not a ROS name token.
   auto bad_name = StatusOf("bad/robot");
-  ASSERT_TRUE((*status_writer)->writer()->write(&bad_name));
-  EXPECT_TRUE(server.WaitForOutput("dropped a robot status sample", kDeadline))
+  EXPECT_TRUE(WriteUntilServerSays((*status_writer)->writer(), bad_name, server,
+                                   "dropped a robot status sample"))
       << server.Output();
   EXPECT_NE(server.Output().find("bad/robot"), std::string::npos);
 
   // A valid robot whose map says 10 x 10 but carries 5 cells.
   auto gamma = StatusOf("gamma");
-  ASSERT_TRUE((*status_writer)->writer()->write(&gamma));
-  ASSERT_TRUE(server.WaitForOutput("robot gamma joined", kDeadline)) << server.Output();
+  ASSERT_TRUE(
+      WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
+      << server.Output();
+  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
   auto short_grid = Grid(10, 10, 5);
-  ASSERT_TRUE((*map_writer)->writer()->write(&short_grid));
-  EXPECT_TRUE(server.WaitForOutput("dropped a map from gamma", kDeadline)) << server.Output();
+  EXPECT_TRUE(WriteUntilServerSays((*map_writer)->writer(), short_grid, server,
+                                   "dropped a map from gamma", gamma_alive))
+      << server.Output();
   EXPECT_NE(server.Output().find("10 x 10 cells but carries 5"), std::string::npos);
 
   // The same peer then sends a good map: it is taken, and alpha was never disturbed.
   auto good_grid = Grid(2, 3, 6);
-  ASSERT_TRUE((*map_writer)->writer()->write(&good_grid));
-  EXPECT_TRUE(server.WaitForOutput("map from gamma: 2 x 3 cells", kDeadline)) << server.Output();
+  EXPECT_TRUE(WriteUntilServerSays((*map_writer)->writer(), good_grid, server,
+                                   "map from gamma: 2 x 3 cells", gamma_alive))
+      << server.Output();
 
   map_writer->reset();
   status_writer->reset();
