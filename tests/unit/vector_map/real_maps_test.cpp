@@ -1,0 +1,102 @@
+// The vectorizer on the real maps of ../shared/data/maps (SOURCES.md), loaded with map_io.
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "common/grid/map_io.hpp"
+#include "common/metrics/map_quality.hpp"
+#include "common/vector_map/rasterizer.hpp"
+#include "common/vector_map/validator.hpp"
+#include "common/vector_map/vectorizer.hpp"
+#include "tests/unit/vector_map/test_grids.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+grid::OccupancyGrid Load(const std::string& name) {
+  auto loaded = grid::LoadMap(std::string(FLEETMAP_SHARED_MAPS_DIR) + "/" + name + ".yaml");
+  EXPECT_TRUE(loaded.ok()) << loaded.status();
+  return loaded.ok() ? loaded->grid : grid::OccupancyGrid();
+}
+
+// The baseline of SOURCES.md: findContours(RETR_LIST, CHAIN_APPROX_SIMPLE) + approxPolyDP(1.414).
+size_t OpenCvVertices(const grid::OccupancyGrid& grid) {
+  cv::Mat mask(grid.height(), grid.width(), CV_8UC1);
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      mask.at<uint8_t>(y, x) = grid.StateAt(x, y) == grid::CellState::kOccupied ? 255 : 0;
+    }
+  }
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask, contours, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
+  size_t vertices = 0;
+  for (const auto& contour : contours) {
+    std::vector<cv::Point> simplified;
+    cv::approxPolyDP(contour, simplified, 1.414, true);
+    vertices += simplified.size();
+  }
+  return vertices;
+}
+
+class RealMapTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RealMapTest, DefaultMethodHoldsBothConstraintsAndRoundTrips) {
+  const grid::OccupancyGrid grid = Load(GetParam());
+  ASSERT_FALSE(grid.empty());
+  const VectorMap map = *Vectorizer().Vectorize(grid);
+  ValidatorOptions validator_options;
+  validator_options.measure_segment_distance = false;
+  const ValidationReport report = *Validator(validator_options).Validate(map, grid);
+  EXPECT_EQ(report.uncovered_points, 0);
+  EXPECT_EQ(report.discontinuous_segments, 0);
+
+  const size_t ours = map.ObstacleVertexCount();
+  const size_t opencv = OpenCvVertices(grid);
+  // Regression guard at the measured level (docs/results.md): at most 1.05 x OpenCV per map.
+  EXPECT_LE(static_cast<double>(ours), 1.05 * static_cast<double>(opencv));
+
+  const grid::OccupancyGrid back = *Rasterizer().Rasterize(map, grid);
+  const auto scores = *metrics::CompareMaps(back, grid);
+  std::cout << GetParam() << ": vertices " << ours << " (OpenCV " << opencv << "), free vertices "
+            << map.FreeVertexCount() << ", P " << report.delimitation_points << ", MS "
+            << *scores.map_score << ", OPDF " << *scores.occupied_picture_distance << ", UPDF "
+            << *scores.unoccupied_picture_distance << "\n";
+  // Regression guards at the measured levels (docs/results.md); the target of 99 % for MS
+  // and OPDF is not met yet on every map (see docs/vector-maps.md, "Round trip").
+  EXPECT_GE(*scores.map_score, 96.0);
+  EXPECT_GE(*scores.occupied_picture_distance, 98.0);
+  EXPECT_GE(*scores.unoccupied_picture_distance, 99.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Maps, RealMapTest, ::testing::ValuesIn(testing::RealMapNames()),
+                         [](const auto& info) { return info.param; });
+
+TEST(RealMapTileTest, TilesOfARealMapHoldTheConstraintsTogether) {
+  const grid::OccupancyGrid grid = Load("strands_kth");
+  ASSERT_FALSE(grid.empty());
+  const int tile = 64;
+  VectorizerOptions options;
+  options.extract_free_space = false;
+  const Vectorizer vectorizer(options);
+  VectorMap whole;
+  for (int y = 0; y < grid.height(); y += tile) {
+    for (int x = 0; x < grid.width(); x += tile) {
+      const CellRect rect{x, y, std::min(tile, grid.width() - x),
+                          std::min(tile, grid.height() - y)};
+      const VectorMap part = *vectorizer.VectorizeTile(grid, rect);
+      whole.epsilon = part.epsilon;
+      whole.Append(part);
+    }
+  }
+  ValidatorOptions validator_options;
+  validator_options.measure_segment_distance = false;
+  const ValidationReport report = *Validator(validator_options).Validate(whole, grid);
+  EXPECT_TRUE(report.ok()) << report.uncovered_points << " " << report.discontinuous_segments;
+}
+
+}  // namespace
+}  // namespace fleetmap::vector_map
