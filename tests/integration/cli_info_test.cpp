@@ -1,72 +1,24 @@
 // Runs the real `fleetmap` binary and checks its output and exit codes.
 
-#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "tests/support/subprocess.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream content;
-  content << in.rdbuf();
-  return content.str();
-}
-
-// Spawns fleetmap with `args`, stdout and stderr captured in files (no pipe deadlocks).
-ProcessResult RunFleetmap(const std::vector<std::string>& args) {
-  const std::string binary = std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap";
-  const std::string base = ::testing::TempDir() + "/cli_test_" + std::to_string(getpid());
-  const std::string out_path = base + ".out";
-  const std::string err_path = base + ".err";
-  std::vector<std::string> argv_storage = {binary};
-  argv_storage.insert(argv_storage.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& arg : argv_storage) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  ProcessResult run;
-  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(spawned, 0) << "cannot run " << binary;
-  if (spawned != 0) return run;
-  int status = 0;
-  EXPECT_EQ(waitpid(pid, &status, 0), pid);
-  EXPECT_TRUE(WIFEXITED(status)) << "fleetmap did not exit normally (signal?)";
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = ReadFile(out_path);
-  run.err = ReadFile(err_path);
-  std::filesystem::remove(out_path);
-  std::filesystem::remove(err_path);
-  return run;
+// Runs the real fleetmap binary with `args`.
+testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return testing::RunCommand(std::move(argv));
 }
 
 std::string DataPath(const std::string& name) {
@@ -74,7 +26,7 @@ std::string DataPath(const std::string& name) {
 }
 
 TEST(CliInfoTest, PrintsJsonSummary) {
-  const ProcessResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--json"});
+  const testing::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const nlohmann::json json = nlohmann::json::parse(run.out);
@@ -102,7 +54,7 @@ TEST(CliInfoTest, PrintsJsonSummary) {
 }
 
 TEST(CliInfoTest, PrintsTextSummary) {
-  const ProcessResult run = RunFleetmap({"info", DataPath("raw_4x3.yaml")});
+  const testing::CommandResult run = RunFleetmap({"info", DataPath("raw_4x3.yaml")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("size:       4 x 3 cells (12)"));
   EXPECT_THAT(run.out, HasSubstr("resolution: 0.5 m/cell"));
@@ -140,7 +92,7 @@ TEST(CliInfoTest, BadInputsExitWithCode2AndNameTheFile) {
     for (const bool json : {false, true}) {
       std::vector<std::string> args = {"info", DataPath(c.yaml)};
       if (json) args.push_back("--json");
-      const ProcessResult run = RunFleetmap(args);
+      const testing::CommandResult run = RunFleetmap(args);
       EXPECT_EQ(run.exit_code, 2) << c.yaml;
       EXPECT_EQ(run.out, "") << c.yaml;
       EXPECT_THAT(run.err, HasSubstr(c.message)) << c.yaml;
@@ -149,7 +101,7 @@ TEST(CliInfoTest, BadInputsExitWithCode2AndNameTheFile) {
 }
 
 TEST(CliInfoTest, OptionsReachTheLoader) {
-  ProcessResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
+  testing::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("more than the limit of 11"));
   run = RunFleetmap({"info", DataPath("escaping_path.yaml"), "--allow-outside-dir"});
@@ -160,11 +112,11 @@ TEST(CliInfoTest, OptionsReachTheLoader) {
 TEST(CliInfoTest, UsageErrorsExitNonZero) {
   for (const std::vector<std::string>& args :
        std::vector<std::vector<std::string>>{{}, {"info"}, {"nonsense"}, {"info", "--bogus"}}) {
-    const ProcessResult run = RunFleetmap(args);
+    const testing::CommandResult run = RunFleetmap(args);
     EXPECT_NE(run.exit_code, 0) << ::testing::PrintToString(args);
     EXPECT_NE(run.err, "") << ::testing::PrintToString(args);
   }
-  const ProcessResult help = RunFleetmap({"--help"});
+  const testing::CommandResult help = RunFleetmap({"--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_THAT(help.out, HasSubstr("info"));
 }
@@ -174,7 +126,7 @@ TEST(CliInfoTest, EverySharedMapHasInfo) {
   if (!std::filesystem::is_directory(maps_dir)) GTEST_SKIP() << "no shared maps";
   for (const auto& entry : std::filesystem::directory_iterator(maps_dir)) {
     if (entry.path().extension() != ".yaml") continue;
-    const ProcessResult run = RunFleetmap({"info", entry.path().string(), "--json"});
+    const testing::CommandResult run = RunFleetmap({"info", entry.path().string(), "--json"});
     ASSERT_EQ(run.exit_code, 0) << entry.path() << ": " << run.err;
     const nlohmann::json json = nlohmann::json::parse(run.out);
     const int64_t cells = json["cells"];

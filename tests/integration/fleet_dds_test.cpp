@@ -232,13 +232,13 @@ TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
       {kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml", "--domain",
        std::to_string(domain_), "--localhost-only"});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.output.find("/nonexistent/map.yaml"), std::string::npos) << result.output;
+  EXPECT_NE(result.output().find("/nonexistent/map.yaml"), std::string::npos) << result.output();
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
   const auto result = testing::RunCommand({kAgent, "--robot-id", "no/slash", "--map", kMap});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.output.find("no/slash"), std::string::npos) << result.output;
+  EXPECT_NE(result.output().find("no/slash"), std::string::npos) << result.output();
 }
 
 }  // namespace

@@ -31,6 +31,22 @@ std::vector<std::string> MergedEnvironment(const std::map<std::string, std::stri
   return out;
 }
 
+// A new empty temporary file; returns its descriptor and sets `path`.
+int TemporaryFile(std::string* path) {
+  char path_template[] = "/tmp/fleetmap-test-output-XXXXXX";
+  const int fd = mkstemp(path_template);
+  if (fd < 0) throw std::runtime_error("mkstemp failed");
+  *path = path_template;
+  return fd;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
 std::vector<char*> CStrings(std::vector<std::string>& strings) {
   std::vector<char*> out;
   for (std::string& s : strings) out.push_back(s.data());
@@ -41,15 +57,13 @@ std::vector<char*> CStrings(std::vector<std::string>& strings) {
 }  // namespace
 
 Subprocess::Subprocess(std::vector<std::string> argv, std::map<std::string, std::string> env) {
-  char path_template[] = "/tmp/fleetmap-test-output-XXXXXX";
-  const int fd = mkstemp(path_template);
-  if (fd < 0) throw std::runtime_error("mkstemp failed");
-  output_path_ = path_template;
+  const int out_fd = TemporaryFile(&stdout_path_);
+  const int err_fd = TemporaryFile(&stderr_path_);
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, out_fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, err_fd, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
 
   std::vector<std::string> env_strings = MergedEnvironment(env);
@@ -59,7 +73,8 @@ Subprocess::Subprocess(std::vector<std::string> argv, std::map<std::string, std:
     pid_ = -1;
   }
   posix_spawn_file_actions_destroy(&actions);
-  close(fd);
+  close(out_fd);
+  close(err_fd);
 }
 
 Subprocess::~Subprocess() {
@@ -67,15 +82,13 @@ Subprocess::~Subprocess() {
     kill(pid_, SIGKILL);
     Wait(std::chrono::seconds(10));
   }
-  if (!output_path_.empty()) std::remove(output_path_.c_str());
+  std::remove(stdout_path_.c_str());
+  std::remove(stderr_path_.c_str());
 }
 
-std::string Subprocess::Output() const {
-  std::ifstream in(output_path_);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+std::string Subprocess::StdOut() const { return ReadFile(stdout_path_); }
+
+std::string Subprocess::StdErr() const { return ReadFile(stderr_path_); }
 
 bool Subprocess::WaitForOutput(const std::string& text,
                                std::chrono::milliseconds timeout) const {
@@ -114,7 +127,8 @@ CommandResult RunCommand(std::vector<std::string> argv, std::chrono::millisecond
   Subprocess process(std::move(argv));
   CommandResult result;
   result.exit_code = process.Wait(timeout).value_or(-1);
-  result.output = process.Output();
+  result.out = process.StdOut();
+  result.err = process.StdErr();
   return result;
 }
 

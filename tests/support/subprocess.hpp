@@ -11,7 +11,7 @@
 namespace fleetmap::testing {
 
 // A real child process for integration tests: started with posix_spawn, its stdout and stderr
-// captured in a temporary file that the test can poll. Killed (SIGKILL) on destruction if still
+// captured in temporary files that the test can poll. Killed (SIGKILL) on destruction if still
 // running. Use from one thread.
 class Subprocess {
  public:
@@ -24,8 +24,10 @@ class Subprocess {
   bool started() const { return pid_ > 0; }
   pid_t pid() const { return pid_; }
 
-  // Everything the process printed so far.
-  std::string Output() const;
+  // What the process printed so far: on stdout, on stderr, and both (stdout first).
+  std::string StdOut() const;
+  std::string StdErr() const;
+  std::string Output() const { return StdOut() + StdErr(); }
   // Waits until Output() contains `text`; false on timeout or if the process exited without it.
   bool WaitForOutput(const std::string& text, std::chrono::milliseconds timeout) const;
 
@@ -37,14 +39,17 @@ class Subprocess {
   bool Running() const;
 
   pid_t pid_ = -1;
-  std::string output_path_;
+  std::string stdout_path_;
+  std::string stderr_path_;
   mutable std::optional<int> exit_code_;
 };
 
 // The result of running a command to completion.
 struct CommandResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr, interleaved
+  int exit_code = -1;  // 128 + signal if killed, -1 if it did not finish in time
+  std::string out;
+  std::string err;
+  std::string output() const { return out + err; }
 };
 
 CommandResult RunCommand(std::vector<std::string> argv,
