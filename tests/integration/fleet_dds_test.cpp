@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <set>
@@ -28,17 +29,40 @@ using testing::Subprocess;
 
 const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
 const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
-const std::string kMap = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/tb3_world.yaml";
-const std::string kOtherMap = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/strands_kth.yaml";
 // Generous deadlines for a loaded 2-core CI machine; they bound waits, they are not assertions.
 constexpr seconds kDeadline{20};
 
+// A synthetic map written with map_server's format: rooms of walls with a few unknown patches.
+// Large enough (hundreds of KB) that every sample is fragmented over UDP.
+std::string WriteMap(const std::string& name, int width, int height) {
+  grid::OccupancyGrid map(width, height, 0.05, Pose2{-3.0, 1.5, 0.0}, grid::kFreeValue);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (x % 40 == 0 || y % 30 == 0) map.at(x, y) = grid::kOccupiedValue;
+      if ((x / 7 + y / 5) % 11 == 0) map.at(x, y) = grid::kUnknownValue;
+    }
+  }
+  const std::string path = ::testing::TempDir() + "/fleet_dds_" + std::to_string(getpid()) +
+                           "_" + name + ".yaml";
+  const Status saved = grid::SaveMap(map, path);
+  EXPECT_TRUE(saved.ok()) << saved;
+  return path;
+}
+
 class FleetDdsTest : public ::testing::Test {
  protected:
+  static void SetUpTestSuite() {
+    map_path_ = WriteMap("small", 384, 384);
+    tall_map_path_ = WriteMap("tall", 260, 781);
+  }
+
   void SetUp() override {
     domain_ = RandomDomainId();
     env_ = {{"FLEETMAP_DOMAIN", std::to_string(domain_)}, {"FLEETMAP_LOCALHOST_ONLY", "1"}};
   }
+
+  static inline std::string map_path_;
+  static inline std::string tall_map_path_;
 
   std::unique_ptr<transport::Participant> MakeParticipant() {
     transport::ParticipantOptions options;
@@ -90,7 +114,7 @@ class FleetDdsTest : public ::testing::Test {
 };
 
 TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
-  auto agent = StartAgent("alpha", kMap);
+  auto agent = StartAgent("alpha", map_path_);
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
   auto wake_up = std::make_shared<transport::WakeUp>();
@@ -101,7 +125,7 @@ TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
   const std::optional<transport::MapMessage> received = WaitForMap(**reader, *wake_up);
   ASSERT_TRUE(received.has_value()) << agent->Output();
 
-  const auto expected = grid::LoadMap(kMap);
+  const auto expected = grid::LoadMap(map_path_);
   ASSERT_TRUE(expected.ok()) << expected.status();
   EXPECT_EQ(received->frame_id, "alpha/map");
   EXPECT_EQ(received->grid.width(), expected->grid.width());
@@ -114,7 +138,7 @@ TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
 }
 
 TEST_F(FleetDdsTest, LateJoiningReaderReceivesTransientLocalMap) {
-  auto agent = StartAgent("late", kMap);
+  auto agent = StartAgent("late", map_path_);
   ASSERT_TRUE(agent->WaitForOutput("in the fleet", kDeadline)) << agent->Output();
   // The map was published before this reader existed: durability must deliver it.
   std::this_thread::sleep_for(milliseconds(500));
@@ -169,8 +193,8 @@ TEST_F(FleetDdsTest, KilledAgentIsReportedLostWhileOthersLive) {
   ASSERT_TRUE(reader.ok()) << reader.status();
 
   // A live neighbour must not keep the dead robot alive (it did with AUTOMATIC liveliness).
-  auto survivor = StartAgent("survivor", kMap);
-  auto doomed = StartAgent("doomed", kMap);
+  auto survivor = StartAgent("survivor", map_path_);
+  auto doomed = StartAgent("doomed", map_path_);
   std::vector<transport::RobotEvent> seen;
   ASSERT_TRUE(
       WaitForEvent(**reader, *wake_up, "survivor", transport::RobotEvent::Kind::kStatus, &seen));
@@ -195,7 +219,7 @@ TEST_F(FleetDdsTest, StoppedAgentLeavesOnPurpose) {
   auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
 
-  auto agent = StartAgent("polite", kMap);
+  auto agent = StartAgent("polite", map_path_);
   ASSERT_TRUE(WaitForEvent(**reader, *wake_up, "polite", transport::RobotEvent::Kind::kStatus));
   agent->Signal(SIGTERM);
   EXPECT_EQ(agent->Wait(kDeadline), 0) << agent->Output();
@@ -205,8 +229,8 @@ TEST_F(FleetDdsTest, StoppedAgentLeavesOnPurpose) {
 TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   ASSERT_TRUE(server.WaitForOutput("listening", kDeadline)) << server.Output();
-  auto alpha = StartAgent("alpha", kMap);
-  auto beta = StartAgent("beta", kOtherMap);
+  auto alpha = StartAgent("alpha", map_path_);
+  auto beta = StartAgent("beta", tall_map_path_);
 
   EXPECT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
   EXPECT_TRUE(server.WaitForOutput("robot beta joined", kDeadline)) << server.Output();
@@ -236,7 +260,7 @@ TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
-  const auto result = testing::RunCommand({kAgent, "--robot-id", "no/slash", "--map", kMap});
+  const auto result = testing::RunCommand({kAgent, "--robot-id", "no/slash", "--map", map_path_});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output().find("no/slash"), std::string::npos) << result.output();
 }

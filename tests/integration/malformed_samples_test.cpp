@@ -22,7 +22,7 @@ using std::chrono::seconds;
 
 const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
 const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
-const std::string kMap = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/tb3_world.yaml";
+const std::string kMap = std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/trinary_4x3.yaml";
 constexpr seconds kDeadline{20};
 
 fleetmap_msgs::msg::dds_::RobotStatus_ StatusOf(const std::string& robot) {
@@ -112,6 +112,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   server.Signal(SIGINT);
   ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
   EXPECT_NE(server.Output().find("alpha            active"), std::string::npos) << server.Output();
+  EXPECT_NE(server.Output().find("gamma            "), std::string::npos) << server.Output();
 }
 
 }  // namespace
