@@ -118,43 +118,58 @@ void CopyTile(const OccupancyGrid& tile, int64_t x0, int64_t y0, OccupancyGrid* 
 
 }  // namespace
 
-StatusOr<TileGrids> SplitIntoTiles(const OccupancyGrid& grid, const Transform2& fleet_from_map,
-                                   const TilingOptions& options) {
-  if (!std::isfinite(options.tile_size) || options.tile_size <= 0.0) {
+StatusOr<std::map<TileId, CellRect>> TileCellRects(const OccupancyGrid& grid,
+                                                   const Transform2& fleet_from_map,
+                                                   double tile_size) {
+  if (!std::isfinite(tile_size) || tile_size <= 0.0) {
     return InvalidArgumentError("tile_size must be a finite number > 0 metres, got " +
-                                std::to_string(options.tile_size));
+                                std::to_string(tile_size));
   }
   FLEETMAP_RETURN_IF_ERROR(CheckAxisAligned(fleet_from_map, grid.origin().yaw));
-  TileGrids tiles;
-  if (grid.empty()) return tiles;
-  const double resolution = grid.resolution();
+  std::map<TileId, CellRect> rects;
+  if (grid.empty()) return rects;
   // The fleet frame's coordinates of cell (0, 0)'s outer corner. Stitching recomputes the same
   // expression, so both sides agree on it to the last bit.
   const double corner_x = grid.origin().x + fleet_from_map.translation().x();
   const double corner_y = grid.origin().y + fleet_from_map.translation().y();
-  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<Run> columns,
-                            AxisRuns(corner_x, grid.width(), resolution, options.tile_size, "x"));
-  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<Run> rows,
-                            AxisRuns(corner_y, grid.height(), resolution, options.tile_size, "y"));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      const std::vector<Run> columns,
+      AxisRuns(corner_x, grid.width(), grid.resolution(), tile_size, "x"));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      const std::vector<Run> rows,
+      AxisRuns(corner_y, grid.height(), grid.resolution(), tile_size, "y"));
   for (const Run& row : rows) {
     for (const Run& column : columns) {
-      const int width = column.end - column.begin;
-      const int height = row.end - row.begin;
-      const Pose2 origin{corner_x + column.begin * resolution, corner_y + row.begin * resolution,
-                         0.0};
-      OccupancyGrid tile(width, height, resolution, origin);
-      bool all_unknown = true;
-      for (int y = 0; y < height; ++y) {
-        const int8_t* from =
-            grid.data().data() + static_cast<size_t>(row.begin + y) * grid.width() + column.begin;
-        int8_t* to = tile.mutable_data().data() + static_cast<size_t>(y) * width;
-        std::memcpy(to, from, static_cast<size_t>(width));
-        all_unknown =
-            all_unknown && std::all_of(to, to + width, [](int8_t v) { return v == kUnknownValue; });
-      }
-      if (all_unknown && options.skip_unknown_tiles) continue;
-      tiles.emplace(TileId{column.tile, row.tile}, std::move(tile));
+      rects.emplace(TileId{column.tile, row.tile},
+                    CellRect{column.begin, row.begin, column.end - column.begin,
+                             row.end - row.begin});
     }
+  }
+  return rects;
+}
+
+StatusOr<TileGrids> SplitIntoTiles(const OccupancyGrid& grid, const Transform2& fleet_from_map,
+                                   const TilingOptions& options) {
+  FLEETMAP_ASSIGN_OR_RETURN(const auto rects,
+                            TileCellRects(grid, fleet_from_map, options.tile_size));
+  const double resolution = grid.resolution();
+  const double corner_x = grid.origin().x + fleet_from_map.translation().x();
+  const double corner_y = grid.origin().y + fleet_from_map.translation().y();
+  TileGrids tiles;
+  for (const auto& [id, rect] : rects) {
+    const Pose2 origin{corner_x + rect.x0 * resolution, corner_y + rect.y0 * resolution, 0.0};
+    OccupancyGrid tile(rect.width, rect.height, resolution, origin);
+    bool all_unknown = true;
+    for (int y = 0; y < rect.height; ++y) {
+      const int8_t* from =
+          grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
+      int8_t* to = tile.mutable_data().data() + static_cast<size_t>(y) * rect.width;
+      std::memcpy(to, from, static_cast<size_t>(rect.width));
+      all_unknown =
+          all_unknown && std::all_of(to, to + rect.width, [](int8_t v) { return v == kUnknownValue; });
+    }
+    if (all_unknown && options.skip_unknown_tiles) continue;
+    tiles.emplace(id, std::move(tile));
   }
   return tiles;
 }

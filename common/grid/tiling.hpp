@@ -11,6 +11,7 @@
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
+#include "common/grid/cell_rect.hpp"
 #include "common/grid/occupancy_grid.hpp"
 
 namespace fleetmap::grid {
@@ -26,6 +27,13 @@ struct TilingOptions {
 // at the fleet-frame corner of its first cell. Edge tiles are partial: a tile holds only the
 // source's cells, so tiles of a grid not aligned with the tile lattice have uneven sizes.
 using TileGrids = std::map<TileId, OccupancyGrid>;
+
+// The cells of `grid` that fall in each tile of the fleet frame, as rectangles of the grid (the
+// same assignment SplitIntoTiles makes). Every tile the grid touches is listed, unknown or not.
+// Errors as SplitIntoTiles.
+StatusOr<std::map<TileId, CellRect>> TileCellRects(const OccupancyGrid& grid,
+                                                   const Transform2& fleet_from_map,
+                                                   double tile_size);
 
 // Splits `grid` (in the map frame) into tiles of the fleet frame. The grid must be axis-aligned in
 // the fleet frame: `fleet_from_map` a pure translation and the grid's origin yaw 0 (both within

@@ -130,6 +130,30 @@ TEST(TilingTest, SkipsAllUnknownTilesUnlessAsked) {
   EXPECT_EQ(tiles->size(), 2u);
 }
 
+TEST(TilingTest, CellRectsPartitionTheGridLikeSplit) {
+  OccupancyGrid grid(37, 23, 0.1, Pose2{-1.05, 0.3, 0.0}, kFreeValue);
+  const Transform2 fleet_from_map = Pose2{0.25, -0.5, 0.0}.ToTransform();
+  const auto rects = TileCellRects(grid, fleet_from_map, 1.0);
+  ASSERT_TRUE(rects.ok()) << rects.status();
+  const auto tiles = SplitIntoTiles(grid, fleet_from_map, {.tile_size = 1.0});
+  ASSERT_TRUE(tiles.ok()) << tiles.status();
+  ASSERT_EQ(rects->size(), tiles->size());
+  std::vector<int> covered(static_cast<size_t>(grid.cell_count()), 0);
+  for (const auto& [id, rect] : *rects) {
+    const OccupancyGrid& tile = tiles->at(id);
+    EXPECT_EQ(rect.width, tile.width()) << id;
+    EXPECT_EQ(rect.height, tile.height()) << id;
+    // The tile's first cell is the rectangle's first cell, in the fleet frame.
+    const Point2 first = fleet_from_map * grid.CellCenter(rect.x0, rect.y0);
+    EXPECT_NEAR(first.x(), tile.CellCenter(0, 0).x(), 1e-9) << id;
+    EXPECT_NEAR(first.y(), tile.CellCenter(0, 0).y(), 1e-9) << id;
+    for (int y = rect.y0; y < rect.y0 + rect.height; ++y) {
+      for (int x = rect.x0; x < rect.x0 + rect.width; ++x) ++covered[y * grid.width() + x];
+    }
+  }
+  EXPECT_THAT(covered, ::testing::Each(1));
+}
+
 TEST(TilingTest, RejectsRotationAndBadTileSize) {
   const OccupancyGrid grid(4, 4, 1.0, Pose2{});
   Transform2 rotated = Transform2::Identity();
