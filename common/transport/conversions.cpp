@@ -161,3 +161,207 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
 }
 
 }  // namespace fleetmap::transport
+
+namespace fleetmap::transport {
+namespace {
+
+using vector_map::FreePolygon;
+using vector_map::Polyline;
+
+// Quantises coordinates relative to one tile's corner.
+class TileQuantiser {
+ public:
+  TileQuantiser(const TileId& tile, double tile_size)
+      : corner_(tile.x * tile_size, tile.y * tile_size),
+        quantum_(vector_map::TileQuantum(tile_size)) {}
+
+  double quantum() const { return quantum_; }
+
+  Status Append(const Point2& point, std::vector<int16_t>* xs, std::vector<int16_t>* ys) const {
+    FLEETMAP_ASSIGN_OR_RETURN(const int16_t x, Quantise(point.x() - corner_.x()));
+    FLEETMAP_ASSIGN_OR_RETURN(const int16_t y, Quantise(point.y() - corner_.y()));
+    xs->push_back(x);
+    ys->push_back(y);
+    return Status::Ok();
+  }
+
+  Point2 Decode(int16_t x, int16_t y) const {
+    return {corner_.x() + x * quantum_, corner_.y() + y * quantum_};
+  }
+
+ private:
+  StatusOr<int16_t> Quantise(double offset) const {
+    const double units = std::round(offset / quantum_);
+    if (!std::isfinite(units) || units < INT16_MIN || units > INT16_MAX) {
+      return InvalidArgumentError("a vertex " + std::to_string(offset) +
+                                  " m from its tile's corner does not fit the tile encoding");
+    }
+    return static_cast<int16_t>(units);
+  }
+
+  Point2 corner_;
+  double quantum_;
+};
+
+template <typename T>
+uint64_t Sum(const std::vector<T>& values) {
+  uint64_t sum = 0;
+  for (const T value : values) sum += value;
+  return sum;
+}
+
+Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+  const size_t polylines = tile.obstacle_sizes().size();
+  if (tile.obstacle_x().size() != tile.obstacle_y().size()) {
+    return InvalidArgumentError("obstacle_x has " + std::to_string(tile.obstacle_x().size()) +
+                                " values but obstacle_y " +
+                                std::to_string(tile.obstacle_y().size()));
+  }
+  if (Sum(tile.obstacle_sizes()) != tile.obstacle_x().size()) {
+    return InvalidArgumentError("obstacle_sizes add up to " +
+                                std::to_string(Sum(tile.obstacle_sizes())) + " vertices but " +
+                                std::to_string(tile.obstacle_x().size()) + " are given");
+  }
+  for (const uint32_t size : tile.obstacle_sizes()) {
+    if (size == 0) return InvalidArgumentError("an obstacle polyline has no vertex");
+  }
+  if (!tile.obstacle_closed().empty() && tile.obstacle_closed().size() != polylines) {
+    return InvalidArgumentError("obstacle_closed has " +
+                                std::to_string(tile.obstacle_closed().size()) + " flags for " +
+                                std::to_string(polylines) + " polylines");
+  }
+  if (!tile.obstacle_half_widths().empty() && tile.obstacle_half_widths().size() != polylines) {
+    return InvalidArgumentError("obstacle_half_widths has " +
+                                std::to_string(tile.obstacle_half_widths().size()) +
+                                " values for " + std::to_string(polylines) + " polylines");
+  }
+  if (tile.free_x().size() != tile.free_y().size()) {
+    return InvalidArgumentError("free_x and free_y differ in length");
+  }
+  if (Sum(tile.free_polygon_rings()) != tile.free_ring_sizes().size()) {
+    return InvalidArgumentError("free_polygon_rings add up to " +
+                                std::to_string(Sum(tile.free_polygon_rings())) + " rings but " +
+                                std::to_string(tile.free_ring_sizes().size()) + " are given");
+  }
+  for (const uint32_t rings : tile.free_polygon_rings()) {
+    if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
+  }
+  for (const uint32_t size : tile.free_ring_sizes()) {
+    if (size < 3) return InvalidArgumentError("a free ring has fewer than 3 vertices");
+  }
+  if (Sum(tile.free_ring_sizes()) != tile.free_x().size()) {
+    return InvalidArgumentError("free_ring_sizes add up to " +
+                                std::to_string(Sum(tile.free_ring_sizes())) + " vertices but " +
+                                std::to_string(tile.free_x().size()) + " are given");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& message) {
+  if (!std::isfinite(message.tile_size) || message.tile_size <= 0.0) {
+    return InvalidArgumentError("tile_size " + std::to_string(message.tile_size) +
+                                " is not a positive number");
+  }
+  const TileQuantiser quantiser(message.tile, message.tile_size);
+  fleetmap_msgs::msg::dds_::VectorTile_ out;
+  out.robot_id(message.robot_id);
+  out.tile_x(message.tile.x);
+  out.tile_y(message.tile.y);
+  out.stamp(ToIdl(message.stamp));
+  out.frame_id(message.map.frame_id);
+  out.revision(message.revision);
+  out.tile_size(message.tile_size);
+  out.quantum(quantiser.quantum());
+  out.epsilon(static_cast<float>(message.map.epsilon));
+  out.resolution(static_cast<float>(message.map.resolution));
+  for (const Polyline& polyline : message.map.obstacles) {
+    if (polyline.points.empty()) continue;
+    out.obstacle_sizes().push_back(static_cast<uint32_t>(polyline.points.size()));
+    out.obstacle_closed().push_back(polyline.closed ? 1 : 0);
+    const double half_width = std::ceil(polyline.half_width / quantiser.quantum());
+    if (!(half_width >= 0.0 && half_width <= UINT16_MAX)) {
+      return InvalidArgumentError("an obstacle half width of " +
+                                  std::to_string(polyline.half_width) + " m does not fit");
+    }
+    out.obstacle_half_widths().push_back(static_cast<uint16_t>(half_width));
+    for (const Point2& point : polyline.points) {
+      FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out.obstacle_x(), &out.obstacle_y()));
+    }
+  }
+  for (const FreePolygon& polygon : message.map.free_space) {
+    out.free_polygon_rings().push_back(static_cast<uint32_t>(1 + polygon.holes.size()));
+    const auto append_ring = [&](const std::vector<Point2>& ring) -> Status {
+      out.free_ring_sizes().push_back(static_cast<uint32_t>(ring.size()));
+      for (const Point2& point : ring) {
+        FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out.free_x(), &out.free_y()));
+      }
+      return Status::Ok();
+    };
+    FLEETMAP_RETURN_IF_ERROR(append_ring(polygon.outer));
+    for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
+  }
+  // Rings of fewer than 3 vertices carry no area: refuse them here as FromIdl would.
+  FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(out));
+  return out;
+}
+
+StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+  if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
+    return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
+                                " is not a positive number");
+  }
+  const double expected_quantum = vector_map::TileQuantum(tile.tile_size());
+  if (!(std::abs(tile.quantum() - expected_quantum) <= 1e-12 * tile.tile_size())) {
+    return InvalidArgumentError("quantum " + std::to_string(tile.quantum()) +
+                                " m is not tile_size / " +
+                                std::to_string(vector_map::kTileQuantaPerSide));
+  }
+  if (!std::isfinite(tile.epsilon()) || tile.epsilon() < 0.0f || !std::isfinite(tile.resolution()) ||
+      tile.resolution() <= 0.0f) {
+    return InvalidArgumentError("epsilon or resolution is not a valid distance");
+  }
+  FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(tile));
+
+  VectorTileMessage out;
+  out.robot_id = tile.robot_id();
+  out.tile = TileId{tile.tile_x(), tile.tile_y()};
+  out.revision = tile.revision();
+  out.stamp = FromIdl(tile.stamp());
+  out.tile_size = tile.tile_size();
+  out.map.frame_id = tile.frame_id();
+  out.map.epsilon = tile.epsilon();
+  out.map.resolution = tile.resolution();
+  const TileQuantiser quantiser(out.tile, out.tile_size);
+  size_t vertex = 0;
+  for (size_t k = 0; k < tile.obstacle_sizes().size(); ++k) {
+    Polyline polyline;
+    polyline.closed = !tile.obstacle_closed().empty() && tile.obstacle_closed()[k] != 0;
+    polyline.half_width =
+        tile.obstacle_half_widths().empty() ? 0.0 : tile.obstacle_half_widths()[k] * tile.quantum();
+    for (uint32_t i = 0; i < tile.obstacle_sizes()[k]; ++i, ++vertex) {
+      polyline.points.push_back(quantiser.Decode(tile.obstacle_x()[vertex], tile.obstacle_y()[vertex]));
+    }
+    out.map.obstacles.push_back(std::move(polyline));
+  }
+  size_t ring = 0;
+  vertex = 0;
+  const auto read_ring = [&]() {
+    std::vector<Point2> points;
+    for (uint32_t i = 0; i < tile.free_ring_sizes()[ring]; ++i, ++vertex) {
+      points.push_back(quantiser.Decode(tile.free_x()[vertex], tile.free_y()[vertex]));
+    }
+    ++ring;
+    return points;
+  };
+  for (const uint32_t rings : tile.free_polygon_rings()) {
+    FreePolygon polygon;
+    polygon.outer = read_ring();
+    for (uint32_t h = 1; h < rings; ++h) polygon.holes.push_back(read_ring());
+    out.map.free_space.push_back(std::move(polygon));
+  }
+  return out;
+}
+
+}  // namespace fleetmap::transport

@@ -7,7 +7,10 @@
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/transport/map_message.hpp"
+#include "common/transport/vector_tile_message.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
 #include "fleetmap_msgs/msg/RobotStatus.h"
+#include "fleetmap_msgs/msg/VectorTile.h"
 #include "geometry_msgs/msg/Pose.h"
 #include "geometry_msgs/msg/Pose2D.h"
 #include "nav_msgs/msg/OccupancyGrid.h"
@@ -30,5 +33,12 @@ StatusOr<MapMessage> FromIdl(const nav_msgs::msg::dds_::OccupancyGrid_& message)
 
 fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status);
 StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& status);
+
+// Quantises the tile's geometry to int16 multiples of TileQuantum(tile_size) from the tile's
+// corner. Fails (kInvalidArgument) when a vertex is too far outside its tile for int16, when a
+// coordinate or the tile size is not finite, or a half width does not fit.
+StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& message);
+// Checks that every count adds up and every number is sane before building the tile.
+StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile);
 
 }  // namespace fleetmap::transport

@@ -3,14 +3,17 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
+#include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
 
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
+using nav_msgs::msg::dds_::OccupancyGrid_PubSubType;
 
 class OccupancyGridReader::Listener : public dds::DataReaderListener {
  public:
@@ -35,6 +38,12 @@ class OccupancyGridReader::Listener : public dds::DataReaderListener {
 
   std::vector<StatusOr<MapMessage>> Drain() { return maps_.Drain(); }
 
+  // A payload that failed its CDR shape check before decoding.
+  void OnMalformed(const Status& error) {
+    maps_.Push(error.WithContext(topic_name_ + ": malformed OccupancyGrid payload"));
+    if (wake_up_) wake_up_->Notify();
+  }
+
  private:
   const std::string topic_name_;
   std::shared_ptr<WakeUp> wake_up_;
@@ -48,7 +57,11 @@ StatusOr<std::unique_ptr<OccupancyGridReader>> OccupancyGridReader::Create(
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
       ReaderEndpoint::Create(participant, topic_name,
-                             dds::TypeSupport(new nav_msgs::msg::dds_::OccupancyGrid_PubSubType()),
+                             dds::TypeSupport(new CheckedPubSubType<OccupancyGrid_PubSubType>(
+                                 OccupancyGridShape(),
+                                 [listener = self->listener_.get()](const Status& error) {
+                                   listener->OnMalformed(error);
+                                 })),
                              OccupancyGridQos().reader, self->listener_.get()));
   return self;
 }

@@ -7,8 +7,10 @@
 #include <mutex>
 #include <set>
 
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
+#include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
@@ -16,6 +18,7 @@
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
+using fleetmap_msgs::msg::dds_::RobotStatus_PubSubType;
 
 const char* RobotEventKindName(RobotEvent::Kind kind) {
   switch (kind) {
@@ -86,6 +89,12 @@ class RobotStatusReader::Listener : public dds::DataReaderListener {
 
   std::vector<RobotEvent> Drain() { return events_.Drain(); }
 
+  // A payload that failed its CDR shape check before decoding.
+  void OnMalformed(const Status& error) {
+    events_.Push(RobotEvent::Rejected(error.WithContext("malformed RobotStatus payload")));
+    Notify();
+  }
+
  private:
   void OnSample(const fleetmap_msgs::msg::dds_::RobotStatus_& sample, const dds::SampleInfo& info) {
     StatusOr<RobotStatus> status = FromIdl(sample);
@@ -147,7 +156,11 @@ StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::Create(
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
       ReaderEndpoint::Create(participant, kRobotStatusTopic,
-                             dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
+                             dds::TypeSupport(new CheckedPubSubType<RobotStatus_PubSubType>(
+                                 RobotStatusShape(),
+                                 [listener = self->listener_.get()](const Status& error) {
+                                   listener->OnMalformed(error);
+                                 })),
                              RobotStatusQos().reader, self->listener_.get()));
   return self;
 }

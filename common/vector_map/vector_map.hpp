@@ -19,6 +19,9 @@ namespace fleetmap::vector_map {
 struct Polyline {
   std::vector<Point2> points;
   bool closed = false;
+  // Metres, in [0, epsilon]: the obstacle cells this polyline stands for lie within half_width of
+  // it, so the rasterizer can give a thick wall back its thickness.
+  double half_width = 0.0;
 
   // Segments it stands for: 0 for a point, n - 1 open, n closed (n >= 3).
   size_t SegmentCount() const;

@@ -43,6 +43,10 @@ struct VectorizerOptions {
   double free_epsilon = 0.0;
   grid::StateThresholds thresholds;
   std::string frame_id = "map";
+  // Metres; > 0 puts every output vertex on the lattice lattice_origin + k * quantum (k integer,
+  // map frame) and keeps both constraints after that snapping. The tile codec needs it.
+  double quantum = 0.0;
+  Point2 lattice_origin = Point2::Zero();
 };
 
 class Vectorizer {

@@ -1,0 +1,17 @@
+#pragma once
+
+// The CDR shapes of the wire types (see cdr_shape.hpp), one per .idl struct, in field order.
+// Internal to transport. tests/unit/transport/idl_shapes_test.cpp checks each against the bytes
+// fastcdr writes for a filled sample, so a changed .idl without a changed shape fails the build's
+// tests.
+
+#include "common/transport/cdr_shape.hpp"
+
+namespace fleetmap::transport {
+
+const CdrShape& OccupancyGridShape();
+const CdrShape& RobotStatusShape();
+const CdrShape& VectorTileShape();
+const CdrShape& VectorMapShape();
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,128 @@
+#include "common/transport/vmap_file.hpp"
+
+#include <cmath>
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+#include <fastcdr/exceptions/Exception.h>
+#include <filesystem>
+#include <fstream>
+#include <span>
+
+#include "common/transport/cdr_shape.hpp"
+#include "common/transport/conversions.hpp"
+#include "common/transport/idl_shapes.hpp"
+#include "fleetmap_msgs/msg/VectorMap.h"
+
+namespace fleetmap::transport {
+namespace {
+
+using fleetmap_msgs::msg::dds_::VectorMap_;
+
+std::string TileName(const TileId& id) {
+  return "tile (" + std::to_string(id.x) + ", " + std::to_string(id.y) + ")";
+}
+
+}  // namespace
+
+StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map) {
+  VectorMap_ message;
+  message.format(kVmapFormat);
+  message.frame_id(map.frame_id);
+  message.tile_size(map.tile_size);
+  message.epsilon(static_cast<float>(map.epsilon));
+  message.resolution(static_cast<float>(map.resolution));
+  for (const auto& [id, tile] : map.tiles) {
+    VectorTileMessage tile_message;
+    tile_message.tile = id;
+    tile_message.tile_size = map.tile_size;
+    tile_message.map = tile;
+    StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> encoded = ToIdl(tile_message);
+    if (!encoded.ok()) return encoded.status().WithContext(TileName(id));
+    message.tiles().push_back(std::move(encoded).value());
+  }
+  std::string bytes(VectorMap_::getCdrSerializedSize(message) + 4, '\0');
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  message.serialize(cdr);
+  bytes.resize(cdr.getSerializedDataLength());
+  return bytes;
+}
+
+StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const std::string& name) {
+  const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),
+                                         bytes.size());
+  if (Status shape = CheckCdr(payload, VectorMapShape()); !shape.ok()) {
+    return shape.WithContext(name + ": not a valid .vmap");
+  }
+  VectorMap_ message;
+  try {
+    // fastcdr wants a mutable buffer; it only reads from it here.
+    std::string copy(bytes);
+    eprosima::fastcdr::FastBuffer buffer(copy.data(), copy.size());
+    eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
+                               eprosima::fastcdr::Cdr::DDS_CDR);
+    cdr.read_encapsulation();
+    message.deserialize(cdr);
+  } catch (const eprosima::fastcdr::exception::Exception& error) {
+    return DataLossError(name + ": not a valid .vmap: " + error.what());
+  }
+  if (message.format() != kVmapFormat) {
+    return InvalidArgumentError(name + ": format \"" + message.format().substr(0, 40) +
+                                "\" is not " + kVmapFormat);
+  }
+  vector_map::TiledVectorMap map;
+  map.frame_id = message.frame_id();
+  map.tile_size = message.tile_size();
+  map.epsilon = message.epsilon();
+  map.resolution = message.resolution();
+  if (!std::isfinite(map.tile_size) || map.tile_size <= 0.0 || !std::isfinite(map.epsilon) ||
+      map.epsilon < 0.0 || !std::isfinite(map.resolution) || map.resolution <= 0.0) {
+    return InvalidArgumentError(name + ": tile_size, epsilon or resolution is not a valid distance");
+  }
+  for (const auto& tile : message.tiles()) {
+    const TileId id{tile.tile_x(), tile.tile_y()};
+    if (tile.tile_size() != map.tile_size) {
+      return InvalidArgumentError(name + ": " + TileName(id) + " has tile_size " +
+                                  std::to_string(tile.tile_size()) + ", the map " +
+                                  std::to_string(map.tile_size));
+    }
+    StatusOr<VectorTileMessage> decoded = FromIdl(tile);
+    if (!decoded.ok()) return decoded.status().WithContext(name + ": " + TileName(id));
+    if (!map.tiles.emplace(id, std::move(decoded->map)).second) {
+      return InvalidArgumentError(name + ": " + TileName(id) + " appears twice");
+    }
+  }
+  return map;
+}
+
+Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& path) {
+  FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes, EncodeVmap(map));
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) return NotFoundError(path + ": cannot open for writing");
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) return DataLossError(path + ": write failed");
+  return Status::Ok();
+}
+
+StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,
+                                                   const VmapReadOptions& options) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    return NotFoundError(path + ": no such file");
+  }
+  const auto size = std::filesystem::file_size(path, error);
+  if (error) return NotFoundError(path + ": " + error.message());
+  if (size > options.max_bytes) {
+    return ResourceExhaustedError(path + ": " + std::to_string(size) + " bytes is over the " +
+                                  std::to_string(options.max_bytes) + "-byte limit");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(size, '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (!in) return DataLossError(path + ": read failed");
+  return DecodeVmap(bytes, path);
+}
+
+}  // namespace fleetmap::transport

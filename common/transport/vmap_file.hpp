@@ -1,0 +1,30 @@
+#pragma once
+
+// .vmap files: exactly the CDR bytes of one fleetmap_msgs/msg/VectorMap (idl/), encapsulation
+// header included, as a DDS payload. File format = wire format, so any CDR reader with the .idl
+// files can open one. docs/file-formats.md describes the layout.
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "common/core/status.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
+
+namespace fleetmap::transport {
+
+inline constexpr char kVmapFormat[] = "fleetmap-vmap/1";
+
+struct VmapReadOptions {
+  size_t max_bytes = size_t{1} << 30;  // a larger file is refused before it is read
+};
+
+StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map);
+// `name` (a file name) prefixes every error. Never trusts a length it has not checked.
+StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const std::string& name);
+
+Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& path);
+StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,
+                                                   const VmapReadOptions& options = {});
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,99 @@
+#include "common/transport/idl_shapes.hpp"
+
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fleetmap_msgs/msg/RobotStatus.h"
+#include "fleetmap_msgs/msg/VectorMap.h"
+#include "nav_msgs/msg/OccupancyGrid.h"
+
+namespace fleetmap::transport {
+namespace {
+
+// Serializes a sample as Fast DDS would (encapsulation + CDR, either endianness).
+template <typename T>
+std::string Serialize(const T& sample, eprosima::fastcdr::Cdr::Endianness endianness) {
+  std::string bytes(T::getCdrSerializedSize(sample) + 4, '\0');
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, endianness, eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  sample.serialize(cdr);
+  bytes.resize(cdr.getSerializedDataLength());
+  return bytes;
+}
+
+// The shape must walk exactly the bytes fastcdr wrote, and refuse every shorter prefix.
+template <typename T>
+void ExpectShapeMatches(const T& sample, const CdrShape& shape) {
+  for (const auto endianness :
+       {eprosima::fastcdr::Cdr::BIG_ENDIANNESS, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS}) {
+    const std::string bytes = Serialize(sample, endianness);
+    const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),
+                                           bytes.size());
+    size_t consumed = 0;
+    const Status checked = CheckCdr(payload, shape, &consumed);
+    ASSERT_TRUE(checked.ok()) << checked;
+    EXPECT_EQ(consumed + 4, bytes.size());
+    for (size_t length = 0; length < bytes.size(); ++length) {
+      EXPECT_FALSE(CheckCdr(payload.first(length), shape).ok()) << "prefix " << length;
+    }
+  }
+}
+
+TEST(IdlShapesTest, OccupancyGridShapeMatchesGeneratedCode) {
+  nav_msgs::msg::dds_::OccupancyGrid_ grid;
+  grid.header().frame_id("alpha/map");
+  grid.info().width(3);
+  grid.info().height(2);
+  grid.data({0, 100, -1, 0, 0, 100});
+  ExpectShapeMatches(grid, OccupancyGridShape());
+}
+
+TEST(IdlShapesTest, RobotStatusShapeMatchesGeneratedCode) {
+  fleetmap_msgs::msg::dds_::RobotStatus_ status;
+  status.robot_id("r");  // an odd length, so the padding after strings is exercised
+  status.map_topic("rt/r/map");
+  status.bytes_published(12345);
+  ExpectShapeMatches(status, RobotStatusShape());
+}
+
+TEST(IdlShapesTest, VectorMapShapeMatchesGeneratedCode) {
+  fleetmap_msgs::msg::dds_::VectorTile_ tile;
+  tile.robot_id("ab");
+  tile.frame_id("fleet");
+  tile.obstacle_sizes({2, 1});
+  tile.obstacle_closed({0, 0});
+  tile.obstacle_half_widths({3, 0});
+  tile.obstacle_x({1, 2, 3});
+  tile.obstacle_y({4, 5, 6});
+  tile.free_polygon_rings({1});
+  tile.free_ring_sizes({3});
+  tile.free_x({0, 9, 9});
+  tile.free_y({0, 0, 9});
+  fleetmap_msgs::msg::dds_::VectorMap_ map;
+  map.format("fleetmap-vmap/1");
+  map.frame_id("fleet");
+  map.tiles({tile, tile});
+  ExpectShapeMatches(tile, VectorTileShape());
+  ExpectShapeMatches(map, VectorMapShape());
+}
+
+TEST(CdrShapeTest, RefusesAHugeSequenceLengthWithoutAllocating) {
+  nav_msgs::msg::dds_::OccupancyGrid_ grid;
+  grid.data({1, 2, 3});
+  std::string bytes = Serialize(grid, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS);
+  // The data length is the last uint32 before the 3 data bytes.
+  const size_t length_at = bytes.size() - 3 - 4;
+  bytes[length_at + 3] = '\x7f';  // 0x7f000003 elements
+  const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),
+                                         bytes.size());
+  const Status checked = CheckCdr(payload, OccupancyGridShape());
+  ASSERT_FALSE(checked.ok());
+  EXPECT_NE(checked.message().find("data claims"), std::string::npos) << checked;
+}
+
+}  // namespace
+}  // namespace fleetmap::transport

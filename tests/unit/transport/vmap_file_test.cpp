@@ -1,0 +1,192 @@
+#include "common/transport/vmap_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+
+namespace fleetmap::transport {
+namespace {
+
+using ::testing::HasSubstr;
+using vector_map::FreePolygon;
+using vector_map::Polyline;
+using vector_map::TiledVectorMap;
+using vector_map::TileQuantum;
+
+// A point of tile `tile` at (i, j) quanta from its corner: on the lattice, as vectorizers make them.
+Point2 At(const TileId& tile, double tile_size, int i, int j) {
+  const double q = TileQuantum(tile_size);
+  return {tile.x * tile_size + i * q, tile.y * tile_size + j * q};
+}
+
+TiledVectorMap SampleMap() {
+  TiledVectorMap map;
+  map.tile_size = 10.0;
+  map.resolution = 0.05;
+  map.epsilon = 0.0707;
+  const TileId a{0, 0};
+  const TileId b{-1, 2};
+  vector_map::VectorMap& first = map.tiles[a];
+  first.frame_id = "fleet";
+  first.resolution = 0.05;
+  first.epsilon = 0.0707;
+  first.obstacles.push_back(
+      Polyline{{At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16384, 9000)}, false, 0.05});
+  first.obstacles.push_back(Polyline{{At(a, 10, 7, 7)}, false, 0.0});  // a point obstacle
+  first.obstacles.push_back(
+      Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, 0.025});
+  first.free_space.push_back(FreePolygon{
+      {At(a, 10, 0, 0), At(a, 10, 1000, 0), At(a, 10, 1000, 1000), At(a, 10, 0, 1000)},
+      {{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}}});
+  vector_map::VectorMap& second = map.tiles[b];
+  second.frame_id = "fleet";
+  second.resolution = 0.05;
+  second.epsilon = 0.0707;
+  second.obstacles.push_back(Polyline{{At(b, 10, -5, 0), At(b, 10, 16390, 16384)}, false, 0.0});
+  return map;
+}
+
+std::string Encoded(const TiledVectorMap& map) {
+  auto bytes = EncodeVmap(map);
+  EXPECT_TRUE(bytes.ok()) << bytes.status();
+  return bytes.ok() ? *bytes : std::string();
+}
+
+TEST(VmapFileTest, RoundTripIsExactOnTheLattice) {
+  const TiledVectorMap map = SampleMap();
+  const auto decoded = DecodeVmap(Encoded(map), "sample.vmap");
+  ASSERT_TRUE(decoded.ok()) << decoded.status();
+  EXPECT_EQ(decoded->tile_size, 10.0);
+  EXPECT_FLOAT_EQ(decoded->epsilon, 0.0707);
+  ASSERT_EQ(decoded->tiles.size(), 2u);
+  for (const auto& [id, tile] : map.tiles) {
+    const auto& back = decoded->tiles.at(id);
+    ASSERT_EQ(back.obstacles.size(), tile.obstacles.size()) << id;
+    for (size_t k = 0; k < tile.obstacles.size(); ++k) {
+      EXPECT_EQ(back.obstacles[k].points, tile.obstacles[k].points) << id << " polyline " << k;
+      EXPECT_EQ(back.obstacles[k].closed, tile.obstacles[k].closed);
+      // Half widths round up to the next quantum: never thinner than what was sent.
+      EXPECT_GE(back.obstacles[k].half_width, tile.obstacles[k].half_width);
+      EXPECT_LT(back.obstacles[k].half_width, tile.obstacles[k].half_width + TileQuantum(10.0));
+    }
+    EXPECT_EQ(back.free_space, tile.free_space) << id;
+  }
+}
+
+TEST(VmapFileTest, BorderVertexIsTheSamePointFromBothTiles) {
+  // x = 10 m is the right border of tile 0 and the left border of tile 1.
+  const Point2 from_left = At(TileId{0, 0}, 10.0, 16384, 123);
+  const Point2 from_right = At(TileId{1, 0}, 10.0, 0, 123);
+  EXPECT_EQ(from_left, from_right);
+  TiledVectorMap map;
+  map.tiles[{0, 0}].obstacles.push_back(Polyline{{At({0, 0}, 10, 100, 123), from_left}});
+  map.tiles[{1, 0}].obstacles.push_back(Polyline{{from_right, At({1, 0}, 10, 900, 123)}});
+  const auto decoded = DecodeVmap(Encoded(map), "border.vmap");
+  ASSERT_TRUE(decoded.ok()) << decoded.status();
+  EXPECT_EQ(decoded->tiles.at({0, 0}).obstacles[0].points.back(),
+            decoded->tiles.at({1, 0}).obstacles[0].points.front());
+}
+
+TEST(VmapFileTest, FileRoundTripAndMissingFile) {
+  const std::string path = ::testing::TempDir() + "/vmap_test_" + std::to_string(getpid()) + ".vmap";
+  ASSERT_TRUE(WriteVmapFile(SampleMap(), path).ok());
+  const auto read = ReadVmapFile(path);
+  ASSERT_TRUE(read.ok()) << read.status();
+  EXPECT_EQ(read->tiles.size(), 2u);
+  EXPECT_THAT(ReadVmapFile(path, {.max_bytes = 10}).status().message(), HasSubstr("limit"));
+  std::remove(path.c_str());
+  const auto missing = ReadVmapFile(path);
+  EXPECT_EQ(missing.status().code(), StatusCode::kNotFound);
+  EXPECT_THAT(missing.status().message(), HasSubstr(path));
+}
+
+TEST(VmapFileTest, RefusesVerticesThatDoNotFitTheTileEncoding) {
+  TiledVectorMap map;
+  map.tiles[{0, 0}].obstacles.push_back(Polyline{{Point2(0, 0), Point2(25.0, 0)}});
+  EXPECT_THAT(EncodeVmap(map).status().message(), HasSubstr("does not fit"));
+  map.tiles[{0, 0}].obstacles[0].points[1] = Point2(std::nan(""), 0);
+  EXPECT_FALSE(EncodeVmap(map).ok());
+}
+
+TEST(VmapFileTest, EveryTruncationIsAClearError) {
+  const std::string bytes = Encoded(SampleMap());
+  for (size_t length = 0; length < bytes.size(); ++length) {
+    const auto decoded = DecodeVmap(std::string_view(bytes).substr(0, length), "cut.vmap");
+    ASSERT_FALSE(decoded.ok()) << "a " << length << "-byte prefix decoded";
+    EXPECT_THAT(decoded.status().message(), HasSubstr("cut.vmap"));
+  }
+}
+
+TEST(VmapFileTest, RefusesOtherFormatsAndBadHeaders) {
+  std::string bytes = Encoded(SampleMap());
+  std::string other = bytes;
+  other[1] = 7;  // encapsulation: not plain CDR
+  EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("not a plain CDR"));
+  other = bytes;
+  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/1"
+  EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("is not fleetmap-vmap/1"));
+  EXPECT_FALSE(DecodeVmap("hello world, not a map", "x.vmap").ok());
+}
+
+TEST(VmapFileTest, RefusesLengthsThatClaimMoreThanTheFileHolds) {
+  std::string bytes = Encoded(SampleMap());
+  // The tiles sequence length sits after format, frame_id, tile_size, epsilon, resolution.
+  // Rather than compute the offset, patch every aligned uint32 in turn to a huge count: each
+  // patched file must be refused or decode to something sane, and never allocate gigabytes.
+  for (size_t offset = 4; offset + 4 <= bytes.size(); offset += 4) {
+    std::string patched = bytes;
+    patched[offset] = '\xff';
+    patched[offset + 1] = '\xff';
+    patched[offset + 2] = '\xff';
+    patched[offset + 3] = '\x7f';
+    const auto decoded = DecodeVmap(patched, "patched.vmap");
+    if (decoded.ok()) {
+      EXPECT_LE(decoded->ObstacleVertexCount(), 100u);
+    }
+  }
+}
+
+TEST(VmapFileTest, RefusesCountsThatDoNotAddUp) {
+  // Build the wire struct by hand, as a foreign client might, with inconsistent counts.
+  TiledVectorMap map = SampleMap();
+  std::string bytes = Encoded(map);
+  // Shrink the first tile's obstacle_sizes[0] from 3 to 2: the sum no longer matches.
+  const std::string needle("\x03\x00\x00\x00\x01\x00\x00\x00\x03\x00\x00\x00", 12);
+  const size_t at = bytes.find(needle);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at] = 2;
+  EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
+              HasSubstr("obstacle_sizes add up to"));
+}
+
+TEST(VmapFileTest, SeededMutationsNeverCrash) {
+  const std::string bytes = Encoded(SampleMap());
+  std::mt19937 random(1234);
+  int decoded_ok = 0;
+  for (int round = 0; round < 5000; ++round) {
+    std::string mutated = bytes;
+    const int edits = 1 + static_cast<int>(random() % 8);
+    for (int e = 0; e < edits; ++e) {
+      mutated[random() % mutated.size()] = static_cast<char>(random() & 0xff);
+    }
+    if (random() % 4 == 0) mutated.resize(random() % mutated.size());
+    const auto decoded = DecodeVmap(mutated, "fuzz.vmap");
+    if (decoded.ok()) {
+      ++decoded_ok;
+      EXPECT_TRUE(std::isfinite(decoded->tile_size));
+    } else {
+      EXPECT_THAT(decoded.status().message(), HasSubstr("fuzz.vmap"));
+    }
+  }
+  // Most mutations of a small file hit coordinates and still decode: both paths were exercised.
+  EXPECT_GT(decoded_ok, 0);
+  EXPECT_LT(decoded_ok, 5000);
+}
+
+}  // namespace
+}  // namespace fleetmap::transport
