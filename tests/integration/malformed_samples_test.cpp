@@ -2,8 +2,12 @@
 // message naming the robot and the problem, and keeps serving the others.
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+#include <fastdds/dds/topic/TopicDataType.hpp>
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <functional>
 
 #include "common/transport/endpoint.hpp"
@@ -58,6 +62,32 @@ bool WriteUntilServerSays(dds::DataWriter* writer, Sample& sample,
   return false;
 }
 
+// A type that writes whatever bytes it is given under the name of nav_msgs/OccupancyGrid: a
+// hostile or broken peer whose payload lengths lie.
+class RawOccupancyGridType : public dds::TopicDataType {
+ public:
+  RawOccupancyGridType() {
+    setName("nav_msgs::msg::dds_::OccupancyGrid_");
+    m_typeSize = 1 << 16;
+    m_isGetKeyDefined = false;
+  }
+  bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override {
+    const auto* bytes = static_cast<std::string*>(data);
+    if (bytes->size() > payload->max_size) return false;
+    std::memcpy(payload->data, bytes->data(), bytes->size());
+    payload->length = static_cast<uint32_t>(bytes->size());
+    payload->encapsulation = CDR_LE;
+    return true;
+  }
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t*, void*) override { return false; }
+  std::function<uint32_t()> getSerializedSizeProvider(void* data) override {
+    return [data] { return static_cast<uint32_t>(static_cast<std::string*>(data)->size()); };
+  }
+  void* createData() override { return new std::string(); }
+  void deleteData(void* data) override { delete static_cast<std::string*>(data); }
+  bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t*, bool) override { return false; }
+};
+
 TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   const int domain = testing::RandomDomainId();
   const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
@@ -100,6 +130,31 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
                                    "dropped a map from gamma", gamma_alive))
       << server.Output();
   EXPECT_NE(server.Output().find("10 x 10 cells but carries 5"), std::string::npos);
+
+  // A payload whose data length claims two billion cells in a few bytes: refused before decoding.
+  {
+    // Its own participant: the type registered under this name must be the raw one.
+    auto raw_participant = transport::Participant::Create(options);
+    ASSERT_TRUE(raw_participant.ok()) << raw_participant.status();
+    auto raw_writer = transport::WriterEndpoint::Create(
+        **raw_participant, transport::RobotMapTopic(RobotId{"gamma"}),
+        dds::TypeSupport(new RawOccupancyGridType()), transport::OccupancyGridQos().writer);
+    ASSERT_TRUE(raw_writer.ok()) << raw_writer.status();
+    // A valid 1 x 3 grid, serialized, then its data length patched to 2^31 - 1 cells.
+    auto small = Grid(1, 3, 3);
+    std::string hostile(nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(small) + 4, '\0');
+    eprosima::fastcdr::FastBuffer buffer(hostile.data(), hostile.size());
+    eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                               eprosima::fastcdr::Cdr::DDS_CDR);
+    cdr.serialize_encapsulation();
+    small.serialize(cdr);
+    hostile.resize(cdr.getSerializedDataLength());
+    hostile.replace(hostile.size() - 3 - 4, 4, std::string("\xff\xff\xff\x7f", 4));
+    EXPECT_TRUE(WriteUntilServerSays((*raw_writer)->writer(), hostile, server,
+                                     "malformed OccupancyGrid payload", gamma_alive))
+        << server.Output();
+    raw_writer->reset();
+  }
 
   // The same peer then sends a good map: it is taken, and alpha was never disturbed.
   auto good_grid = Grid(2, 3, 6);
