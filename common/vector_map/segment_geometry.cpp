@@ -13,34 +13,17 @@ double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point
   return (p - (a + t * ab)).squaredNorm();
 }
 
-bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
-                       const Delimitation& delimitation) {
-  const double eps2 = ToleratedSquare(epsilon);
-  const double length = (b - a).norm();
-  if (length < kDistanceTolerance) {
-    bool found = false;
-    ForEachCellNearSegment(a, a, epsilon, [&](int x, int y) {
-      if (!found && delimitation.IsDelimitation(x, y) && (Point2(x, y) - a).squaredNorm() <= eps2) {
-        found = true;
-      }
-    });
-    return found;
+bool IntervalsCover(std::vector<std::pair<double, double>>& intervals, double length) {
+  // Intervals arrive nearly sorted (cells are visited along the segment): insertion sort.
+  for (size_t i = 1; i < intervals.size(); ++i) {
+    const auto v = intervals[i];
+    size_t j = i;
+    while (j > 0 && intervals[j - 1].first > v.first) {
+      intervals[j] = intervals[j - 1];
+      --j;
+    }
+    intervals[j] = v;
   }
-  const Point2 direction = (b - a) / length;
-  thread_local std::vector<std::pair<double, double>> intervals;
-  intervals.clear();
-  ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
-    if (!delimitation.IsDelimitation(x, y)) return;
-    const Point2 w = Point2(x, y) - a;
-    const double along = w.dot(direction);
-    const double across2 = w.squaredNorm() - along * along;
-    const double half2 = eps2 - across2;
-    if (half2 < 0.0) return;
-    const double half = std::sqrt(half2);
-    if (along + half < 0.0 || along - half > length) return;
-    intervals.emplace_back(along - half, along + half);
-  });
-  std::sort(intervals.begin(), intervals.end());
   double covered = 0.0;  // [0, covered] is inside the union so far
   for (const auto& [start, end] : intervals) {
     if (start > covered + kDistanceTolerance) return false;
@@ -48,6 +31,12 @@ bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
     if (covered >= length) return true;
   }
   return covered >= length - kDistanceTolerance;
+}
+
+bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
+                       const Delimitation& delimitation) {
+  return SegmentContinuousIf(a, b, epsilon,
+                             [&](int x, int y) { return delimitation.IsDelimitation(x, y); });
 }
 
 double SampledMaxDistanceToDelimitation(const Point2& a, const Point2& b,

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "common/core/types.hpp"
 #include "common/vector_map/delimitation.hpp"
@@ -65,6 +67,11 @@ void ForEachCellNearSegment(const Point2& a, const Point2& b, double radius, F&&
 // The continuity constraint for one segment, decided exactly: is every point of [a, b] within
 // `epsilon` of some delimitation point? Computes, for each delimitation point near the segment,
 // the interval of the segment inside its epsilon-disc, and checks that their union covers [a, b].
+// `is_delimitation(x, y)` says whether cell (x, y) is in P (it must be safe for any cell).
+template <typename IsDelimitation>
+bool SegmentContinuousIf(const Point2& a, const Point2& b, double epsilon,
+                         IsDelimitation&& is_delimitation);
+
 bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
                        const Delimitation& delimitation);
 
@@ -74,5 +81,43 @@ bool SegmentContinuous(const Point2& a, const Point2& b, double epsilon,
 double SampledMaxDistanceToDelimitation(const Point2& a, const Point2& b,
                                         const Delimitation& delimitation, double search_radius,
                                         double step);
+
+// Implementation ---------------------------------------------------------------------------------
+
+// True if the sorted intervals cover [0, length] (gaps up to the distance tolerance allowed).
+bool IntervalsCover(std::vector<std::pair<double, double>>& intervals, double length);
+
+template <typename IsDelimitation>
+bool SegmentContinuousIf(const Point2& a, const Point2& b, double epsilon,
+                         IsDelimitation&& is_delimitation) {
+  const double eps2 = ToleratedSquare(epsilon);
+  const double length = (b - a).norm();
+  if (length < kDistanceTolerance) {
+    bool found = false;
+    ForEachCellNearSegment(a, a, epsilon, [&](int x, int y) {
+      if (!found && is_delimitation(x, y) && (Point2(x, y) - a).squaredNorm() <= eps2) {
+        found = true;
+      }
+    });
+    return found;
+  }
+  const double ux = (b.x() - a.x()) / length;
+  const double uy = (b.y() - a.y()) / length;
+  thread_local std::vector<std::pair<double, double>> intervals;
+  intervals.clear();
+  ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
+    if (!is_delimitation(x, y)) return;
+    const double wx = x - a.x();
+    const double wy = y - a.y();
+    const double along = wx * ux + wy * uy;
+    const double across2 = wx * wx + wy * wy - along * along;
+    const double half2 = eps2 - across2;
+    if (half2 < 0.0) return;
+    const double half = std::sqrt(half2);
+    if (along + half < 0.0 || along - half > length) return;
+    intervals.emplace_back(along - half, along + half);
+  });
+  return IntervalsCover(intervals, length);
+}
 
 }  // namespace fleetmap::vector_map

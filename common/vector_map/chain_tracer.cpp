@@ -1,0 +1,220 @@
+#include "common/vector_map/chain_tracer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "common/vector_map/skeleton.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+struct Neighbourhood {
+  explicit Neighbourhood(const CellRaster& raster) : raster(raster) {
+    for (int k = 0; k < 8; ++k) {
+      offset[k] = kNeighbourDy[k] * raster.stride() + kNeighbourDx[k];
+    }
+  }
+  bool Skeleton(int index) const { return raster.Has(index, CellRaster::kSkeleton); }
+  // m-adjacency link from `index` to its neighbour k.
+  bool Linked(int index, int k) const {
+    if (!Skeleton(index + offset[k])) return false;
+    if (k % 2 == 0) return true;
+    return !Skeleton(index + offset[(k + 7) % 8]) && !Skeleton(index + offset[(k + 1) % 8]);
+  }
+  int Degree(int index) const {
+    int degree = 0;
+    for (int k = 0; k < 8; ++k) degree += Linked(index, k);
+    return degree;
+  }
+  const CellRaster& raster;
+  std::array<int, 8> offset{};
+};
+
+// One end of a chain: chain id * 2 + (0: front, 1: back).
+int EndPixel(const std::vector<PixelChain>& chains, int end) {
+  const auto& pixels = chains[end / 2].pixels;
+  return end % 2 == 0 ? pixels.front() : pixels.back();
+}
+
+// Unit direction from a chain end into the chain, looking a few pixels ahead.
+std::pair<double, double> EndDirection(const CellRaster& raster,
+                                       const std::vector<PixelChain>& chains, int end) {
+  const auto& pixels = chains[end / 2].pixels;
+  const int n = static_cast<int>(pixels.size());
+  const int steps = std::min(4, n - 1);
+  const int from = end % 2 == 0 ? pixels[0] : pixels[n - 1];
+  const int to = end % 2 == 0 ? pixels[steps] : pixels[n - 1 - steps];
+  const double dx = raster.X(to) - raster.X(from);
+  const double dy = raster.Y(to) - raster.Y(from);
+  const double length = std::hypot(dx, dy);
+  return length > 0 ? std::make_pair(dx / length, dy / length) : std::make_pair(0.0, 0.0);
+}
+
+// Pairs the chain ends that meet at junction pixels, straightest pairs first.
+std::vector<int> PairEndsAtJunctions(const CellRaster& raster, const Neighbourhood& nb,
+                                     const std::vector<PixelChain>& chains) {
+  std::vector<int> partner(2 * chains.size(), -1);
+  std::vector<std::pair<int, int>> ends;  // (pixel, end)
+  for (size_t c = 0; c < chains.size(); ++c) {
+    if (chains[c].pixels.size() < 2 || chains[c].ring()) continue;
+    for (int side = 0; side < 2; ++side) {
+      const int end = static_cast<int>(2 * c) + side;
+      const int pixel = EndPixel(chains, end);
+      if (nb.Degree(pixel) >= 3) ends.emplace_back(pixel, end);
+    }
+  }
+  std::sort(ends.begin(), ends.end());
+  struct Candidate {
+    double dot;
+    int a;
+    int b;
+  };
+  std::vector<Candidate> candidates;
+  for (size_t begin = 0; begin < ends.size();) {
+    size_t stop = begin;
+    while (stop < ends.size() && ends[stop].first == ends[begin].first) ++stop;
+    candidates.clear();
+    for (size_t i = begin; i < stop; ++i) {
+      const auto [ax, ay] = EndDirection(raster, chains, ends[i].second);
+      for (size_t j = i + 1; j < stop; ++j) {
+        const auto [bx, by] = EndDirection(raster, chains, ends[j].second);
+        candidates.push_back({ax * bx + ay * by, ends[i].second, ends[j].second});
+      }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& l, const Candidate& r) { return l.dot < r.dot; });
+    for (const Candidate& candidate : candidates) {
+      if (partner[candidate.a] >= 0 || partner[candidate.b] >= 0) continue;
+      partner[candidate.a] = candidate.b;
+      partner[candidate.b] = candidate.a;
+    }
+    begin = stop;
+  }
+  return partner;
+}
+
+// Concatenates chains along the paired ends.
+std::vector<PixelChain> MergeThroughJunctions(const std::vector<PixelChain>& chains,
+                                              const std::vector<int>& partner) {
+  const int n = static_cast<int>(chains.size());
+  std::vector<PixelChain> merged;
+  std::vector<bool> used(n, false);
+  auto walk = [&](int start_end) {
+    PixelChain out;
+    int end = start_end;
+    while (true) {
+      const int c = end / 2;
+      used[c] = true;
+      const auto& pixels = chains[c].pixels;
+      const bool forward = end % 2 == 0;
+      const size_t skip = out.pixels.empty() ? 0 : 1;
+      for (size_t k = skip; k < pixels.size(); ++k) {
+        out.pixels.push_back(forward ? pixels[k] : pixels[pixels.size() - 1 - k]);
+      }
+      const int exit_end = forward ? 2 * c + 1 : 2 * c;
+      const int next = partner[exit_end];
+      if (next < 0 || used[next / 2]) break;
+      end = next;
+    }
+    merged.push_back(std::move(out));
+  };
+  for (int c = 0; c < n; ++c) {
+    if (used[c]) continue;
+    if (partner[2 * c] < 0) {
+      walk(2 * c);
+    } else if (partner[2 * c + 1] < 0) {
+      walk(2 * c + 1);
+    }
+  }
+  for (int c = 0; c < n; ++c) {
+    if (!used[c]) walk(2 * c);  // cycles through junctions: they close on a junction pixel
+  }
+  return merged;
+}
+
+}  // namespace
+
+int SkeletonDegree(const CellRaster& raster, int index) {
+  return Neighbourhood(raster).Degree(index);
+}
+
+std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& skeleton) {
+  const Neighbourhood nb(raster);
+  std::vector<PixelChain> chains;
+  auto terminal = [&](int index) { return nb.Degree(index) != 2; };
+  auto visited = [&](int index) { return raster.Has(index, CellRaster::kVisited); };
+  auto visit = [&](int index) { raster.at(index) |= CellRaster::kVisited; };
+  for (const int p : skeleton) {
+    if (!terminal(p)) continue;
+    if (nb.Degree(p) == 0) {
+      chains.push_back({{p}});
+      continue;
+    }
+    for (int k = 0; k < 8; ++k) {
+      if (!nb.Linked(p, k)) continue;
+      const int q = p + nb.offset[k];
+      if (terminal(q)) {
+        if (p < q) chains.push_back({{p, q}});
+        continue;
+      }
+      if (visited(q)) continue;
+      PixelChain chain{{p}};
+      int previous = p;
+      int current = q;
+      while (!terminal(current) && !visited(current)) {
+        visit(current);
+        chain.pixels.push_back(current);
+        int next = -1;
+        for (int j = 0; j < 8; ++j) {
+          if (!nb.Linked(current, j)) continue;
+          const int r = current + nb.offset[j];
+          if (r != previous && (terminal(r) || !visited(r) || r == p)) {
+            next = r;
+            break;
+          }
+        }
+        if (next < 0) break;
+        previous = current;
+        current = next;
+      }
+      if (terminal(current)) chain.pixels.push_back(current);
+      chains.push_back(std::move(chain));
+    }
+  }
+  for (const int p : skeleton) {  // rings of degree-2 pixels
+    if (terminal(p) || visited(p)) continue;
+    PixelChain chain{{p}};
+    visit(p);
+    int previous = -1;
+    int current = p;
+    while (true) {
+      int next = -1;
+      for (int j = 0; j < 8; ++j) {
+        if (!nb.Linked(current, j)) continue;
+        const int r = current + nb.offset[j];
+        if (r == previous) continue;
+        if (r == p && chain.pixels.size() > 2) {
+          next = r;
+          break;
+        }
+        if (!visited(r)) {
+          next = r;
+          break;
+        }
+      }
+      if (next < 0) break;
+      chain.pixels.push_back(next);
+      if (next == p) break;
+      visit(next);
+      previous = current;
+      current = next;
+    }
+    chains.push_back(std::move(chain));
+  }
+  raster.Clear(skeleton, CellRaster::kVisited);
+  return MergeThroughJunctions(chains, PairEndsAtJunctions(raster, nb, chains));
+}
+
+}  // namespace fleetmap::vector_map

@@ -1,0 +1,204 @@
+#include "common/vector_map/default_vectorizer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <tuple>
+
+#include "common/vector_map/border_nodes.hpp"
+#include "common/vector_map/chain_simplifier.hpp"
+#include "common/vector_map/chain_tracer.hpp"
+#include "common/vector_map/segment_geometry.hpp"
+#include "common/vector_map/skeleton.hpp"
+#include "common/vector_map/speck_cover.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+// A chain ready for simplification: its points (skeleton pixels, plus border nodes at the ends),
+// and the P points attached to each point (CSR buckets, by global position).
+struct Chain {
+  std::vector<Point2> points;
+  std::array<bool, 2> on_border = {false, false};
+  bool ring = false;
+  int base = 0;  // global position of points[0]
+};
+
+class TileRun {
+ public:
+  TileRun(CellRaster& raster, const grid::OccupancyGrid& grid,
+          const grid::StateThresholds& thresholds, double epsilon)
+      : raster_(raster),
+        nodes_(raster, grid, thresholds),
+        eps_(epsilon),
+        eps2_(ToleratedSquare(epsilon)) {}
+
+  std::vector<CellPolyline> Run() {
+    const std::vector<int> skeleton = ThinToSkeleton(raster_, eps_);
+    pixel_chains_ = TraceChains(raster_, skeleton);
+    BuildChains();
+    Attach();
+    std::vector<CellPolyline> polylines;
+    for (size_t c = 0; c < chains_.size(); ++c) Simplify(c, polylines);
+    polylines = MergeAtSharedEnds(std::move(polylines));
+    CoverRemaining(raster_, eps_, polylines);
+    return polylines;
+  }
+
+ private:
+  Point2 CellPoint(int index) const { return Point2(raster_.X(index), raster_.Y(index)); }
+  bool Continuous(const Point2& a, const Point2& b) const {
+    return SegmentContinuousIf(a, b, eps_, [&](int x, int y) { return raster_.IsDelimitation(x, y); });
+  }
+
+  // Points of each chain; an end pixel of degree <= 1 next to an anchor across the tile border is
+  // extended to the border node. One-pixel chains without a node are left to the cover stage.
+  void BuildChains() {
+    chains_.clear();
+    chain_pixels_.clear();
+    int position = 0;
+    for (const PixelChain& pixel_chain : pixel_chains_) {
+      const auto& pixels = pixel_chain.pixels;
+      Chain chain;
+      chain.ring = pixel_chain.ring();
+      for (const int index : pixels) chain.points.push_back(CellPoint(index));
+      if (!chain.ring) {
+        for (int side = 0; side < 2; ++side) {
+          const int end = side == 0 ? pixels.front() : pixels.back();
+          if (SkeletonDegree(raster_, end) > 1) continue;
+          if (pixels.size() == 1 && side == 1 && chain.on_border[0]) continue;
+          const auto node = nodes_.For(end);
+          if (!node || !Continuous(CellPoint(end), *node)) continue;
+          if (side == 0) {
+            chain.points.insert(chain.points.begin(), *node);
+          } else {
+            chain.points.push_back(*node);
+          }
+          chain.on_border[side] = true;
+        }
+      }
+      if (chain.points.size() == 1) continue;
+      chain.base = position;
+      position += static_cast<int>(chain.points.size());
+      chain_pixels_.push_back(&pixel_chain);
+      chains_.push_back(std::move(chain));
+    }
+    positions_ = position;
+  }
+
+  // Each P point of the rectangle is attached to its nearest skeleton pixel within epsilon; if
+  // that pixel is interior to a chain, simplifying that chain must keep the point within epsilon.
+  // Points nearest to a chain end need nothing: ends are always vertices.
+  void Attach() {
+    // (pixel, global position or -1 for "an end somewhere"), sorted by pixel.
+    std::vector<std::pair<int, int>> where;
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      const auto& pixels = chain_pixels_[c]->pixels;
+      const int shift = chains_[c].on_border[0] ? 1 : 0;
+      const int n = static_cast<int>(pixels.size());
+      for (int k = 0; k < n; ++k) {
+        const bool end = !chains_[c].ring && ((k == 0 && !chains_[c].on_border[0]) ||
+                                              (k == n - 1 && !chains_[c].on_border[1]));
+        if (chains_[c].ring && k == n - 1) continue;  // repeats pixel 0
+        where.emplace_back(pixels[k], end ? -1 : chains_[c].base + k + shift);
+      }
+    }
+    std::sort(where.begin(), where.end());  // an end (-1) sorts first for its pixel
+    const std::vector<int> disc = DiscOffsets(raster_, eps_);
+    std::vector<std::pair<int, int>> attached;  // (global position, P point)
+    for (const int p : raster_.owned_delimitation()) {
+      int best = -1;
+      for (const int o : disc) {
+        if (raster_.Has(p + o, CellRaster::kSkeleton)) {
+          best = p + o;
+          break;
+        }
+      }
+      if (best < 0) continue;
+      const auto it = std::lower_bound(where.begin(), where.end(), std::make_pair(best, -1));
+      if (it == where.end() || it->first != best || it->second < 0) continue;
+      attached.emplace_back(it->second, p);
+    }
+    bucket_start_.assign(static_cast<size_t>(positions_) + 1, 0);
+    for (const auto& [position, p] : attached) ++bucket_start_[position + 1];
+    for (size_t i = 1; i < bucket_start_.size(); ++i) bucket_start_[i] += bucket_start_[i - 1];
+    bucket_points_.resize(attached.size());
+    fill_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
+    for (const auto& [position, p] : attached) bucket_points_[fill_[position]++] = CellPoint(p);
+  }
+
+  void Simplify(size_t c, std::vector<CellPolyline>& out) {
+    const Chain& chain = chains_[c];
+    const auto& points = chain.points;
+    const int n = static_cast<int>(points.size());
+    // Vertex m of the chain being simplified is vertex (m + shift) mod period of the chain.
+    int shift = 0;
+    int period = n;
+    auto point = [&](int m) -> const Point2& {
+      return shift == 0 ? points[m] : rotated_[m];
+    };
+    auto valid = [&](int i, int j) {
+      const Point2& a = point(i);
+      const Point2& b = point(j);
+      if (j > i + 1) {
+        for (int m = i + 1; m < j; ++m) {
+          const int position = chain.base + (m + shift) % period;
+          for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
+            if (PointSegmentDistanceSquared(bucket_points_[k], a, b) > eps2_) return false;
+          }
+        }
+      }
+      return Continuous(a, b);
+    };
+    pieces_.clear();
+    SimplifyChain(n, valid, pieces_);
+    if (chain.ring && n > 3 && pieces_.size() == 1 && pieces_[0].size() > 3) {
+      // A ring's first vertex is arbitrary: start again from the first corner found, which
+      // usually saves that vertex.
+      period = n - 1;
+      shift = pieces_[0][1];
+      rotated_.clear();
+      for (int m = 0; m <= period; ++m) rotated_.push_back(points[(m + shift) % period]);
+      std::vector<std::vector<int>> again;
+      SimplifyChain(n, valid, again);
+      if (again.size() == 1 && again[0].size() < pieces_[0].size()) {
+        out.push_back(MakePolyline(rotated_, again[0]));
+        return;
+      }
+      shift = 0;
+    }
+    const int last = n - 1;
+    for (const auto& piece : pieces_) {
+      CellPolyline polyline = MakePolyline(points, piece);
+      polyline.start_on_border = chain.on_border[0] && piece.front() == 0;
+      polyline.end_on_border = chain.on_border[1] && piece.back() == last;
+      out.push_back(std::move(polyline));
+    }
+  }
+
+  CellRaster& raster_;
+  BorderNodes nodes_;
+  double eps_;
+  double eps2_;
+  std::vector<PixelChain> pixel_chains_;
+  std::vector<Chain> chains_;
+  std::vector<const PixelChain*> chain_pixels_;
+  int positions_ = 0;
+  std::vector<int> bucket_start_;
+  std::vector<int> fill_;
+  std::vector<Point2> bucket_points_;
+  std::vector<Point2> rotated_;
+  std::vector<std::vector<int>> pieces_;
+};
+
+}  // namespace
+
+int DefaultMargin(double epsilon) { return static_cast<int>(std::ceil(2.0 * epsilon)) + 3; }
+
+std::vector<CellPolyline> DefaultVectorize(CellRaster& raster, const grid::OccupancyGrid& grid,
+                                           const grid::StateThresholds& thresholds,
+                                           double epsilon) {
+  return TileRun(raster, grid, thresholds, epsilon).Run();
+}
+
+}  // namespace fleetmap::vector_map

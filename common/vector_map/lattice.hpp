@@ -1,0 +1,30 @@
+#pragma once
+
+// Coordinate quantisation (VectorizerOptions::quantum): a vertex snapped to the lattice
+// origin + k * quantum (k integer per axis, map frame) moves by at most quantum * sqrt(2) / 2. The
+// vectorizer builds with epsilon reduced by that much, so both constraints still hold after
+// snapping (a snapped segment is within that distance of the unsnapped one, point by point).
+// Snapping is a deterministic function of the point, so tiles that compute the same border node
+// snap it to the same lattice point.
+
+#include "common/core/types.hpp"
+
+namespace fleetmap::vector_map {
+
+class Lattice {
+ public:
+  // quantum <= 0: no snapping.
+  Lattice(double quantum, const Point2& origin) : quantum_(quantum), origin_(origin) {}
+
+  bool enabled() const { return quantum_ > 0.0; }
+  double quantum() const { return quantum_; }
+  // The largest distance Snap() moves a point.
+  double MaxDisplacement() const;
+  Point2 Snap(const Point2& p) const;
+
+ private:
+  double quantum_;
+  Point2 origin_;
+};
+
+}  // namespace fleetmap::vector_map

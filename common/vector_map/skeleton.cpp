@@ -1,0 +1,158 @@
+#include "common/vector_map/skeleton.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <tuple>
+
+#include "common/vector_map/segment_geometry.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+std::array<bool, 256> BuildSimpleTable() {
+  std::array<bool, 256> table{};
+  for (int mask = 0; mask < 256; ++mask) {
+    auto set = [&](int k) { return ((mask >> k) & 1) != 0; };
+    auto count_components = [&](bool foreground, bool eight) {
+      std::array<int, 8> label{};
+      label.fill(-1);
+      int components = 0;
+      for (int start = 0; start < 8; ++start) {
+        if (set(start) != foreground || label[start] >= 0) continue;
+        // Background components only count if they touch the pixel through a 4-neighbour.
+        std::array<int, 8> stack{};
+        int top = 0;
+        stack[top++] = start;
+        label[start] = components;
+        bool touches = foreground;
+        while (top > 0) {
+          const int k = stack[--top];
+          if (k % 2 == 0) touches = true;
+          for (int j = 0; j < 8; ++j) {
+            if (set(j) != foreground || label[j] >= 0) continue;
+            const int ddx = std::abs(kNeighbourDx[j] - kNeighbourDx[k]);
+            const int ddy = std::abs(kNeighbourDy[j] - kNeighbourDy[k]);
+            const bool adjacent = eight ? std::max(ddx, ddy) == 1 : ddx + ddy == 1;
+            if (adjacent) {
+              label[j] = components;
+              stack[top++] = j;
+            }
+          }
+        }
+        if (touches) ++components;
+      }
+      return components;
+    };
+    const int count = std::popcount(static_cast<unsigned>(mask));
+    table[mask] =
+        count >= 2 && count_components(true, true) == 1 && count_components(false, false) == 1;
+  }
+  return table;
+}
+
+// A zeroed per-thread counter image, reused across calls (callers restore the zeros), so large
+// grids do not pay for allocating and clearing a full image on every call.
+std::vector<uint16_t>& ZeroedCounters(size_t size) {
+  thread_local std::vector<uint16_t> counters;
+  if (counters.size() < size) counters.resize(size, 0);
+  return counters;
+}
+
+}  // namespace
+
+const std::array<bool, 256>& SimplePointTable() {
+  static const std::array<bool, 256> table = BuildSimpleTable();
+  return table;
+}
+
+std::vector<int> DiscOffsets(const CellRaster& raster, double epsilon) {
+  const double eps2 = ToleratedSquare(epsilon);
+  const int r = static_cast<int>(std::ceil(epsilon));
+  std::vector<std::tuple<int, int, int>> cells;  // (d^2, dy, dx)
+  for (int dy = -r; dy <= r; ++dy) {
+    for (int dx = -r; dx <= r; ++dx) {
+      if (dx * dx + dy * dy <= eps2) cells.emplace_back(dx * dx + dy * dy, dy, dx);
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  std::vector<int> offsets;
+  offsets.reserve(cells.size());
+  for (const auto& [d2, dy, dx] : cells) offsets.push_back(dy * raster.stride() + dx);
+  return offsets;
+}
+
+std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
+  const CellRect& rect = raster.rect();
+  const int stride = raster.stride();
+  std::array<int, 8> offset{};
+  for (int k = 0; k < 8; ++k) offset[k] = kNeighbourDy[k] * stride + kNeighbourDx[k];
+  constexpr uint8_t kP = CellRaster::kDelimitation;
+  std::vector<int> list;
+  for (const int i : raster.occupied_near_rect()) {
+    const int x = raster.X(i);
+    const int y = raster.Y(i);
+    if (!rect.Contains(x, y)) {
+      raster.at(i) |= CellRaster::kAnchor;
+      continue;
+    }
+    const bool keep = raster.Has(i, kP) || raster.Has(i + 1, kP) || raster.Has(i - 1, kP) ||
+                      raster.Has(i + stride, kP) || raster.Has(i - stride, kP);
+    if (keep) {
+      raster.at(i) |= CellRaster::kSkeleton;
+      list.push_back(i);
+    }
+  }
+  const std::vector<int> window = DiscOffsets(raster, epsilon);
+  std::vector<uint16_t>& support = ZeroedCounters(raster.size());
+  for (const int i : list) {
+    for (const int o : window) ++support[i + o];
+  }
+  auto removable = [&](int i) {
+    for (const int o : window) {
+      if (support[i + o] <= 1 && raster.Has(i + o, CellRaster::kOwned)) return false;
+    }
+    return true;
+  };
+  constexpr uint8_t kBody = CellRaster::kSkeleton | CellRaster::kAnchor;
+  auto mask_of = [&](int i) {
+    int mask = 0;
+    for (int k = 0; k < 8; ++k) {
+      if (raster.Has(i + offset[k], kBody)) mask |= 1 << k;
+    }
+    return mask;
+  };
+  const auto& simple = SimplePointTable();
+  static constexpr std::array<int, 4> kSides = {2, 6, 0, 4};  // N, S, E, W
+  std::vector<int> candidates;
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (const int side : kSides) {
+      candidates.clear();
+      for (const int i : list) {
+        if (!raster.Has(i + offset[side], kBody)) candidates.push_back(i);
+      }
+      bool deleted = false;
+      for (const int i : candidates) {
+        const int mask = mask_of(i);
+        const bool line_end = std::popcount(static_cast<unsigned>(mask)) == 1;
+        if (!(simple[mask] || line_end) || !removable(i)) continue;
+        raster.at(i) &= static_cast<uint8_t>(~CellRaster::kSkeleton);
+        for (const int o : window) --support[i + o];
+        deleted = true;
+      }
+      if (deleted) {
+        changed = true;
+        std::erase_if(list, [&](int i) { return !raster.Has(i, CellRaster::kSkeleton); });
+      }
+    }
+  }
+  for (const int i : list) {
+    for (const int o : window) support[i + o] = 0;
+  }
+  return list;
+}
+
+}  // namespace fleetmap::vector_map

@@ -1,0 +1,79 @@
+#include "common/vector_map/speck_cover.hpp"
+
+#include "common/vector_map/chain_simplifier.hpp"
+#include "common/vector_map/segment_geometry.hpp"
+#include "common/vector_map/skeleton.hpp"
+
+namespace fleetmap::vector_map {
+
+void MarkCovered(CellRaster& raster, const Point2& a, const Point2& b, double epsilon) {
+  const double eps2 = ToleratedSquare(epsilon);
+  ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
+    if (!raster.Contains(x, y)) return;
+    const int i = raster.Index(x, y);
+    if ((raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) != CellRaster::kOwned) return;
+    if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= eps2) {
+      raster.at(i) |= CellRaster::kCovered;
+    }
+  });
+}
+
+void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
+  for (const CellPolyline& polyline : polylines) {
+    const auto& pts = polyline.points;
+    if (pts.size() == 1) MarkCovered(raster, pts[0], pts[0], epsilon);
+    for (size_t k = 0; k + 1 < pts.size(); ++k) MarkCovered(raster, pts[k], pts[k + 1], epsilon);
+    if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon);
+  }
+  const double eps2 = ToleratedSquare(epsilon);
+  auto is_p = [&](int x, int y) { return raster.IsDelimitation(x, y); };
+  std::vector<int> links = DiscOffsets(raster, 2.0 * epsilon);
+  links.erase(links.begin());  // the cell itself
+  auto open = [&](int i) {
+    return (raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) == CellRaster::kOwned;
+  };
+  std::vector<int> forward;
+  std::vector<int> backward;
+  std::vector<Point2> chain;
+  std::vector<std::vector<int>> pieces;
+  for (const int start : raster.owned_delimitation()) {
+    if (!open(start)) continue;
+    raster.at(start) |= CellRaster::kCovered;
+    forward.assign(1, start);
+    backward.clear();
+    for (auto* walk : {&forward, &backward}) {
+      int current = start;
+      while (true) {
+        int next = -1;
+        for (const int o : links) {
+          if (open(current + o)) {
+            next = current + o;
+            break;
+          }
+        }
+        if (next < 0) break;
+        raster.at(next) |= CellRaster::kCovered;
+        walk->push_back(next);
+        current = next;
+      }
+    }
+    chain.clear();
+    for (auto it = backward.rbegin(); it != backward.rend(); ++it) {
+      chain.emplace_back(raster.X(*it), raster.Y(*it));
+    }
+    for (const int i : forward) chain.emplace_back(raster.X(i), raster.Y(i));
+    auto valid = [&](int i, int j) {
+      const Point2& a = chain[i];
+      const Point2& b = chain[j];
+      for (int k = i + 1; k < j; ++k) {
+        if (PointSegmentDistanceSquared(chain[k], a, b) > eps2) return false;
+      }
+      return SegmentContinuousIf(a, b, epsilon, is_p);
+    };
+    pieces.clear();
+    SimplifyChain(static_cast<int>(chain.size()), valid, pieces);
+    for (const auto& piece : pieces) polylines.push_back(MakePolyline(chain, piece));
+  }
+}
+
+}  // namespace fleetmap::vector_map
