@@ -26,7 +26,8 @@ Status AgentOptions::Validate() const {
   if (!Finite(fleet_from_map)) return InvalidArgumentError("--fleet-from-map is not finite");
   if (!Finite(map_from_robot)) return InvalidArgumentError("--pose is not finite");
   if (status_period.count() <= 0) return InvalidArgumentError("the status period must be > 0");
-  if (map_check_period.count() <= 0) return InvalidArgumentError("the map check period must be > 0");
+  if (map_check_period.count() <= 0)
+    return InvalidArgumentError("the map check period must be > 0");
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
   return Status::Ok();
 }
@@ -42,9 +43,8 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   FLEETMAP_ASSIGN_OR_RETURN(node->status_writer_,
                             transport::RobotStatusWriter::Create(*node->participant_));
   FLEETMAP_ASSIGN_OR_RETURN(
-      node->map_writer_,
-      transport::OccupancyGridWriter::Create(*node->participant_,
-                                             transport::RobotMapTopic(node->options_.robot)));
+      node->map_writer_, transport::OccupancyGridWriter::Create(
+                             *node->participant_, transport::RobotMapTopic(node->options_.robot)));
 
   RobotStatus& status = node->status_;
   status.robot = node->options_.robot;
@@ -104,7 +104,8 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
   FLEETMAP_RETURN_IF_ERROR(PublishMap());
   FLEETMAP_RETURN_IF_ERROR(PublishStatus());
   spdlog::info("{}: in the fleet on DDS domain {}{}", options_.robot.value,
-               participant_->domain_id(), participant_->localhost_only() ? " (localhost only)" : "");
+               participant_->domain_id(),
+               participant_->localhost_only() ? " (localhost only)" : "");
 
   const auto start = std::chrono::steady_clock::now();
   auto next_status = start + options_.status_period;

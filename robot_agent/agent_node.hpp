@@ -17,9 +17,9 @@ namespace fleetmap::agent {
 
 struct AgentOptions {
   RobotId robot;
-  std::string map_path;              // a ROS map_server YAML
-  Pose2 fleet_from_map;              // where the robot's map frame sits in the fleet frame
-  Pose2 map_from_robot;              // the robot's pose in its map frame
+  std::string map_path;  // a ROS map_server YAML
+  Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
+  Pose2 map_from_robot;  // the robot's pose in its map frame
   std::chrono::milliseconds status_period{500};
   std::chrono::milliseconds map_check_period{1000};  // how often the map file is checked for change
   std::chrono::milliseconds duration{0};             // run this long, then leave; 0: until stopped

@@ -1,6 +1,6 @@
 // fleetmap-agent: publishes one robot's map and status to the fleet.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <csignal>

@@ -1,6 +1,6 @@
 // fleetmap-server: follows the fleet and keeps every robot's latest map.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <csignal>

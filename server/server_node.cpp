@@ -30,9 +30,8 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   transport::ParticipantOptions dds = node->options_.dds;
   dds.name = "fleetmap-server";
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
-  FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_,
-                            transport::RobotStatusReader::Create(*node->participant_,
-                                                                 node->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
+                                                      *node->participant_, node->wake_up_));
   return node;
 }
 
@@ -92,8 +91,9 @@ void ServerNode::OnRobotAlive(const RobotStatus& status) {
   record.map_reader = std::move(reader).value();
   spdlog::info("server: robot {} joined (map {} x {} at {:.3f} m on {}, fleet_from_map {})",
                status.robot.value, status.map_width, status.map_height, status.map_resolution,
-               topic, fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", status.fleet_from_map.x,
-                                  status.fleet_from_map.y, status.fleet_from_map.yaw));
+               topic,
+               fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", status.fleet_from_map.x,
+                           status.fleet_from_map.y, status.fleet_from_map.yaw));
 }
 
 void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state) {

@@ -36,8 +36,8 @@ bool IsValidRobotName(const std::string& name);
 template <>
 struct std::hash<fleetmap::TileId> {
   size_t operator()(const fleetmap::TileId& id) const noexcept {
-    const uint64_t packed = (static_cast<uint64_t>(static_cast<uint32_t>(id.x)) << 32) |
-                            static_cast<uint32_t>(id.y);
+    const uint64_t packed =
+        (static_cast<uint64_t>(static_cast<uint32_t>(id.x)) << 32) | static_cast<uint32_t>(id.y);
     return std::hash<uint64_t>{}(packed);
   }
 };

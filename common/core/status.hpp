@@ -71,9 +71,9 @@ inline Status InternalError(std::string message) {
 template <typename T>
 class [[nodiscard]] StatusOr {
  public:
-  StatusOr(const T& value) : value_(value) {}             // NOLINT: implicit by design
-  StatusOr(T&& value) : value_(std::move(value)) {}       // NOLINT: implicit by design
-  StatusOr(const Status& status) : value_(status) {       // NOLINT: implicit by design
+  StatusOr(const T& value) : value_(value) {}        // NOLINT: implicit by design
+  StatusOr(T&& value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  StatusOr(const Status& status) : value_(status) {  // NOLINT: implicit by design
     assert(!status.ok() && "StatusOr needs a value or an error");
   }
 
@@ -97,9 +97,9 @@ class [[nodiscard]] StatusOr {
 }  // namespace fleetmap
 
 // Returns from the enclosing function when `expr` (a Status) is an error.
-#define FLEETMAP_RETURN_IF_ERROR(expr)              \
-  do {                                              \
-    ::fleetmap::Status fleetmap_status_ = (expr);   \
+#define FLEETMAP_RETURN_IF_ERROR(expr)                   \
+  do {                                                   \
+    ::fleetmap::Status fleetmap_status_ = (expr);        \
     if (!fleetmap_status_.ok()) return fleetmap_status_; \
   } while (false)
 

@@ -14,7 +14,8 @@ Transform2 Pose2::ToTransform() const {
 
 Pose2 Pose2::FromTransform(const Transform2& transform) {
   const Eigen::Rotation2Dd rotation(transform.rotation());
-  return {transform.translation().x(), transform.translation().y(), NormalizeAngle(rotation.angle())};
+  return {transform.translation().x(), transform.translation().y(),
+          NormalizeAngle(rotation.angle())};
 }
 
 std::ostream& operator<<(std::ostream& os, const Pose2& pose) {

@@ -94,8 +94,8 @@ class CdrWalker {
   }
 
   Status TooLong(const std::string& where, uint32_t count) const {
-    return DataLossError(where + " claims " + std::to_string(count) +
-                         " elements but only " + std::to_string(Remaining()) + " bytes remain");
+    return DataLossError(where + " claims " + std::to_string(count) + " elements but only " +
+                         std::to_string(Remaining()) + " bytes remain");
   }
 
   std::span<const uint8_t> data_;

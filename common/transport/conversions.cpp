@@ -13,8 +13,8 @@ bool Finite(const Pose2& pose) {
 }  // namespace
 
 builtin_interfaces::msg::dds_::Time_ ToIdl(Timestamp stamp) {
-  const auto since_epoch = std::chrono::duration_cast<std::chrono::nanoseconds>(
-      stamp.time_since_epoch());
+  const auto since_epoch =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch());
   const auto seconds = std::chrono::floor<std::chrono::seconds>(since_epoch);
   builtin_interfaces::msg::dds_::Time_ time;
   time.sec(static_cast<int32_t>(seconds.count()));
@@ -145,8 +145,7 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.map_from_robot = FromIdl(status.map_from_robot());
   out.fleet_from_map = FromIdl(status.fleet_from_map());
   if (!Finite(out.map_from_robot) || !Finite(out.fleet_from_map)) {
-    return InvalidArgumentError("RobotStatus from " + status.robot_id() +
-                                " has a non-finite pose");
+    return InvalidArgumentError("RobotStatus from " + status.robot_id() + " has a non-finite pose");
   }
   out.map_topic = status.map_topic();
   out.map_width = status.map_width();
@@ -318,8 +317,8 @@ StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_&
                                 " m is not tile_size / " +
                                 std::to_string(vector_map::kTileQuantaPerSide));
   }
-  if (!std::isfinite(tile.epsilon()) || tile.epsilon() < 0.0f || !std::isfinite(tile.resolution()) ||
-      tile.resolution() <= 0.0f) {
+  if (!std::isfinite(tile.epsilon()) || tile.epsilon() < 0.0f ||
+      !std::isfinite(tile.resolution()) || tile.resolution() <= 0.0f) {
     return InvalidArgumentError("epsilon or resolution is not a valid distance");
   }
   FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(tile));
@@ -341,7 +340,8 @@ StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_&
     polyline.half_width =
         tile.obstacle_half_widths().empty() ? 0.0 : tile.obstacle_half_widths()[k] * tile.quantum();
     for (uint32_t i = 0; i < tile.obstacle_sizes()[k]; ++i, ++vertex) {
-      polyline.points.push_back(quantiser.Decode(tile.obstacle_x()[vertex], tile.obstacle_y()[vertex]));
+      polyline.points.push_back(
+          quantiser.Decode(tile.obstacle_x()[vertex], tile.obstacle_y()[vertex]));
     }
     out.map.obstacles.push_back(std::move(polyline));
   }

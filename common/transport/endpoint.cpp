@@ -32,7 +32,7 @@ StatusOr<std::unique_ptr<ReaderEndpoint>> ReaderEndpoint::Create(
   std::unique_ptr<ReaderEndpoint> self(new ReaderEndpoint(participant, topic_name));
   FLEETMAP_ASSIGN_OR_RETURN(self->topic_, participant.AcquireTopic(topic_name, type));
   self->reader_ = participant.subscriber()->create_datareader(self->topic_, qos, listener,
-                                                             dds::StatusMask::all());
+                                                              dds::StatusMask::all());
   if (self->reader_ == nullptr) {
     return UnavailableError("could not create a DDS reader on " + topic_name);
   }

@@ -5,7 +5,9 @@ namespace {
 
 using Kind = CdrField::Kind;
 
-CdrField Primitive(const char* name, size_t size) { return {name, Kind::kPrimitive, size, nullptr}; }
+CdrField Primitive(const char* name, size_t size) {
+  return {name, Kind::kPrimitive, size, nullptr};
+}
 CdrField String(const char* name) { return {name, Kind::kString, 1, nullptr}; }
 CdrField Sequence(const char* name, size_t size) {
   return {name, Kind::kPrimitiveSequence, size, nullptr};
@@ -44,20 +46,25 @@ const CdrShape& MapMetaDataShape() {
 }  // namespace
 
 const CdrShape& OccupancyGridShape() {
-  static const CdrShape shape = {Struct("header", HeaderShape()), Struct("info", MapMetaDataShape()),
-                                 Sequence("data", 1)};
+  static const CdrShape shape = {Struct("header", HeaderShape()),
+                                 Struct("info", MapMetaDataShape()), Sequence("data", 1)};
   return shape;
 }
 
 const CdrShape& RobotStatusShape() {
-  static const CdrShape shape = {
-      String("robot_id"),           Struct("stamp", TimeShape()),
-      Struct("map_from_robot", Pose2DShape()), Struct("fleet_from_map", Pose2DShape()),
-      String("map_topic"),          Primitive("map_width", 4),
-      Primitive("map_height", 4),   Primitive("map_resolution", 4),
-      Primitive("map_revision", 4), Primitive("maps_published", 8),
-      Primitive("tiles_published", 8), Primitive("bytes_published", 8),
-      Primitive("sequence_number", 4)};
+  static const CdrShape shape = {String("robot_id"),
+                                 Struct("stamp", TimeShape()),
+                                 Struct("map_from_robot", Pose2DShape()),
+                                 Struct("fleet_from_map", Pose2DShape()),
+                                 String("map_topic"),
+                                 Primitive("map_width", 4),
+                                 Primitive("map_height", 4),
+                                 Primitive("map_resolution", 4),
+                                 Primitive("map_revision", 4),
+                                 Primitive("maps_published", 8),
+                                 Primitive("tiles_published", 8),
+                                 Primitive("bytes_published", 8),
+                                 Primitive("sequence_number", 4)};
   return shape;
 }
 
@@ -86,8 +93,11 @@ const CdrShape& VectorTileShape() {
 
 const CdrShape& VectorMapShape() {
   static const CdrShape shape = {
-      String("format"),         String("frame_id"),     Primitive("tile_size", 8),
-      Primitive("epsilon", 4),  Primitive("resolution", 4),
+      String("format"),
+      String("frame_id"),
+      Primitive("tile_size", 8),
+      Primitive("epsilon", 4),
+      Primitive("resolution", 4),
       CdrField{"tiles", CdrField::Kind::kStructSequence, 0, &VectorTileShape()}};
   return shape;
 }

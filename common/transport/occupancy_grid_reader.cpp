@@ -27,7 +27,8 @@ class OccupancyGridReader::Listener : public dds::DataReaderListener {
       if (!info.valid_data) continue;
       StatusOr<MapMessage> message = FromIdl(sample);
       if (message.ok()) {
-        message->serialized_bytes = nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
+        message->serialized_bytes =
+            nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
         maps_.Push(std::move(message));
       } else {
         maps_.Push(message.status().WithContext(topic_name_));
@@ -56,13 +57,12 @@ StatusOr<std::unique_ptr<OccupancyGridReader>> OccupancyGridReader::Create(
   self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up));
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
-      ReaderEndpoint::Create(participant, topic_name,
-                             dds::TypeSupport(new CheckedPubSubType<OccupancyGrid_PubSubType>(
-                                 OccupancyGridShape(),
-                                 [listener = self->listener_.get()](const Status& error) {
-                                   listener->OnMalformed(error);
-                                 })),
-                             OccupancyGridQos().reader, self->listener_.get()));
+      ReaderEndpoint::Create(
+          participant, topic_name,
+          dds::TypeSupport(new CheckedPubSubType<OccupancyGrid_PubSubType>(
+              OccupancyGridShape(), [listener = self->listener_.get()](
+                                        const Status& error) { listener->OnMalformed(error); })),
+          OccupancyGridQos().reader, self->listener_.get()));
   return self;
 }
 

@@ -146,7 +146,7 @@ class RobotStatusReader::Listener : public dds::DataReaderListener {
   std::mutex mutex_;
   // Which robots each writer speaks for, to name them when its liveliness lapses.
   std::map<dds::InstanceHandle_t, std::set<RobotId>> robots_by_writer_;  // guarded by mutex_
-  std::map<dds::InstanceHandle_t, RobotId> robot_by_instance_;             // guarded by mutex_
+  std::map<dds::InstanceHandle_t, RobotId> robot_by_instance_;           // guarded by mutex_
 };
 
 StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::Create(
@@ -155,13 +155,12 @@ StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::Create(
   self->listener_ = std::make_unique<Listener>(std::move(wake_up));
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
-      ReaderEndpoint::Create(participant, kRobotStatusTopic,
-                             dds::TypeSupport(new CheckedPubSubType<RobotStatus_PubSubType>(
-                                 RobotStatusShape(),
-                                 [listener = self->listener_.get()](const Status& error) {
-                                   listener->OnMalformed(error);
-                                 })),
-                             RobotStatusQos().reader, self->listener_.get()));
+      ReaderEndpoint::Create(
+          participant, kRobotStatusTopic,
+          dds::TypeSupport(new CheckedPubSubType<RobotStatus_PubSubType>(
+              RobotStatusShape(), [listener = self->listener_.get()](
+                                      const Status& error) { listener->OnMalformed(error); })),
+          RobotStatusQos().reader, self->listener_.get()));
   return self;
 }
 

@@ -12,14 +12,13 @@ namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
 
-StatusOr<std::unique_ptr<RobotStatusWriter>> RobotStatusWriter::Create(
-    Participant& participant) {
+StatusOr<std::unique_ptr<RobotStatusWriter>> RobotStatusWriter::Create(Participant& participant) {
   std::unique_ptr<RobotStatusWriter> self(new RobotStatusWriter());
   FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_,
-      WriterEndpoint::Create(participant, kRobotStatusTopic,
-                             dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
-                             RobotStatusQos().writer));
+      self->endpoint_, WriterEndpoint::Create(
+                           participant, kRobotStatusTopic,
+                           dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
+                           RobotStatusQos().writer));
   return self;
 }
 

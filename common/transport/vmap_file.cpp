@@ -1,9 +1,9 @@
 #include "common/transport/vmap_file.hpp"
 
-#include <cmath>
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 #include <fastcdr/exceptions/Exception.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <span>
@@ -79,7 +79,8 @@ StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const st
   map.resolution = message.resolution();
   if (!std::isfinite(map.tile_size) || map.tile_size <= 0.0 || !std::isfinite(map.epsilon) ||
       map.epsilon < 0.0 || !std::isfinite(map.resolution) || map.resolution <= 0.0) {
-    return InvalidArgumentError(name + ": tile_size, epsilon or resolution is not a valid distance");
+    return InvalidArgumentError(name +
+                                ": tile_size, epsilon or resolution is not a valid distance");
   }
   for (const auto& tile : message.tiles()) {
     const TileId id{tile.tile_x(), tile.tile_y()};
@@ -107,7 +108,7 @@ Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& p
 }
 
 StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,
-                                                   const VmapReadOptions& options) {
+                                                  const VmapReadOptions& options) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     return NotFoundError(path + ": no such file");

@@ -25,6 +25,6 @@ StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const st
 
 Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& path);
 StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,
-                                                   const VmapReadOptions& options = {});
+                                                  const VmapReadOptions& options = {});
 
 }  // namespace fleetmap::transport

@@ -42,8 +42,8 @@ std::string WriteMap(const std::string& name, int width, int height) {
       if ((x / 7 + y / 5) % 11 == 0) map.at(x, y) = grid::kUnknownValue;
     }
   }
-  const std::string path = ::testing::TempDir() + "/fleet_dds_" + std::to_string(getpid()) +
-                           "_" + name + ".yaml";
+  const std::string path =
+      ::testing::TempDir() + "/fleet_dds_" + std::to_string(getpid()) + "_" + name + ".yaml";
   const Status saved = grid::SaveMap(map, path);
   EXPECT_TRUE(saved.ok()) << saved;
   return path;
@@ -236,8 +236,7 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
   EXPECT_TRUE(server.WaitForOutput("robot beta joined", kDeadline)) << server.Output();
   EXPECT_TRUE(server.WaitForOutput("map from alpha: 384 x 384 cells", kDeadline))
       << server.Output();
-  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline))
-      << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline)) << server.Output();
 
   beta->Signal(SIGKILL);
   EXPECT_TRUE(server.WaitForOutput("robot beta lost", kDeadline)) << server.Output();
@@ -252,9 +251,9 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
-  const auto result = testing::RunCommand(
-      {kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml", "--domain",
-       std::to_string(domain_), "--localhost-only"});
+  const auto result =
+      testing::RunCommand({kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml",
+                           "--domain", std::to_string(domain_), "--localhost-only"});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output().find("/nonexistent/map.yaml"), std::string::npos) << result.output();
 }

@@ -1,11 +1,11 @@
 // A peer that speaks the wire types but sends nonsense: the server drops each bad sample with a
 // message naming the robot and the problem, and keeps serving the others.
 
-#include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
-#include <fastdds/dds/topic/TopicDataType.hpp>
 #include <gtest/gtest.h>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/topic/TopicDataType.hpp>
 
 #include <cstring>
 #include <functional>
@@ -50,9 +50,9 @@ nav_msgs::msg::dds_::OccupancyGrid_ Grid(uint32_t width, uint32_t height, size_t
 // (status liveliness is renewed by writing; a single early sample could lapse before matching).
 // `keep_alive` is called on every round too (to renew the robot's status while its map goes).
 template <typename Sample>
-bool WriteUntilServerSays(dds::DataWriter* writer, Sample& sample,
-                          const testing::Subprocess& server, const std::string& text,
-                          const std::function<void()>& keep_alive = [] {}) {
+bool WriteUntilServerSays(
+    dds::DataWriter* writer, Sample& sample, const testing::Subprocess& server,
+    const std::string& text, const std::function<void()>& keep_alive = [] {}) {
   const auto deadline = std::chrono::steady_clock::now() + kDeadline;
   while (std::chrono::steady_clock::now() < deadline) {
     keep_alive();
@@ -121,8 +121,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
 
   // A valid robot whose map says 10 x 10 but carries 5 cells.
   auto gamma = StatusOf("gamma");
-  ASSERT_TRUE(
-      WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
+  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
       << server.Output();
   const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
   auto short_grid = Grid(10, 10, 5);

@@ -90,8 +90,7 @@ std::string Subprocess::StdOut() const { return ReadFile(stdout_path_); }
 
 std::string Subprocess::StdErr() const { return ReadFile(stderr_path_); }
 
-bool Subprocess::WaitForOutput(const std::string& text,
-                               std::chrono::milliseconds timeout) const {
+bool Subprocess::WaitForOutput(const std::string& text, std::chrono::milliseconds timeout) const {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
     if (Output().find(text) != std::string::npos) return true;

@@ -6,7 +6,8 @@ namespace fleetmap {
 namespace {
 
 StatusOr<int> ParsePositive(int value) {
-  if (value <= 0) return InvalidArgumentError("value " + std::to_string(value) + " is not positive");
+  if (value <= 0)
+    return InvalidArgumentError("value " + std::to_string(value) + " is not positive");
   return value;
 }
 

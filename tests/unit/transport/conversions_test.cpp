@@ -76,8 +76,7 @@ TEST(ConversionsTest, RejectsBadResolutionOriginAndValues) {
   auto out_of_range = ToIdl(SmallMap());
   out_of_range.data()[2] = 101;
   out_of_range.data()[3] = -2;
-  EXPECT_EQ(FromIdl(out_of_range).status().message(),
-            "OccupancyGrid has 2 cells outside -1..100");
+  EXPECT_EQ(FromIdl(out_of_range).status().message(), "OccupancyGrid has 2 cells outside -1..100");
 }
 
 TEST(ConversionsTest, RobotStatusRoundTripsAndValidatesName) {

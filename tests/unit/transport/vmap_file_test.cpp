@@ -18,7 +18,8 @@ using vector_map::Polyline;
 using vector_map::TiledVectorMap;
 using vector_map::TileQuantum;
 
-// A point of tile `tile` at (i, j) quanta from its corner: on the lattice, as vectorizers make them.
+// A point of tile `tile` at (i, j) quanta from its corner: on the lattice, as vectorizers make
+// them.
 Point2 At(const TileId& tile, double tile_size, int i, int j) {
   const double q = TileQuantum(tile_size);
   return {tile.x * tile_size + i * q, tile.y * tile_size + j * q};
@@ -40,9 +41,9 @@ TiledVectorMap SampleMap() {
   first.obstacles.push_back(Polyline{{At(a, 10, 7, 7)}, false, 0.0});  // a point obstacle
   first.obstacles.push_back(
       Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, 0.025});
-  first.free_space.push_back(FreePolygon{
-      {At(a, 10, 0, 0), At(a, 10, 1000, 0), At(a, 10, 1000, 1000), At(a, 10, 0, 1000)},
-      {{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}}});
+  first.free_space.push_back(
+      FreePolygon{{At(a, 10, 0, 0), At(a, 10, 1000, 0), At(a, 10, 1000, 1000), At(a, 10, 0, 1000)},
+                  {{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}}});
   vector_map::VectorMap& second = map.tiles[b];
   second.frame_id = "fleet";
   second.resolution = 0.05;
@@ -93,7 +94,8 @@ TEST(VmapFileTest, BorderVertexIsTheSamePointFromBothTiles) {
 }
 
 TEST(VmapFileTest, FileRoundTripAndMissingFile) {
-  const std::string path = ::testing::TempDir() + "/vmap_test_" + std::to_string(getpid()) + ".vmap";
+  const std::string path =
+      ::testing::TempDir() + "/vmap_test_" + std::to_string(getpid()) + ".vmap";
   ASSERT_TRUE(WriteVmapFile(SampleMap(), path).ok());
   const auto read = ReadVmapFile(path);
   ASSERT_TRUE(read.ok()) << read.status();
