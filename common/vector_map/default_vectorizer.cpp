@@ -140,14 +140,32 @@ class TileRun {
     auto valid = [&](int i, int j) {
       const Point2& a = point(i);
       const Point2& b = point(j);
-      if (j > i + 1) {
-        for (int m = i + 1; m < j; ++m) {
-          const int position = chain.base + (m + shift) % period;
-          for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
-            if (PointSegmentDistanceSquared(bucket_points_[k], a, b) > eps2_) return false;
-          }
+      // Epsilon-error for the points attached to the vertices it replaces; meanwhile the
+      // epsilon-disc intervals of all points attached to i..j, a subset of P: if they already
+      // cover the segment it is continuous (sound), else the exact test against all of P decides.
+      const double length = (b - a).norm();
+      const bool subset_test = length > kDistanceTolerance;
+      const double ux = subset_test ? (b.x() - a.x()) / length : 0.0;
+      const double uy = subset_test ? (b.y() - a.y()) / length : 0.0;
+      intervals_.clear();
+      for (int m = i; m <= j; ++m) {
+        const int position = chain.base + (m + shift) % period;
+        const bool interior = m > i && m < j;
+        for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
+          const Point2& p = bucket_points_[k];
+          if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
+          if (!subset_test) continue;
+          const double wx = p.x() - a.x();
+          const double wy = p.y() - a.y();
+          const double along = wx * ux + wy * uy;
+          const double half2 = eps2_ - (wx * wx + wy * wy - along * along);
+          if (half2 < 0.0) continue;
+          const double half = std::sqrt(half2);
+          if (along + half < 0.0 || along - half > length) continue;
+          intervals_.emplace_back(along - half, along + half);
         }
       }
+      if (subset_test && IntervalsCover(intervals_, length)) return true;
       return Continuous(a, b);
     };
     pieces_.clear();
@@ -189,6 +207,7 @@ class TileRun {
   std::vector<Point2> bucket_points_;
   std::vector<Point2> rotated_;
   std::vector<std::vector<int>> pieces_;
+  std::vector<std::pair<double, double>> intervals_;
 };
 
 }  // namespace

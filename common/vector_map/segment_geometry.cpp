@@ -14,7 +14,11 @@ double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point
 }
 
 bool IntervalsCover(std::vector<std::pair<double, double>>& intervals, double length) {
-  // Intervals arrive nearly sorted (cells are visited along the segment): insertion sort.
+  // Intervals arrive nearly sorted (cells are visited along the major axis, which runs with or
+  // against the segment): orient, then insertion sort, linear in practice.
+  if (intervals.size() > 1 && intervals.front().first > intervals.back().first) {
+    std::reverse(intervals.begin(), intervals.end());
+  }
   for (size_t i = 1; i < intervals.size(); ++i) {
     const auto v = intervals[i];
     size_t j = i;

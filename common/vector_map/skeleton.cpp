@@ -137,7 +137,7 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
       bool deleted = false;
       for (const int i : candidates) {
         const int mask = mask_of(i);
-        const bool line_end = std::popcount(static_cast<unsigned>(mask)) == 1;
+        const bool line_end = mask != 0 && (mask & (mask - 1)) == 0;
         if (!(simple[mask] || line_end) || !removable(i)) continue;
         raster.at(i) &= static_cast<uint8_t>(~CellRaster::kSkeleton);
         for (const int o : window) --support[i + o];
