@@ -20,7 +20,8 @@ std::vector<float>& NoDistances(size_t size) {
 }  // namespace
 
 std::vector<double> CoveredHalfWidths(const CellRaster& raster,
-                                      const std::vector<CellPolyline>& polylines, double epsilon) {
+                                      const std::vector<CellPolyline>& polylines, double epsilon,
+                                      double min_half_width) {
   const CellRect& rect = raster.rect();
   const double eps2 = ToleratedSquare(epsilon);
   // best[i] < 0: no polyline within epsilon yet; owner is only read where best >= 0.
@@ -32,7 +33,6 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
     ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
       if (!rect.Contains(x, y)) return;
       const int i = raster.Index(x, y);
-      if (!raster.Has(i, CellRaster::kOccupied)) return;
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
       if (d2 > eps2) return;
       if (best[i] < 0.0f) {
@@ -51,13 +51,45 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
     for (size_t k = 0; k + 1 < pts.size(); ++k) visit(id, pts[k], pts[k + 1]);
     if (polylines[p].closed && pts.size() >= 3) visit(id, pts.back(), pts.front());
   }
-  std::vector<double> half_widths(polylines.size(), 0.0);
+  // (polyline, distance, +1 occupied / -1 not) for the cells beyond the minimum radius.
+  struct Cell {
+    int polyline;
+    float d2;
+    int gain;
+  };
+  std::vector<Cell> cells;
+  const double min2 = ToleratedSquare(min_half_width);
   for (const int i : touched) {
-    // Rounded up by a float ulp or so: the half width must not fall short of the exact distance.
-    const double d = std::sqrt(static_cast<double>(best[i])) * (1.0 + 1e-6);
-    double& h = half_widths[owner[i]];
-    h = std::max(h, std::min(epsilon, d));
+    if (static_cast<double>(best[i]) > min2) {
+      cells.push_back({owner[i], best[i], raster.Has(i, CellRaster::kOccupied) ? 1 : -1});
+    }
     best[i] = -1.0f;
+  }
+  std::sort(cells.begin(), cells.end(), [](const Cell& l, const Cell& r) {
+    return l.polyline != r.polyline ? l.polyline < r.polyline : l.d2 < r.d2;
+  });
+  std::vector<double> half_widths(polylines.size(), 0.0);
+  for (size_t begin = 0; begin < cells.size();) {
+    size_t end = begin;
+    int sum = 0;
+    int best_sum = 0;
+    double best_d2 = 0.0;
+    while (end < cells.size() && cells[end].polyline == cells[begin].polyline) {
+      sum += cells[end].gain;
+      // Ties at one distance are decided together (a radius takes all of them or none).
+      const bool last_at_distance =
+          end + 1 == cells.size() || cells[end + 1].polyline != cells[begin].polyline ||
+          cells[end + 1].d2 != cells[end].d2;
+      if (last_at_distance && sum > best_sum) {
+        best_sum = sum;
+        best_d2 = cells[end].d2;
+      }
+      ++end;
+    }
+    // Rounded up by a float ulp or so: the radius must not fall short of the cells it chose.
+    half_widths[cells[begin].polyline] =
+        std::min(epsilon, std::sqrt(best_d2) * (1.0 + 1e-6));
+    begin = end;
   }
   return half_widths;
 }

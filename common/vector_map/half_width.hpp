@@ -1,10 +1,12 @@
 #pragma once
 
-// Polyline::half_width: for each polyline, the largest distance to it of the occupied cells of the
-// rectangle that it stands for. A cell stands for the polyline nearest to it among those within
-// epsilon (deeper cells of a thick blob, farther than epsilon from every polyline, are outlined,
-// not filled). So a wall three cells thick drawn as its centre line gets about one cell, a thin
-// wall 0, and the rasterizer can give each wall back its thickness.
+// Polyline::half_width: how thick the obstacle a polyline stands for is, measured so that the
+// Rasterizer gives it back. Each cell within epsilon of some polyline belongs to the nearest one.
+// For each polyline, its cells beyond `min_half_width` (which the rasterizer fills anyway) are
+// taken in order of distance, and the half width is the radius that maximises (occupied cells
+// within it) - (other cells within it): a wall three cells thick drawn as its centre line gets one
+// cell, a thin wall 0, and a single noisy cell beside a wall does not fatten the whole wall.
+// Occupied cells farther than the half width (a lone bump) are the price of not over-filling.
 
 #include <vector>
 
@@ -15,6 +17,7 @@ namespace fleetmap::vector_map {
 
 // In cells, one per polyline, each in [0, epsilon]. Polylines in cell coordinates.
 std::vector<double> CoveredHalfWidths(const CellRaster& raster,
-                                      const std::vector<CellPolyline>& polylines, double epsilon);
+                                      const std::vector<CellPolyline>& polylines, double epsilon,
+                                      double min_half_width);
 
 }  // namespace fleetmap::vector_map

@@ -1,5 +1,6 @@
 #include "common/vector_map/rasterizer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -14,11 +15,13 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
                                                     double resolution, const Pose2& origin) const {
   if (width < 0 || height < 0) return InvalidArgumentError("rasterize: negative grid size");
   if (!(resolution > 0.0)) return InvalidArgumentError("rasterize: resolution must be > 0");
-  const double radius =
+  const double fixed_radius =
       options_.occupied_radius > 0.0 ? options_.occupied_radius : map.epsilon / 2.0;
-  if (!(radius > 0.0)) {
+  if (!options_.use_half_width && !(fixed_radius > 0.0)) {
     return InvalidArgumentError("rasterize: no occupied radius (map epsilon is not positive)");
   }
+  const double min_half_width =
+      options_.min_half_width > 0.0 ? options_.min_half_width : resolution / 2.0;
   grid::OccupancyGrid out(width, height, resolution, origin, grid::kUnknownValue);
   if (out.empty()) return out;
   const CellFrame frame(resolution, origin);
@@ -58,8 +61,8 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
     }
   }
 
-  const double r = radius / resolution;
-  const double r2 = ToleratedSquare(r);
+  double r = 0.0;
+  double r2 = 0.0;
   auto mark = [&](const Point2& a, const Point2& b) {
     ForEachCellNearSegment(a, b, r, [&](int x, int y) {
       if (!out.Contains(x, y)) return;
@@ -72,6 +75,11 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
     std::vector<Point2> pts;
     pts.reserve(polyline.points.size());
     for (const Point2& p : polyline.points) pts.push_back(frame.ToCell(p));
+    const double radius = options_.use_half_width
+                              ? std::max(polyline.half_width, min_half_width)
+                              : fixed_radius;
+    r = radius / resolution;
+    r2 = ToleratedSquare(r);
     if (pts.size() == 1) mark(pts[0], pts[0]);
     for (size_t k = 0; k + 1 < pts.size(); ++k) mark(pts[k], pts[k + 1]);
     if (polyline.closed && pts.size() >= 3) mark(pts.back(), pts.front());

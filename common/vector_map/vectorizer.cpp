@@ -74,7 +74,7 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
         for (Point2& p : polyline.points) p = frame.ToCell(lattice.Snap(frame.ToMap(p)));
       }
     }
-    half_widths = CoveredHalfWidths(raster, polylines, epsilon / resolution);
+    half_widths = CoveredHalfWidths(raster, polylines, epsilon / resolution, 0.5);
   }
   map.obstacles.reserve(polylines.size());
   for (size_t k = 0; k < polylines.size(); ++k) {
