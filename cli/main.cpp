@@ -4,12 +4,14 @@
 
 #include "cli/exit_codes.hpp"
 #include "cli/info_command.hpp"
+#include "cli/terrain_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
   app.require_subcommand(1);
   int exit_code = fleetmap::cli::kExitOk;
   fleetmap::cli::AddInfoCommand(app, &exit_code);
+  fleetmap::cli::AddTerrainCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

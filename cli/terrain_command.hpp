@@ -1,0 +1,29 @@
+#pragma once
+
+// `fleetmap terrain --kind office --size 40 --seed 7 -o gt.yaml [--resolution R] [--geojson F]`:
+// generates a simulated terrain (docs/simulator.md) and writes its ground-truth grid as a
+// map_server map (YAML + PGM) and, optionally, its exact geometry as GeoJSON.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+namespace fleetmap::cli {
+
+struct TerrainCommandOptions {
+  std::string kind = "office";
+  double size = 10.0;
+  uint32_t seed = 0;
+  double resolution = 0.05;
+  std::string output_yaml;
+  std::string geojson;
+};
+
+// On bad input (unknown kind, size or resolution out of bounds, unwritable file) prints a message
+// naming the option or file to `err` and returns kExitBadInput; kExitOk otherwise.
+int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ostream& err);
+
+void AddTerrainCommand(CLI::App& app, int* exit_code);
+
+}  // namespace fleetmap::cli
