@@ -5,6 +5,11 @@
 #include "cli/exit_codes.hpp"
 #include "cli/info_command.hpp"
 #include "cli/terrain_command.hpp"
+#include "cli/compare_command.hpp"
+#include "cli/rasterize_command.hpp"
+#include "cli/render_command.hpp"
+#include "cli/validate_command.hpp"
+#include "cli/vectorize_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -12,6 +17,11 @@ int main(int argc, char** argv) {
   int exit_code = fleetmap::cli::kExitOk;
   fleetmap::cli::AddInfoCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
+  fleetmap::cli::AddVectorizeCommand(app, &exit_code);
+  fleetmap::cli::AddValidateCommand(app, &exit_code);
+  fleetmap::cli::AddRasterizeCommand(app, &exit_code);
+  fleetmap::cli::AddCompareCommand(app, &exit_code);
+  fleetmap::cli::AddRenderCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

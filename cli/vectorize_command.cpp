@@ -1,0 +1,146 @@
+#include "cli/vectorize_command.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
+
+#include "cli/exit_codes.hpp"
+#include "common/metrics/grid_sizes.hpp"
+#include "common/transport/vmap_file.hpp"
+#include "common/vector_map/geojson.hpp"
+#include "common/vector_map/png.hpp"
+#include "common/vector_map/svg.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+std::optional<vector_map::VectorizeMethod> MethodFromName(const std::string& name) {
+  if (name == "default") return vector_map::VectorizeMethod::kDefault;
+  if (name == "paper") return vector_map::VectorizeMethod::kPaper;
+  return std::nullopt;
+}
+
+Status WriteText(const std::string& path, const std::string& text) {
+  return vector_map::WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+// The optional pictures, drawn from the merged tiles (fleet frame = map frame).
+Status WritePictures(const VectorizeCommandOptions& options, const vector_map::VectorMap& merged,
+                     const grid::OccupancyGrid& grid) {
+  if (!options.geojson_path.empty()) {
+    FLEETMAP_RETURN_IF_ERROR(
+        WriteText(options.geojson_path, vector_map::ToGeoJsonString(merged) + "\n"));
+  }
+  if (!options.svg_path.empty()) {
+    FLEETMAP_RETURN_IF_ERROR(WriteText(options.svg_path, vector_map::ToSvg(merged)));
+  }
+  if (!options.png_path.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> png,
+                              vector_map::RenderVectorMapPng(merged, grid));
+    FLEETMAP_RETURN_IF_ERROR(vector_map::WriteBytes(options.png_path, png));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std::ostream& err) {
+  auto fail = [&err](const std::string& message) {
+    err << "fleetmap vectorize: " << message << "\n";
+    return kExitBadInput;
+  };
+  const std::optional<vector_map::VectorizeMethod> method = MethodFromName(options.method);
+  if (!method) {
+    return fail(options.map_yaml + ": unknown --method '" + options.method +
+                "' (expected default or paper)");
+  }
+  if (options.epsilon_given) {
+    if (Status s = CheckPositiveFinite("--epsilon", options.epsilon); !s.ok()) {
+      return fail(options.map_yaml + ": " + s.message());
+    }
+  }
+  if (Status s = CheckPositiveFinite("--tile-size", options.tile_size); !s.ok()) {
+    return fail(options.map_yaml + ": " + s.message());
+  }
+  StatusOr<grid::LoadedMap> loaded = LoadGridInput(options.map_yaml, options.max_cells);
+  if (!loaded.ok()) return fail(loaded.status().message());
+  const grid::OccupancyGrid& grid = loaded->grid;
+  if (Status s = CheckAxisAligned(options.map_yaml, grid); !s.ok()) return fail(s.message());
+
+  vector_map::TiledVectorizeOptions tiled;
+  tiled.tile_size = options.tile_size;
+  tiled.vectorizer.method = *method;
+  tiled.vectorizer.epsilon = options.epsilon_given ? options.epsilon : 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  StatusOr<vector_map::TiledVectorMap> map =
+      vector_map::VectorizeTiled(grid, Transform2::Identity(), tiled);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!map.ok()) return fail(options.map_yaml + ": " + map.status().message());
+  const size_t dropped_rings = DropAreaLessFreeRings(&*map);
+
+  StatusOr<std::string> bytes = transport::EncodeVmap(*map);
+  if (!bytes.ok()) return fail(options.map_yaml + ": cannot encode: " + bytes.status().message());
+  if (Status s = transport::WriteVmapFile(*map, options.output_vmap); !s.ok()) {
+    return fail(s.message());
+  }
+  if (Status s = WritePictures(options, map->Merged(), grid); !s.ok()) return fail(s.message());
+  StatusOr<metrics::CompressedSizes> sizes = metrics::MeasureBytes(
+      std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()));
+  if (!sizes.ok()) return fail(sizes.status().message());
+
+  if (options.json) {
+    nlohmann::ordered_json json;
+    json["file"] = options.map_yaml;
+    json["output"] = options.output_vmap;
+    json["method"] = options.method;
+    json["epsilon"] = map->epsilon;
+    json["tile_size"] = map->tile_size;
+    json["vertices"] = map->ObstacleVertexCount();
+    json["segments"] = map->ObstacleSegmentCount();
+    json["free_vertices"] = map->FreeVertexCount();
+    json["tiles"] = map->tiles.size();
+    json["bytes"] = {{"raw", sizes->raw}, {"zstd", sizes->zstd}};
+    json["ms"] = ms;
+    json["dropped_free_rings"] = dropped_rings;
+    out << json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+  } else {
+    out << options.map_yaml << " -> " << options.output_vmap << " (" << options.method
+        << ", epsilon " << map->epsilon << " m, " << map->tiles.size() << " tiles of "
+        << map->tile_size << " m)\n"
+        << "obstacles: " << map->ObstacleVertexCount() << " vertices, "
+        << map->ObstacleSegmentCount() << " segments; free space: " << map->FreeVertexCount()
+        << " vertices (" << dropped_rings << " rings without area left out)\n"
+        << "size:      " << sizes->raw << " bytes (" << sizes->zstd << " with zstd -19)\n"
+        << "time:      " << ms << " ms\n";
+  }
+  out.flush();
+  return out ? kExitOk : kExitBadInput;
+}
+
+void AddVectorizeCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<VectorizeCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("vectorize", "Vectorize a map tile by tile into a .vmap file");
+  cmd->add_option("map", options->map_yaml, "map_server YAML file")->required();
+  cmd->add_option("-o,--output", options->output_vmap, ".vmap file to write")->required();
+  CLI::Option* epsilon = cmd->add_option(
+      "--epsilon", options->epsilon, "Error bound in metres (default sqrt(2) * resolution)");
+  cmd->add_option("--method", options->method, "default (both constraints hold) or paper");
+  cmd->add_option("--tile-size", options->tile_size, "Tile side in metres")
+      ->capture_default_str();
+  cmd->add_option("--geojson", options->geojson_path, "Also write GeoJSON here");
+  cmd->add_option("--svg", options->svg_path, "Also write an SVG picture here");
+  cmd->add_option("--png", options->png_path, "Also write a PNG picture here");
+  cmd->add_flag("--json", options->json, "Print one JSON line instead of text");
+  cmd->add_option("--max-cells", options->max_cells, "Refuse grids with more cells than this")
+      ->check(CLI::PositiveNumber);
+  cmd->callback([options, epsilon, exit_code]() {
+    options->epsilon_given = epsilon->count() > 0;
+    *exit_code = RunVectorize(*options, std::cout, std::cerr);
+  });
+}
+
+}  // namespace fleetmap::cli

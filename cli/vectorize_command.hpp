@@ -1,0 +1,36 @@
+#pragma once
+
+// `fleetmap vectorize MAP.yaml -o OUT.vmap [--epsilon E] [--method default|paper]
+// [--tile-size T] [--geojson F] [--svg F] [--png F] [--json]`: vectorizes a grid tile by tile
+// (fleet frame = map frame) and writes the .vmap, optionally GeoJSON / SVG / PNG pictures of it.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+#include "cli/command_inputs.hpp"
+
+namespace fleetmap::cli {
+
+struct VectorizeCommandOptions {
+  std::string map_yaml;
+  std::string output_vmap;
+  double epsilon = 0.0;  // metres; 0 (not given) picks sqrt(2) * resolution
+  bool epsilon_given = false;
+  std::string method = "default";
+  double tile_size = 10.0;  // metres
+  std::string geojson_path;
+  std::string svg_path;
+  std::string png_path;
+  bool json = false;
+  int64_t max_cells = kDefaultMaxCells;
+};
+
+// Prints a short summary (or one JSON line) to `out`. Bad input: "<file>: <problem>" on `err`
+// and kExitBadInput.
+int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std::ostream& err);
+
+void AddVectorizeCommand(CLI::App& app, int* exit_code);
+
+}  // namespace fleetmap::cli
