@@ -3,12 +3,12 @@
 // Grids for the vector-map tests: ASCII pictures and the real maps of ../shared/data/maps.
 
 #include <cstdint>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "common/grid/map_io.hpp"
 #include "common/grid/occupancy_grid.hpp"
 
 namespace fleetmap::vector_map::testing {
@@ -82,8 +82,7 @@ inline grid::OccupancyGrid FloorPlan() {
   return grid;
 }
 
-// The real maps (ROS map_server YAML + PGM), read with a small trinary reader so that these tests
-// do not depend on the map_io module.
+// The real maps of ../shared/data/maps (SOURCES.md).
 inline const std::vector<std::string>& RealMapNames() {
   static const std::vector<std::string> names = {
       "intel_lab",   "aces3_austin",    "nav2_warehouse", "willow_garage_2010",
@@ -91,45 +90,11 @@ inline const std::vector<std::string>& RealMapNames() {
   return names;
 }
 
+// Loads a real map with grid::LoadMap; false if the maps directory or the map is absent.
 inline bool LoadRealMap(const std::string& name, grid::OccupancyGrid& out) {
-  const std::string dir = FLEETMAP_SHARED_MAPS_DIR;
-  std::ifstream yaml(dir + "/" + name + ".yaml");
-  if (!yaml) return false;
-  double resolution = 0.05, occupied = 0.65, free = 0.196;
-  std::string line;
-  while (std::getline(yaml, line)) {
-    auto value = [&](const std::string& key, double& v) {
-      if (line.rfind(key + ":", 0) == 0) v = std::stod(line.substr(key.size() + 1));
-    };
-    value("resolution", resolution);
-    value("occupied_thresh", occupied);
-    value("free_thresh", free);
-  }
-  std::ifstream pgm(dir + "/" + name + ".pgm", std::ios::binary);
-  std::string magic;
-  int width = 0, height = 0, maxval = 0;
-  auto next = [&](auto& v) {
-    while (pgm >> std::ws && pgm.peek() == '#') pgm.ignore(1 << 20, '\n');
-    pgm >> v;
-  };
-  next(magic);
-  next(width);
-  next(height);
-  next(maxval);
-  pgm.get();
-  if (magic != "P5" || maxval != 255) return false;
-  std::vector<unsigned char> pixels(static_cast<size_t>(width) * height);
-  pgm.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
-  if (!pgm) return false;
-  out = grid::OccupancyGrid(width, height, resolution);
-  for (int row = 0; row < height; ++row) {
-    for (int x = 0; x < width; ++x) {
-      const double p = (255.0 - pixels[static_cast<size_t>(row) * width + x]) / 255.0;
-      out.at(x, height - 1 - row) = p > occupied ? grid::kOccupiedValue
-                                    : p < free   ? grid::kFreeValue
-                                                 : grid::kUnknownValue;
-    }
-  }
+  auto loaded = grid::LoadMap(std::string(FLEETMAP_SHARED_MAPS_DIR) + "/" + name + ".yaml");
+  if (!loaded.ok()) return false;
+  out = std::move(loaded->grid);
   return true;
 }
 

@@ -161,6 +161,93 @@ TEST(VectorizerTest, LargerEpsilonGivesFewerVertices) {
   EXPECT_LE(coarse.ObstacleVertexCount(), fine.ObstacleVertexCount());
 }
 
+TEST(VectorizerTest, CrossingWallsShareTheJunctionVertex) {
+  OccupancyGrid grid(41, 41, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 20, 35, 20, grid::kOccupiedValue);
+  FillRect(grid, 20, 5, 20, 35, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  // Two straight lines through the crossing: 4 vertices (chains ending at the junction: 5-8).
+  EXPECT_EQ(map.obstacles.size(), 2u);
+  EXPECT_EQ(map.ObstacleVertexCount(), 4u);
+}
+
+TEST(VectorizerTest, SpecksInARowShareOneSegment) {
+  OccupancyGrid grid(40, 10, 0.05, {}, grid::kFreeValue);
+  for (int x = 5; x <= 33; x += 2) grid.at(x, 5) = grid::kOccupiedValue;  // 15 specks, gaps of 1
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  EXPECT_EQ(map.ObstacleVertexCount(), 2u);  // one segment instead of 15 point obstacles
+}
+
+TEST(VectorizerTest, PolylinesCarryTheWallHalfWidth) {
+  OccupancyGrid grid(60, 30, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 5, 54, 7, grid::kOccupiedValue);    // 3 thick
+  FillRect(grid, 5, 20, 54, 20, grid::kOccupiedValue);  // 1 thick
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 2u);
+  for (const Polyline& polyline : map.obstacles) {
+    const bool thick = polyline.points[0].y() < 0.5;
+    // Thick: at least the one cell to each side (a little more may buy the corner cells at the
+    // line's ends). Thin: nothing beyond the rasterizer's half-cell default.
+    if (thick) {
+      EXPECT_GE(polyline.half_width, 0.05 - 1e-9);
+    } else {
+      EXPECT_EQ(polyline.half_width, 0.0);
+    }
+    EXPECT_LE(polyline.half_width, map.epsilon);
+  }
+}
+
+// Quantised output ------------------------------------------------------------------------------
+
+void ExpectOnLattice(const VectorMap& map, double quantum, const Point2& origin) {
+  auto on = [&](const Point2& p) {
+    for (const double k : {(p.x() - origin.x()) / quantum, (p.y() - origin.y()) / quantum}) {
+      EXPECT_NEAR(k, std::round(k), 1e-6) << p.transpose();
+    }
+  };
+  for (const Polyline& polyline : map.obstacles) {
+    for (const Point2& p : polyline.points) on(p);
+  }
+  for (const FreePolygon& polygon : map.free_space) {
+    for (const Point2& p : polygon.outer) on(p);
+    for (const auto& hole : polygon.holes) {
+      for (const Point2& p : hole) on(p);
+    }
+  }
+}
+
+TEST(VectorizerTest, QuantisedOutputLiesOnTheLatticeAndHoldsBothConstraints) {
+  const OccupancyGrid grid = testing::FloorPlan();
+  for (const double quantum : {0.001, 0.0123, 0.02}) {
+    VectorizerOptions options;
+    options.quantum = quantum;
+    options.lattice_origin = Point2(0.0037, -0.011);
+    const VectorMap map = VectorizeOrDie(grid, options);
+    SCOPED_TRACE(::testing::Message() << "quantum " << quantum);
+    ExpectOnLattice(map, quantum, options.lattice_origin);
+    ExpectValid(map, grid);
+    EXPECT_GT(map.ObstacleVertexCount(), 0u);
+  }
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const OccupancyGrid noise = testing::NoiseGrid(64, 48, 0.3, seed);
+    VectorizerOptions options;
+    options.quantum = 0.02;
+    ExpectValid(VectorizeOrDie(noise, options), noise);
+  }
+}
+
+TEST(VectorizerTest, RejectsAQuantumThatLeavesNoEpsilon) {
+  const OccupancyGrid grid(10, 10, 0.05);
+  VectorizerOptions options;
+  options.quantum = 0.06;
+  EXPECT_EQ(Vectorizer(options).Vectorize(grid).status().code(), StatusCode::kInvalidArgument);
+  options.quantum = -1.0;
+  EXPECT_EQ(Vectorizer(options).Vectorize(grid).status().code(), StatusCode::kInvalidArgument);
+}
+
 TEST(VectorizerTest, RejectsTinyEpsilonAndBadRect) {
   const OccupancyGrid grid(10, 10, 0.05);
   VectorizerOptions options;
@@ -198,9 +285,9 @@ struct TileRun {
   std::map<std::pair<int, int>, VectorMap> tiles;
 };
 
-TileRun VectorizeInTiles(const OccupancyGrid& grid, int tile) {
+TileRun VectorizeInTiles(const OccupancyGrid& grid, int tile, VectorizerOptions options = {}) {
   TileRun run;
-  const Vectorizer vectorizer;
+  const Vectorizer vectorizer(options);
   for (int ty = 0; ty * tile < grid.height(); ++ty) {
     for (int tx = 0; tx * tile < grid.width(); ++tx) {
       const CellRect rect{tx * tile, ty * tile, std::min(tile, grid.width() - tx * tile),
@@ -274,6 +361,39 @@ TEST(VectorizerTileTest, TilesHoldConstraintsAndStitchWithoutSeams) {
     }
   }
   EXPECT_GE(shared_ends, 8);
+}
+
+TEST(VectorizerTileTest, QuantisedTilesStitchExactly) {
+  const OccupancyGrid grid = SeamGrid();
+  const int tile = 16;
+  VectorizerOptions options;
+  options.quantum = 0.8 / 16384;  // the codec's quantum for 0.8 m tiles
+  options.lattice_origin = Point2(-0.4, 0.2);
+  const TileRun run = VectorizeInTiles(grid, tile, options);
+  ExpectValid(run.whole, grid);
+  ExpectOnLattice(run.whole, options.quantum, options.lattice_origin);
+  int shared_ends = 0;
+  for (const auto& [key, map] : run.tiles) {
+    const auto right = run.tiles.find({key.first + 1, key.second});
+    if (right == run.tiles.end()) continue;
+    // Snapped border nodes are no longer exactly on the border line: compare the ends nearest it.
+    const double line = (key.first + 1) * tile - 0.5;
+    auto near_line = [&](const VectorMap& m) {
+      std::multiset<std::pair<double, double>> ends;
+      const CellFrame frame(grid);
+      for (const Polyline& polyline : m.obstacles) {
+        if (polyline.closed) continue;
+        for (const Point2* p : {&polyline.points.front(), &polyline.points.back()}) {
+          if (std::abs(frame.ToCell(*p).x() - line) < 0.01) ends.insert({p->x(), p->y()});
+        }
+      }
+      return ends;
+    };
+    const auto mine = near_line(map);
+    EXPECT_EQ(mine, near_line(right->second));
+    shared_ends += static_cast<int>(mine.size());
+  }
+  EXPECT_GE(shared_ends, 4);
 }
 
 TEST(VectorizerTileTest, ChangedTileIsRevectorizedAlone) {
