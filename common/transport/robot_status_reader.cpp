@@ -13,6 +13,7 @@
 #include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
+#include "common/transport/writer_id.hpp"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 
 namespace fleetmap::transport {
@@ -107,7 +108,9 @@ class RobotStatusReader::Listener : public dds::DataReaderListener {
       robots_by_writer_[info.publication_handle].insert(status->robot);
       robot_by_instance_[info.instance_handle] = status->robot;
     }
-    events_.Push(RobotEvent::Alive(*std::move(status)));
+    RobotEvent event = RobotEvent::Alive(*std::move(status));
+    event.writer = WriterId(info.publication_handle);
+    events_.Push(std::move(event));
   }
 
   void OnInstanceGone(const dds::SampleInfo& info) {

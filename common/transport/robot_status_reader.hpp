@@ -28,6 +28,7 @@ struct RobotEvent {
   RobotId robot;
   RobotStatus status;  // for kStatus
   Status error;        // for kRejected
+  std::string writer;  // for kStatus: the DDS writer that sent it (two per robot id: a clash)
 
   static RobotEvent Alive(RobotStatus status);
   static RobotEvent Gone(Kind kind, RobotId robot);

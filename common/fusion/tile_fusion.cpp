@@ -1,0 +1,211 @@
+#include "common/fusion/tile_fusion.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include "common/vector_map/rasterizer.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
+
+namespace fleetmap::fusion {
+namespace {
+
+using grid::kOccupiedValue;
+using grid::kUnknownValue;
+
+// Evidence times count deciseconds from 2020-01-01 UTC: 32 bits last until 2033.
+constexpr auto kEvidenceEpoch = std::chrono::sys_days{std::chrono::year{2020} / 1 / 1};
+
+const TileId kNeighbourOffsets[] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0},
+                                    {1, 0},   {-1, 1}, {0, 1},  {1, 1}};
+
+bool SameGeometry(const vector_map::VectorMap& a, const vector_map::VectorMap& b) {
+  return a.obstacles == b.obstacles && a.free_space == b.free_space;
+}
+
+}  // namespace
+
+StatusOr<TileFusion> TileFusion::Create(const FusionOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  return TileFusion(options);
+}
+
+TileFusion::TileFusion(const FusionOptions& options)
+    : options_(options),
+      vectorizer_([&] {
+        vector_map::VectorizerOptions vectorizer = options.vectorizer;
+        // Windows are cut from the fleet frame, so the lattice starts at their frame's origin.
+        vectorizer.quantum = vector_map::TileQuantum(options.tile_size);
+        vectorizer.lattice_origin = Point2::Zero();
+        vectorizer.frame_id = "fleet";
+        return vector_map::Vectorizer(vectorizer);
+      }()),
+      epoch_(kEvidenceEpoch) {}
+
+grid::OccupancyGrid TileFusion::EmptyTileGrid(const TileId& tile) const {
+  const int cells = options_.CellsPerTile();
+  return grid::OccupancyGrid(cells, cells, options_.FusedResolution(),
+                             Pose2{tile.x * options_.tile_size, tile.y * options_.tile_size, 0.0},
+                             kUnknownValue);
+}
+
+uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
+  const auto ticks =
+      std::chrono::duration_cast<std::chrono::milliseconds>(stamp - epoch_).count() / 100;
+  return static_cast<uint32_t>(std::clamp<int64_t>(ticks, 1, std::numeric_limits<uint32_t>::max()));
+}
+
+Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
+                                   const vector_map::VectorMap& map, Timestamp stamp) {
+  const grid::OccupancyGrid geometry = EmptyTileGrid(tile);
+  FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid cells,
+                            vector_map::Rasterizer().Rasterize(map, geometry));
+  TileState& state = tiles_[tile];
+  if (state.fused.empty()) state.fused = geometry;
+  Contribution& contribution = state.robots[robot];
+  const uint32_t now = Deciseconds(stamp);
+  if (contribution.cells.empty()) {
+    contribution.changed_at.assign(static_cast<size_t>(cells.cell_count()), now);
+  } else {
+    for (size_t i = 0; i < contribution.changed_at.size(); ++i) {
+      if (cells.data()[i] != contribution.cells.data()[i]) contribution.changed_at[i] = now;
+    }
+  }
+  contribution.cells = std::move(cells);
+  to_refuse_.insert(tile);
+  return Status::Ok();
+}
+
+void TileFusion::RemoveRobotTile(const std::string& robot, const TileId& tile) {
+  const auto it = tiles_.find(tile);
+  if (it == tiles_.end() || it->second.robots.erase(robot) == 0) return;
+  to_refuse_.insert(tile);
+}
+
+bool TileFusion::Refuse(const TileId& tile, TileState* state) {
+  const int cells = options_.CellsPerTile();
+  grid::OccupancyGrid fused = EmptyTileGrid(tile);
+  std::vector<uint32_t> best(static_cast<size_t>(fused.cell_count()), 0);
+  for (const auto& [robot, contribution] : state->robots) {
+    const int8_t* values = contribution.cells.data().data();
+    for (size_t i = 0; i < best.size(); ++i) {
+      const int8_t value = values[i];
+      if (value == kUnknownValue) continue;
+      const uint32_t at = contribution.changed_at[i];
+      // Newer evidence wins; at equal age an obstacle wins over free space.
+      if (at > best[i] || (at == best[i] && value == kOccupiedValue)) {
+        best[i] = at;
+        fused.mutable_data()[i] = value;
+      }
+    }
+  }
+  // Which borders the change reached decides which neighbours must be re-vectorized too.
+  int min_x = cells, min_y = cells, max_x = -1, max_y = -1;
+  for (int y = 0; y < cells; ++y) {
+    for (int x = 0; x < cells; ++x) {
+      if (fused.at(x, y) == state->fused.at(x, y)) continue;
+      min_x = std::min(min_x, x);
+      max_x = std::max(max_x, x);
+      min_y = std::min(min_y, y);
+      max_y = std::max(max_y, y);
+    }
+  }
+  state->fused = std::move(fused);
+  if (max_x < 0) return false;
+  to_vectorize_.insert(tile);
+  const int margin = options_.margin_cells + 2;  // the vectorizer looks a little past its rect
+  for (const TileId& offset : kNeighbourOffsets) {
+    const bool reaches_x = (offset.x < 0 && min_x < margin) ||
+                           (offset.x > 0 && max_x >= cells - margin) || offset.x == 0;
+    const bool reaches_y = (offset.y < 0 && min_y < margin) ||
+                           (offset.y > 0 && max_y >= cells - margin) || offset.y == 0;
+    const TileId neighbour{tile.x + offset.x, tile.y + offset.y};
+    if (reaches_x && reaches_y && tiles_.count(neighbour) > 0) to_vectorize_.insert(neighbour);
+  }
+  return true;
+}
+
+StatusOr<vector_map::VectorMap> TileFusion::VectorizeWithContext(const TileId& tile) const {
+  const int cells = options_.CellsPerTile();
+  const int margin = options_.margin_cells;
+  const double resolution = options_.FusedResolution();
+  const int side = cells + 2 * margin;
+  grid::OccupancyGrid window(side, side, resolution,
+                             Pose2{tile.x * options_.tile_size - margin * resolution,
+                                   tile.y * options_.tile_size - margin * resolution, 0.0},
+                             kUnknownValue);
+  // Copy the 3 x 3 block of tiles around `tile` into the window, where they overlap it.
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const auto it = tiles_.find(TileId{tile.x + dx, tile.y + dy});
+      if (it == tiles_.end() || it->second.fused.empty()) continue;
+      const grid::OccupancyGrid& source = it->second.fused;
+      for (int y = 0; y < cells; ++y) {
+        const int wy = margin + dy * cells + y;
+        if (wy < 0 || wy >= side) continue;
+        for (int x = 0; x < cells; ++x) {
+          const int wx = margin + dx * cells + x;
+          if (wx < 0 || wx >= side) continue;
+          window.at(wx, wy) = source.at(x, y);
+        }
+      }
+    }
+  }
+  return vectorizer_.VectorizeTile(window, grid::CellRect{margin, margin, cells, cells});
+}
+
+StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
+  for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
+  to_refuse_.clear();
+  std::vector<FusedTile> changed;
+  for (const TileId& tile : to_vectorize_) {
+    FLEETMAP_ASSIGN_OR_RETURN(vector_map::VectorMap map, VectorizeWithContext(tile));
+    FusedTile& fused = vector_tiles_[tile];
+    if (fused.revision > 0 && SameGeometry(fused.map, map)) continue;
+    fused.tile = tile;
+    ++fused.revision;
+    fused.map = std::move(map);
+    changed.push_back(fused);
+  }
+  to_vectorize_.clear();
+  return changed;
+}
+
+grid::OccupancyGrid TileFusion::FusedGrid() const {
+  if (tiles_.empty()) return grid::OccupancyGrid();
+  int32_t min_x = INT32_MAX, min_y = INT32_MAX, max_x = INT32_MIN, max_y = INT32_MIN;
+  for (const auto& [tile, state] : tiles_) {
+    min_x = std::min(min_x, tile.x);
+    min_y = std::min(min_y, tile.y);
+    max_x = std::max(max_x, tile.x);
+    max_y = std::max(max_y, tile.y);
+  }
+  const int cells = options_.CellsPerTile();
+  grid::OccupancyGrid out(static_cast<int>(max_x - min_x + 1) * cells,
+                          static_cast<int>(max_y - min_y + 1) * cells, options_.FusedResolution(),
+                          Pose2{min_x * options_.tile_size, min_y * options_.tile_size, 0.0},
+                          kUnknownValue);
+  for (const auto& [tile, state] : tiles_) {
+    if (state.fused.empty()) continue;
+    const int x0 = static_cast<int>(tile.x - min_x) * cells;
+    const int y0 = static_cast<int>(tile.y - min_y) * cells;
+    for (int y = 0; y < cells; ++y) {
+      std::memcpy(&out.at(x0, y0 + y), &state.fused.data()[static_cast<size_t>(y) * cells],
+                  static_cast<size_t>(cells));
+    }
+  }
+  return out;
+}
+
+const FusedTile* TileFusion::FindFusedTile(const TileId& tile) const {
+  const auto it = vector_tiles_.find(tile);
+  return it == vector_tiles_.end() ? nullptr : &it->second;
+}
+
+size_t TileFusion::contribution_count() const {
+  size_t count = 0;
+  for (const auto& [tile, state] : tiles_) count += state.robots.size();
+  return count;
+}
+
+}  // namespace fleetmap::fusion

@@ -1,0 +1,83 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/core/ids.hpp"
+#include "common/core/robot_status.hpp"
+#include "common/core/status.hpp"
+#include "common/fusion/fusion_options.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/vector_map/vector_map.hpp"
+#include "common/vector_map/vectorizer.hpp"
+
+namespace fleetmap::fusion {
+
+// A fused tile that changed: its new revision and geometry (fleet frame, on the tile lattice).
+struct FusedTile {
+  TileId tile;
+  uint32_t revision = 0;
+  vector_map::VectorMap map;
+};
+
+// The fleet's fused map, tile by tile. Each robot's tile is rasterized onto the tile's fused cells;
+// a fused cell takes the state of the robot whose evidence for it is newest, where a robot's
+// evidence for a cell dates from the revision in which that cell last changed state. Ties go to
+// occupied. A robot that left keeps its contribution (marked stale by the server, not here).
+// Changed tiles, and neighbours whose border context changed, are re-vectorized by FuseChanged().
+//
+// Not thread-safe: one fusion worker owns it.
+class TileFusion {
+ public:
+  static StatusOr<TileFusion> Create(const FusionOptions& options);
+
+  // A robot's new revision of a tile (fleet frame).
+  Status UpdateRobotTile(const std::string& robot, const TileId& tile,
+                         const vector_map::VectorMap& map, Timestamp stamp);
+  void RemoveRobotTile(const std::string& robot, const TileId& tile);
+
+  // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
+  // changed.
+  StatusOr<std::vector<FusedTile>> FuseChanged();
+
+  // The fused cells of every tile as one fleet-frame grid (yaw 0), the smallest that holds them.
+  grid::OccupancyGrid FusedGrid() const;
+  // The fused vector map of one tile, if any.
+  const FusedTile* FindFusedTile(const TileId& tile) const;
+  const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }
+  size_t contribution_count() const;
+  const FusionOptions& options() const { return options_; }
+
+ private:
+  // One robot's view of one tile.
+  struct Contribution {
+    grid::OccupancyGrid cells;         // 3-state, on the tile's fused cells
+    std::vector<uint32_t> changed_at;  // per cell: when it last changed state (deciseconds)
+  };
+  struct TileState {
+    std::map<std::string, Contribution> robots;
+    grid::OccupancyGrid fused;  // 3-state
+  };
+
+  explicit TileFusion(const FusionOptions& options);
+
+  grid::OccupancyGrid EmptyTileGrid(const TileId& tile) const;
+  uint32_t Deciseconds(Timestamp stamp) const;
+  // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
+  // border margin changed.
+  bool Refuse(const TileId& tile, TileState* state);
+  StatusOr<vector_map::VectorMap> VectorizeWithContext(const TileId& tile) const;
+
+  FusionOptions options_;
+  vector_map::Vectorizer vectorizer_;
+  Timestamp epoch_;
+  std::map<TileId, TileState> tiles_;
+  std::set<TileId> to_refuse_;     // robot input changed
+  std::set<TileId> to_vectorize_;  // fused cells (or a neighbour's border) changed
+  std::map<TileId, FusedTile> vector_tiles_;
+};
+
+}  // namespace fleetmap::fusion

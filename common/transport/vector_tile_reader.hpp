@@ -1,0 +1,46 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/vector_tile_message.hpp"
+#include "common/transport/wake_up.hpp"
+
+namespace fleetmap::transport {
+
+class ReaderEndpoint;
+
+// A received tile, or why a sample was refused. `writer` identifies the DDS writer that sent it
+// (two agents claiming one robot id show up as two writers).
+struct TileEvent {
+  enum class Kind { kTile, kRemoved, kRejected };
+  Kind kind = Kind::kTile;
+  VectorTileMessage tile;  // kTile: the whole tile; kRemoved: robot_id and tile only
+  Status error;            // kRejected
+  std::string writer;
+  size_t serialized_bytes = 0;
+};
+
+// Receives vector tiles on rt/fleetmap/robot_tiles or rt/fleetmap/fused_tiles. The DDS listener
+// checks, decodes and queues; Drain() hands events over. Drain() may be called from one thread.
+class VectorTileReader {
+ public:
+  static StatusOr<std::unique_ptr<VectorTileReader>> Create(
+      Participant& participant, const std::string& topic_name,
+      std::shared_ptr<WakeUp> wake_up = nullptr);
+  ~VectorTileReader();
+
+  std::vector<TileEvent> Drain();
+
+ private:
+  class Listener;
+  VectorTileReader() = default;
+
+  std::unique_ptr<Listener> listener_;
+  std::unique_ptr<ReaderEndpoint> endpoint_;
+};
+
+}  // namespace fleetmap::transport

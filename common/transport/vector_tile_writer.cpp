@@ -1,0 +1,53 @@
+#include "common/transport/vector_tile_writer.hpp"
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+
+#include "common/transport/conversions.hpp"
+#include "common/transport/endpoint.hpp"
+#include "common/transport/qos.hpp"
+#include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
+
+namespace fleetmap::transport {
+
+namespace dds = eprosima::fastdds::dds;
+using fleetmap_msgs::msg::dds_::VectorTile_;
+
+StatusOr<std::unique_ptr<VectorTileWriter>> VectorTileWriter::Create(
+    Participant& participant, const std::string& topic_name) {
+  std::unique_ptr<VectorTileWriter> self(new VectorTileWriter());
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_, WriterEndpoint::Create(
+                           participant, topic_name,
+                           dds::TypeSupport(new fleetmap_msgs::msg::dds_::VectorTile_PubSubType()),
+                           VectorTileQos().writer));
+  return self;
+}
+
+VectorTileWriter::~VectorTileWriter() = default;
+
+StatusOr<size_t> VectorTileWriter::Write(const VectorTileMessage& message) {
+  FLEETMAP_ASSIGN_OR_RETURN(VectorTile_ sample, ToIdl(message));
+  if (!endpoint_->writer()->write(&sample)) {
+    return UnavailableError("could not write a vector tile on " + endpoint_->topic_name());
+  }
+  return VectorTile_::getCdrSerializedSize(sample) + 4;
+}
+
+Status VectorTileWriter::Dispose(const std::string& robot_id, const TileId& tile) {
+  VectorTile_ key;
+  key.robot_id(robot_id);
+  key.tile_x(tile.x);
+  key.tile_y(tile.y);
+  if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not dispose a vector tile on " + endpoint_->topic_name());
+  }
+  return Status::Ok();
+}
+
+int VectorTileWriter::matched_readers() const {
+  dds::PublicationMatchedStatus matched;
+  endpoint_->writer()->get_publication_matched_status(matched);
+  return matched.current_count;
+}
+
+}  // namespace fleetmap::transport

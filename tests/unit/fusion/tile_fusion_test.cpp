@@ -1,0 +1,209 @@
+#include "common/fusion/tile_fusion.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "common/vector_map/tiled_vector_map.hpp"
+
+namespace fleetmap::fusion {
+namespace {
+
+using grid::kFreeValue;
+using grid::kOccupiedValue;
+using grid::kUnknownValue;
+using grid::OccupancyGrid;
+
+constexpr double kTileSize = 2.0;  // 40 x 40 cells at 5 cm: small and fast
+const Timestamp kT0 = Timestamp(std::chrono::hours(24 * 365 * 54));  // 2024
+
+FusionOptions Options() {
+  FusionOptions options;
+  options.tile_size = kTileSize;
+  options.resolution = 0.05;
+  return options;
+}
+
+// A fleet-frame grid of `width` x `height` cells from (0, 0), all unknown.
+OccupancyGrid Grid(int width, int height) {
+  return OccupancyGrid(width, height, 0.05, Pose2{0.0, 0.0, 0.0}, kUnknownValue);
+}
+
+void Fill(OccupancyGrid* grid, int x0, int y0, int x1, int y1, int8_t value) {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) grid->at(x, y) = value;
+  }
+}
+
+// Vectorizes a robot's fleet-frame grid tile by tile and hands every tile to the fusion.
+void Feed(TileFusion* fusion, const std::string& robot, const OccupancyGrid& grid, Timestamp at) {
+  vector_map::TiledVectorizeOptions options;
+  options.tile_size = kTileSize;
+  const auto tiled = vector_map::VectorizeTiled(grid, Transform2::Identity(), options);
+  ASSERT_TRUE(tiled.ok()) << tiled.status();
+  for (const auto& [tile, map] : tiled->tiles) {
+    ASSERT_TRUE(fusion->UpdateRobotTile(robot, tile, map, at).ok());
+  }
+}
+
+int8_t FusedAt(const TileFusion& fusion, int x, int y) { return fusion.FusedGrid().at(x, y); }
+
+TEST(TileFusionTest, OneRobotComesBackThroughFusion) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok()) << fusion.status();
+  OccupancyGrid grid = Grid(40, 40);
+  Fill(&grid, 2, 2, 38, 38, kFreeValue);
+  Fill(&grid, 2, 20, 38, 21, kOccupiedValue);  // a wall across the room
+  Feed(&*fusion, "alpha", grid, kT0);
+  const auto changed = fusion->FuseChanged();
+  ASSERT_TRUE(changed.ok()) << changed.status();
+  ASSERT_EQ(changed->size(), 1u);
+  EXPECT_EQ((*changed)[0].tile, (TileId{0, 0}));
+  EXPECT_EQ((*changed)[0].revision, 1u);
+  EXPECT_FALSE((*changed)[0].map.obstacles.empty());
+  EXPECT_EQ(FusedAt(*fusion, 10, 20), kOccupiedValue);
+  EXPECT_EQ(FusedAt(*fusion, 10, 10), kFreeValue);
+  EXPECT_EQ(FusedAt(*fusion, 0, 0), kUnknownValue);
+  // Nothing new: nothing to publish.
+  EXPECT_TRUE(fusion->FuseChanged()->empty());
+}
+
+TEST(TileFusionTest, DisjointViewsAreUnited) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid left = Grid(40, 40);
+  Fill(&left, 0, 0, 20, 40, kFreeValue);
+  Fill(&left, 5, 5, 6, 30, kOccupiedValue);
+  OccupancyGrid right = Grid(40, 40);
+  Fill(&right, 20, 0, 40, 40, kFreeValue);
+  Fill(&right, 30, 5, 31, 30, kOccupiedValue);
+  Feed(&*fusion, "alpha", left, kT0);
+  Feed(&*fusion, "beta", right, kT0);
+  ASSERT_TRUE(fusion->FuseChanged().ok());
+  EXPECT_EQ(FusedAt(*fusion, 5, 15), kOccupiedValue);
+  EXPECT_EQ(FusedAt(*fusion, 30, 15), kOccupiedValue);
+  EXPECT_EQ(FusedAt(*fusion, 12, 35), kFreeValue);
+  EXPECT_EQ(FusedAt(*fusion, 35, 35), kFreeValue);
+}
+
+TEST(TileFusionTest, NewerEvidenceWinsAndTiesGoToObstacles) {
+  OccupancyGrid closed_door = Grid(40, 40);
+  Fill(&closed_door, 0, 0, 40, 40, kFreeValue);
+  Fill(&closed_door, 10, 20, 30, 21, kOccupiedValue);
+  OccupancyGrid open_door = Grid(40, 40);
+  Fill(&open_door, 0, 0, 40, 40, kFreeValue);
+
+  for (const bool open_is_newer : {true, false}) {
+    auto fusion = TileFusion::Create(Options());
+    ASSERT_TRUE(fusion.ok());
+    const Timestamp older = kT0;
+    const Timestamp newer = kT0 + std::chrono::seconds(5);
+    Feed(&*fusion, "alpha", closed_door, open_is_newer ? older : newer);
+    Feed(&*fusion, "beta", open_door, open_is_newer ? newer : older);
+    ASSERT_TRUE(fusion->FuseChanged().ok());
+    EXPECT_EQ(FusedAt(*fusion, 20, 20), open_is_newer ? kFreeValue : kOccupiedValue)
+        << "open is newer: " << open_is_newer;
+  }
+  auto tie = TileFusion::Create(Options());
+  Feed(&*tie, "alpha", closed_door, kT0);
+  Feed(&*tie, "beta", open_door, kT0);
+  ASSERT_TRUE(tie->FuseChanged().ok());
+  EXPECT_EQ(FusedAt(*tie, 20, 20), kOccupiedValue);
+}
+
+TEST(TileFusionTest, EvidenceIsDatedPerCellNotPerRevision) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid alpha = Grid(40, 40);
+  Fill(&alpha, 0, 0, 40, 40, kFreeValue);  // alpha saw the doorway open at t0
+  Feed(&*fusion, "alpha", alpha, kT0);
+  OccupancyGrid beta = alpha;
+  Fill(&beta, 10, 20, 30, 21, kOccupiedValue);  // beta saw it closed at t0 + 5 s
+  Feed(&*fusion, "beta", beta, kT0 + std::chrono::seconds(5));
+  ASSERT_TRUE(fusion->FuseChanged().ok());
+  ASSERT_EQ(FusedAt(*fusion, 20, 20), kOccupiedValue);
+  // alpha republishes at t0 + 10 s because of a change far from the door: its old view of the
+  // doorway is not new evidence and must not reopen it.
+  Fill(&alpha, 2, 35, 3, 38, kOccupiedValue);
+  Feed(&*fusion, "alpha", alpha, kT0 + std::chrono::seconds(10));
+  ASSERT_TRUE(fusion->FuseChanged().ok());
+  EXPECT_EQ(FusedAt(*fusion, 20, 20), kOccupiedValue);
+  EXPECT_EQ(FusedAt(*fusion, 2, 36), kOccupiedValue);
+}
+
+TEST(TileFusionTest, WallAcrossABorderMeetsAtTheSamePoint) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid grid = Grid(80, 40);  // tiles (0, 0) and (1, 0)
+  Fill(&grid, 0, 0, 80, 40, kFreeValue);
+  Fill(&grid, 5, 17, 75, 18, kOccupiedValue);
+  Feed(&*fusion, "alpha", grid, kT0);
+  const auto changed = fusion->FuseChanged();
+  ASSERT_TRUE(changed.ok());
+  ASSERT_EQ(changed->size(), 2u);
+  const auto& left = fusion->FindFusedTile({0, 0})->map;
+  const auto& right = fusion->FindFusedTile({1, 0})->map;
+  std::vector<Point2> left_border, right_border;
+  for (const auto& polyline : left.obstacles) {
+    for (const Point2& p : polyline.points) {
+      if (std::abs(p.x() - kTileSize) < 1e-9) left_border.push_back(p);
+    }
+  }
+  for (const auto& polyline : right.obstacles) {
+    for (const Point2& p : polyline.points) {
+      if (std::abs(p.x() - kTileSize) < 1e-9) right_border.push_back(p);
+    }
+  }
+  ASSERT_EQ(left_border.size(), 1u);
+  EXPECT_EQ(left_border, right_border);
+}
+
+TEST(TileFusionTest, OnlyTilesNearAChangeAreRevectorized) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid grid = Grid(120, 40);  // tiles (0..2, 0)
+  Fill(&grid, 0, 0, 120, 40, kFreeValue);
+  Fill(&grid, 10, 10, 110, 11, kOccupiedValue);
+  Feed(&*fusion, "alpha", grid, kT0);
+  ASSERT_EQ(fusion->FuseChanged()->size(), 3u);
+  // A new obstacle in the middle of tile (1, 0), far from its borders.
+  Fill(&grid, 58, 25, 62, 29, kOccupiedValue);
+  Feed(&*fusion, "alpha", grid, kT0 + std::chrono::seconds(1));
+  const auto changed = fusion->FuseChanged();
+  ASSERT_TRUE(changed.ok());
+  ASSERT_EQ(changed->size(), 1u);
+  EXPECT_EQ((*changed)[0].tile, (TileId{1, 0}));
+  EXPECT_EQ((*changed)[0].revision, 2u);
+}
+
+TEST(TileFusionTest, RemovedContributionDisappears) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid grid = Grid(40, 40);
+  Fill(&grid, 0, 0, 40, 40, kFreeValue);
+  Feed(&*fusion, "alpha", grid, kT0);
+  ASSERT_TRUE(fusion->FuseChanged().ok());
+  EXPECT_EQ(fusion->contribution_count(), 1u);
+  fusion->RemoveRobotTile("alpha", {0, 0});
+  ASSERT_TRUE(fusion->FuseChanged().ok());
+  EXPECT_EQ(fusion->contribution_count(), 0u);
+  EXPECT_EQ(FusedAt(*fusion, 20, 20), kUnknownValue);
+}
+
+TEST(FusionOptionsTest, RejectsBadGeometry) {
+  FusionOptions options = Options();
+  options.tile_size = -1.0;
+  EXPECT_FALSE(TileFusion::Create(options).ok());
+  options = Options();
+  options.resolution = 0.0;
+  EXPECT_FALSE(TileFusion::Create(options).ok());
+  options = Options();
+  options.resolution = 1.0;  // 2 cells per tile
+  EXPECT_THAT(TileFusion::Create(options).status().message(),
+              ::testing::HasSubstr("cells per side"));
+  options = Options();
+  options.resolution = 0.03;  // 66.67 cells: adjusted to whole cells
+  EXPECT_NEAR(options.FusedResolution() * options.CellsPerTile(), options.tile_size, 1e-12);
+}
+
+}  // namespace
+}  // namespace fleetmap::fusion
