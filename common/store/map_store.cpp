@@ -1,0 +1,373 @@
+#include "common/store/map_store.hpp"
+
+#include <sqlite3.h>
+
+#include <sstream>
+#include <utility>
+
+#include "common/store/sqlite_transaction.hpp"
+
+namespace fleetmap::store {
+namespace {
+
+// Schema version 1. Documented in docs/file-formats.md, "Map store (SQLite)": change both together
+// and bump MapStore::kSchemaVersion with a migration.
+constexpr char kCreateSchemaV1[] = R"sql(
+CREATE TABLE tile_latest (
+  owner    TEXT    NOT NULL,
+  tile_x   INTEGER NOT NULL,
+  tile_y   INTEGER NOT NULL,
+  revision INTEGER NOT NULL,
+  stamp_ns INTEGER NOT NULL,
+  payload  BLOB    NOT NULL,
+  PRIMARY KEY (owner, tile_x, tile_y)
+);
+CREATE TABLE tile_history (
+  id       INTEGER PRIMARY KEY,
+  owner    TEXT    NOT NULL,
+  tile_x   INTEGER NOT NULL,
+  tile_y   INTEGER NOT NULL,
+  revision INTEGER NOT NULL,
+  stamp_ns INTEGER NOT NULL,
+  payload  BLOB    NOT NULL,
+  UNIQUE (owner, tile_x, tile_y, stamp_ns, revision),
+  FOREIGN KEY (owner, tile_x, tile_y) REFERENCES tile_latest (owner, tile_x, tile_y)
+    ON DELETE CASCADE
+);
+CREATE TABLE robots (
+  robot          TEXT    NOT NULL PRIMARY KEY,
+  first_seen_ns  INTEGER NOT NULL,
+  last_seen_ns   INTEGER NOT NULL,
+  state          TEXT    NOT NULL CHECK (state IN ('active', 'left', 'lost')),
+  status_payload BLOB    NOT NULL
+);
+PRAGMA user_version = 1;
+)sql";
+
+// Upsert, never INSERT OR REPLACE: REPLACE deletes the old row, and the delete would cascade to
+// the tile's history.
+constexpr char kUpsertLatest[] = R"sql(
+INSERT INTO tile_latest (owner, tile_x, tile_y, revision, stamp_ns, payload)
+VALUES (?1, ?2, ?3, ?4, ?5, ?6)
+ON CONFLICT (owner, tile_x, tile_y) DO UPDATE SET
+  revision = excluded.revision, stamp_ns = excluded.stamp_ns, payload = excluded.payload
+WHERE (excluded.revision, excluded.stamp_ns) > (tile_latest.revision, tile_latest.stamp_ns)
+)sql";
+
+// A sample delivered twice (DDS re-sends transient-local tiles after a restart) is stored once.
+constexpr char kInsertHistory[] = R"sql(
+INSERT INTO tile_history (owner, tile_x, tile_y, revision, stamp_ns, payload)
+VALUES (?1, ?2, ?3, ?4, ?5, ?6)
+ON CONFLICT DO NOTHING
+)sql";
+
+constexpr char kTrimHistory[] = R"sql(
+DELETE FROM tile_history WHERE id IN (SELECT id FROM tile_history ORDER BY id LIMIT ?1)
+)sql";
+
+constexpr char kCountHistory[] = "SELECT count(*) FROM tile_history";
+
+constexpr char kSelectLatestAll[] = R"sql(
+SELECT owner, tile_x, tile_y, revision, stamp_ns, payload FROM tile_latest
+ORDER BY owner, tile_x, tile_y
+)sql";
+
+constexpr char kSelectLatestOwner[] = R"sql(
+SELECT owner, tile_x, tile_y, revision, stamp_ns, payload FROM tile_latest
+WHERE owner = ?1 ORDER BY tile_x, tile_y
+)sql";
+
+constexpr char kSelectHistory[] = R"sql(
+SELECT owner, tile_x, tile_y, revision, stamp_ns, payload FROM tile_history
+WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3 AND stamp_ns >= ?4
+ORDER BY stamp_ns, revision
+)sql";
+
+constexpr char kUpsertRobot[] = R"sql(
+INSERT INTO robots (robot, first_seen_ns, last_seen_ns, state, status_payload)
+VALUES (?1, ?2, ?3, ?4, ?5)
+ON CONFLICT (robot) DO UPDATE SET
+  first_seen_ns = min(first_seen_ns, excluded.first_seen_ns),
+  last_seen_ns = max(last_seen_ns, excluded.last_seen_ns),
+  state = excluded.state,
+  status_payload = excluded.status_payload
+)sql";
+
+constexpr char kSelectRobots[] = R"sql(
+SELECT robot, first_seen_ns, last_seen_ns, state, status_payload FROM robots ORDER BY robot
+)sql";
+
+// The tile's history goes with it (ON DELETE CASCADE).
+constexpr char kDeleteOwner[] = "DELETE FROM tile_latest WHERE owner = ?1";
+
+// At most this many problems from a failed check are quoted in the error message.
+constexpr int kMaxCheckMessages = 3;
+
+// The single integer a query such as "PRAGMA user_version" returns.
+StatusOr<int64_t> QueryInt(SqliteConnection& db, const char* sql, const std::string& what) {
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SqliteStatement> query,
+                            SqliteStatement::Prepare(db, sql, what));
+  FLEETMAP_ASSIGN_OR_RETURN(const bool row, query->Step());
+  if (!row) return InternalError(db.path() + ": " + what + ": no result row");
+  const int64_t value = query->ColumnInt64(0);
+  query->Reset();
+  return value;
+}
+
+Status BindTile(SqliteStatement& statement, const TileRecord& tile) {
+  statement.Reset();
+  FLEETMAP_RETURN_IF_ERROR(statement.BindText(1, tile.owner));
+  FLEETMAP_RETURN_IF_ERROR(statement.Bind(2, tile.tile.x));
+  FLEETMAP_RETURN_IF_ERROR(statement.Bind(3, tile.tile.y));
+  FLEETMAP_RETURN_IF_ERROR(statement.Bind(4, tile.revision));
+  FLEETMAP_RETURN_IF_ERROR(statement.Bind(5, tile.stamp_ns));
+  return statement.BindBlob(6, tile.payload);
+}
+
+}  // namespace
+
+MapStore::MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options)
+    : db_(std::move(db)), options_(options) {}
+
+// Statements are members declared after db_, so they are finalized before the connection closes.
+MapStore::~MapStore() = default;
+
+StatusOr<std::unique_ptr<MapStore>> MapStore::Open(const std::string& path,
+                                                   const StoreOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext(path));
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SqliteConnection> db, SqliteConnection::Open(path));
+  std::unique_ptr<MapStore> store(new MapStore(std::move(db), options));
+  FLEETMAP_RETURN_IF_ERROR(store->Initialize());
+  return store;
+}
+
+Status MapStore::Initialize() {
+  sqlite3_busy_timeout(db_->handle(), options_.busy_timeout_ms);
+  // The first statement reads the file: a foreign, damaged or too new file fails here, before
+  // anything is written to it.
+  FLEETMAP_ASSIGN_OR_RETURN(const int64_t version, ReadSchemaVersion());
+  if (options_.verify_on_open) FLEETMAP_RETURN_IF_ERROR(RunCheck("PRAGMA quick_check"));
+
+  FLEETMAP_ASSIGN_OR_RETURN(
+      std::unique_ptr<SqliteStatement> wal,
+      SqliteStatement::Prepare(*db_, "PRAGMA journal_mode = WAL", "switching to WAL mode"));
+  FLEETMAP_ASSIGN_OR_RETURN(const bool row, wal->Step());
+  const std::string mode = row ? wal->ColumnText(0) : "";
+  wal->Reset();
+  if (mode != "wal") {
+    return UnavailableError(path() + ": switching to WAL mode: the journal mode stayed '" + mode +
+                            "' (WAL needs a local file system with shared memory)");
+  }
+  FLEETMAP_RETURN_IF_ERROR(db_->Exec(
+      options_.synchronous_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL",
+      "setting the synchronous mode"));
+  FLEETMAP_RETURN_IF_ERROR(db_->Exec("PRAGMA foreign_keys = ON", "enabling foreign keys"));
+
+  if (version == 0) FLEETMAP_RETURN_IF_ERROR(CreateSchema());
+
+  FLEETMAP_RETURN_IF_ERROR(PrepareStatements());
+  FLEETMAP_ASSIGN_OR_RETURN(history_rows_, CountHistoryRows());
+  return Status::Ok();
+}
+
+StatusOr<int64_t> MapStore::ReadSchemaVersion() {
+  FLEETMAP_ASSIGN_OR_RETURN(const int64_t version,
+                            QueryInt(*db_, "PRAGMA user_version", "reading the schema version"));
+  if (version > kSchemaVersion) {
+    return InvalidArgumentError(path() + ": schema version " + std::to_string(version) +
+                                " is newer than this fleetmap supports (" +
+                                std::to_string(kSchemaVersion) +
+                                "); open it with a newer fleetmap");
+  }
+  if (version == kSchemaVersion) return version;
+  if (version < 0) {
+    return InvalidArgumentError(path() + ": schema version " + std::to_string(version) +
+                                " is not a fleetmap map store version");
+  }
+  // Version 0: a new file, or another application's database.
+  FLEETMAP_ASSIGN_OR_RETURN(
+      const int64_t objects,
+      QueryInt(*db_, "SELECT count(*) FROM sqlite_master", "reading the schema"));
+  if (objects > 0) {
+    return InvalidArgumentError(path() + ": not a fleetmap map store: it has " +
+                                std::to_string(objects) +
+                                " tables or indexes but no fleetmap schema version");
+  }
+  return version;
+}
+
+Status MapStore::CreateSchema() {
+  SqliteTransaction transaction(*db_);
+  FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
+  FLEETMAP_RETURN_IF_ERROR(db_->Exec(kCreateSchemaV1, "creating the schema"));
+  return transaction.Commit();
+}
+
+Status MapStore::RunCheck(const char* pragma) const {
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SqliteStatement> check,
+                            SqliteStatement::Prepare(*db_, pragma, "checking integrity"));
+  // One row per problem, or one row holding several lines, depending on the check.
+  std::string problems;
+  int count = 0;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, check->Step());
+    if (!row) break;
+    std::istringstream lines(check->ColumnText(0));
+    std::string line;
+    while (std::getline(lines, line)) {
+      if (line.empty() || line == "ok" || line.rfind("*** in database", 0) == 0) continue;
+      if (count < kMaxCheckMessages) problems += (count > 0 ? "; " : "") + line;
+      ++count;
+    }
+  }
+  if (count == 0) return Status::Ok();
+  if (count > kMaxCheckMessages) {
+    problems += "; and " + std::to_string(count - kMaxCheckMessages) + " more problems";
+  }
+  return DataLossError(path() + ": corrupt: " + problems + " (" + pragma + ")");
+}
+
+Status MapStore::PrepareStatements() {
+  const auto prepare = [this](std::unique_ptr<SqliteStatement>* out, const char* sql,
+                              const char* what) -> Status {
+    FLEETMAP_ASSIGN_OR_RETURN(*out, SqliteStatement::Prepare(*db_, sql, what));
+    return Status::Ok();
+  };
+  FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_latest_, kUpsertLatest, "writing a latest tile"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&insert_history_, kInsertHistory, "appending tile history"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&trim_history_, kTrimHistory, "trimming tile history"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&count_history_, kCountHistory, "counting history rows"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&select_latest_all_, kSelectLatestAll, "reading the latest tiles"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&select_latest_owner_, kSelectLatestOwner, "reading an owner's latest tiles"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&select_history_, kSelectHistory, "reading tile history"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_robot_, kUpsertRobot, "writing a robot"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&select_robots_, kSelectRobots, "reading the robots"));
+  return prepare(&delete_owner_, kDeleteOwner, "deleting an owner's tiles");
+}
+
+StatusOr<int64_t> MapStore::CountHistoryRows() const {
+  count_history_->Reset();
+  FLEETMAP_ASSIGN_OR_RETURN(const bool row, count_history_->Step());
+  if (!row) return InternalError(path() + ": counting history rows: no result row");
+  const int64_t count = count_history_->ColumnInt64(0);
+  count_history_->Reset();
+  return count;
+}
+
+Status MapStore::PutTiles(const std::vector<TileRecord>& tiles) {
+  const std::string batch = "batch of " + std::to_string(tiles.size()) + " tiles";
+  for (size_t i = 0; i < tiles.size(); ++i) {
+    const Status valid = ValidateTileRecord(tiles[i]);
+    if (!valid.ok())
+      return valid.WithContext(path() + ": " + batch + ", record " + std::to_string(i));
+  }
+  if (tiles.empty()) return Status::Ok();
+
+  SqliteTransaction transaction(*db_);
+  FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
+  int64_t history_rows = history_rows_;
+  for (const TileRecord& tile : tiles) {
+    FLEETMAP_RETURN_IF_ERROR(BindTile(*upsert_latest_, tile));
+    FLEETMAP_RETURN_IF_ERROR(upsert_latest_->Run());
+    if (options_.keep_history) {
+      FLEETMAP_RETURN_IF_ERROR(BindTile(*insert_history_, tile));
+      FLEETMAP_RETURN_IF_ERROR(insert_history_->Run());
+      history_rows += db_->Changes();
+    }
+  }
+  if (options_.max_history_rows > 0 && history_rows > options_.max_history_rows) {
+    trim_history_->Reset();
+    FLEETMAP_RETURN_IF_ERROR(trim_history_->Bind(1, history_rows - options_.max_history_rows));
+    FLEETMAP_RETURN_IF_ERROR(trim_history_->Run());
+    history_rows -= db_->Changes();
+  }
+  FLEETMAP_RETURN_IF_ERROR(transaction.Commit());
+  history_rows_ = history_rows;
+  return Status::Ok();
+}
+
+StatusOr<std::vector<TileRecord>> MapStore::ReadTiles(SqliteStatement& query) const {
+  std::vector<TileRecord> tiles;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, query.Step());
+    if (!row) break;
+    TileRecord& tile = tiles.emplace_back();
+    tile.owner = query.ColumnText(0);
+    tile.tile.x = static_cast<int32_t>(query.ColumnInt64(1));
+    tile.tile.y = static_cast<int32_t>(query.ColumnInt64(2));
+    tile.revision = static_cast<uint32_t>(query.ColumnInt64(3));
+    tile.stamp_ns = query.ColumnInt64(4);
+    tile.payload = query.ColumnBlob(5);
+  }
+  return tiles;
+}
+
+StatusOr<std::vector<TileRecord>> MapStore::LatestTiles(const std::string& owner) const {
+  if (owner.empty()) {
+    select_latest_all_->Reset();
+    return ReadTiles(*select_latest_all_);
+  }
+  select_latest_owner_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(select_latest_owner_->BindText(1, owner));
+  return ReadTiles(*select_latest_owner_);
+}
+
+StatusOr<std::vector<TileRecord>> MapStore::TileHistory(const std::string& owner,
+                                                        const TileId& tile,
+                                                        int64_t since_ns) const {
+  select_history_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(select_history_->BindText(1, owner));
+  FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(2, tile.x));
+  FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(3, tile.y));
+  FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(4, since_ns));
+  return ReadTiles(*select_history_);
+}
+
+Status MapStore::PutRobot(const RobotRecord& robot) {
+  FLEETMAP_RETURN_IF_ERROR(ValidateRobotRecord(robot).WithContext(path()));
+  // A single statement is its own transaction.
+  upsert_robot_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(1, robot.robot));
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->Bind(2, robot.first_seen_ns));
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->Bind(3, robot.last_seen_ns));
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(4, robot.state));
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindBlob(5, robot.status_payload));
+  return upsert_robot_->Run();
+}
+
+StatusOr<std::vector<RobotRecord>> MapStore::Robots() const {
+  select_robots_->Reset();
+  std::vector<RobotRecord> robots;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_robots_->Step());
+    if (!row) break;
+    RobotRecord& robot = robots.emplace_back();
+    robot.robot = select_robots_->ColumnText(0);
+    robot.first_seen_ns = select_robots_->ColumnInt64(1);
+    robot.last_seen_ns = select_robots_->ColumnInt64(2);
+    robot.state = select_robots_->ColumnText(3);
+    robot.status_payload = select_robots_->ColumnBlob(4);
+  }
+  return robots;
+}
+
+Status MapStore::DeleteOwner(const std::string& owner) {
+  SqliteTransaction transaction(*db_);
+  FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
+  delete_owner_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(delete_owner_->BindText(1, owner));
+  FLEETMAP_RETURN_IF_ERROR(delete_owner_->Run());
+  // Cascaded deletes are not in Changes(): count again.
+  FLEETMAP_ASSIGN_OR_RETURN(const int64_t history_rows, CountHistoryRows());
+  FLEETMAP_RETURN_IF_ERROR(transaction.Commit());
+  history_rows_ = history_rows;
+  return Status::Ok();
+}
+
+StatusOr<int64_t> MapStore::HistoryRowCount() const { return CountHistoryRows(); }
+
+Status MapStore::CheckIntegrity() const { return RunCheck("PRAGMA integrity_check"); }
+
+}  // namespace fleetmap::store

@@ -1,0 +1,98 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/core/ids.hpp"
+#include "common/core/status.hpp"
+#include "common/store/sqlite_connection.hpp"
+#include "common/store/sqlite_statement.hpp"
+#include "common/store/store_options.hpp"
+#include "common/store/store_records.hpp"
+
+namespace fleetmap::store {
+
+// The fusion server's persistent state in one SQLite file: the latest revision of every tile
+// (robot and fused), the history of every revision (the object learner's input) and the robots
+// of the fleet. Every write is one transaction, so after a crash the file holds exactly the calls
+// that returned OK (see StoreOptions for power loss). Schema: docs/file-formats.md, "Map store".
+//
+// One connection, not thread-safe: create and call from one thread (the server's fusion worker).
+// One process at a time should write a file; other processes may read it (WAL mode).
+class MapStore {
+ public:
+  // The schema version this code writes, kept in PRAGMA user_version.
+  static constexpr int kSchemaVersion = 1;
+
+  // Opens `path`, creating the file and its schema if missing. Fails with a message naming the
+  // file when it is not an SQLite database, is corrupt (quick check), holds another application's
+  // tables, or has a schema version newer than kSchemaVersion.
+  static StatusOr<std::unique_ptr<MapStore>> Open(const std::string& path,
+                                                  const StoreOptions& options = {});
+  ~MapStore();
+  MapStore(const MapStore&) = delete;
+  MapStore& operator=(const MapStore&) = delete;
+
+  // Stores a batch in one transaction: all records or none. Each (owner, tile)'s latest row is
+  // replaced when the record is newer (higher revision, or same revision and later stamp); with
+  // keep_history, each record not already present (same owner, tile, revision and stamp) is
+  // appended to the history, then the oldest rows beyond max_history_rows are dropped. A record
+  // that fails ValidateTileRecord refuses the whole batch with kInvalidArgument.
+  Status PutTiles(const std::vector<TileRecord>& tiles);
+
+  // The latest revision of every tile, or of `owner`'s tiles only; ordered by owner, x, y.
+  StatusOr<std::vector<TileRecord>> LatestTiles(const std::string& owner = "") const;
+
+  // Every stored revision of `owner`'s `tile` stamped at or after `since_ns`, oldest first.
+  StatusOr<std::vector<TileRecord>> TileHistory(const std::string& owner, const TileId& tile,
+                                                int64_t since_ns = 0) const;
+
+  // Inserts or updates a robot: first_seen_ns keeps the earliest value, last_seen_ns the latest,
+  // state and status_payload are replaced.
+  Status PutRobot(const RobotRecord& robot);
+  // All robots, ordered by id.
+  StatusOr<std::vector<RobotRecord>> Robots() const;
+
+  // Removes `owner`'s latest tiles and their history (robot records stay). Unknown owner: OK.
+  Status DeleteOwner(const std::string& owner);
+
+  StatusOr<int64_t> HistoryRowCount() const;
+
+  // PRAGMA integrity_check over the whole file: OK, or kDataLoss naming the file.
+  Status CheckIntegrity() const;
+
+  const std::string& path() const { return db_->path(); }
+
+ private:
+  MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options);
+  Status Initialize();
+  // The file's schema version: kSchemaVersion, or 0 for a new empty file; anything else fails.
+  StatusOr<int64_t> ReadSchemaVersion();
+  Status CreateSchema();
+  Status PrepareStatements();
+  Status RunCheck(const char* pragma) const;
+  StatusOr<int64_t> CountHistoryRows() const;
+  StatusOr<std::vector<TileRecord>> ReadTiles(SqliteStatement& query) const;
+
+  // Declared first so that it is destroyed last, after the statements.
+  std::unique_ptr<SqliteConnection> db_;
+  StoreOptions options_;
+  // Rows in tile_history, known at open and kept up to date by every committed write, so that
+  // trimming to max_history_rows needs no COUNT per batch.
+  int64_t history_rows_ = 0;
+
+  std::unique_ptr<SqliteStatement> upsert_latest_;
+  std::unique_ptr<SqliteStatement> insert_history_;
+  std::unique_ptr<SqliteStatement> trim_history_;
+  std::unique_ptr<SqliteStatement> count_history_;
+  std::unique_ptr<SqliteStatement> select_latest_all_;
+  std::unique_ptr<SqliteStatement> select_latest_owner_;
+  std::unique_ptr<SqliteStatement> select_history_;
+  std::unique_ptr<SqliteStatement> upsert_robot_;
+  std::unique_ptr<SqliteStatement> select_robots_;
+  std::unique_ptr<SqliteStatement> delete_owner_;
+};
+
+}  // namespace fleetmap::store

@@ -1,0 +1,20 @@
+#include "common/store/store_options.hpp"
+
+#include <string>
+
+namespace fleetmap::store {
+
+Status StoreOptions::Validate() const {
+  if (max_history_rows < 0) {
+    return InvalidArgumentError("store options: max_history_rows " +
+                                std::to_string(max_history_rows) +
+                                " is negative (0 means unlimited)");
+  }
+  if (busy_timeout_ms < 0) {
+    return InvalidArgumentError("store options: busy_timeout_ms " +
+                                std::to_string(busy_timeout_ms) + " is negative");
+  }
+  return Status::Ok();
+}
+
+}  // namespace fleetmap::store

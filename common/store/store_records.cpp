@@ -1,0 +1,39 @@
+#include "common/store/store_records.hpp"
+
+#include <sstream>
+
+namespace fleetmap::store {
+
+Status ValidateTileRecord(const TileRecord& record) {
+  std::ostringstream what;
+  if (!IsValidRobotName(record.owner)) {
+    what << "owner '" << record.owner
+         << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
+  } else if (record.stamp_ns < 0) {
+    what << "stamp_ns " << record.stamp_ns << " is negative";
+  } else {
+    return Status::Ok();
+  }
+  std::ostringstream where;
+  where << "tile record (owner '" << record.owner << "', " << record.tile << ", revision "
+        << record.revision << ")";
+  return InvalidArgumentError(where.str() + ": " + what.str());
+}
+
+Status ValidateRobotRecord(const RobotRecord& record) {
+  std::ostringstream what;
+  if (!IsValidRobotName(record.robot)) {
+    what << "'" << record.robot
+         << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
+  } else if (record.state != "active" && record.state != "left" && record.state != "lost") {
+    what << "state '" << record.state << "' is not one of active, left, lost";
+  } else if (record.first_seen_ns < 0 || record.last_seen_ns < record.first_seen_ns) {
+    what << "first_seen_ns " << record.first_seen_ns << " and last_seen_ns " << record.last_seen_ns
+         << " do not satisfy 0 <= first_seen_ns <= last_seen_ns";
+  } else {
+    return Status::Ok();
+  }
+  return InvalidArgumentError("robot record '" + record.robot + "': " + what.str());
+}
+
+}  // namespace fleetmap::store

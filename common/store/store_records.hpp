@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "common/core/ids.hpp"
+#include "common/core/status.hpp"
+
+namespace fleetmap::store {
+
+// The owner of fused tiles in TileRecord::owner. Robot ids are the other owners.
+inline constexpr char kFleetOwner[] = "fleet";
+
+// One revision of one tile. The payload is opaque to the store: the server encodes tiles with its
+// own codec.
+struct TileRecord {
+  std::string owner;  // robot id, or kFleetOwner for fused tiles
+  TileId tile;
+  uint32_t revision = 0;  // newer content has a higher revision
+  int64_t stamp_ns = 0;   // when this revision was made, ns since the Unix epoch
+  std::string payload;
+
+  friend bool operator==(const TileRecord&, const TileRecord&) = default;
+};
+
+// What the server knows about a robot of the fleet.
+struct RobotRecord {
+  std::string robot;  // robot id
+  int64_t first_seen_ns = 0;
+  int64_t last_seen_ns = 0;
+  std::string state;           // "active" | "left" | "lost"
+  std::string status_payload;  // opaque: the server's encoding of the robot's last status
+
+  friend bool operator==(const RobotRecord&, const RobotRecord&) = default;
+};
+
+// OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one), stamp_ns >= 0.
+Status ValidateTileRecord(const TileRecord& record);
+// OK when `record` may be stored: valid robot name, known state, 0 <= first_seen <= last_seen.
+Status ValidateRobotRecord(const RobotRecord& record);
+
+}  // namespace fleetmap::store
