@@ -325,6 +325,23 @@ TEST_F(MapStoreTest, RefusesATruncatedDatabase) {
   EXPECT_THAT(store.status().message(), StartsWith(path_ + ": corrupt: "));
 }
 
+TEST_F(MapStoreTest, LockedDatabaseIsUnavailableAndTheBatchIsNotWritten) {
+  StoreOptions options;
+  options.busy_timeout_ms = 0;
+  auto store = OpenOrDie(options);
+  ASSERT_NE(store, nullptr);
+  sqlite3* other = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &other), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr), SQLITE_OK);
+  const Status status = store->PutTiles({Tile("robot_a", 0, 0, 1, 1)});
+  sqlite3_exec(other, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(other);
+  EXPECT_EQ(status.code(), StatusCode::kUnavailable);
+  EXPECT_THAT(status.message(), StartsWith(path_ + ": beginning a write transaction: "));
+  EXPECT_TRUE(store->LatestTiles()->empty());
+  EXPECT_TRUE(store->PutTiles({Tile("robot_a", 0, 0, 1, 1)}).ok());  // free again
+}
+
 // The last "committed <n>" line the writer printed completely, or -1.
 int LastCommittedBatch(const std::string& output) {
   int last = -1;
