@@ -34,8 +34,9 @@ StatusOr<vector_map::TiledVectorMap> ReadVmapInput(const std::string& path) {
 
 Status CheckPositiveFinite(const std::string& flag, double value) {
   if (!std::isfinite(value) || value <= 0.0) {
-    return InvalidArgumentError(flag + " must be a finite number > 0, got " +
-                                std::to_string(value));
+    char shown[32];
+    std::snprintf(shown, sizeof(shown), "%g", value);
+    return InvalidArgumentError(flag + " must be a finite number > 0, got " + shown);
   }
   return Status::Ok();
 }
@@ -112,6 +113,11 @@ size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map) {
     tile.free_space = std::move(kept);
   }
   return dropped;
+}
+
+double StoredEpsilonBound(double stored_epsilon) {
+  return static_cast<double>(std::nextafter(static_cast<float>(stored_epsilon),
+                                            std::numeric_limits<float>::infinity()));
 }
 
 bool HasExtension(const std::string& path, const std::string& extension) {

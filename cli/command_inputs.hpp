@@ -45,6 +45,10 @@ double ShortestDouble(float value);
 // takes its holes with it) so the map can be encoded; returns how many rings were removed.
 size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map);
 
+// The epsilon to validate a .vmap with: its float32 epsilon was rounded to nearest from the one
+// the geometry was built with, so one float step up is a sound bound (a few nanometres more).
+double StoredEpsilonBound(double stored_epsilon);
+
 // Whether `path` ends with `extension` (".png"), ignoring ASCII case.
 bool HasExtension(const std::string& path, const std::string& extension);
 

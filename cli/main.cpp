@@ -10,6 +10,7 @@
 #include "cli/render_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
+#include "cli/bench_vectorize_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddRasterizeCommand(app, &exit_code);
   fleetmap::cli::AddCompareCommand(app, &exit_code);
   fleetmap::cli::AddRenderCommand(app, &exit_code);
+  fleetmap::cli::AddBenchVectorizeCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

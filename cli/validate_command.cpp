@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -11,13 +10,6 @@
 
 namespace fleetmap::cli {
 namespace {
-
-// The .vmap's epsilon is a float32, rounded to nearest from the epsilon the geometry was built
-// with; one float step up is a sound bound on that epsilon (a few nanometres more).
-double StoredEpsilonBound(double stored) {
-  return static_cast<double>(
-      std::nextafter(static_cast<float>(stored), std::numeric_limits<float>::infinity()));
-}
 
 // Same resolution up to float32 rounding (the .vmap stores it as a float).
 bool SameResolution(double grid, double vmap) {
