@@ -19,8 +19,8 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
         << "' is unknown: use maze, office or unstructured\n";
     return kExitBadInput;
   }
-  const StatusOr<sim::TerrainGenerator> generator = sim::TerrainGenerator::Create(
-      {.kind = *kind, .size = options.size, .seed = options.seed});
+  const StatusOr<sim::TerrainGenerator> generator =
+      sim::TerrainGenerator::Create({.kind = *kind, .size = options.size, .seed = options.seed});
   if (!generator.ok()) {
     err << "fleetmap terrain: --size: " << generator.status().message() << "\n";
     return kExitBadInput;
@@ -64,7 +64,8 @@ void AddTerrainCommand(CLI::App& app, int* exit_code) {
   command->add_option("-o,--output", options->output_yaml, "map YAML to write (PGM beside it)")
       ->required();
   command->add_option("--geojson", options->geojson, "also write the exact geometry as GeoJSON");
-  command->callback([options, exit_code] { *exit_code = RunTerrain(*options, std::cout, std::cerr); });
+  command->callback(
+      [options, exit_code] { *exit_code = RunTerrain(*options, std::cout, std::cerr); });
 }
 
 }  // namespace fleetmap::cli

@@ -7,8 +7,8 @@
 namespace fleetmap::sim {
 
 double Random::Uniform() {
-  const uint64_t high = Next() >> 5;  // 27 bits
-  const uint64_t low = Next() >> 6;   // 26 bits
+  const uint64_t high = Next() >> 5;                                            // 27 bits
+  const uint64_t low = Next() >> 6;                                             // 26 bits
   return static_cast<double>((high << 26) | low) * (1.0 / 9007199254740992.0);  // 2^-53
 }
 

@@ -43,11 +43,14 @@ void AddAxisWall(bool horizontal, double fixed, double lo, double hi, std::vecto
 }
 
 void AddBoundary(double size, double thickness, Terrain* terrain) {
+  // Each side runs the full edge, so the corner cells are covered too.
   const double b = thickness / 2.0;
-  const Point2 corners[4] = {{b, b}, {size - b, b}, {size - b, size - b}, {b, size - b}};
-  for (int i = 0; i < 4; ++i) {
-    terrain->walls.push_back(
-        {corners[i], corners[(i + 1) % 4], thickness, ObstacleKind::kBoundary});
+  const Point2 ends[4][2] = {{{0.0, b}, {size, b}},
+                             {{size - b, 0.0}, {size - b, size}},
+                             {{size, size - b}, {0.0, size - b}},
+                             {{b, size}, {b, 0.0}}};
+  for (const auto& [a, c] : ends) {
+    terrain->walls.push_back({a, c, thickness, ObstacleKind::kBoundary});
   }
 }
 
@@ -150,8 +153,8 @@ void AddFurniture(const Room& room, const std::vector<Point2>& keep_clear, doubl
       const double s = std::sin(angle);
       std::vector<Point2> corners;
       bool inside = true;
-      for (const auto& [u, v] : {std::pair{-1, -1}, std::pair{1, -1}, std::pair{1, 1},
-                                 std::pair{-1, 1}}) {
+      for (const auto& [u, v] :
+           {std::pair{-1, -1}, std::pair{1, -1}, std::pair{1, 1}, std::pair{-1, 1}}) {
         const double lx = u * w / 2.0;
         const double ly = v * h / 2.0;
         const Point2 p = centre + Point2(c * lx - s * ly, s * lx + c * ly);
@@ -255,8 +258,8 @@ void GenerateOffice(const TerrainOptions& options, Random* random, Terrain* terr
   for (const Room& room : rooms) {
     std::vector<Point2> keep_clear = {room.door};
     for (const Point2& door : inner_doors) {
-      if (door.x() >= room.x_lo - 0.01 && door.x() <= room.x_hi + 0.01 &&
-          door.y() >= room.y_lo && door.y() <= room.y_hi) {
+      if (door.x() >= room.x_lo - 0.01 && door.x() <= room.x_hi + 0.01 && door.y() >= room.y_lo &&
+          door.y() <= room.y_hi) {
         keep_clear.push_back(door);
       }
     }
@@ -392,10 +395,9 @@ void GenerateUnstructured(const TerrainOptions& options, Random* random, Terrain
 
 StatusOr<TerrainGenerator> TerrainGenerator::Create(const TerrainOptions& options) {
   if (!(options.size >= kMinTerrainSize && options.size <= kMaxTerrainSize)) {
-    return InvalidArgumentError("terrain size " + std::to_string(options.size) +
-                                " m is out of bounds: it must be in [" +
-                                std::to_string(kMinTerrainSize) + ", " +
-                                std::to_string(kMaxTerrainSize) + "] m");
+    return InvalidArgumentError(
+        "terrain size " + std::to_string(options.size) + " m is out of bounds: it must be in [" +
+        std::to_string(kMinTerrainSize) + ", " + std::to_string(kMaxTerrainSize) + "] m");
   }
   if (!(options.wall_thickness > 0.0 && options.wall_thickness <= 1.0)) {
     return InvalidArgumentError("terrain wall_thickness must be in (0, 1] m");

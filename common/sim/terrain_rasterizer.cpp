@@ -56,8 +56,8 @@ void FillPolygon(const std::vector<Point2>& points, grid::OccupancyGrid* grid) {
     for (size_t i = 0; i + 1 < crossings.size(); i += 2) {
       // Cell centres (x + 0.5) * res inside [crossings[i], crossings[i + 1]].
       const int xa = std::max(0, static_cast<int>(std::ceil(crossings[i] / res - 0.5)));
-      const int xb = std::min(grid->width() - 1,
-                              static_cast<int>(std::floor(crossings[i + 1] / res - 0.5)));
+      const int xb =
+          std::min(grid->width() - 1, static_cast<int>(std::floor(crossings[i + 1] / res - 0.5)));
       for (int x = xa; x <= xb; ++x) grid->at(x, y) = grid::kOccupiedValue;
     }
   }
