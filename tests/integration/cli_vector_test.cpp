@@ -1,0 +1,378 @@
+// Runs the real `fleetmap` binary through the vector-map subcommands: vectorize -> validate ->
+// rasterize -> compare, render, bench vectorize, and every bad input (exit code 2, file named).
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/grid/map_io.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/transport/vmap_file.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
+#include "tests/support/subprocess.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+using ::testing::HasSubstr;
+
+testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return testing::RunCommand(std::move(argv));
+}
+
+// A fresh directory per test and process, so parallel ctest runs never share files.
+std::string TestDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("cli_vector_" + std::to_string(getpid())) / info->name();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+// A 15 x 12.5 m room at 0.05 m (so it spans several 10 m tiles, and walls cross tile borders):
+// unknown outside, a wall 2 cells thick, free inside, a 6 x 6 pillar, a 1-cell wall stub, and an
+// isolated occupied cell.
+grid::OccupancyGrid Room() {
+  grid::OccupancyGrid grid(300, 250, 0.05, Pose2{-2.5, -1.0, 0.0});
+  for (int y = 10; y < 240; ++y) {
+    for (int x = 10; x < 290; ++x) {
+      const bool wall = x < 12 || y < 12 || x >= 288 || y >= 238;
+      grid.at(x, y) = wall ? grid::kOccupiedValue : grid::kFreeValue;
+    }
+  }
+  for (int y = 100; y < 106; ++y) {
+    for (int x = 200; x < 206; ++x) grid.at(x, y) = grid::kOccupiedValue;
+  }
+  for (int x = 12; x < 80; ++x) grid.at(x, 150) = grid::kOccupiedValue;
+  grid.at(150, 60) = grid::kOccupiedValue;
+  return grid;
+}
+
+std::string Save(const grid::OccupancyGrid& grid, const std::string& dir, const std::string& name) {
+  const std::string path = dir + "/" + name + ".yaml";
+  const Status status = grid::SaveMap(grid, path);
+  EXPECT_TRUE(status.ok()) << status;
+  return path;
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(CliVectorTest, VectorizeValidateRasterizeCompareRoundTrip) {
+  const std::string dir = TestDir();
+  const std::string map = Save(Room(), dir, "room");
+  const std::string vmap = dir + "/room.vmap";
+
+  testing::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  EXPECT_GT(summary["vertices"].get<int>(), 0);
+  EXPECT_GT(summary["segments"].get<int>(), 0);
+  EXPECT_GT(summary["free_vertices"].get<int>(), 0);
+  EXPECT_GE(summary["tiles"].get<int>(), 4);  // x from -2.5 to 12.5 m, y from -1 to 11.5 m
+  EXPECT_GT(summary["bytes"]["raw"].get<int>(), 0);
+  EXPECT_LE(summary["bytes"]["zstd"].get<int>(), summary["bytes"]["raw"].get<int>() + 64);
+  EXPECT_GE(summary["ms"].get<double>(), 0.0);
+  EXPECT_NEAR(summary["epsilon"].get<double>(), 0.05 * std::sqrt(2.0), 1e-12);
+
+  run = RunFleetmap({"validate", map, vmap, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(report["valid"].get<bool>());
+  EXPECT_EQ(report["uncovered_points"], 0);
+  EXPECT_EQ(report["discontinuous_segments"], 0);
+  EXPECT_GT(report["delimitation_points"].get<int>(), 1000);
+  EXPECT_LE(report["worst_point_distance"].get<double>(), report["epsilon"].get<double>());
+  EXPECT_THAT(RunFleetmap({"validate", map, vmap}).out, HasSubstr("valid"));
+
+  const std::string back = dir + "/back.yaml";
+  run = RunFleetmap({"rasterize", vmap, "-o", back, "--like", map});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  run = RunFleetmap({"compare", back, map, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json scores = nlohmann::json::parse(run.out);
+  EXPECT_GE(scores["MS"].get<double>(), 95.0);
+  EXPECT_GE(scores["OPDF"].get<double>(), 95.0);
+  EXPECT_GE(scores["UPDF"].get<double>(), 95.0);
+
+  // The default geometry: the tiles' bounding box at the .vmap's resolution.
+  run = RunFleetmap({"rasterize", vmap, "-o", dir + "/bounds.yaml"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  StatusOr<grid::LoadedMap> bounds = grid::LoadMap(dir + "/bounds.yaml");
+  ASSERT_TRUE(bounds.ok()) << bounds.status();
+  EXPECT_EQ(bounds->grid.resolution(), 0.05);
+  EXPECT_EQ(bounds->grid.origin(), (Pose2{-10.0, -10.0, 0.0}));
+  EXPECT_EQ(bounds->grid.width(), 600);  // tiles -1..1
+  EXPECT_EQ(bounds->grid.height(), 600);
+
+  run = RunFleetmap({"compare", map, map});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("MS   100.00 %"));
+}
+
+TEST(CliVectorTest, ValidateExitsOneOnABrokenVmap) {
+  const std::string dir = TestDir();
+  const grid::OccupancyGrid room = Room();
+  const std::string map = Save(room, dir, "room");
+  vector_map::TiledVectorMap broken;
+  broken.frame_id = "fleet";
+  broken.resolution = 0.05;
+  broken.epsilon = 0.05 * std::sqrt(2.0);
+  vector_map::VectorMap tile;
+  tile.frame_id = "fleet";
+  tile.resolution = broken.resolution;
+  tile.epsilon = broken.epsilon;
+  // In the middle of the free room, metres from any obstacle.
+  tile.obstacles.push_back({.points = {Point2(3.0, 3.0), Point2(4.0, 3.5)}});
+  broken.tiles.emplace(TileId{0, 0}, tile);
+  const std::string vmap = dir + "/broken.vmap";
+  ASSERT_TRUE(transport::WriteVmapFile(broken, vmap).ok());
+
+  testing::CommandResult run = RunFleetmap({"validate", map, vmap, "--json"});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(report["valid"].get<bool>());
+  EXPECT_EQ(report["discontinuous_segments"], 1);
+  EXPECT_GT(report["uncovered_points"].get<int>(), 0);  // the walls are not drawn at all
+  EXPECT_GT(report["worst_segment_distance"].get<double>(), report["epsilon"].get<double>());
+  run = RunFleetmap({"validate", map, vmap});
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_THAT(run.out, HasSubstr("VIOLATED"));
+}
+
+TEST(CliVectorTest, CompareSaysUndefinedForAnAllUnknownMap) {
+  const std::string dir = TestDir();
+  const grid::OccupancyGrid room = Room();
+  const grid::OccupancyGrid unknown(room.width(), room.height(), room.resolution(), room.origin());
+  const std::string truth = Save(room, dir, "room");
+  const std::string robot = Save(unknown, dir, "unknown");
+  testing::CommandResult run = RunFleetmap({"compare", robot, truth});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("OPDF undefined"));
+  EXPECT_THAT(run.out, HasSubstr("UPDF undefined"));
+  run = RunFleetmap({"compare", robot, truth, "--json", "--window", "4"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json scores = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(scores["OPDF"].is_null());
+  EXPECT_TRUE(scores["UPDF"].is_null());
+  EXPECT_TRUE(scores["CC"].is_null());  // a constant map has no standard deviation
+  EXPECT_TRUE(scores["MS"].is_number());
+  EXPECT_EQ(scores["window"], 4);
+}
+
+TEST(CliVectorTest, DegenerateGridsWork) {
+  const std::string dir = TestDir();
+  struct Case {
+    std::string name;
+    grid::OccupancyGrid grid;
+  };
+  const std::vector<Case> cases = {
+      {"all_unknown", grid::OccupancyGrid(40, 30, 0.05)},
+      {"all_free", grid::OccupancyGrid(40, 30, 0.05, {}, grid::kFreeValue)},
+      {"all_occupied", grid::OccupancyGrid(40, 30, 0.05, {}, grid::kOccupiedValue)},
+      {"one_occupied", grid::OccupancyGrid(1, 1, 0.05, {}, grid::kOccupiedValue)},
+      {"one_free", grid::OccupancyGrid(1, 1, 0.05, {}, grid::kFreeValue)},
+      {"one_unknown", grid::OccupancyGrid(1, 1, 0.05)},
+  };
+  for (const Case& c : cases) {
+    const std::string map = Save(c.grid, dir, c.name);
+    const std::string vmap = dir + "/" + c.name + ".vmap";
+    testing::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
+    ASSERT_EQ(run.exit_code, 0) << c.name << ": " << run.err;
+    const nlohmann::json summary = nlohmann::json::parse(run.out);
+    run = RunFleetmap({"validate", map, vmap});
+    EXPECT_EQ(run.exit_code, 0) << c.name << ": " << run.out << run.err;
+    const std::string back = dir + "/" + c.name + "_back.yaml";
+    run = RunFleetmap({"rasterize", vmap, "-o", back, "--like", map});
+    ASSERT_EQ(run.exit_code, 0) << c.name << ": " << run.err;
+    run = RunFleetmap({"compare", back, map, "--json"});
+    EXPECT_EQ(run.exit_code, 0) << c.name << ": " << run.err;
+    run = RunFleetmap({"render", vmap, "-o", dir + "/" + c.name + ".svg"});
+    EXPECT_EQ(run.exit_code, 0) << c.name << ": " << run.err;
+    if (c.name.find("unknown") != std::string::npos) {
+      EXPECT_EQ(summary["tiles"], 0) << c.name;
+      // No tiles, no geometry of its own: rasterizing without --like says so.
+      run = RunFleetmap({"rasterize", vmap, "-o", dir + "/x.yaml"});
+      EXPECT_EQ(run.exit_code, 2);
+      EXPECT_THAT(run.err, HasSubstr(vmap + ": holds no tiles"));
+    } else {
+      EXPECT_EQ(summary["tiles"], 1) << c.name;
+      EXPECT_GT(summary["bytes"]["raw"].get<int>(), 0);
+    }
+    if (c.name == "all_occupied" || c.name == "one_occupied") {
+      EXPECT_GE(summary["vertices"].get<int>(), 1) << c.name;
+    }
+  }
+}
+
+TEST(CliVectorTest, GeoJsonHasTheRequiredStructure) {
+  const std::string dir = TestDir();
+  const std::string map = Save(Room(), dir, "room");
+  const std::string geojson = dir + "/room.geojson";
+  const testing::CommandResult run = RunFleetmap(
+      {"vectorize", map, "-o", dir + "/room.vmap", "--geojson", geojson, "--svg",
+       dir + "/room.svg", "--png", dir + "/room.png"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(ReadText(geojson));
+  EXPECT_EQ(json["type"], "FeatureCollection");
+  EXPECT_NEAR(json["properties"]["epsilon"].get<double>(), 0.05 * std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(json["properties"]["resolution"].get<double>(), 0.05, 1e-9);
+  EXPECT_TRUE(json["properties"]["frame"].is_string());
+  int obstacles = 0;
+  int free = 0;
+  for (const nlohmann::json& feature : json["features"]) {
+    EXPECT_EQ(feature["type"], "Feature");
+    const std::string kind = feature["properties"]["kind"];
+    const std::string type = feature["geometry"]["type"];
+    if (kind == "obstacle") {
+      ++obstacles;
+      EXPECT_EQ(type, "LineString");
+      EXPECT_GE(feature["geometry"]["coordinates"].size(), 2u);
+      EXPECT_EQ(feature["geometry"]["coordinates"][0].size(), 2u);
+    } else {
+      ++free;
+      EXPECT_EQ(kind, "free");
+      EXPECT_EQ(type, "Polygon");
+      EXPECT_GE(feature["geometry"]["coordinates"][0].size(), 4u);  // closed ring
+    }
+  }
+  EXPECT_GT(obstacles, 0);
+  EXPECT_GT(free, 0);
+  EXPECT_EQ(ReadText(dir + "/room.svg").rfind("<svg", 0), 0u);
+  EXPECT_EQ(ReadText(dir + "/room.png").substr(1, 3), "PNG");
+}
+
+TEST(CliVectorTest, RenderDrawsVectorMapsAndGrids) {
+  const std::string dir = TestDir();
+  const std::string map = Save(Room(), dir, "room");
+  const std::string vmap = dir + "/room.vmap";
+  ASSERT_EQ(RunFleetmap({"vectorize", map, "-o", vmap}).exit_code, 0);
+  for (const auto& [input, output] : std::vector<std::pair<std::string, std::string>>{
+           {vmap, "v.svg"}, {vmap, "v.png"}, {map, "g.svg"}, {map, "g.png"}}) {
+    const testing::CommandResult run = RunFleetmap({"render", input, "-o", dir + "/" + output});
+    ASSERT_EQ(run.exit_code, 0) << output << ": " << run.err;
+    const std::string bytes = ReadText(dir + "/" + output);
+    if (output.ends_with(".svg")) {
+      EXPECT_THAT(bytes, HasSubstr("<svg")) << output;
+    } else {
+      EXPECT_EQ(bytes.substr(1, 3), "PNG") << output;
+    }
+  }
+  EXPECT_EQ(RunFleetmap({"render", vmap, "-o", dir + "/v2.png", "--like", map}).exit_code, 0);
+}
+
+TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
+  const std::string dir = TestDir();
+  const std::string map = Save(Room(), dir, "room");
+  const std::string small = Save(grid::OccupancyGrid(10, 10, 0.05), dir, "small");
+  const std::string vmap = dir + "/room.vmap";
+  ASSERT_EQ(RunFleetmap({"vectorize", map, "-o", vmap}).exit_code, 0);
+  const std::string bytes = ReadText(vmap);
+  const std::string truncated = dir + "/truncated.vmap";
+  WriteText(truncated, bytes.substr(0, bytes.size() / 2));
+  const std::string corrupt = dir + "/corrupt.vmap";
+  WriteText(corrupt, "this is not CDR at all");
+  const std::string empty_vmap = dir + "/empty.vmap";
+  WriteText(empty_vmap, "");
+  grid::OccupancyGrid rotated_grid(20, 20, 0.05, Pose2{0.0, 0.0, 0.5});
+  const std::string rotated = Save(rotated_grid, dir, "rotated");
+  const std::string zero_size = dir + "/zero.yaml";
+  WriteText(zero_size, "image: zero.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  WriteText(dir + "/zero.pgm", "P5\n0 0\n255\n");
+  const std::string missing = dir + "/missing.yaml";
+  const std::string missing_vmap = dir + "/missing.vmap";
+
+  struct Case {
+    std::vector<std::string> args;
+    std::vector<std::string> messages;
+  };
+  const std::vector<Case> cases = {
+      {{"vectorize", missing, "-o", vmap}, {missing, "no such file"}},
+      {{"vectorize", zero_size, "-o", dir + "/z.vmap"}, {"zero.pgm"}},
+      {{"vectorize", map, "-o", vmap, "--epsilon", "nan"}, {map, "--epsilon must be"}},
+      {{"vectorize", map, "-o", vmap, "--epsilon", "0"}, {map, "--epsilon must be"}},
+      {{"vectorize", map, "-o", vmap, "--epsilon", "-0.1"}, {map, "--epsilon must be"}},
+      {{"vectorize", map, "-o", vmap, "--epsilon", "0.001"}, {map, "epsilon"}},
+      {{"vectorize", map, "-o", vmap, "--tile-size", "nan"}, {map, "--tile-size must be"}},
+      {{"vectorize", map, "-o", vmap, "--method", "fancy"}, {map, "unknown --method 'fancy'"}},
+      {{"vectorize", map, "-o", vmap, "--max-cells", "1000"}, {"room.pgm", "limit of 1000"}},
+      {{"vectorize", rotated, "-o", dir + "/r.vmap"}, {rotated, "rotated"}},
+      {{"vectorize", map, "-o", dir + "/no/such/dir/x.vmap"}, {"no/such/dir/x.vmap"}},
+      {{"validate", map, missing_vmap}, {missing_vmap, "no such file"}},
+      {{"validate", missing, vmap}, {missing, "no such file"}},
+      {{"validate", map, truncated}, {truncated, "not a valid .vmap"}},
+      {{"validate", map, corrupt}, {corrupt, "not a valid .vmap"}},
+      {{"validate", map, empty_vmap}, {empty_vmap}},
+      {{"rasterize", truncated, "-o", dir + "/t.yaml"}, {truncated, "not a valid .vmap"}},
+      {{"rasterize", vmap, "-o", dir + "/t.yaml", "--resolution", "nan"}, {vmap, "--resolution"}},
+      {{"rasterize", vmap, "-o", dir + "/t.yaml", "--resolution", "0.0001", "--max-cells", "1000"},
+       {vmap, "--max-cells"}},
+      {{"rasterize", vmap, "-o", dir + "/t.yaml", "--like", missing}, {missing, "no such file"}},
+      {{"compare", map, small}, {"sizes do not match", map, small}},
+      {{"compare", missing, map}, {missing, "no such file"}},
+      {{"compare", map, map, "--window", "0"}, {map, "--window"}},
+      {{"render", corrupt, "-o", dir + "/c.svg"}, {corrupt, "not a valid .vmap"}},
+      {{"render", map, "-o", dir + "/c.gif"}, {"c.gif", "expected .svg or .png"}},
+      {{"render", dir + "/room.txt", "-o", dir + "/c.png"}, {"room.txt", "unknown input"}},
+      {{"bench", "vectorize", "--maps", dir + "/nowhere"}, {dir + "/nowhere", "no such directory"}},
+      {{"bench", "vectorize", "--maps", dir, "--runs", "3"}, {"--runs must be >= 5"}},
+  };
+  for (const Case& c : cases) {
+    const testing::CommandResult run = RunFleetmap(c.args);
+    const std::string label = ::testing::PrintToString(c.args);
+    EXPECT_EQ(run.exit_code, 2) << label << "\n" << run.out << run.err;
+    EXPECT_EQ(run.out, "") << label;
+    for (const std::string& message : c.messages) {
+      EXPECT_THAT(run.err, HasSubstr(message)) << label;
+    }
+  }
+}
+
+TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
+  const std::string dir = TestDir();
+  std::filesystem::create_directories(dir + "/maps");
+  Save(Room(), dir + "/maps", "room");
+  const std::string json_path = dir + "/bench.json";
+  const std::string csv_path = dir + "/bench.csv";
+  const testing::CommandResult run = RunFleetmap(
+      {"bench", "vectorize", "--maps", dir + "/maps", "--json", json_path, "--csv", csv_path});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("| room |"));
+  EXPECT_THAT(run.out, HasSubstr("sum / median"));
+  EXPECT_THAT(run.out, HasSubstr("| target |"));
+  const nlohmann::json json = nlohmann::json::parse(ReadText(json_path));
+  ASSERT_EQ(json["maps"].size(), 1u);
+  const nlohmann::json& room = json["maps"][0];
+  EXPECT_EQ(room["name"], "room");
+  EXPECT_TRUE(room["ours_obstacles"]["valid"].get<bool>());
+  EXPECT_TRUE(room["ours_full"]["valid"].get<bool>());
+  EXPECT_TRUE(room["vmap"]["valid"].get<bool>());
+  EXPECT_GT(room["opencv"]["vertices"].get<int>(), 0);
+  EXPECT_GT(room["grid"]["zstd"].get<int>(), 0);
+  EXPECT_TRUE(room["round_trip"]["MS"].is_number());
+  EXPECT_EQ(room["revectorize_tile"]["changed_cells"], 5);
+  EXPECT_FALSE(json["targets"].empty());
+  const std::string csv = ReadText(csv_path);
+  EXPECT_EQ(csv.rfind("map,cells,", 0), 0u);
+  EXPECT_THAT(csv, HasSubstr("\nroom,"));
+}
+
+}  // namespace
+}  // namespace fleetmap::cli
