@@ -1,5 +1,6 @@
 #include "cli/opencv_contours.hpp"
 
+#include <array>
 #include <cstdint>
 
 #include <opencv2/imgproc.hpp>
@@ -7,12 +8,18 @@
 namespace fleetmap::cli {
 
 cv::Mat OccupiedMask(const grid::OccupancyGrid& grid) {
+  // One table lookup per cell, as a tuned baseline would do (not a threshold test per cell).
+  std::array<uint8_t, 256> table;
+  for (int value = -128; value < 128; ++value) {
+    table[static_cast<uint8_t>(value)] =
+        grid::StateOf(static_cast<int8_t>(value)) == grid::CellState::kOccupied ? 255 : 0;
+  }
   cv::Mat mask(grid.height(), grid.width(), CV_8UC1);
+  const int8_t* cells = grid.data().data();
   for (int y = 0; y < grid.height(); ++y) {
     uint8_t* row = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < grid.width(); ++x) {
-      row[x] = grid.StateAt(x, y) == grid::CellState::kOccupied ? 255 : 0;
-    }
+    const int8_t* source = cells + static_cast<size_t>(y) * grid.width();
+    for (int x = 0; x < grid.width(); ++x) row[x] = table[static_cast<uint8_t>(source[x])];
   }
   return mask;
 }
