@@ -121,6 +121,11 @@ TEST(CliVectorTest, VectorizeValidateRasterizeCompareRoundTrip) {
   EXPECT_EQ(bounds->grid.width(), 600);  // tiles -1..1
   EXPECT_EQ(bounds->grid.height(), 600);
 
+  // The paper's method writes a .vmap too (its constraints may or may not hold: exit 0 or 1).
+  const std::string paper = dir + "/paper.vmap";
+  ASSERT_EQ(RunFleetmap({"vectorize", map, "-o", paper, "--method", "paper"}).exit_code, 0);
+  EXPECT_LE(RunFleetmap({"validate", map, paper}).exit_code, 1);
+
   run = RunFleetmap({"compare", map, map});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("MS   100.00 %"));
@@ -298,6 +303,8 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
   WriteText(dir + "/zero.pgm", "P5\n0 0\n255\n");
   const std::string missing = dir + "/missing.yaml";
   const std::string missing_vmap = dir + "/missing.vmap";
+  const std::string coarse = Save(grid::OccupancyGrid(300, 250, 0.1, {}, grid::kFreeValue), dir,
+                                  "coarse");
 
   struct Case {
     std::vector<std::string> args;
@@ -320,6 +327,7 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       {{"validate", map, truncated}, {truncated, "not a valid .vmap"}},
       {{"validate", map, corrupt}, {corrupt, "not a valid .vmap"}},
       {{"validate", map, empty_vmap}, {empty_vmap}},
+      {{"validate", coarse, vmap}, {vmap, "resolution", coarse}},
       {{"rasterize", truncated, "-o", dir + "/t.yaml"}, {truncated, "not a valid .vmap"}},
       {{"rasterize", vmap, "-o", dir + "/t.yaml", "--resolution", "nan"}, {vmap, "--resolution"}},
       {{"rasterize", vmap, "-o", dir + "/t.yaml", "--resolution", "0.0001", "--max-cells", "1000"},
