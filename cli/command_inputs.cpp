@@ -116,8 +116,8 @@ size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map) {
 }
 
 double StoredEpsilonBound(double stored_epsilon) {
-  return static_cast<double>(std::nextafter(static_cast<float>(stored_epsilon),
-                                            std::numeric_limits<float>::infinity()));
+  return static_cast<double>(
+      std::nextafter(static_cast<float>(stored_epsilon), std::numeric_limits<float>::infinity()));
 }
 
 bool HasExtension(const std::string& path, const std::string& extension) {

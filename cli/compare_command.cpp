@@ -62,8 +62,7 @@ int RunCompare(const CompareCommandOptions& options, std::ostream& out, std::ost
   metrics::QualityOptions quality;
   quality.window_width = options.window;
   quality.window_height = options.window;
-  StatusOr<metrics::QualityScores> scores =
-      metrics::CompareMaps(robot->grid, truth->grid, quality);
+  StatusOr<metrics::QualityScores> scores = metrics::CompareMaps(robot->grid, truth->grid, quality);
   if (!scores.ok()) return fail(options.robot_yaml + ": " + scores.status().message());
 
   const std::vector<std::pair<const char*, std::optional<double>>> rows = {
@@ -82,8 +81,8 @@ int RunCompare(const CompareCommandOptions& options, std::ostream& out, std::ost
     }
     out << json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   } else {
-    out << options.robot_yaml << " against " << options.truth_yaml << " (window "
-        << options.window << " cells)\n";
+    out << options.robot_yaml << " against " << options.truth_yaml << " (window " << options.window
+        << " cells)\n";
     for (const auto& [name, score] : rows) {
       char label[8];
       std::snprintf(label, sizeof(label), "%-5s", name);
@@ -97,7 +96,8 @@ int RunCompare(const CompareCommandOptions& options, std::ostream& out, std::ost
 void AddCompareCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<CompareCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "compare", "Map-quality metrics (MS, CC, PC, OPDF, UPDF) of a robot map against ground truth");
+      "compare",
+      "Map-quality metrics (MS, CC, PC, OPDF, UPDF) of a robot map against ground truth");
   cmd->add_option("robot", options->robot_yaml, "robot map (map_server YAML)")->required();
   cmd->add_option("truth", options->truth_yaml, "ground truth (map_server YAML)")->required();
   cmd->add_flag("--json", options->json, "Print one JSON line instead of text");

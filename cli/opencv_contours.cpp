@@ -34,15 +34,16 @@ Contours OpenCvVectorize(const cv::Mat& mask, double epsilon_cells) {
   return simplified;
 }
 
-vector_map::VectorMap ContoursToVectorMap(const Contours& contours,
-                                          const grid::OccupancyGrid& grid, double epsilon) {
+vector_map::VectorMap ContoursToVectorMap(const Contours& contours, const grid::OccupancyGrid& grid,
+                                          double epsilon) {
   vector_map::VectorMap map;
   map.resolution = grid.resolution();
   map.epsilon = epsilon;
   for (const std::vector<cv::Point>& contour : contours) {
     if (contour.empty()) continue;
     vector_map::Polyline polyline;
-    for (const cv::Point& pixel : contour) polyline.points.push_back(grid.CellCenter(pixel.x, pixel.y));
+    for (const cv::Point& pixel : contour)
+      polyline.points.push_back(grid.CellCenter(pixel.x, pixel.y));
     polyline.closed = polyline.points.size() >= 3;
     map.obstacles.push_back(std::move(polyline));
   }

@@ -26,7 +26,7 @@ Contours OpenCvVectorize(const cv::Mat& mask, double epsilon_cells);
 
 // A closed contour of n >= 3 vertices becomes a closed polyline, two vertices an open one (one
 // segment), one vertex a point obstacle.
-vector_map::VectorMap ContoursToVectorMap(const Contours& contours,
-                                          const grid::OccupancyGrid& grid, double epsilon);
+vector_map::VectorMap ContoursToVectorMap(const Contours& contours, const grid::OccupancyGrid& grid,
+                                          double epsilon);
 
 }  // namespace fleetmap::cli

@@ -60,8 +60,8 @@ void AddRasterizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("-o,--output", options->output_yaml, "map YAML to write (image beside it)")
       ->required();
   cmd->add_option("--like", options->like_yaml, "Copy this map's size, resolution and origin");
-  CLI::Option* resolution = cmd->add_option(
-      "--resolution", options->resolution, "Metres per cell (default: the .vmap's resolution)");
+  CLI::Option* resolution = cmd->add_option("--resolution", options->resolution,
+                                            "Metres per cell (default: the .vmap's resolution)");
   cmd->add_option("--max-cells", options->max_cells, "Refuse grids with more cells than this")
       ->check(CLI::PositiveNumber);
   cmd->callback([options, resolution, exit_code]() {

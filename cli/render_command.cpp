@@ -63,9 +63,9 @@ Status RenderVmap(const RenderCommandOptions& options, bool svg) {
     geometry = std::move(like.grid);
   } else {
     FLEETMAP_ASSIGN_OR_RETURN(
-        geometry, TileBoundsGrid(tiled, options.input,
-                                 ShortestDouble(static_cast<float>(tiled.resolution)),
-                                 options.max_cells));
+        geometry,
+        TileBoundsGrid(tiled, options.input, ShortestDouble(static_cast<float>(tiled.resolution)),
+                       options.max_cells));
   }
   StatusOr<std::vector<uint8_t>> png = vector_map::RenderVectorMapPng(merged, geometry);
   if (!png.ok()) return png.status().WithContext(options.input);

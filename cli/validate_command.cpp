@@ -12,9 +12,7 @@ namespace fleetmap::cli {
 namespace {
 
 // Same resolution up to float32 rounding (the .vmap stores it as a float).
-bool SameResolution(double grid, double vmap) {
-  return std::abs(grid - vmap) <= 1e-6 * grid;
-}
+bool SameResolution(double grid, double vmap) { return std::abs(grid - vmap) <= 1e-6 * grid; }
 
 }  // namespace
 
@@ -61,9 +59,9 @@ int RunValidate(const ValidateCommandOptions& options, std::ostream& out, std::o
   } else {
     out << options.vmap << " against " << options.map_yaml << " (epsilon "
         << validator_options.epsilon << " m): " << (report->ok() ? "valid" : "VIOLATED") << "\n"
-        << "epsilon-error: " << report->uncovered_points << " of "
-        << report->delimitation_points << " delimitation points uncovered, worst distance "
-        << report->worst_point_distance << " m\n"
+        << "epsilon-error: " << report->uncovered_points << " of " << report->delimitation_points
+        << " delimitation points uncovered, worst distance " << report->worst_point_distance
+        << " m\n"
         << "continuity:    " << report->discontinuous_segments << " of " << report->segments
         << " segments discontinuous, worst distance " << report->worst_segment_distance
         << " m (sampled)\n";

@@ -78,8 +78,7 @@ StatusOr<ConstraintCheck> Check(const vector_map::VectorMap& map, const grid::Oc
 
 // Whole-map vectorization with one method, timed.
 StatusOr<MethodFigures> MeasureOurs(const grid::OccupancyGrid& grid,
-                                    vector_map::VectorizeMethod method, bool free_space,
-                                    int runs) {
+                                    vector_map::VectorizeMethod method, bool free_space, int runs) {
   vector_map::VectorizerOptions options;
   options.method = method;
   options.extract_free_space = free_space;
@@ -100,9 +99,9 @@ struct EncodedSizes {
 };
 
 StatusOr<EncodedSizes> Sizes(const std::string& bytes) {
-  FLEETMAP_ASSIGN_OR_RETURN(
-      const metrics::CompressedSizes sizes,
-      metrics::MeasureBytes(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())));
+  FLEETMAP_ASSIGN_OR_RETURN(const metrics::CompressedSizes sizes,
+                            metrics::MeasureBytes(std::span(
+                                reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())));
   return EncodedSizes{sizes.raw, sizes.zstd};
 }
 
@@ -195,8 +194,8 @@ Status MeasureTiled(const grid::OccupancyGrid& grid, const VectorizeBenchOptions
   for (int i = 0; i < options.runs && status.ok(); ++i) {
     row->changed_cells = FlipCells(rect, &changed);
     const Clock::time_point start = Clock::now();
-    status = vector_map::RevectorizeTile(changed, Transform2::Identity(), tile, tiled_options,
-                                         &tiled);
+    status =
+        vector_map::RevectorizeTile(changed, Transform2::Identity(), tile, tiled_options, &tiled);
     times.push_back(MillisecondsSince(start));
   }
   FLEETMAP_RETURN_IF_ERROR(status);
@@ -238,16 +237,15 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
   row.epsilon = vector_map::DefaultEpsilon(grid.resolution());
 
   using vector_map::VectorizeMethod;
-  FLEETMAP_ASSIGN_OR_RETURN(row.ours, MeasureOurs(grid, VectorizeMethod::kDefault, false,
-                                                  options.runs));
-  FLEETMAP_ASSIGN_OR_RETURN(row.ours_full, MeasureOurs(grid, VectorizeMethod::kDefault, true,
-                                                       options.runs));
-  FLEETMAP_ASSIGN_OR_RETURN(row.paper, MeasureOurs(grid, VectorizeMethod::kPaper, false,
-                                                   options.runs));
+  FLEETMAP_ASSIGN_OR_RETURN(row.ours,
+                            MeasureOurs(grid, VectorizeMethod::kDefault, false, options.runs));
+  FLEETMAP_ASSIGN_OR_RETURN(row.ours_full,
+                            MeasureOurs(grid, VectorizeMethod::kDefault, true, options.runs));
+  FLEETMAP_ASSIGN_OR_RETURN(row.paper,
+                            MeasureOurs(grid, VectorizeMethod::kPaper, false, options.runs));
   FLEETMAP_RETURN_IF_ERROR(MeasureOpenCv(grid, options.runs, &row));
 
-  FLEETMAP_ASSIGN_OR_RETURN(const metrics::GridSizes grid_sizes,
-                            metrics::MeasureGridSizes(grid));
+  FLEETMAP_ASSIGN_OR_RETURN(const metrics::GridSizes grid_sizes, metrics::MeasureGridSizes(grid));
   row.grid_raw = grid_sizes.cells.raw;
   row.grid_gzip = grid_sizes.cells.gzip;
   row.grid_zstd = grid_sizes.cells.zstd;

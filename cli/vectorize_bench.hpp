@@ -42,10 +42,10 @@ struct VectorizeBenchRow {
   double resolution = 0.0;
   double epsilon = 0.0;  // metres
 
-  MethodFigures ours;         // kDefault, obstacles only
-  MethodFigures ours_full;    // kDefault with free space; vertices = obstacles + free
-  MethodFigures paper;        // obstacles only
-  MethodFigures opencv;       // mask + findContours + approxPolyDP
+  MethodFigures ours;           // kDefault, obstacles only
+  MethodFigures ours_full;      // kDefault with free space; vertices = obstacles + free
+  MethodFigures paper;          // obstacles only
+  MethodFigures opencv;         // mask + findContours + approxPolyDP
   double opencv_mask_ms = 0.0;  // of opencv.ms: building the occupied mask from the grid
 
   // The tiled .vmap (with free space) as `fleetmap vectorize` writes it.

@@ -85,9 +85,7 @@ double VertexRatio(const VectorizeBenchRow& row) {
   return SafeRatio(row.ours.vertices, row.opencv.vertices);
 }
 double TimeRatio(const VectorizeBenchRow& row) { return SafeRatio(row.ours.ms, row.opencv.ms); }
-double BytesRatio(const VectorizeBenchRow& row) {
-  return SafeRatio(row.vmap_zstd, row.grid_zstd);
-}
+double BytesRatio(const VectorizeBenchRow& row) { return SafeRatio(row.vmap_zstd, row.grid_zstd); }
 double RawBytesRatio(const VectorizeBenchRow& row) {
   return SafeRatio(row.vmap_raw, row.grid_zstd);
 }
@@ -126,17 +124,17 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   const double vertex_sum_ratio =
       SafeRatio(Sum(Collect<size_t>(rows, [](const Row& r) { return r.ours.vertices; })),
                 Sum(Collect<size_t>(rows, [](const Row& r) { return r.opencv.vertices; })));
-  targets.push_back({"vertices <= 0.6 x OpenCV, summed", Ratio(vertex_sum_ratio),
-                     vertex_sum_ratio <= 0.6});
+  targets.push_back(
+      {"vertices <= 0.6 x OpenCV, summed", Ratio(vertex_sum_ratio), vertex_sum_ratio <= 0.6});
   const double worst_vertex = max_of(VertexRatio);
-  targets.push_back({"vertices <= 1.0 x OpenCV, every map", "worst " + Ratio(worst_vertex),
-                     worst_vertex <= 1.0});
+  targets.push_back(
+      {"vertices <= 1.0 x OpenCV, every map", "worst " + Ratio(worst_vertex), worst_vertex <= 1.0});
   const double worst_time = max_of(TimeRatio);
   targets.push_back({"time (obstacles) <= 1.0 x OpenCV, every map", "worst " + Ratio(worst_time),
                      worst_time <= 1.0});
   const double worst_tile = max_of([](const Row& r) { return r.revectorize_tile_ms; });
-  targets.push_back({"re-vectorize one 10 m tile <= 1 ms", "worst " + Ms(worst_tile) + " ms",
-                     worst_tile <= 1.0});
+  targets.push_back(
+      {"re-vectorize one 10 m tile <= 1 ms", "worst " + Ms(worst_tile) + " ms", worst_tile <= 1.0});
   const double worst_bytes = max_of(BytesRatio);
   targets.push_back({"full .vmap, zstd -19 <= 0.5 x grid zstd -19, every map",
                      "worst " + Ratio(worst_bytes), worst_bytes <= 0.5});
@@ -162,10 +160,10 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out << "| " << r.name << " | " << r.cells << " | " << r.ours.vertices << " | "
-        << r.paper.vertices << " | " << r.opencv.vertices << " | " << Ratio(VertexRatio(r))
-        << " | " << Ms(r.ours.ms) << " | " << Ms(r.ours_full.ms) << " | " << Ms(r.paper.ms)
-        << " | " << Ms(r.opencv.ms) << " | " << Ratio(TimeRatio(r)) << " | " << OursCheckText(r)
-        << " / " << CheckText(r.paper.check) << " / " << CheckText(r.opencv.check) << " |\n";
+        << r.paper.vertices << " | " << r.opencv.vertices << " | " << Ratio(VertexRatio(r)) << " | "
+        << Ms(r.ours.ms) << " | " << Ms(r.ours_full.ms) << " | " << Ms(r.paper.ms) << " | "
+        << Ms(r.opencv.ms) << " | " << Ratio(TimeRatio(r)) << " | " << OursCheckText(r) << " / "
+        << CheckText(r.paper.check) << " / " << CheckText(r.opencv.check) << " |\n";
   }
   const auto sum = [&rows](const std::function<double(const Row&)>& get) {
     return Sum(Collect<double>(rows, get));
@@ -191,11 +189,11 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out << "| " << r.name << " | " << Kb(r.grid_raw) << " | " << Kb(r.grid_gzip) << " | "
-        << Kb(r.grid_zstd) << " | " << Kb(r.grid_png) << " | " << Kb(r.vmap_obstacles_raw)
-        << " / " << Kb(r.vmap_obstacles_zstd) << " | " << Kb(r.vmap_raw) << " | "
-        << Kb(r.vmap_zstd) << " | " << Ratio(BytesRatio(r)) << " | "
-        << Percent(r.round_trip_ms) << " | " << Percent(r.round_trip_opdf) << " | "
-        << Percent(r.round_trip_updf) << " | " << Ms(r.revectorize_tile_ms) << " |\n";
+        << Kb(r.grid_zstd) << " | " << Kb(r.grid_png) << " | " << Kb(r.vmap_obstacles_raw) << " / "
+        << Kb(r.vmap_obstacles_zstd) << " | " << Kb(r.vmap_raw) << " | " << Kb(r.vmap_zstd) << " | "
+        << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
+        << Percent(r.round_trip_opdf) << " | " << Percent(r.round_trip_updf) << " | "
+        << Ms(r.revectorize_tile_ms) << " |\n";
   }
   const auto kb_sum = [&](const std::function<double(const Row&)>& get) {
     return Kb(static_cast<size_t>(sum(get)));
@@ -284,43 +282,42 @@ std::string VectorizeBenchCsv(const std::vector<VectorizeBenchRow>& rows) {
     return value ? number(*value) : std::string();
   };
   for (const VectorizeBenchRow& r : rows) {
-    const std::vector<std::string> fields = {
-        r.name,
-        std::to_string(r.cells),
-        number(r.resolution),
-        number(r.epsilon),
-        std::to_string(r.ours.vertices),
-        std::to_string(r.ours.segments),
-        number(r.ours.ms),
-        r.ours.check.ok() ? "1" : "0",
-        std::to_string(r.ours_full.vertices),
-        number(r.ours_full.ms),
-        r.ours_full.check.ok() ? "1" : "0",
-        std::to_string(r.paper.vertices),
-        std::to_string(r.paper.segments),
-        number(r.paper.ms),
-        std::to_string(r.paper.check.uncovered_points),
-        std::to_string(r.paper.check.discontinuous_segments),
-        std::to_string(r.opencv.vertices),
-        std::to_string(r.opencv.segments),
-        number(r.opencv.ms),
-        number(r.opencv_mask_ms),
-        std::to_string(r.opencv.check.uncovered_points),
-        std::to_string(r.opencv.check.discontinuous_segments),
-        std::to_string(r.vmap_tiles),
-        std::to_string(r.vmap_raw),
-        std::to_string(r.vmap_zstd),
-        std::to_string(r.vmap_obstacles_raw),
-        std::to_string(r.vmap_obstacles_zstd),
-        r.vmap_check.ok() ? "1" : "0",
-        std::to_string(r.grid_raw),
-        std::to_string(r.grid_gzip),
-        std::to_string(r.grid_zstd),
-        std::to_string(r.grid_png),
-        optional(r.round_trip_ms),
-        optional(r.round_trip_opdf),
-        optional(r.round_trip_updf),
-        number(r.revectorize_tile_ms)};
+    const std::vector<std::string> fields = {r.name,
+                                             std::to_string(r.cells),
+                                             number(r.resolution),
+                                             number(r.epsilon),
+                                             std::to_string(r.ours.vertices),
+                                             std::to_string(r.ours.segments),
+                                             number(r.ours.ms),
+                                             r.ours.check.ok() ? "1" : "0",
+                                             std::to_string(r.ours_full.vertices),
+                                             number(r.ours_full.ms),
+                                             r.ours_full.check.ok() ? "1" : "0",
+                                             std::to_string(r.paper.vertices),
+                                             std::to_string(r.paper.segments),
+                                             number(r.paper.ms),
+                                             std::to_string(r.paper.check.uncovered_points),
+                                             std::to_string(r.paper.check.discontinuous_segments),
+                                             std::to_string(r.opencv.vertices),
+                                             std::to_string(r.opencv.segments),
+                                             number(r.opencv.ms),
+                                             number(r.opencv_mask_ms),
+                                             std::to_string(r.opencv.check.uncovered_points),
+                                             std::to_string(r.opencv.check.discontinuous_segments),
+                                             std::to_string(r.vmap_tiles),
+                                             std::to_string(r.vmap_raw),
+                                             std::to_string(r.vmap_zstd),
+                                             std::to_string(r.vmap_obstacles_raw),
+                                             std::to_string(r.vmap_obstacles_zstd),
+                                             r.vmap_check.ok() ? "1" : "0",
+                                             std::to_string(r.grid_raw),
+                                             std::to_string(r.grid_gzip),
+                                             std::to_string(r.grid_zstd),
+                                             std::to_string(r.grid_png),
+                                             optional(r.round_trip_ms),
+                                             optional(r.round_trip_opdf),
+                                             optional(r.round_trip_updf),
+                                             number(r.revectorize_tile_ms)};
     for (size_t i = 0; i < fields.size(); ++i) csv += (i == 0 ? "" : ",") + fields[i];
     csv += "\n";
   }

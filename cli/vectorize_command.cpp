@@ -126,11 +126,10 @@ void AddVectorizeCommand(CLI::App& app, int* exit_code) {
   CLI::App* cmd = app.add_subcommand("vectorize", "Vectorize a map tile by tile into a .vmap file");
   cmd->add_option("map", options->map_yaml, "map_server YAML file")->required();
   cmd->add_option("-o,--output", options->output_vmap, ".vmap file to write")->required();
-  CLI::Option* epsilon = cmd->add_option(
-      "--epsilon", options->epsilon, "Error bound in metres (default sqrt(2) * resolution)");
+  CLI::Option* epsilon = cmd->add_option("--epsilon", options->epsilon,
+                                         "Error bound in metres (default sqrt(2) * resolution)");
   cmd->add_option("--method", options->method, "default (both constraints hold) or paper");
-  cmd->add_option("--tile-size", options->tile_size, "Tile side in metres")
-      ->capture_default_str();
+  cmd->add_option("--tile-size", options->tile_size, "Tile side in metres")->capture_default_str();
   cmd->add_option("--geojson", options->geojson_path, "Also write GeoJSON here");
   cmd->add_option("--svg", options->svg_path, "Also write an SVG picture here");
   cmd->add_option("--png", options->png_path, "Also write a PNG picture here");

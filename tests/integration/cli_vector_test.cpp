@@ -230,9 +230,9 @@ TEST(CliVectorTest, GeoJsonHasTheRequiredStructure) {
   const std::string dir = TestDir();
   const std::string map = Save(Room(), dir, "room");
   const std::string geojson = dir + "/room.geojson";
-  const testing::CommandResult run = RunFleetmap(
-      {"vectorize", map, "-o", dir + "/room.vmap", "--geojson", geojson, "--svg",
-       dir + "/room.svg", "--png", dir + "/room.png"});
+  const testing::CommandResult run =
+      RunFleetmap({"vectorize", map, "-o", dir + "/room.vmap", "--geojson", geojson, "--svg",
+                   dir + "/room.svg", "--png", dir + "/room.png"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(ReadText(geojson));
   EXPECT_EQ(json["type"], "FeatureCollection");
@@ -298,13 +298,14 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
   grid::OccupancyGrid rotated_grid(20, 20, 0.05, Pose2{0.0, 0.0, 0.5});
   const std::string rotated = Save(rotated_grid, dir, "rotated");
   const std::string zero_size = dir + "/zero.yaml";
-  WriteText(zero_size, "image: zero.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
-                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  WriteText(zero_size,
+            "image: zero.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+            "occupied_thresh: 0.65\nfree_thresh: 0.196\n");
   WriteText(dir + "/zero.pgm", "P5\n0 0\n255\n");
   const std::string missing = dir + "/missing.yaml";
   const std::string missing_vmap = dir + "/missing.vmap";
-  const std::string coarse = Save(grid::OccupancyGrid(300, 250, 0.1, {}, grid::kFreeValue), dir,
-                                  "coarse");
+  const std::string coarse =
+      Save(grid::OccupancyGrid(300, 250, 0.1, {}, grid::kFreeValue), dir, "coarse");
 
   struct Case {
     std::vector<std::string> args;
