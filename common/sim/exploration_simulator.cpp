@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -26,7 +27,7 @@ class RobotRun {
         laser_random_(options.seed * 2246822519u + 1u),
         pose_(start),
         on_progress_(on_progress) {
-    const double r = options.robot_radius / truth.resolution();
+    const double r = options.robot_radius / truth.resolution() + 1.0;
     const int reach = static_cast<int>(std::ceil(r));
     for (int dy = -reach; dy <= reach; ++dy) {
       for (int dx = -reach; dx <= reach; ++dx) {
@@ -94,20 +95,67 @@ class RobotRun {
     }
   }
 
-  bool Collides(const Point2& p) const {
+  // Distance (metres) from `p` to the nearest occupied truth cell centre, capped just above the
+  // robot's radius; 0 outside the grid.
+  double Clearance(const Point2& p) const {
     const double res = truth_.resolution();
     const int cx = static_cast<int>(std::floor((p.x() - truth_.origin().x) / res));
     const int cy = static_cast<int>(std::floor((p.y() - truth_.origin().y) / res));
+    double best = options_.robot_radius + res;
     for (const auto& [dx, dy] : footprint_) {
       const int x = cx + dx;
       const int y = cy + dy;
-      if (!truth_.Contains(x, y) || truth_.at(x, y) >= grid::kOccupiedValue / 2) return true;
+      if (!truth_.Contains(x, y)) return 0.0;
+      if (truth_.at(x, y) < grid::kOccupiedValue / 2) continue;
+      best = std::min(best, (truth_.CellCenter(x, y) - p).norm());
     }
-    return false;
+    return best;
+  }
+
+  // A step is blocked when it ends closer than half the robot's radius to an obstacle and closer
+  // than it started (a robot in a tight spot may always back out). The planner keeps
+  // inflation_radius from every obstacle it knows; this check only stops the robot from driving
+  // through an obstacle its map does not show yet. Half the radius, not the full one: the planner
+  // works on 20 cm blocks and string-pulled legs, which may shave a door jamb by a few cm.
+  bool Blocked(const Point2& from, const Point2& to) const {
+    const double after = Clearance(to);
+    return after < 0.5 * options_.robot_radius && after < Clearance(from) - 0.005;
+  }
+
+  // Moves one step straight away from the nearest obstacle, as a robot backs out of a tight spot
+  // before it turns again. False if that step would not gain clearance.
+  bool BackOff() {
+    const double res = truth_.resolution();
+    const Point2 p = pose_.translation();
+    const int cx = static_cast<int>(std::floor((p.x() - truth_.origin().x) / res));
+    const int cy = static_cast<int>(std::floor((p.y() - truth_.origin().y) / res));
+    double best = std::numeric_limits<double>::infinity();
+    Point2 nearest = p;
+    for (const auto& [dx, dy] : footprint_) {
+      const int x = cx + dx;
+      const int y = cy + dy;
+      if (!truth_.Contains(x, y) || truth_.at(x, y) < grid::kOccupiedValue / 2) continue;
+      const Point2 c = truth_.CellCenter(x, y);
+      if ((c - p).norm() < best) {
+        best = (c - p).norm();
+        nearest = c;
+      }
+    }
+    if (!std::isfinite(best) || best < 1e-9) return false;
+    const Point2 next = p + (p - nearest) / best * options_.step;
+    if (Clearance(next) <= Clearance(p)) return false;
+    pose_.x = next.x();
+    pose_.y = next.y();
+    since_scan_ += options_.step;
+    result_.distance += options_.step;
+    error_.Advance(options_.step);
+    return true;
   }
 
   // Drives the path's legs until the goal, replan_distance, a collision or the budget.
   void FollowPath(const std::vector<Point2>& path) {
+    constexpr int kMaxBackoffs = 5;
+    int backoffs = 0;
     double driven = 0.0;
     for (size_t leg = 1; leg < path.size(); ++leg) {
       const Point2 target = path[leg];
@@ -120,7 +168,11 @@ class RobotRun {
         if (length < 1e-6) break;
         const double step = std::min(options_.step, length);
         const Point2 next = pose_.translation() + to_target / length * step;
-        if (Collides(next)) {
+        if (Blocked(pose_.translation(), next) && backoffs < kMaxBackoffs && BackOff()) {
+          ++backoffs;
+          continue;
+        }
+        if (Blocked(pose_.translation(), next)) {
           ++result_.goals_failed;
           planner_.Blacklist(mapper_, path.back());
           Scan();

@@ -1,6 +1,6 @@
 #pragma once
 
-// A differential-drive robot (Pioneer 3-DX-like: 0.22 m radius, turns in place) with a 2D laser
+// A differential-drive robot (Pioneer 3-DX-like: 0.19 m half-width, turns in place) with a 2D laser
 // that explores a terrain on its own and maps it: it scans, integrates the scan into its map with
 // the pose its SLAM believes (SlamErrorModel), plans to the nearest frontier of its own map
 // (FrontierPlanner), turns towards the next leg, drives it (scanning every scan_distance metres
@@ -33,7 +33,7 @@ struct ExplorationOptions {
   SlamErrorOptions error;
   FrontierOptions frontier;
   uint32_t seed = 0;
-  double robot_radius = 0.22;  // metres, > 0, < frontier.inflation_radius
+  double robot_radius = 0.19;  // metres, > 0, < frontier.inflation_radius
   double planner_block = 0.2;  // metres, side of a planner block (rounded to whole cells)
   double step = 0.1;           // metres per motion step (collision checks), > 0
   double scan_distance = 0.5;  // metres driven between scans, > 0

@@ -6,13 +6,7 @@
 #include <deque>
 
 namespace fleetmap::sim {
-namespace {
-
-// Blocks the search may cross near the robot even when inflated: the robot may stand closer to a
-// wall than the planner's clearance (after a turn near a door, or with drift).
-constexpr int kEscapeDepth = 3;
-
-}  // namespace
+namespace {}  // namespace
 
 StatusOr<FrontierPlanner> FrontierPlanner::Create(const FrontierOptions& options) {
   if (!(options.inflation_radius > 0.0) || !std::isfinite(options.inflation_radius)) {
@@ -151,7 +145,8 @@ std::vector<Point2> FrontierPlanner::Plan(const OccupancyMapper& map, const Poin
   while (!queue.empty()) {
     const size_t i = queue.front();
     queue.pop_front();
-    if (traversable_[i] && near_frontier_[i] && !blacklist_[i]) {
+    // The robot's own block is never the goal: it is there already, and looking did not help.
+    if (i != start && traversable_[i] && near_frontier_[i] && !blacklist_[i]) {
       goal = static_cast<int64_t>(i);
       break;
     }
@@ -163,7 +158,9 @@ std::vector<Point2> FrontierPlanner::Plan(const OccupancyMapper& map, const Poin
       if (nx < 0 || ny < 0 || nx >= bw_ || ny >= bh_) continue;
       const size_t j = static_cast<size_t>(ny) * bw_ + nx;
       if (depth[j] >= 0) continue;
-      const bool escape = depth[i] < kEscapeDepth && state_[j] == kFreeBlock;
+      // Leaving an inflated region (the robot may stand in or next to one after new obstacles
+      // appeared): free blocks are allowed until the search reaches a traversable block.
+      const bool escape = start_region_[i] && state_[j] == kFreeBlock;
       if (!traversable_[j] && !escape) continue;
       if (k >= 4) {  // diagonal: no corner cutting
         const size_t side_a = static_cast<size_t>(y) * bw_ + nx;

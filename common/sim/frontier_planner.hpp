@@ -22,9 +22,9 @@
 namespace fleetmap::sim {
 
 struct FrontierOptions {
-  double inflation_radius = 0.35;  // metres, > 0: clearance the planner keeps from obstacles
-  double blacklist_radius = 1.0;   // metres, >= 0: around a goal reached or given up
-  int min_frontier_blocks = 2;     // >= 1
+  double inflation_radius = 0.3;  // metres, > 0: clearance the planner keeps from obstacles
+  double blacklist_radius = 1.0;  // metres, >= 0: around a goal reached or given up
+  int min_frontier_blocks = 2;    // >= 1
 };
 
 class FrontierPlanner {

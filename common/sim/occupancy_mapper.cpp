@@ -99,7 +99,7 @@ void OccupancyMapper::Integrate(const LaserScan& scan, const Pose2& map_from_sen
   for (size_t i = 0; i < scan.ranges.size(); ++i) {
     const float range = scan.ranges[i];
     const bool hit = range != kNoReturn;
-    const double length = (hit ? range : scan.max_range) * inv_res;
+    const double length = hit ? range * inv_res + 0.5 : scan.max_range * inv_res;
     const double angle = map_from_sensor.yaw + scan.angle_min + i * scan.angle_increment;
     const int x1 = static_cast<int>(std::floor(ox + length * std::cos(angle)));
     const int y1 = static_cast<int>(std::floor(oy + length * std::sin(angle)));

@@ -3,7 +3,9 @@
 // Occupancy-grid mapping from laser scans by log-odds ray casting (the inverse sensor model of
 // Thrun, Burgard and Fox, "Probabilistic Robotics", ch. 9): along each beam, the cells before the
 // end point get `log_odds_miss`, the end cell `log_odds_hit` (beams without a return clear up to
-// max range). Cells are walked with an integer Bresenham line. Values are clamped so that a cell
+// max range). A beam's end point is taken half a cell behind the measured range, so that a return
+// from a surface lands in the surface's own cell rather than, by rounding, in the free cell before
+// it. Cells are walked with an integer Bresenham line. Values are clamped so that a cell
 // can change its mind (a moved object, a speckle cleared later).
 //
 // It also keeps, per square block of `block_size` cells, how many cells are occupied and free, up

@@ -1,0 +1,366 @@
+#include "cli/bench_paper_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "cli/bar_chart.hpp"
+#include "cli/bench_command.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/paper_experiment.hpp"
+#include "common/sim/terrain_generator.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+constexpr double kKilo = 1024.0;  // KB in the report are KiB
+
+std::string Fixed(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
+std::string Kb(size_t bytes) { return Fixed(bytes / kKilo, 1); }
+
+std::string Pct(const std::optional<double>& value) {
+  return value ? Fixed(*value, 2) : std::string("n/a");
+}
+
+std::string Name(const PaperTerrainResult& r) {
+  return std::string(sim::TerrainKindName(r.kind)) + " " + Fixed(r.size, 0) + " m";
+}
+
+std::string MachineDescription() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads (shared), one thread used";
+}
+
+// A one-line progress bar, rewritten in place.
+class ProgressBar {
+ public:
+  ProgressBar(std::ostream& err, int total, bool enabled)
+      : err_(err), total_(total), enabled_(enabled) {}
+
+  void Show(int done, const std::string& what) {
+    if (!enabled_) return;
+    constexpr int kWidth = 30;
+    const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
+    std::string line = "\r[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] " +
+                       std::to_string(done) + "/" + std::to_string(total_) + " " + what;
+    if (line.size() < last_size_) line += std::string(last_size_ - line.size(), ' ');
+    last_size_ = line.size();
+    err_ << line << std::flush;
+  }
+  void Finish() {
+    if (enabled_) err_ << "\n";
+  }
+
+ private:
+  std::ostream& err_;
+  int total_;
+  bool enabled_;
+  size_t last_size_ = 0;
+};
+
+void WriteCsv(const std::vector<PaperTerrainResult>& results, const std::string& path) {
+  std::ofstream csv(path);
+  csv << "kind,size_m,seed,width,height,scans,distance_m,explored,observed_free,"
+         "P,PZ,P_zstd,P_png,V,VZ,V_zstd,V_truth,vertices,segments";
+  for (const char* map : {"grid", "vgrid", "vtruth"}) {
+    for (const char* metric : {"ms", "cc", "pc", "opdf", "updf"}) {
+      csv << "," << metric << "_" << map;
+    }
+  }
+  csv << ",seconds_explore,seconds_vectorize,seconds_total\n";
+  auto opt = [](const std::optional<double>& v) { return v ? Fixed(*v, 4) : std::string(); };
+  for (const PaperTerrainResult& r : results) {
+    csv << sim::TerrainKindName(r.kind) << "," << Fixed(r.size, 0) << "," << r.seed << ","
+        << r.width << "," << r.height << "," << r.scans << "," << Fixed(r.distance, 1) << ","
+        << (r.explored ? 1 : 0) << "," << Fixed(r.observed_free, 4) << "," << r.grid.raw << ","
+        << r.grid.gzip << "," << r.grid.zstd << "," << r.grid_png << "," << r.vmap.raw << ","
+        << r.vmap.gzip << "," << r.vmap.zstd << "," << r.truth_vmap << "," << r.vertices << ","
+        << r.segments;
+    for (const metrics::QualityScores* q : {&r.robot, &r.robot_vector, &r.truth_vector}) {
+      csv << "," << opt(q->map_score) << "," << opt(q->cross_correlation) << ","
+          << opt(q->pearson_occupied) << "," << opt(q->occupied_picture_distance) << ","
+          << opt(q->unoccupied_picture_distance);
+    }
+    csv << "," << Fixed(r.seconds_explore, 2) << "," << Fixed(r.seconds_vectorize, 3) << ","
+        << Fixed(r.seconds_total, 2) << "\n";
+  }
+}
+
+std::vector<std::optional<double>> Scores(const metrics::QualityScores& q) {
+  return {q.map_score, q.cross_correlation, q.pearson_occupied, q.occupied_picture_distance,
+          q.unoccupied_picture_distance};
+}
+
+// Largest drop (a - b) over the results for one metric index.
+double WorstDrop(const std::vector<PaperTerrainResult>& results, int metric) {
+  double worst = 0.0;
+  for (const PaperTerrainResult& r : results) {
+    const auto a = Scores(r.robot)[metric];
+    const auto b = Scores(r.robot_vector)[metric];
+    if (a && b) worst = std::max(worst, *a - *b);
+  }
+  return worst;
+}
+
+double MinScore(const std::vector<PaperTerrainResult>& results, int metric, bool vector) {
+  double lowest = 100.0;
+  for (const PaperTerrainResult& r : results) {
+    const auto v = Scores(vector ? r.robot_vector : r.robot)[metric];
+    if (v) lowest = std::min(lowest, *v);
+  }
+  return lowest;
+}
+
+void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrainResult>& results,
+                 double seconds, const std::string& path) {
+  std::ofstream md(path);
+  md << "# The Vector Maps paper's experiment on simulated terrains\n\n"
+     << "Command: `fleetmap bench paper --out " << options.out_dir << " --seed " << options.seed
+     << " --sizes ";
+  for (size_t i = 0; i < options.sizes.size(); ++i) {
+    md << (i ? "," : "") << Fixed(options.sizes[i], 0);
+  }
+  md << "`  \nMachine: " << MachineDescription() << ", Release build.  \n"
+     << "Wall time: " << Fixed(seconds, 1) << " s for " << results.size() << " terrains.  \n"
+     << "Resolution " << options.resolution << " m; laser " << options.laser_fov_deg << " deg, "
+     << options.laser_step_deg << " deg steps, " << options.laser_range << " m; SLAM error model "
+     << (options.slam_error ? "on" : "off") << ". KB = 1024 bytes.\n\n"
+     << "P: robot grid, one byte per cell; PZ: gzip -9 of P; V: .vmap bytes "
+        "(EncodeVmap(VectorizeTiled(robot grid))); VZ: gzip -9 of V; zstd: level 19. Quality "
+        "metrics (ALGORITHMS.md 1.1, %) against the ground truth of (a) the robot grid, (b) the "
+        "vector map of the robot grid rasterized back, (c) the vector map of the ground truth "
+        "rasterized back.\n\n";
+
+  md << "## Sizes\n\n| terrain | cells | scans | driven m | explored | observed free | P KB | PZ "
+        "KB "
+        "| P zstd KB | V KB | VZ KB | V zstd KB | P / V | PZ / VZ | vertices | time s |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const PaperTerrainResult& r : results) {
+    md << "| " << Name(r) << " | " << r.width << " x " << r.height << " | " << r.scans << " | "
+       << Fixed(r.distance, 0) << " | " << (r.explored ? "yes" : "budget") << " | "
+       << Fixed(100.0 * r.observed_free, 1) << " % | " << Kb(r.grid.raw) << " | " << Kb(r.grid.gzip)
+       << " | " << Kb(r.grid.zstd) << " | " << Kb(r.vmap.raw) << " | " << Kb(r.vmap.gzip) << " | "
+       << Kb(r.vmap.zstd) << " | "
+       << Fixed(static_cast<double>(r.grid.raw) / std::max<size_t>(1, r.vmap.raw), 1) << " | "
+       << Fixed(static_cast<double>(r.grid.gzip) / std::max<size_t>(1, r.vmap.gzip), 1) << " | "
+       << r.vertices << " | " << Fixed(r.seconds_total, 1) << " |\n";
+  }
+  md << "\nAverages per size (the paper's Fig. 4a; paper at 80 m: P 2532.4 KB, V 39.2 KB, 65x):\n\n"
+     << "| size | P KB | PZ KB | V KB | VZ KB | P / V |\n|---|---|---|---|---|---|\n";
+  for (double size : options.sizes) {
+    double p = 0, pz = 0, v = 0, vz = 0;
+    int n = 0;
+    for (const PaperTerrainResult& r : results) {
+      if (r.size != size) continue;
+      p += r.grid.raw;
+      pz += r.grid.gzip;
+      v += r.vmap.raw;
+      vz += r.vmap.gzip;
+      ++n;
+    }
+    if (n == 0) continue;
+    md << "| " << Fixed(size, 0) << " m | " << Fixed(p / n / kKilo, 1) << " | "
+       << Fixed(pz / n / kKilo, 1) << " | " << Fixed(v / n / kKilo, 1) << " | "
+       << Fixed(vz / n / kKilo, 1) << " | " << Fixed(v > 0 ? p / v : 0.0, 1) << " |\n";
+  }
+
+  md << "\n## Quality (%): (a) grid / (b) vector of grid / (c) vector of truth\n\n"
+     << "| terrain | MS | CC | PC | OPDF | UPDF |\n|---|---|---|---|---|---|\n";
+  for (const PaperTerrainResult& r : results) {
+    md << "| " << Name(r);
+    const auto a = Scores(r.robot), b = Scores(r.robot_vector), c = Scores(r.truth_vector);
+    for (int m = 0; m < 5; ++m) {
+      md << " | " << Pct(a[m]) << " / " << Pct(b[m]) << " / " << Pct(c[m]);
+    }
+    md << " |\n";
+  }
+  md << "\nLowest robot-grid score: MS " << Fixed(MinScore(results, 0, false), 2) << ", OPDF "
+     << Fixed(MinScore(results, 3, false), 2) << ", UPDF " << Fixed(MinScore(results, 4, false), 2)
+     << ". Lowest vector-of-grid score: MS " << Fixed(MinScore(results, 0, true), 2) << ", OPDF "
+     << Fixed(MinScore(results, 3, true), 2) << ", UPDF " << Fixed(MinScore(results, 4, true), 2)
+     << ".  \nLargest loss by vectorizing (a - b, percentage points): MS "
+     << Fixed(WorstDrop(results, 0), 2) << ", CC " << Fixed(WorstDrop(results, 1), 2) << ", PC "
+     << Fixed(WorstDrop(results, 2), 2) << ", OPDF " << Fixed(WorstDrop(results, 3), 2) << ", UPDF "
+     << Fixed(WorstDrop(results, 4), 2) << ".\n\n"
+     << "Charts: sizes.png, quality_<kind>_<size>.png. Maps: maps/<kind>_<size>_{truth,robot,"
+        "robot_vector,truth_vector}.png and the robot map as maps/<kind>_<size>_robot.yaml.\n";
+}
+
+Status WriteCharts(const BenchPaperOptions& options,
+                   const std::vector<PaperTerrainResult>& results) {
+  BarChart sizes;
+  sizes.title = "Map sizes, average over the terrain kinds (log scale)";
+  sizes.y_label = "KB";
+  sizes.series = {"P", "PZ", "V", "VZ"};
+  sizes.log_scale = true;
+  for (double size : options.sizes) {
+    double p = 0, pz = 0, v = 0, vz = 0;
+    int n = 0;
+    for (const PaperTerrainResult& r : results) {
+      if (r.size != size) continue;
+      p += r.grid.raw, pz += r.grid.gzip, v += r.vmap.raw, vz += r.vmap.gzip, ++n;
+    }
+    if (n == 0) continue;
+    sizes.groups.push_back(Fixed(size, 0) + " m");
+    sizes.values.push_back({p / n / kKilo, pz / n / kKilo, v / n / kKilo, vz / n / kKilo});
+  }
+  FLEETMAP_RETURN_IF_ERROR(WriteBarChartPng(sizes, options.out_dir + "/sizes.png"));
+  for (const PaperTerrainResult& r : results) {
+    BarChart quality;
+    quality.title = "Quality vs ground truth: " + Name(r);
+    quality.y_label = "%";
+    quality.series = {"grid", "vector(grid)", "vector(truth)"};
+    quality.groups = {"MS", "CC", "PC", "OPDF", "UPDF"};
+    quality.y_max = 100.0;
+    const auto a = Scores(r.robot), b = Scores(r.robot_vector), c = Scores(r.truth_vector);
+    for (int m = 0; m < 5; ++m) quality.values.push_back({a[m], b[m], c[m]});
+    FLEETMAP_RETURN_IF_ERROR(WriteBarChartPng(
+        quality, options.out_dir + "/quality_" + std::string(sim::TerrainKindName(r.kind)) + "_" +
+                     Fixed(r.size, 0) + ".png"));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostream& err) {
+  const std::string prefix = "fleetmap bench paper: ";
+  std::vector<sim::TerrainKind> kinds;
+  for (const std::string& name : options.kinds) {
+    const std::optional<sim::TerrainKind> kind = sim::TerrainKindFromName(name);
+    if (!kind) {
+      err << prefix << "--kinds: '" << name << "' is unknown: use maze, office or unstructured\n";
+      return kExitBadInput;
+    }
+    kinds.push_back(*kind);
+  }
+  if (options.sizes.empty()) {
+    err << prefix << "--sizes: give at least one size\n";
+    return kExitBadInput;
+  }
+  for (double size : options.sizes) {
+    if (!(size >= sim::kMinTerrainSize && size <= sim::kMaxTerrainSize)) {
+      err << prefix << "--sizes: " << size << " m is out of bounds: sizes must be in ["
+          << sim::kMinTerrainSize << ", " << sim::kMaxTerrainSize << "] m\n";
+      return kExitBadInput;
+    }
+  }
+  if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
+    err << prefix << "--resolution: " << options.resolution << " m is invalid: it must be > 0\n";
+    return kExitBadInput;
+  }
+  if (!(options.laser_fov_deg > 0.0 && options.laser_fov_deg <= 360.0)) {
+    err << prefix << "--laser-fov: " << options.laser_fov_deg
+        << " deg gives a laser with no rays: it must be in (0, 360]\n";
+    return kExitBadInput;
+  }
+  if (!(options.laser_step_deg > 0.0) || !std::isfinite(options.laser_step_deg)) {
+    err << prefix << "--laser-step: " << options.laser_step_deg
+        << " deg gives a laser with no rays: it must be > 0\n";
+    return kExitBadInput;
+  }
+  PaperTerrainOptions base;
+  base.resolution = options.resolution;
+  base.exploration.laser.field_of_view = options.laser_fov_deg * std::numbers::pi / 180.0;
+  base.exploration.laser.angular_step = options.laser_step_deg * std::numbers::pi / 180.0;
+  base.exploration.laser.max_range = options.laser_range;
+  base.exploration.error.enabled = options.slam_error;
+  if (const auto check = sim::ExplorationSimulator::Create(base.exploration); !check.ok()) {
+    err << prefix << "--laser-range / --laser-step: " << check.status().message() << "\n";
+    return kExitBadInput;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir + "/maps", ec);
+  if (ec) {
+    err << prefix << "--out: " << options.out_dir
+        << ": cannot create the directory: " << ec.message() << "\n";
+    return kExitBadInput;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const int total = static_cast<int>(options.sizes.size() * kinds.size());
+  ProgressBar bar(err, total, options.progress);
+  std::vector<PaperTerrainResult> results;
+  for (double size : options.sizes) {
+    for (sim::TerrainKind kind : kinds) {
+      PaperTerrainOptions terrain = base;
+      terrain.kind = kind;
+      terrain.size = size;
+      terrain.seed = options.seed;
+      terrain.image_dir = options.out_dir + "/maps";
+      const std::string name =
+          std::string(sim::TerrainKindName(kind)) + " " + Fixed(size, 0) + " m";
+      const int done = static_cast<int>(results.size());
+      const StatusOr<PaperTerrainResult> result = RunPaperTerrain(
+          terrain, [&](const std::string& stage) { bar.Show(done, name + ": " + stage); });
+      if (!result.ok()) {
+        bar.Finish();
+        err << prefix << name << ": " << result.status().message() << "\n";
+        return kExitBadInput;
+      }
+      results.push_back(*result);
+      bar.Show(static_cast<int>(results.size()), name + ": done");
+    }
+  }
+  bar.Finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteCsv(results, options.out_dir + "/results.csv");
+  WriteReport(options, results, seconds, options.out_dir + "/report.md");
+  if (const Status charts = WriteCharts(options, results); !charts.ok()) {
+    err << prefix << charts.message() << "\n";
+    return kExitBadInput;
+  }
+  std::ifstream report(options.out_dir + "/report.md");
+  out << report.rdbuf();
+  return kExitOk;
+}
+
+void AddBenchPaperCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<BenchPaperOptions>();
+  CLI::App* command = BenchCommand(app)->add_subcommand(
+      "paper", "The Vector Maps paper's experiment on simulated terrains (report, CSV, charts)");
+  command->add_option("--out", options->out_dir, "output directory")->required();
+  command->add_option("--seed", options->seed, "terrain and robot seed")->capture_default_str();
+  command->add_option("--sizes", options->sizes, "terrain sizes (m), comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--kinds", options->kinds, "terrain kinds, comma separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--resolution", options->resolution, "grid cell size (m)")
+      ->capture_default_str();
+  command->add_option("--laser-fov", options->laser_fov_deg, "laser field of view (deg)")
+      ->capture_default_str();
+  command->add_option("--laser-step", options->laser_step_deg, "laser angular step (deg)")
+      ->capture_default_str();
+  command->add_option("--laser-range", options->laser_range, "laser range (m)")
+      ->capture_default_str();
+  command->add_flag("!--no-slam-error", options->slam_error, "map with the true poses");
+  command->add_flag("!--no-progress", options->progress, "no progress bar on stderr");
+  command->callback(
+      [options, exit_code] { *exit_code = RunBenchPaper(*options, std::cout, std::cerr); });
+}
+
+}  // namespace fleetmap::cli
