@@ -1,0 +1,114 @@
+// Runs the real `fleetmap terrain` and `fleetmap bench paper` and checks outputs and exit codes.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/subprocess.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+using ::testing::HasSubstr;
+
+testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return testing::RunCommand(std::move(argv), std::chrono::seconds(120));
+}
+
+std::string TempDir(const std::string& name) {
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("fleetmap_cli_sim_" + name + "_" + std::to_string(getpid())))
+                              .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return buffer.str();
+}
+
+TEST(CliSimTest, TerrainWritesMapAndGeoJsonReproducibly) {
+  const std::string dir = TempDir("terrain");
+  for (const char* name : {"a", "b"}) {
+    const testing::CommandResult run =
+        RunFleetmap({"terrain", "--kind", "office", "--size", "12", "--seed", "7", "-o",
+                     dir + "/" + name + ".yaml", "--geojson", dir + "/" + name + ".geojson"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+  }
+  EXPECT_EQ(ReadFile(dir + "/a.pgm"), ReadFile(dir + "/b.pgm"));
+  EXPECT_EQ(ReadFile(dir + "/a.geojson"), ReadFile(dir + "/b.geojson"));
+  EXPECT_THAT(ReadFile(dir + "/a.geojson"), HasSubstr("\"door\""));
+  const testing::CommandResult info = RunFleetmap({"info", dir + "/a.yaml"});
+  EXPECT_THAT(info.out, HasSubstr("240 x 240 cells"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliSimTest, BadInputNamesTheOptionAndExitsTwo) {
+  const std::string dir = TempDir("bad");
+  const std::string out = dir + "/x.yaml";
+  struct Case {
+    std::vector<std::string> args;
+    std::string option;
+  };
+  const std::vector<Case> cases = {
+      {{"terrain", "--kind", "cave", "-o", out}, "--kind"},
+      {{"terrain", "--size", "0", "-o", out}, "--size"},
+      {{"terrain", "--size", "1000", "-o", out}, "--size"},
+      {{"terrain", "--resolution", "0", "-o", out}, "--resolution"},
+      {{"terrain", "--resolution", "-0.05", "-o", out}, "--resolution"},
+      {{"bench", "paper", "--out", dir, "--kinds", "cave"}, "--kinds"},
+      {{"bench", "paper", "--out", dir, "--sizes", "-5"}, "--sizes"},
+      {{"bench", "paper", "--out", dir, "--resolution", "0"}, "--resolution"},
+      {{"bench", "paper", "--out", dir, "--laser-step", "0"}, "--laser-step"},
+      {{"bench", "paper", "--out", dir, "--laser-fov", "0"}, "--laser-fov"},
+  };
+  for (const Case& c : cases) {
+    const testing::CommandResult run = RunFleetmap(c.args);
+    EXPECT_EQ(run.exit_code, 2) << c.option << ": " << run.output();
+    EXPECT_THAT(run.err, HasSubstr(c.option));
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliSimTest, BenchPaperWritesReportCsvAndCharts) {
+  const std::string dir = TempDir("paper");
+  const testing::CommandResult run = RunFleetmap(
+      {"bench", "paper", "--out", dir, "--sizes", "10", "--kinds", "office,maze", "--seed", "3"});
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  EXPECT_THAT(run.out, HasSubstr("| office 10 m |"));
+  EXPECT_THAT(run.err, HasSubstr("2/2"));  // the progress bar
+  for (const char* file :
+       {"report.md", "results.csv", "sizes.png", "quality_office_10.png", "quality_maze_10.png",
+        "maps/office_10_robot.png", "maps/office_10_truth_vector.png", "maps/maze_10_robot.yaml"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+  const std::string csv = ReadFile(dir + "/results.csv");
+  EXPECT_THAT(csv, HasSubstr("kind,size_m,seed"));
+  EXPECT_THAT(csv, HasSubstr("\noffice,10,3,200,200,"));
+  // Same seed, same robot map bytes.
+  const std::string again = TempDir("paper_again");
+  ASSERT_EQ(RunFleetmap({"bench", "paper", "--out", again, "--sizes", "10", "--kinds", "office",
+                         "--seed", "3", "--no-progress"})
+                .exit_code,
+            0);
+  EXPECT_EQ(ReadFile(dir + "/maps/office_10_robot.pgm"),
+            ReadFile(again + "/maps/office_10_robot.pgm"));
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(again);
+}
+
+}  // namespace
+}  // namespace fleetmap::cli
