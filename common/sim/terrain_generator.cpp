@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <unordered_map>
@@ -12,6 +13,13 @@
 
 namespace fleetmap::sim {
 namespace {
+
+// Shortest readable form of a number for messages (0.05, not 0.050000).
+std::string Num(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%g", value);
+  return buffer;
+}
 
 constexpr double kPi = std::numbers::pi;
 
@@ -395,9 +403,9 @@ void GenerateUnstructured(const TerrainOptions& options, Random* random, Terrain
 
 StatusOr<TerrainGenerator> TerrainGenerator::Create(const TerrainOptions& options) {
   if (!(options.size >= kMinTerrainSize && options.size <= kMaxTerrainSize)) {
-    return InvalidArgumentError(
-        "terrain size " + std::to_string(options.size) + " m is out of bounds: it must be in [" +
-        std::to_string(kMinTerrainSize) + ", " + std::to_string(kMaxTerrainSize) + "] m");
+    return InvalidArgumentError("terrain size " + Num(options.size) +
+                                " m is out of bounds: it must be in [" + Num(kMinTerrainSize) +
+                                ", " + Num(kMaxTerrainSize) + "] m");
   }
   if (!(options.wall_thickness > 0.0 && options.wall_thickness <= 1.0)) {
     return InvalidArgumentError("terrain wall_thickness must be in (0, 1] m");
