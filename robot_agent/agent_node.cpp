@@ -5,7 +5,6 @@
 #include <cmath>
 #include <thread>
 
-#include "common/grid/map_io.hpp"
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::agent {
@@ -22,9 +21,21 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError("--robot-id \"" + robot.value +
                                 "\" is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, <= 64)");
   }
-  if (map_path.empty()) return InvalidArgumentError("--map is required");
+  if (map_path.empty() == ros_topic.empty()) {
+    return InvalidArgumentError("give exactly one map source: --map FILE or --ros-topic TOPIC");
+  }
+  if (!ros_topic.empty() && ros_topic.rfind("rt/", 0) != 0) {
+    return InvalidArgumentError("--ros-topic \"" + ros_topic +
+                                "\" is not a DDS topic of a ROS 2 topic (it starts with rt/)");
+  }
   if (!Finite(fleet_from_map)) return InvalidArgumentError("--fleet-from-map is not finite");
   if (!Finite(map_from_robot)) return InvalidArgumentError("--pose is not finite");
+  if (std::abs(fleet_from_map.yaw) > 1e-9 && wire == Wire::kTiles) {
+    return InvalidArgumentError(
+        "--fleet-from-map with a rotation needs --wire grid (tiles are cut "
+        "from axis-aligned grids)");
+  }
+  FLEETMAP_RETURN_IF_ERROR(tiles.Validate());
   if (status_period.count() <= 0) return InvalidArgumentError("the status period must be > 0");
   if (map_check_period.count() <= 0)
     return InvalidArgumentError("the map check period must be > 0");
@@ -35,48 +46,74 @@ Status AgentOptions::Validate() const {
 StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   std::unique_ptr<AgentNode> node(new AgentNode(std::move(options)));
-  FLEETMAP_RETURN_IF_ERROR(node->LoadMap());
+  const AgentOptions& o = node->options_;
+  // A bad map file is the user's to fix: fail before touching DDS.
+  if (!o.map_path.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(node->source_, FileMapSource::Create(o.map_path));
+  }
 
-  transport::ParticipantOptions dds = node->options_.dds;
-  dds.name = "fleetmap-agent/" + node->options_.robot.value;
+  transport::ParticipantOptions dds = o.dds;
+  dds.name = "fleetmap-agent/" + o.robot.value;
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
+  if (!o.ros_topic.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(node->source_,
+                              TopicMapSource::Create(*node->participant_, o.ros_topic));
+  }
   FLEETMAP_ASSIGN_OR_RETURN(node->status_writer_,
                             transport::RobotStatusWriter::Create(*node->participant_));
+  if (o.wire == Wire::kGrid) {
+    FLEETMAP_ASSIGN_OR_RETURN(node->grid_writer_,
+                              transport::OccupancyGridWriter::Create(
+                                  *node->participant_, transport::RobotMapTopic(o.robot)));
+  } else {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->tile_publisher_,
+        TilePublisher::Create(*node->participant_, o.robot, o.fleet_from_map, o.tiles));
+  }
   FLEETMAP_ASSIGN_OR_RETURN(
-      node->map_writer_, transport::OccupancyGridWriter::Create(
-                             *node->participant_, transport::RobotMapTopic(node->options_.robot)));
+      node->fused_reader_,
+      transport::VectorTileReader::Create(*node->participant_, transport::kFusedTilesTopic));
 
   RobotStatus& status = node->status_;
-  status.robot = node->options_.robot;
-  status.fleet_from_map = node->options_.fleet_from_map;
-  status.map_from_robot = node->options_.map_from_robot;
-  status.map_topic = transport::RobotMapTopic(node->options_.robot);
+  status.robot = o.robot;
+  status.fleet_from_map = o.fleet_from_map;
+  status.map_from_robot = o.map_from_robot;
+  status.map_topic = o.wire == Wire::kGrid ? transport::RobotMapTopic(o.robot)
+                                           : std::string(transport::kRobotTilesTopic);
   return node;
 }
 
-Status AgentNode::LoadMap() {
-  FLEETMAP_ASSIGN_OR_RETURN(grid::LoadedMap loaded, grid::LoadMap(options_.map_path));
-  std::error_code error;
-  map_mtime_ = std::filesystem::last_write_time(options_.map_path, error);
-  map_ = std::move(loaded.grid);
-  return Status::Ok();
-}
-
-Status AgentNode::PublishMap() {
-  transport::MapMessage message;
-  message.grid = map_;
-  message.frame_id = options_.robot.value + "/map";
-  message.stamp = Clock::now();
-  FLEETMAP_ASSIGN_OR_RETURN(const size_t bytes, map_writer_->Write(message));
+Status AgentNode::OnNewMap(const grid::OccupancyGrid& map) {
   ++status_.map_revision;
+  status_.map_width = static_cast<uint32_t>(map.width());
+  status_.map_height = static_cast<uint32_t>(map.height());
+  status_.map_resolution = map.resolution();
+  if (grid_writer_ != nullptr) {
+    transport::MapMessage message;
+    message.grid = map;
+    message.frame_id = options_.robot.value + "/map";
+    message.stamp = Clock::now();
+    FLEETMAP_ASSIGN_OR_RETURN(const size_t bytes, grid_writer_->Write(message));
+    ++status_.maps_published;
+    status_.bytes_published += bytes;
+    spdlog::info("{}: published map revision {} ({} x {} cells, {} bytes) on {}",
+                 options_.robot.value, status_.map_revision, map.width(), map.height(), bytes,
+                 status_.map_topic);
+    return Status::Ok();
+  }
+  const uint64_t tiles_before = tile_publisher_->tiles_published();
+  const uint64_t bytes_before = tile_publisher_->bytes_published();
+  FLEETMAP_RETURN_IF_ERROR(tile_publisher_->Update(map));
+  FLEETMAP_RETURN_IF_ERROR(tile_publisher_->Flush(std::chrono::steady_clock::now()));
   ++status_.maps_published;
-  status_.bytes_published += bytes;
-  status_.map_width = static_cast<uint32_t>(map_.width());
-  status_.map_height = static_cast<uint32_t>(map_.height());
-  status_.map_resolution = map_.resolution();
-  spdlog::info("{}: published map revision {} ({} x {} cells, {} bytes) on {}",
-               options_.robot.value, status_.map_revision, map_.width(), map_.height(), bytes,
-               status_.map_topic);
+  status_.tiles_published = tile_publisher_->tiles_published();
+  status_.bytes_published = tile_publisher_->bytes_published();
+  spdlog::info("{}: map revision {} ({} x {} cells): {} changed tiles, {} bytes{}",
+               options_.robot.value, status_.map_revision, map.width(), map.height(),
+               status_.tiles_published - tiles_before, status_.bytes_published - bytes_before,
+               tile_publisher_->pending_tiles() > 0
+                   ? fmt::format(" ({} waiting for bandwidth)", tile_publisher_->pending_tiles())
+                   : std::string());
   return Status::Ok();
 }
 
@@ -86,26 +123,21 @@ Status AgentNode::PublishStatus() {
   return status_writer_->Write(status_);
 }
 
-void AgentNode::ReloadMapIfChanged() {
-  std::error_code error;
-  const auto mtime = std::filesystem::last_write_time(options_.map_path, error);
-  if (error || mtime == map_mtime_) return;
-  if (const Status loaded = LoadMap(); !loaded.ok()) {
-    map_mtime_ = mtime;  // report a broken file once, not every period
-    spdlog::warn("{}: keeping the previous map: {}", options_.robot.value, loaded.message());
-    return;
-  }
-  if (const Status published = PublishMap(); !published.ok()) {
-    spdlog::warn("{}: {}", options_.robot.value, published.message());
+void AgentNode::DrainFusedTiles() {
+  for (const transport::TileEvent& event : fused_reader_->Drain()) {
+    if (event.kind == transport::TileEvent::Kind::kTile) ++fused_tiles_received_;
+    if (event.kind == transport::TileEvent::Kind::kRejected) {
+      spdlog::warn("{}: dropped a fused tile: {}", options_.robot.value, event.error.message());
+    }
   }
 }
 
 Status AgentNode::Run(const std::atomic<bool>& stop) {
-  FLEETMAP_RETURN_IF_ERROR(PublishMap());
+  if (auto first = source_->Poll()) FLEETMAP_RETURN_IF_ERROR(OnNewMap(*first));
   FLEETMAP_RETURN_IF_ERROR(PublishStatus());
-  spdlog::info("{}: in the fleet on DDS domain {}{}", options_.robot.value,
-               participant_->domain_id(),
-               participant_->localhost_only() ? " (localhost only)" : "");
+  spdlog::info("{}: in the fleet on DDS domain {}{}, map from {}, wire {}", options_.robot.value,
+               participant_->domain_id(), participant_->localhost_only() ? " (localhost only)" : "",
+               source_->Describe(), options_.wire == Wire::kGrid ? "grid" : "tiles");
 
   const auto start = std::chrono::steady_clock::now();
   auto next_status = start + options_.status_period;
@@ -113,20 +145,32 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
   while (!stop.load()) {
     const auto now = std::chrono::steady_clock::now();
     if (options_.duration.count() > 0 && now - start >= options_.duration) break;
+    if (now >= next_map_check) {
+      if (auto map = source_->Poll()) {
+        if (const Status published = OnNewMap(*map); !published.ok()) {
+          spdlog::warn("{}: {}", options_.robot.value, published.message());
+        }
+      } else if (tile_publisher_ != nullptr && tile_publisher_->pending_tiles() > 0) {
+        if (const Status flushed = tile_publisher_->Flush(now); !flushed.ok()) {
+          spdlog::warn("{}: {}", options_.robot.value, flushed.message());
+        }
+        status_.tiles_published = tile_publisher_->tiles_published();
+        status_.bytes_published = tile_publisher_->bytes_published();
+      }
+      next_map_check = now + options_.map_check_period;
+    }
     if (now >= next_status) {
       if (const Status written = PublishStatus(); !written.ok()) {
         spdlog::warn("{}: {}", options_.robot.value, written.message());
       }
       next_status += options_.status_period;
     }
-    if (now >= next_map_check) {
-      ReloadMapIfChanged();
-      next_map_check += options_.map_check_period;
-    }
+    DrainFusedTiles();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
-  spdlog::info("{}: leaving the fleet", options_.robot.value);
+  spdlog::info("{}: leaving the fleet ({} fused tiles received)", options_.robot.value,
+               fused_tiles_received_);
   return status_writer_->Leave(options_.robot);
 }
 

@@ -2,7 +2,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -12,48 +11,63 @@
 #include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
+#include "common/transport/vector_tile_reader.hpp"
+#include "robot_agent/map_source.hpp"
+#include "robot_agent/tile_publisher.hpp"
 
 namespace fleetmap::agent {
 
+// What goes on the wire: vector tiles (the product), or the whole grid as nav_msgs/OccupancyGrid
+// on rt/<robot>/map (the baseline every figure is compared with, and what a plain ROS 2 robot
+// sends).
+enum class Wire { kTiles, kGrid };
+
 struct AgentOptions {
   RobotId robot;
-  std::string map_path;  // a ROS map_server YAML
+  std::string map_path;   // a ROS map_server YAML (re-read when it changes), or
+  std::string ros_topic;  // a DDS topic carrying nav_msgs/OccupancyGrid, e.g. rt/map
+  Wire wire = Wire::kTiles;
+  TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
   Pose2 map_from_robot;  // the robot's pose in its map frame
-  std::chrono::milliseconds status_period{500};
-  std::chrono::milliseconds map_check_period{1000};  // how often the map file is checked for change
-  std::chrono::milliseconds duration{0};             // run this long, then leave; 0: until stopped
+  std::chrono::milliseconds status_period{500};  // must stay below the 1.5 s liveliness lease
+  std::chrono::milliseconds map_check_period{200};
+  std::chrono::milliseconds duration{0};  // run this long, then leave; 0: until stopped
   transport::ParticipantOptions dds;
 
   // Checks every field once; the error names the option and the value.
   Status Validate() const;
 };
 
-// fleetmap-agent's node: publishes the robot's map as nav_msgs/OccupancyGrid on rt/<robot>/map
-// (again whenever the map file changes) and its RobotStatus twice a second; leaves the fleet
-// (disposes its status) when stopped. Run() on one thread; `stop` may be set from any thread.
+// fleetmap-agent's node: takes the robot's grid from its source, publishes the tiles that changed
+// (or the whole grid with Wire::kGrid), its RobotStatus twice a second, follows the fused tiles,
+// and leaves the fleet (disposes its status) when stopped. Run() on one thread; `stop` may be
+// set from any thread.
 class AgentNode {
  public:
   static StatusOr<std::unique_ptr<AgentNode>> Create(AgentOptions options);
 
   Status Run(const std::atomic<bool>& stop);
 
+  uint64_t fused_tiles_received() const { return fused_tiles_received_; }
+
  private:
   explicit AgentNode(AgentOptions options) : options_(std::move(options)) {}
 
-  Status LoadMap();
-  Status PublishMap();
+  // A new grid from the source: publish what changed.
+  Status OnNewMap(const grid::OccupancyGrid& map);
   Status PublishStatus();
-  // Reloads and republishes the map if its file changed; a broken file keeps the old map.
-  void ReloadMapIfChanged();
+  void DrainFusedTiles();
 
   AgentOptions options_;
-  grid::OccupancyGrid map_;
-  std::filesystem::file_time_type map_mtime_;
   RobotStatus status_;
   std::unique_ptr<transport::Participant> participant_;
+  std::unique_ptr<MapSource> source_;
   std::unique_ptr<transport::RobotStatusWriter> status_writer_;
-  std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
+  std::unique_ptr<transport::OccupancyGridWriter> grid_writer_;  // Wire::kGrid
+  std::unique_ptr<TilePublisher> tile_publisher_;                // Wire::kTiles
+  std::unique_ptr<transport::VectorTileReader> fused_reader_;
+  uint64_t fused_tiles_received_ = 0;
 };
 
 }  // namespace fleetmap::agent

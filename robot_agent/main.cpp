@@ -29,7 +29,17 @@ int main(int argc, char** argv) {
   int domain = -1;
   bool localhost_only = false;
   app.add_option("--robot-id", options.robot.value, "robot name, e.g. alpha")->required();
-  app.add_option("--map", options.map_path, "ROS map_server YAML of the robot's map")->required();
+  app.add_option("--map", options.map_path,
+                 "ROS map_server YAML of the robot's map (re-read on change)");
+  app.add_option("--ros-topic", options.ros_topic,
+                 "DDS topic with the robot's nav_msgs/OccupancyGrid, e.g. rt/map");
+  std::string wire = "tiles";
+  app.add_option("--wire", wire, "tiles (vector tiles) or grid (nav_msgs/OccupancyGrid baseline)")
+      ->check(CLI::IsMember({"tiles", "grid"}));
+  app.add_option("--tile-size", options.tiles.tile_size, "tile side in metres (fleet frame)");
+  app.add_option("--epsilon", options.tiles.epsilon,
+                 "vector map error bound, metres (0: sqrt(2) res)");
+  app.add_option("--max-kbps", options.tiles.max_kbps, "bandwidth budget for tiles (0: none)");
   app.add_option("--fleet-from-map", fleet_from_map, "x y yaw of the map frame in the fleet frame")
       ->expected(3);
   app.add_option("--pose", pose, "x y yaw of the robot in its map frame")->expected(3);
@@ -40,6 +50,7 @@ int main(int argc, char** argv) {
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
 
+  options.wire = wire == "grid" ? fleetmap::agent::Wire::kGrid : fleetmap::agent::Wire::kTiles;
   options.fleet_from_map = PoseFrom(fleet_from_map);
   options.map_from_robot = PoseFrom(pose);
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));

@@ -24,11 +24,21 @@ int main(int argc, char** argv) {
   app.add_option("--duration", duration_s, "seconds to run (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  app.add_option("--store", options.fusion.store_path,
+                 "SQLite map store: the fused map survives restarts (empty: keep nothing)");
+  app.add_option("--tile-size", options.fusion.fusion.tile_size, "fleet tile side, metres");
+  app.add_option("--resolution", options.fusion.fusion.resolution, "fused grid cell size, metres");
+  double map_period_s = 1.0;
+  app.add_option("--map-period", map_period_s,
+                 "at most one fused grid on rt/fleetmap/map per this many seconds")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
 
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
+  options.fusion.map_period =
+      std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
   if (localhost_only) options.dds.localhost_only = true;
 

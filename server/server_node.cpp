@@ -19,6 +19,16 @@ const char* RobotStateName(RobotRecord::State state) {
   return "unknown";
 }
 
+namespace {
+
+store::RobotRecord RobotRecordFor(const RobotId& robot, const std::string& state) {
+  const int64_t now =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  return store::RobotRecord{robot.value, now, now, state, ""};
+}
+
+}  // namespace
+
 Status ServerOptions::Validate() const {
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
   return Status::Ok();
@@ -32,12 +42,16 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
                                                       *node->participant_, node->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(node->fusion_worker_,
+                            FusionWorker::Create(*node->participant_, node->options_.fusion,
+                                                 node->registry_));
   return node;
 }
 
 Status ServerNode::Run(const std::atomic<bool>& stop) {
   spdlog::info("server: listening on DDS domain {}{}", participant_->domain_id(),
                participant_->localhost_only() ? " (localhost only)" : "");
+  fusion_worker_->Start();
   const auto start = std::chrono::steady_clock::now();
   while (!stop.load()) {
     if (options_.duration.count() > 0 &&
@@ -48,8 +62,10 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
     HandleRobotEvents();
     HandleMaps();
   }
-  PrintSummary();
-  // Readers go before the participant that owns their topics.
+  fusion_worker_->Stop();
+  PrintSummary(fusion_worker_->stats());
+  // Readers and writers go before the participant that owns their topics.
+  fusion_worker_.reset();
   for (auto& [robot, record] : robots_) record.map_reader.reset();
   status_reader_.reset();
   return Status::Ok();
@@ -59,7 +75,7 @@ void ServerNode::HandleRobotEvents() {
   for (const transport::RobotEvent& event : status_reader_->Drain()) {
     switch (event.kind) {
       case transport::RobotEvent::Kind::kStatus:
-        OnRobotAlive(event.status);
+        OnRobotAlive(event.status, event.writer);
         break;
       case transport::RobotEvent::Kind::kLeft:
         OnRobotGone(event.robot, RobotRecord::State::kLeft);
@@ -74,24 +90,36 @@ void ServerNode::HandleRobotEvents() {
   }
 }
 
-void ServerNode::OnRobotAlive(const RobotStatus& status) {
+void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writer) {
   RobotRecord& record = robots_[status.robot];
-  const bool joining = record.map_reader == nullptr;
-  record.state = RobotRecord::State::kActive;
-  record.last_status = status;
-  if (!joining) return;
-
-  const std::string topic = transport::RobotMapTopic(status.robot);
-  auto reader = transport::OccupancyGridReader::Create(*participant_, topic, wake_up_);
-  if (!reader.ok()) {
-    spdlog::error("server: robot {} joined but its map cannot be read: {}", status.robot.value,
-                  reader.status().message());
+  if (registry_->ClaimRobot(status.robot.value, writer) == RobotRegistry::Claim::kClash) {
+    if (record.id_clashes++ == 0) {
+      spdlog::error("server: two agents claim robot id {}: keeping the first, ignoring the other",
+                    status.robot.value);
+    }
     return;
   }
-  record.map_reader = std::move(reader).value();
-  spdlog::info("server: robot {} joined (map {} x {} at {:.3f} m on {}, fleet_from_map {})",
-               status.robot.value, status.map_width, status.map_height, status.map_resolution,
-               topic,
+  // New, or back after it left or was lost.
+  const bool joining =
+      record.last_status.robot.value.empty() || record.state != RobotRecord::State::kActive;
+  record.state = RobotRecord::State::kActive;
+  record.last_status = status;
+  const std::string grid_topic = transport::RobotMapTopic(status.robot);
+  const bool grid_wire = status.map_topic == grid_topic;
+  if (grid_wire && record.map_reader == nullptr) {
+    auto reader = transport::OccupancyGridReader::Create(*participant_, grid_topic, wake_up_);
+    if (!reader.ok()) {
+      spdlog::error("server: robot {} is on the grid wire but its map cannot be read: {}",
+                    status.robot.value, reader.status().message());
+    } else {
+      record.map_reader = std::move(reader).value();
+    }
+  }
+  if (!joining) return;
+  fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
+  spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
+               status.robot.value, grid_wire ? "grid" : "tiles", status.map_width,
+               status.map_height, status.map_resolution,
                fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", status.fleet_from_map.x,
                            status.fleet_from_map.y, status.fleet_from_map.yaw));
 }
@@ -103,11 +131,13 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state) {
   HandleMaps();  // keep whatever the robot sent before it went
   record.state = state;
   record.map_reader.reset();
+  registry_->Release(robot.value);
+  fusion_worker_->RecordRobot(RobotRecordFor(robot, RobotStateName(state)));
   if (state == RobotRecord::State::kLost) {
-    spdlog::warn("server: robot {} lost (no liveliness within {} ms); keeping its last map",
+    spdlog::warn("server: robot {} lost (no liveliness within {} ms); its map stays, marked stale",
                  robot.value, transport::kRobotLivelinessLease.count());
   } else {
-    spdlog::info("server: robot {} left the fleet; keeping its last map", robot.value);
+    spdlog::info("server: robot {} left the fleet; its map stays, marked stale", robot.value);
   }
 }
 
@@ -125,20 +155,29 @@ void ServerNode::HandleMaps() {
       spdlog::info("server: map from {}: {} x {} cells at {:.3f} m, {} bytes (total {} bytes)",
                    robot.value, map->grid.width(), map->grid.height(), map->grid.resolution(),
                    map->serialized_bytes, record.bytes_received);
+      fusion_worker_->SubmitGrid(robot.value, *map, record.last_status.fleet_from_map);
       record.latest_map = std::move(map).value();
     }
   }
 }
 
-void ServerNode::PrintSummary() const {
-  fmt::print("\n{:<16} {:<8} {:>6} {:>12} {:>12} {:>9}\n", "robot", "state", "maps", "bytes",
-             "map cells", "rejected");
+void ServerNode::PrintSummary(const FusionStats& fusion) const {
+  fmt::print("\n{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", "robot", "state", "tiles", "maps",
+             "bytes in", "rejected", "clashes");
   for (const auto& [robot, record] : robots_) {
-    const int64_t cells = record.latest_map ? record.latest_map->grid.cell_count() : 0;
-    fmt::print("{:<16} {:<8} {:>6} {:>12} {:>12} {:>9}\n", robot.value,
-               RobotStateName(record.state), record.maps_received, record.bytes_received, cells,
-               record.rejected_samples);
+    const auto tiles = fusion.robots.find(robot.value);
+    const FusionStats::Robot counts =
+        tiles == fusion.robots.end() ? FusionStats::Robot{} : tiles->second;
+    fmt::print("{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", robot.value,
+               RobotStateName(record.state), counts.tiles, record.maps_received,
+               record.bytes_received + counts.bytes, record.rejected_samples + counts.rejected,
+               record.id_clashes);
   }
+  fmt::print(
+      "fused map: {} tiles; published {} fused tile revisions ({} bytes) and {} grids on "
+      "rt/fleetmap/map; {} samples rejected before they named a robot\n",
+      fusion.fused_tiles, fusion.fused_tiles_published, fusion.fused_bytes_published,
+      fusion.maps_published, fusion.rejected_unattributed);
   std::fflush(stdout);
 }
 

@@ -14,12 +14,15 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/wake_up.hpp"
+#include "server/fusion_worker.hpp"
+#include "server/robot_registry.hpp"
 
 namespace fleetmap::server {
 
 struct ServerOptions {
   std::chrono::milliseconds duration{0};  // run this long; 0: until stopped
   transport::ParticipantOptions dds;
+  FusionWorkerOptions fusion;
 
   Status Validate() const;
 };
@@ -33,15 +36,20 @@ struct RobotRecord {
   uint64_t maps_received = 0;
   uint64_t bytes_received = 0;
   uint64_t rejected_samples = 0;
-  std::unique_ptr<transport::OccupancyGridReader> map_reader;  // while the robot is active
+  uint64_t id_clashes = 0;  // status samples from a second agent claiming this robot id
+  // While a robot on the grid wire is active: its rt/<robot>/map.
+  std::unique_ptr<transport::OccupancyGridReader> map_reader;
 };
 
 const char* RobotStateName(RobotRecord::State state);
 
-// fleetmap-server's node: follows the fleet on rt/fleetmap/robot_status, subscribes to each
-// robot's rt/<robot>/map while it is in the fleet and keeps its latest map. A malformed sample
-// from one robot is logged and dropped; it never stops the server. All work happens on the
-// thread that calls Run(); DDS listeners only queue samples. `stop` may be set from any thread.
+// fleetmap-server's node: follows the fleet on rt/fleetmap/robot_status (joins, departures,
+// deaths, two agents claiming one id) and runs the FusionWorker that fuses every robot's tiles
+// and redistributes the fused map. Robots on the grid wire are read on rt/<robot>/map and their
+// grids fused too. A robot that leaves keeps its contribution. A malformed sample from one robot
+// is logged, counted and dropped; it never stops the server. The control work happens on the
+// thread that calls Run(), fusion on the worker's; DDS listeners only queue samples. `stop` may
+// be set from any thread.
 class ServerNode {
  public:
   static StatusOr<std::unique_ptr<ServerNode>> Create(ServerOptions options);
@@ -55,15 +63,17 @@ class ServerNode {
   explicit ServerNode(ServerOptions options) : options_(std::move(options)) {}
 
   void HandleRobotEvents();
-  void OnRobotAlive(const RobotStatus& status);
+  void OnRobotAlive(const RobotStatus& status, const std::string& writer);
   void OnRobotGone(const RobotId& robot, RobotRecord::State state);
   void HandleMaps();
-  void PrintSummary() const;
+  void PrintSummary(const FusionStats& fusion) const;
 
   ServerOptions options_;
   std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
+  std::shared_ptr<RobotRegistry> registry_ = std::make_shared<RobotRegistry>();
+  std::unique_ptr<FusionWorker> fusion_worker_;
   std::map<RobotId, RobotRecord> robots_;
 };
 

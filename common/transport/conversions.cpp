@@ -246,7 +246,7 @@ Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
     if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
   }
   for (const uint32_t size : tile.free_ring_sizes()) {
-    if (size < 3) return InvalidArgumentError("a free ring has fewer than 3 vertices");
+    if (size == 0) return InvalidArgumentError("a free ring has no vertex");
   }
   if (Sum(tile.free_ring_sizes()) != tile.free_x().size()) {
     return InvalidArgumentError("free_ring_sizes add up to " +
@@ -301,7 +301,7 @@ StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& m
     FLEETMAP_RETURN_IF_ERROR(append_ring(polygon.outer));
     for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
   }
-  // Rings of fewer than 3 vertices carry no area: refuse them here as FromIdl would.
+  // Refuse here whatever FromIdl would refuse on the other side.
   FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(out));
   return out;
 }

@@ -6,43 +6,40 @@
 #include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
-#include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
-#include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+#include "nav_msgs/msg/OccupancyGrid.h"
 
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
-using nav_msgs::msg::dds_::OccupancyGrid_PubSubType;
 
-class OccupancyGridReader::Listener : public dds::DataReaderListener {
+class OccupancyGridReader::Listener : public dds::DataReaderListener, public MalformedSink {
  public:
   Listener(std::string topic_name, std::shared_ptr<WakeUp> wake_up)
       : topic_name_(std::move(topic_name)), wake_up_(std::move(wake_up)), maps_(8) {}
 
   void on_data_available(dds::DataReader* reader) override {
-    nav_msgs::msg::dds_::OccupancyGrid_ sample;
-    dds::SampleInfo info;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data) continue;
-      StatusOr<MapMessage> message = FromIdl(sample);
-      if (message.ok()) {
-        message->serialized_bytes =
-            nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
-        maps_.Push(std::move(message));
-      } else {
-        maps_.Push(message.status().WithContext(topic_name_));
-      }
-    }
+    TakeAll<nav_msgs::msg::dds_::OccupancyGrid_>(
+        reader, this, [this](const auto& sample, const dds::SampleInfo& info) {
+          if (!info.valid_data) return;
+          StatusOr<MapMessage> message = FromIdl(sample);
+          if (message.ok()) {
+            message->serialized_bytes =
+                nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
+            maps_.Push(std::move(message));
+          } else {
+            maps_.Push(message.status().WithContext(topic_name_));
+          }
+        });
     if (wake_up_) wake_up_->Notify();
   }
 
   std::vector<StatusOr<MapMessage>> Drain() { return maps_.Drain(); }
 
+ protected:
   // A payload that failed its CDR shape check before decoding.
-  void OnMalformed(const Status& error) {
+  void OnMalformed(const Status& error) override {
     maps_.Push(error.WithContext(topic_name_ + ": malformed OccupancyGrid payload"));
-    if (wake_up_) wake_up_->Notify();
   }
 
  private:
@@ -56,13 +53,8 @@ StatusOr<std::unique_ptr<OccupancyGridReader>> OccupancyGridReader::Create(
   std::unique_ptr<OccupancyGridReader> self(new OccupancyGridReader());
   self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up));
   FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_,
-      ReaderEndpoint::Create(
-          participant, topic_name,
-          dds::TypeSupport(new CheckedPubSubType<OccupancyGrid_PubSubType>(
-              OccupancyGridShape(), [listener = self->listener_.get()](
-                                        const Status& error) { listener->OnMalformed(error); })),
-          OccupancyGridQos().reader, self->listener_.get()));
+      self->endpoint_, ReaderEndpoint::Create(participant, topic_name, OccupancyGridTypeSupport(),
+                                              OccupancyGridQos().reader, self->listener_.get()));
   return self;
 }
 

@@ -2,10 +2,11 @@
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
 #include "common/transport/qos.hpp"
-#include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+#include "nav_msgs/msg/OccupancyGrid.h"
 
 namespace fleetmap::transport {
 
@@ -15,10 +16,8 @@ StatusOr<std::unique_ptr<OccupancyGridWriter>> OccupancyGridWriter::Create(
     Participant& participant, const std::string& topic_name) {
   std::unique_ptr<OccupancyGridWriter> self(new OccupancyGridWriter());
   FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_,
-      WriterEndpoint::Create(participant, topic_name,
-                             dds::TypeSupport(new nav_msgs::msg::dds_::OccupancyGrid_PubSubType()),
-                             OccupancyGridQos().writer));
+      self->endpoint_, WriterEndpoint::Create(participant, topic_name, OccupancyGridTypeSupport(),
+                                              OccupancyGridQos().writer));
   return self;
 }
 

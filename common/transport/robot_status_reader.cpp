@@ -10,16 +10,14 @@
 #include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
-#include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/writer_id.hpp"
-#include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/RobotStatus.h"
 
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
-using fleetmap_msgs::msg::dds_::RobotStatus_PubSubType;
 
 const char* RobotEventKindName(RobotEvent::Kind kind) {
   switch (kind) {
@@ -58,20 +56,19 @@ RobotEvent RobotEvent::Rejected(Status error) {
 }
 
 // Runs on DDS threads: turns samples and liveliness changes into RobotEvents, nothing more.
-class RobotStatusReader::Listener : public dds::DataReaderListener {
+class RobotStatusReader::Listener : public dds::DataReaderListener, public MalformedSink {
  public:
   explicit Listener(std::shared_ptr<WakeUp> wake_up) : wake_up_(std::move(wake_up)) {}
 
   void on_data_available(dds::DataReader* reader) override {
-    fleetmap_msgs::msg::dds_::RobotStatus_ sample;
-    dds::SampleInfo info;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) {
-        OnSample(sample, info);
-      } else {
-        OnInstanceGone(info);
-      }
-    }
+    TakeAll<fleetmap_msgs::msg::dds_::RobotStatus_>(
+        reader, this, [this](const auto& sample, const dds::SampleInfo& info) {
+          if (info.valid_data) {
+            OnSample(sample, info);
+          } else {
+            OnInstanceGone(info);
+          }
+        });
     Notify();
   }
 
@@ -90,10 +87,10 @@ class RobotStatusReader::Listener : public dds::DataReaderListener {
 
   std::vector<RobotEvent> Drain() { return events_.Drain(); }
 
+ protected:
   // A payload that failed its CDR shape check before decoding.
-  void OnMalformed(const Status& error) {
+  void OnMalformed(const Status& error) override {
     events_.Push(RobotEvent::Rejected(error.WithContext("malformed RobotStatus payload")));
-    Notify();
   }
 
  private:
@@ -158,12 +155,8 @@ StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::Create(
   self->listener_ = std::make_unique<Listener>(std::move(wake_up));
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
-      ReaderEndpoint::Create(
-          participant, kRobotStatusTopic,
-          dds::TypeSupport(new CheckedPubSubType<RobotStatus_PubSubType>(
-              RobotStatusShape(), [listener = self->listener_.get()](
-                                      const Status& error) { listener->OnMalformed(error); })),
-          RobotStatusQos().reader, self->listener_.get()));
+      ReaderEndpoint::Create(participant, kRobotStatusTopic, RobotStatusTypeSupport(),
+                             RobotStatusQos().reader, self->listener_.get()));
   return self;
 }
 

@@ -2,11 +2,12 @@
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
-#include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/RobotStatus.h"
 
 namespace fleetmap::transport {
 
@@ -15,10 +16,8 @@ namespace dds = eprosima::fastdds::dds;
 StatusOr<std::unique_ptr<RobotStatusWriter>> RobotStatusWriter::Create(Participant& participant) {
   std::unique_ptr<RobotStatusWriter> self(new RobotStatusWriter());
   FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_, WriterEndpoint::Create(
-                           participant, kRobotStatusTopic,
-                           dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
-                           RobotStatusQos().writer));
+      self->endpoint_, WriterEndpoint::Create(participant, kRobotStatusTopic,
+                                              RobotStatusTypeSupport(), RobotStatusQos().writer));
   return self;
 }
 

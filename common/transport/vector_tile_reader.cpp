@@ -8,47 +8,44 @@
 #include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
-#include "common/transport/idl_shapes.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/writer_id.hpp"
-#include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
+#include "fleetmap_msgs/msg/VectorTile.h"
 
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
 using fleetmap_msgs::msg::dds_::VectorTile_;
-using fleetmap_msgs::msg::dds_::VectorTile_PubSubType;
 
 // Runs on DDS threads: decodes and queues, nothing more.
-class VectorTileReader::Listener : public dds::DataReaderListener {
+class VectorTileReader::Listener : public dds::DataReaderListener, public MalformedSink {
  public:
   Listener(std::string topic_name, std::shared_ptr<WakeUp> wake_up)
       : topic_name_(std::move(topic_name)), wake_up_(std::move(wake_up)), events_(1 << 16) {}
 
   void on_data_available(dds::DataReader* reader) override {
-    VectorTile_ sample;
-    dds::SampleInfo info;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      TileEvent event;
-      event.writer = WriterId(info.publication_handle);
-      if (info.valid_data) {
-        OnSample(sample, info, std::move(event));
-      } else {
-        OnInstanceGone(info, std::move(event));
-      }
-    }
-    Notify();
-  }
-
-  void OnMalformed(const Status& error) {
-    TileEvent event;
-    event.kind = TileEvent::Kind::kRejected;
-    event.error = error.WithContext(topic_name_ + ": malformed VectorTile payload");
-    events_.Push(std::move(event));
+    TakeAll<VectorTile_>(reader, this,
+                         [this](const VectorTile_& sample, const dds::SampleInfo& info) {
+                           TileEvent event;
+                           event.writer = WriterId(info.publication_handle);
+                           if (info.valid_data) {
+                             OnSample(sample, info, std::move(event));
+                           } else {
+                             OnInstanceGone(info, std::move(event));
+                           }
+                         });
     Notify();
   }
 
   std::vector<TileEvent> Drain() { return events_.Drain(); }
+
+ protected:
+  void OnMalformed(const Status& error) override {
+    TileEvent event;
+    event.kind = TileEvent::Kind::kRejected;
+    event.error = error.WithContext(topic_name_ + ": malformed VectorTile payload");
+    events_.Push(std::move(event));
+  }
 
  private:
   void OnSample(const VectorTile_& sample, const dds::SampleInfo& info, TileEvent event) {
@@ -99,14 +96,9 @@ StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
     Participant& participant, const std::string& topic_name, std::shared_ptr<WakeUp> wake_up) {
   std::unique_ptr<VectorTileReader> self(new VectorTileReader());
   self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up));
-  FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_,
-      ReaderEndpoint::Create(
-          participant, topic_name,
-          dds::TypeSupport(new CheckedPubSubType<VectorTile_PubSubType>(
-              VectorTileShape(), [listener = self->listener_.get()](
-                                     const Status& error) { listener->OnMalformed(error); })),
-          VectorTileQos().reader, self->listener_.get()));
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            ReaderEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
+                                                   VectorTileQos().reader, self->listener_.get()));
   return self;
 }
 

@@ -2,10 +2,11 @@
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
 #include "common/transport/qos.hpp"
-#include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
+#include "fleetmap_msgs/msg/VectorTile.h"
 
 namespace fleetmap::transport {
 
@@ -15,11 +16,9 @@ using fleetmap_msgs::msg::dds_::VectorTile_;
 StatusOr<std::unique_ptr<VectorTileWriter>> VectorTileWriter::Create(
     Participant& participant, const std::string& topic_name) {
   std::unique_ptr<VectorTileWriter> self(new VectorTileWriter());
-  FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_, WriterEndpoint::Create(
-                           participant, topic_name,
-                           dds::TypeSupport(new fleetmap_msgs::msg::dds_::VectorTile_PubSubType()),
-                           VectorTileQos().writer));
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            WriterEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
+                                                   VectorTileQos().writer));
   return self;
 }
 

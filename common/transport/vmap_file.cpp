@@ -1,14 +1,10 @@
 #include "common/transport/vmap_file.hpp"
 
-#include <fastcdr/Cdr.h>
-#include <fastcdr/FastBuffer.h>
-#include <fastcdr/exceptions/Exception.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <span>
 
-#include "common/transport/cdr_shape.hpp"
+#include "common/transport/cdr_codec.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/idl_shapes.hpp"
 #include "fleetmap_msgs/msg/VectorMap.h"
@@ -40,34 +36,13 @@ StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map) {
     if (!encoded.ok()) return encoded.status().WithContext(TileName(id));
     message.tiles().push_back(std::move(encoded).value());
   }
-  std::string bytes(VectorMap_::getCdrSerializedSize(message) + 4, '\0');
-  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
-  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
-                             eprosima::fastcdr::Cdr::DDS_CDR);
-  cdr.serialize_encapsulation();
-  message.serialize(cdr);
-  bytes.resize(cdr.getSerializedDataLength());
-  return bytes;
+  return SerializeCdr(message);
 }
 
 StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const std::string& name) {
-  const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),
-                                         bytes.size());
-  if (Status shape = CheckCdr(payload, VectorMapShape()); !shape.ok()) {
-    return shape.WithContext(name + ": not a valid .vmap");
-  }
   VectorMap_ message;
-  try {
-    // fastcdr wants a mutable buffer; it only reads from it here.
-    std::string copy(bytes);
-    eprosima::fastcdr::FastBuffer buffer(copy.data(), copy.size());
-    eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN,
-                               eprosima::fastcdr::Cdr::DDS_CDR);
-    cdr.read_encapsulation();
-    message.deserialize(cdr);
-  } catch (const eprosima::fastcdr::exception::Exception& error) {
-    return DataLossError(name + ": not a valid .vmap: " + error.what());
-  }
+  FLEETMAP_RETURN_IF_ERROR(
+      DeserializeCdr(bytes, VectorMapShape(), name + ": not a valid .vmap", &message));
   if (message.format() != kVmapFormat) {
     return InvalidArgumentError(name + ": format \"" + message.format().substr(0, 40) +
                                 "\" is not " + kVmapFormat);

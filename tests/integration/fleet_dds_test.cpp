@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <functional>
 #include <set>
 #include <string>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/topics.hpp"
+#include "common/transport/vector_tile_reader.hpp"
 #include "tests/support/subprocess.hpp"
 
 namespace fleetmap {
@@ -74,9 +76,11 @@ class FleetDdsTest : public ::testing::Test {
     return participant.ok() ? std::move(participant).value() : nullptr;
   }
 
-  std::unique_ptr<Subprocess> StartAgent(const std::string& robot, const std::string& map) {
-    auto agent = std::make_unique<Subprocess>(
-        std::vector<std::string>{kAgent, "--robot-id", robot, "--map", map}, env_);
+  std::unique_ptr<Subprocess> StartAgent(const std::string& robot, const std::string& map,
+                                         std::vector<std::string> extra = {}) {
+    std::vector<std::string> argv = {kAgent, "--robot-id", robot, "--map", map};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    auto agent = std::make_unique<Subprocess>(std::move(argv), env_);
     EXPECT_TRUE(agent->started());
     return agent;
   }
@@ -114,7 +118,7 @@ class FleetDdsTest : public ::testing::Test {
 };
 
 TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
-  auto agent = StartAgent("alpha", map_path_);
+  auto agent = StartAgent("alpha", map_path_, {"--wire", "grid"});
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
   auto wake_up = std::make_shared<transport::WakeUp>();
@@ -138,7 +142,7 @@ TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
 }
 
 TEST_F(FleetDdsTest, LateJoiningReaderReceivesTransientLocalMap) {
-  auto agent = StartAgent("late", map_path_);
+  auto agent = StartAgent("late", map_path_, {"--wire", "grid"});
   ASSERT_TRUE(agent->WaitForOutput("in the fleet", kDeadline)) << agent->Output();
   // The map was published before this reader existed: durability must deliver it.
   std::this_thread::sleep_for(milliseconds(500));
@@ -230,13 +234,12 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   ASSERT_TRUE(server.WaitForOutput("listening", kDeadline)) << server.Output();
   auto alpha = StartAgent("alpha", map_path_);
-  auto beta = StartAgent("beta", tall_map_path_);
+  auto beta = StartAgent("beta", tall_map_path_, {"--wire", "grid"});
 
-  EXPECT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
-  EXPECT_TRUE(server.WaitForOutput("robot beta joined", kDeadline)) << server.Output();
-  EXPECT_TRUE(server.WaitForOutput("map from alpha: 384 x 384 cells", kDeadline))
+  EXPECT_TRUE(server.WaitForOutput("robot alpha joined (tiles wire", kDeadline)) << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("robot beta joined (grid wire", kDeadline)) << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline))
       << server.Output();
-  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline)) << server.Output();
 
   beta->Signal(SIGKILL);
   EXPECT_TRUE(server.WaitForOutput("robot beta lost", kDeadline)) << server.Output();
@@ -248,6 +251,135 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
   const std::string output = server.Output();
   EXPECT_NE(output.find("alpha            left"), std::string::npos) << output;
   EXPECT_NE(output.find("beta             lost"), std::string::npos) << output;
+}
+
+// Reads rt/fleetmap/map until a grid satisfies `done` (the fused map fills in as tiles arrive);
+// returns the last grid received.
+std::optional<transport::MapMessage> WaitForFleetMap(
+    transport::Participant& participant,
+    const std::function<bool(const transport::MapMessage&)>& done) {
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader =
+      transport::OccupancyGridReader::Create(participant, transport::kFleetMapTopic, wake_up);
+  EXPECT_TRUE(reader.ok()) << reader.status();
+  if (!reader.ok()) return std::nullopt;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  std::optional<transport::MapMessage> newest;
+  while (std::chrono::steady_clock::now() < deadline) {
+    wake_up->WaitFor(milliseconds(100));
+    for (auto& map : (*reader)->Drain()) {
+      if (map.ok()) newest = std::move(map).value();
+    }
+    if (newest && done(*newest)) break;
+  }
+  return newest;
+}
+
+// Share of the known cells of `source` (map frame, placed by `fleet_from_map`) that `fused`
+// (fleet frame) gives the same state.
+double Agreement(const grid::OccupancyGrid& source, const Pose2& fleet_from_map,
+                 const grid::OccupancyGrid& fused) {
+  int64_t known = 0, same = 0;
+  for (int y = 0; y < source.height(); ++y) {
+    for (int x = 0; x < source.width(); ++x) {
+      const grid::CellState state = source.StateAt(x, y);
+      if (state == grid::CellState::kUnknown) continue;
+      ++known;
+      const auto cell = fused.CellAt(fleet_from_map.ToTransform() * source.CellCenter(x, y));
+      if (cell && fused.StateAt(cell->x, cell->y) == state) ++same;
+    }
+  }
+  return known == 0 ? 0.0 : static_cast<double>(same) / known;
+}
+
+TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
+  Subprocess server({kServer, "--duration", "60"}, env_);
+  auto alpha = StartAgent("alpha", map_path_);
+  auto beta = StartAgent("beta", tall_map_path_, {"--fleet-from-map", "30", "0", "0"});
+  ASSERT_TRUE(alpha->WaitForOutput("changed tiles", kDeadline)) << alpha->Output();
+
+  // A reader that joins late still gets every fused tile (transient local).
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto fused = transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic,
+                                                   wake_up);
+  ASSERT_TRUE(fused.ok()) << fused.status();
+  std::set<TileId> tiles;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  // alpha spans tiles x -1..1, y 0..2 (9); beta x 2..3, y 0..4 (10).
+  while (std::chrono::steady_clock::now() < deadline && tiles.size() < 19) {
+    wake_up->WaitFor(milliseconds(100));
+    for (const auto& event : (*fused)->Drain()) {
+      ASSERT_NE(event.kind, transport::TileEvent::Kind::kRejected) << event.error;
+      if (event.kind == transport::TileEvent::Kind::kTile) {
+        EXPECT_EQ(event.tile.robot_id, "fleet");
+        tiles.insert(event.tile.tile);
+      }
+    }
+  }
+  EXPECT_EQ(tiles.size(), 19u) << server.Output();
+
+  // The fused grid on rt/fleetmap/map comes to agree with both robots' maps where they know
+  // something.
+  const auto alpha_map = grid::LoadMap(map_path_);
+  const auto beta_map = grid::LoadMap(tall_map_path_);
+  ASSERT_TRUE(alpha_map.ok() && beta_map.ok());
+  const auto both_agree = [&](const transport::MapMessage& map) {
+    return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95 &&
+           Agreement(beta_map->grid, Pose2{30.0, 0.0, 0.0}, map.grid) > 0.95;
+  };
+  const auto fleet_map = WaitForFleetMap(*participant, both_agree);
+  ASSERT_TRUE(fleet_map.has_value()) << server.Output();
+  EXPECT_EQ(fleet_map->frame_id, "fleet");
+  EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
+  EXPECT_GT(Agreement(beta_map->grid, Pose2{30.0, 0.0, 0.0}, fleet_map->grid), 0.95);
+}
+
+TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
+  Subprocess server({kServer, "--duration", "60"}, env_);
+  auto first = StartAgent("twin", map_path_);
+  ASSERT_TRUE(server.WaitForOutput("robot twin joined", kDeadline)) << server.Output();
+  auto second = StartAgent("twin", tall_map_path_);
+  EXPECT_TRUE(server.WaitForOutput("two agents claim robot id twin", kDeadline))
+      << server.Output();
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+}
+
+TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {
+  const std::string store = ::testing::TempDir() + "/fleet_store_" + std::to_string(getpid()) +
+                            "_" + std::to_string(domain_) + ".db";
+  std::remove(store.c_str());
+  auto server = std::make_unique<Subprocess>(
+      std::vector<std::string>{kServer, "--duration", "60", "--store", store}, env_);
+  {
+    auto agent = StartAgent("alpha", map_path_);
+    ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+    ASSERT_TRUE(agent->WaitForOutput("changed tiles", kDeadline));
+    // Let the server receive, fuse and store; then the agent goes, so nothing can resend.
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    agent->Signal(SIGTERM);
+    ASSERT_EQ(agent->Wait(kDeadline), 0);
+  }
+  server->Signal(SIGKILL);
+  server->Wait(kDeadline);
+
+  Subprocess restarted({kServer, "--duration", "60", "--store", store}, env_);
+  EXPECT_TRUE(restarted.WaitForOutput("restored", kDeadline)) << restarted.Output();
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  const auto alpha_map = grid::LoadMap(map_path_);
+  ASSERT_TRUE(alpha_map.ok());
+  const auto fleet_map =
+      WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+        return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
+      });
+  ASSERT_TRUE(fleet_map.has_value()) << restarted.Output();
+  EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
+  restarted.Signal(SIGINT);
+  EXPECT_EQ(restarted.Wait(kDeadline), 0);
+  std::remove(store.c_str());
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {

@@ -32,7 +32,7 @@ constexpr seconds kDeadline{20};
 fleetmap_msgs::msg::dds_::RobotStatus_ StatusOf(const std::string& robot) {
   fleetmap_msgs::msg::dds_::RobotStatus_ status;
   status.robot_id(robot);
-  status.map_from_robot().theta(0.0);
+  status.map_topic("rt/" + robot + "/map");  // on the grid wire: the server reads rt/<robot>/map
   return status;
 }
 
@@ -93,7 +93,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
                                                   {"FLEETMAP_LOCALHOST_ONLY", "1"}};
   testing::Subprocess server({kServer, "--duration", "60"}, env);
-  testing::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
+  testing::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap, "--wire", "grid"}, env);
   ASSERT_TRUE(server.WaitForOutput("map from alpha", kDeadline)) << server.Output();
 
   transport::ParticipantOptions options;

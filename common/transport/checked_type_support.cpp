@@ -1,0 +1,38 @@
+#include "common/transport/checked_type_support.hpp"
+
+#include "common/transport/idl_shapes.hpp"
+#include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
+#include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+
+namespace fleetmap::transport {
+namespace {
+
+thread_local MalformedSink* current_sink = nullptr;
+
+}  // namespace
+
+ScopedMalformedSink::ScopedMalformedSink(MalformedSink* sink) : previous_(current_sink) {
+  current_sink = sink;
+}
+
+ScopedMalformedSink::~ScopedMalformedSink() { current_sink = previous_; }
+
+MalformedSink* ScopedMalformedSink::Current() { return current_sink; }
+
+eprosima::fastdds::dds::TypeSupport RobotStatusTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::RobotStatus_PubSubType>(RobotStatusShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport OccupancyGridTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<nav_msgs::msg::dds_::OccupancyGrid_PubSubType>(OccupancyGridShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::VectorTile_PubSubType>(VectorTileShape()));
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,233 @@
+#include "server/fusion_worker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "common/transport/tile_payload.hpp"
+#include "common/transport/topics.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
+
+namespace fleetmap::server {
+void FusionWorker::Remember(const std::string& owner, const transport::VectorTileMessage& tile) {
+  StatusOr<std::string> payload = transport::EncodeTilePayload(tile);
+  if (!payload.ok()) return;  // it was decoded from the wire; it encodes
+  unsaved_.push_back(store::TileRecord{
+      owner, tile.tile, tile.revision,
+      std::chrono::duration_cast<std::chrono::nanoseconds>(tile.stamp.time_since_epoch()).count(),
+      std::move(payload).value()});
+}
+
+StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
+    transport::Participant& participant, const FusionWorkerOptions& options,
+    std::shared_ptr<RobotRegistry> registry) {
+  FLEETMAP_ASSIGN_OR_RETURN(fusion::TileFusion fusion, fusion::TileFusion::Create(options.fusion));
+  std::unique_ptr<FusionWorker> worker(
+      new FusionWorker(options, std::move(fusion), std::move(registry)));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_,
+                            transport::VectorTileReader::Create(
+                                participant, transport::kRobotTilesTopic, worker->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->fused_writer_, transport::VectorTileWriter::Create(
+                                                       participant, transport::kFusedTilesTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
+                                                     participant, transport::kFleetMapTopic));
+  if (!options.store_path.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(worker->store_, store::MapStore::Open(options.store_path));
+    FLEETMAP_RETURN_IF_ERROR(worker->Restore());
+  }
+  return worker;
+}
+
+FusionWorker::~FusionWorker() {
+  Stop();
+  // Readers and writers go before the participant that owns their topics (the caller's).
+  tile_reader_.reset();
+  fused_writer_.reset();
+  map_writer_.reset();
+}
+
+Status FusionWorker::Restore() {
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> records, store_->LatestTiles());
+  size_t restored = 0;
+  for (const store::TileRecord& record : records) {
+    if (record.owner == store::kFleetOwner) continue;  // fused tiles are rebuilt, not trusted
+    StatusOr<transport::VectorTileMessage> tile =
+        transport::DecodeTilePayload(record.payload, options_.store_path);
+    if (!tile.ok()) {
+      spdlog::warn("server: skipping a stored tile of {}: {}", record.owner,
+                   tile.status().message());
+      continue;
+    }
+    const Timestamp stamp{
+        std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(record.stamp_ns))};
+    FLEETMAP_RETURN_IF_ERROR(fusion_.UpdateRobotTile(record.owner, record.tile, tile->map, stamp));
+    ++restored;
+  }
+  std::lock_guard lock(stats_mutex_);
+  stats_.restored_tiles = restored;
+  if (restored > 0) {
+    spdlog::info("server: restored {} robot tiles from {}", restored, options_.store_path);
+  }
+  return Status::Ok();
+}
+
+void FusionWorker::RecordRobot(store::RobotRecord robot) {
+  robot_records_.Push(std::move(robot));
+  wake_up_->Notify();
+}
+
+void FusionWorker::Start() {
+  thread_ = std::thread([this] { Loop(); });
+}
+
+void FusionWorker::Stop() {
+  stop_.store(true);
+  wake_up_->Notify();
+  if (thread_.joinable()) thread_.join();
+}
+
+void FusionWorker::SubmitGrid(const std::string& robot, transport::MapMessage map,
+                              Pose2 fleet_from_map) {
+  grids_.Push(GridUpdate{robot, std::move(map), fleet_from_map});
+  wake_up_->Notify();
+}
+
+FusionStats FusionWorker::stats() const {
+  std::lock_guard lock(stats_mutex_);
+  return stats_;
+}
+
+void FusionWorker::Loop() {
+  while (!stop_.load()) {
+    wake_up_->WaitFor(std::chrono::milliseconds(50));
+    HandleTileEvents();
+    HandleGrids();
+    PublishFused(std::chrono::steady_clock::now());
+    Persist();
+  }
+}
+
+void FusionWorker::Persist() {
+  if (store_ == nullptr) {
+    robot_records_.Drain();
+    unsaved_.clear();
+    return;
+  }
+  // One transaction for everything this round: SQLite's cost is per commit, not per row.
+  if (!unsaved_.empty()) {
+    if (const Status saved = store_->PutTiles(unsaved_); !saved.ok()) {
+      spdlog::error("server: map store: {}", saved.message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.store_errors;
+    }
+    unsaved_.clear();
+  }
+  for (const store::RobotRecord& robot : robot_records_.Drain()) {
+    if (const Status saved = store_->PutRobot(robot); !saved.ok()) {
+      spdlog::error("server: map store: {}", saved.message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.store_errors;
+    }
+  }
+}
+
+void FusionWorker::HandleTileEvents() {
+  for (transport::TileEvent& event : tile_reader_->Drain()) {
+    const std::string& robot = event.tile.robot_id;
+    if (event.kind == transport::TileEvent::Kind::kRejected) {
+      spdlog::warn("server: dropped a robot tile: {}", event.error.message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.rejected_unattributed;
+      continue;
+    }
+    if (!registry_->MaySpeakFor(robot, event.writer)) {
+      spdlog::warn("server: dropped tile ({}, {}) claiming robot {} from a second agent",
+                   event.tile.tile.x, event.tile.tile.y, robot);
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.robots[robot].rejected;
+      continue;
+    }
+    if (event.kind == transport::TileEvent::Kind::kRemoved) {
+      fusion_.RemoveRobotTile(robot, event.tile.tile);
+      continue;
+    }
+    const Status updated =
+        fusion_.UpdateRobotTile(robot, event.tile.tile, event.tile.map, event.tile.stamp);
+    if (updated.ok() && store_ != nullptr) Remember(robot, event.tile);
+    std::lock_guard lock(stats_mutex_);
+    FusionStats::Robot& stats = stats_.robots[robot];
+    if (!updated.ok()) {
+      ++stats.rejected;
+      spdlog::warn("server: dropped tile ({}, {}) of {}: {}", event.tile.tile.x, event.tile.tile.y,
+                   robot, updated.message());
+      continue;
+    }
+    ++stats.tiles;
+    stats.bytes += event.serialized_bytes;
+  }
+}
+
+void FusionWorker::HandleGrids() {
+  for (GridUpdate& update : grids_.Drain()) {
+    vector_map::TiledVectorizeOptions options;
+    options.tile_size = options_.fusion.tile_size;
+    const auto tiled =
+        vector_map::VectorizeTiled(update.map.grid, update.fleet_from_map.ToTransform(), options);
+    if (!tiled.ok()) {
+      spdlog::warn("server: cannot fuse the grid of {}: {}", update.robot,
+                   tiled.status().message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.robots[update.robot].rejected;
+      continue;
+    }
+    for (const auto& [tile, map] : tiled->tiles) {
+      const Status updated = fusion_.UpdateRobotTile(update.robot, tile, map, update.map.stamp);
+      if (!updated.ok()) spdlog::warn("server: {}: {}", update.robot, updated.message());
+    }
+  }
+}
+
+void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
+  StatusOr<std::vector<fusion::FusedTile>> changed = fusion_.FuseChanged();
+  if (!changed.ok()) {
+    spdlog::error("server: fusion failed: {}", changed.status().message());
+    return;
+  }
+  uint64_t bytes = 0;
+  for (fusion::FusedTile& tile : *changed) {
+    transport::VectorTileMessage message;
+    message.robot_id = store::kFleetOwner;
+    message.tile = tile.tile;
+    message.revision = tile.revision;
+    message.stamp = Clock::now();
+    message.tile_size = options_.fusion.tile_size;
+    message.map = std::move(tile.map);
+    StatusOr<size_t> written = fused_writer_->Write(message);
+    if (!written.ok()) {
+      spdlog::warn("server: {}", written.status().message());
+      continue;
+    }
+    bytes += *written;
+    if (store_ != nullptr) Remember(store::kFleetOwner, message);
+  }
+  if (!changed->empty()) map_dirty_ = true;
+  bool map_sent = false;
+  if (map_dirty_ && now - last_map_ >= options_.map_period) {
+    transport::MapMessage map;
+    map.grid = fusion_.FusedGrid();
+    map.frame_id = "fleet";
+    map.stamp = Clock::now();
+    if (StatusOr<size_t> written = map_writer_->Write(map); written.ok()) {
+      map_sent = true;
+      map_dirty_ = false;
+      last_map_ = now;
+    } else {
+      spdlog::warn("server: {}", written.status().message());
+    }
+  }
+  std::lock_guard lock(stats_mutex_);
+  stats_.fused_tiles_published += changed->size();
+  stats_.fused_bytes_published += bytes;
+  stats_.maps_published += map_sent ? 1 : 0;
+  stats_.fused_tiles = fusion_.fused_tiles().size();
+}
+
+}  // namespace fleetmap::server

@@ -1,0 +1,111 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "common/core/robot_status.hpp"
+#include "common/core/status.hpp"
+#include "common/fusion/tile_fusion.hpp"
+#include "common/store/map_store.hpp"
+#include "common/transport/map_message.hpp"
+#include "common/transport/occupancy_grid_writer.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/vector_tile_reader.hpp"
+#include "common/transport/vector_tile_writer.hpp"
+#include "common/transport/wake_up.hpp"
+#include "server/robot_registry.hpp"
+
+namespace fleetmap::server {
+
+struct FusionWorkerOptions {
+  fusion::FusionOptions fusion;
+  // SQLite map store (WAL): every robot tile and fused tile revision, and the robots. Empty: keep
+  // nothing. On start the fused map is rebuilt from the robot tiles it holds.
+  std::string store_path;
+  // The fused grid goes out on rt/fleetmap/map at most this often (when it changed).
+  std::chrono::milliseconds map_period{1000};
+};
+
+// What the worker has done, per robot and in total. A snapshot; thread-safe to take.
+struct FusionStats {
+  struct Robot {
+    uint64_t tiles = 0;
+    uint64_t bytes = 0;
+    uint64_t rejected = 0;
+  };
+  std::map<std::string, Robot> robots;
+  uint64_t rejected_unattributed = 0;  // samples too broken to name their robot
+  uint64_t fused_tiles_published = 0;
+  uint64_t fused_bytes_published = 0;
+  uint64_t maps_published = 0;
+  size_t fused_tiles = 0;
+  size_t restored_tiles = 0;  // robot tiles read back from the store at start
+  uint64_t store_errors = 0;
+};
+
+// The server's fusion worker: drains robot tiles (and grids of robots on the grid wire), fuses
+// them, publishes changed fused tiles on rt/fleetmap/fused_tiles and the fused grid on
+// rt/fleetmap/map. Everything runs on its own thread, never on a DDS callback. Start() and Stop()
+// from the owning thread; SubmitGrid() and stats() from any thread.
+class FusionWorker {
+ public:
+  static StatusOr<std::unique_ptr<FusionWorker>> Create(transport::Participant& participant,
+                                                        const FusionWorkerOptions& options,
+                                                        std::shared_ptr<RobotRegistry> registry);
+  ~FusionWorker();
+
+  void Start();
+  void Stop();
+
+  // A whole grid from a robot on the grid wire, with its fleet_from_map.
+  void SubmitGrid(const std::string& robot, transport::MapMessage map, Pose2 fleet_from_map);
+  // A robot's state for the store ("active", "left", "lost").
+  void RecordRobot(store::RobotRecord robot);
+  FusionStats stats() const;
+
+ private:
+  struct GridUpdate {
+    std::string robot;
+    transport::MapMessage map;
+    Pose2 fleet_from_map;
+  };
+
+  FusionWorker(const FusionWorkerOptions& options, fusion::TileFusion fusion,
+               std::shared_ptr<RobotRegistry> registry)
+      : options_(options), fusion_(std::move(fusion)), registry_(std::move(registry)) {}
+
+  // Rebuilds the fused map from the robot tiles in the store.
+  Status Restore();
+  void Loop();
+  void HandleTileEvents();
+  void Persist();
+  // Queues a tile revision for the store.
+  void Remember(const std::string& owner, const transport::VectorTileMessage& tile);
+  void HandleGrids();
+  void PublishFused(std::chrono::steady_clock::time_point now);
+
+  FusionWorkerOptions options_;
+  fusion::TileFusion fusion_;  // worker thread only
+  std::shared_ptr<RobotRegistry> registry_;
+  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
+  std::unique_ptr<transport::VectorTileReader> tile_reader_;
+  std::unique_ptr<transport::VectorTileWriter> fused_writer_;
+  std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
+  transport::SampleQueue<GridUpdate> grids_{64};
+  transport::SampleQueue<store::RobotRecord> robot_records_{1024};
+  std::unique_ptr<store::MapStore> store_;  // worker thread only (after Create)
+  std::vector<store::TileRecord> unsaved_;  // worker thread only
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  bool map_dirty_ = false;  // worker thread only
+  std::chrono::steady_clock::time_point last_map_{};
+  mutable std::mutex stats_mutex_;
+  FusionStats stats_;  // guarded by stats_mutex_
+};
+
+}  // namespace fleetmap::server
