@@ -20,6 +20,26 @@ std::string Lower(std::string text) {
   return text;
 }
 
+size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map) {
+  size_t dropped = 0;
+  for (auto& [id, tile] : map->tiles) {
+    std::vector<vector_map::FreePolygon> kept;
+    for (vector_map::FreePolygon& polygon : tile.free_space) {
+      if (polygon.outer.size() < 3) {
+        dropped += 1 + polygon.holes.size();
+        continue;
+      }
+      const auto end = std::remove_if(polygon.holes.begin(), polygon.holes.end(),
+                                      [](const auto& hole) { return hole.size() < 3; });
+      dropped += static_cast<size_t>(polygon.holes.end() - end);
+      polygon.holes.erase(end, polygon.holes.end());
+      kept.push_back(std::move(polygon));
+    }
+    tile.free_space = std::move(kept);
+  }
+  return dropped;
+}
+
 }  // namespace
 
 StatusOr<grid::LoadedMap> LoadGridInput(const std::string& yaml_path, int64_t max_cells) {
@@ -95,24 +115,13 @@ double ShortestDouble(float value) {
   return value;
 }
 
-size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map) {
-  size_t dropped = 0;
-  for (auto& [id, tile] : map->tiles) {
-    std::vector<vector_map::FreePolygon> kept;
-    for (vector_map::FreePolygon& polygon : tile.free_space) {
-      if (polygon.outer.size() < 3) {
-        dropped += 1 + polygon.holes.size();
-        continue;
-      }
-      const auto end = std::remove_if(polygon.holes.begin(), polygon.holes.end(),
-                                      [](const auto& hole) { return hole.size() < 3; });
-      dropped += static_cast<size_t>(polygon.holes.end() - end);
-      polygon.holes.erase(end, polygon.holes.end());
-      kept.push_back(std::move(polygon));
-    }
-    tile.free_space = std::move(kept);
-  }
-  return dropped;
+StatusOr<std::string> EncodeVmapBytes(vector_map::TiledVectorMap* map, size_t* dropped_free_rings) {
+  *dropped_free_rings = 0;
+  StatusOr<std::string> bytes = transport::EncodeVmap(*map);
+  if (bytes.ok()) return bytes;
+  *dropped_free_rings = DropAreaLessFreeRings(map);
+  if (*dropped_free_rings == 0) return bytes.status();
+  return transport::EncodeVmap(*map);
 }
 
 double StoredEpsilonBound(double stored_epsilon) {

@@ -3,6 +3,7 @@
 // What the vector-map subcommands share: reading their inputs and checking their numeric options.
 // Every error message names the file (or flag) and the problem, ready for "fleetmap <cmd>: ...".
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -40,10 +41,11 @@ StatusOr<grid::OccupancyGrid> TileBoundsGrid(const vector_map::TiledVectorMap& m
 // same float: 0.05f gives 0.05, not 0.05000000074505806.
 double ShortestDouble(float value);
 
-// The vectorizer can emit a free ring of one or two vertices (a free speck one or two cells
-// across), which the .vmap codec refuses as it has no area. Removes such rings (an outer ring
-// takes its holes with it) so the map can be encoded; returns how many rings were removed.
-size_t DropAreaLessFreeRings(vector_map::TiledVectorMap* map);
+// The .vmap bytes of `map`. The vectorizer can emit free rings of one or two vertices (free specks
+// one or two cells across); they are kept when the codec takes them. A codec that refuses rings
+// without area gets them left out of `map` (an outer ring takes its holes with it) and encodes
+// again; `*dropped_free_rings` says how many were left out.
+StatusOr<std::string> EncodeVmapBytes(vector_map::TiledVectorMap* map, size_t* dropped_free_rings);
 
 // The epsilon to validate a .vmap with: its float32 epsilon was rounded to nearest from the one
 // the geometry was built with, so one float step up is a sound bound (a few nanometres more).

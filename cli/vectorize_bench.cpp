@@ -151,9 +151,9 @@ Status MeasureTiled(const grid::OccupancyGrid& grid, const VectorizeBenchOptions
   FLEETMAP_ASSIGN_OR_RETURN(
       vector_map::TiledVectorMap tiled,
       vector_map::VectorizeTiled(grid, Transform2::Identity(), tiled_options));
-  row->vmap_dropped_free_rings = DropAreaLessFreeRings(&tiled);
   row->vmap_tiles = tiled.tiles.size();
-  FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes, transport::EncodeVmap(tiled));
+  FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes,
+                            EncodeVmapBytes(&tiled, &row->vmap_dropped_free_rings));
   FLEETMAP_ASSIGN_OR_RETURN(const EncodedSizes full, Sizes(bytes));
   row->vmap_raw = full.raw;
   row->vmap_zstd = full.zstd;

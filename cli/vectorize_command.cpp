@@ -9,7 +9,6 @@
 
 #include "cli/exit_codes.hpp"
 #include "common/metrics/grid_sizes.hpp"
-#include "common/transport/vmap_file.hpp"
 #include "common/vector_map/geojson.hpp"
 #include "common/vector_map/png.hpp"
 #include "common/vector_map/svg.hpp"
@@ -80,11 +79,12 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!map.ok()) return fail(options.map_yaml + ": " + map.status().message());
-  const size_t dropped_rings = DropAreaLessFreeRings(&*map);
-
-  StatusOr<std::string> bytes = transport::EncodeVmap(*map);
+  size_t dropped_rings = 0;
+  StatusOr<std::string> bytes = EncodeVmapBytes(&*map, &dropped_rings);
   if (!bytes.ok()) return fail(options.map_yaml + ": cannot encode: " + bytes.status().message());
-  if (Status s = transport::WriteVmapFile(*map, options.output_vmap); !s.ok()) {
+  if (Status s = vector_map::WriteBytes(options.output_vmap,
+                                        std::vector<uint8_t>(bytes->begin(), bytes->end()));
+      !s.ok()) {
     return fail(s.message());
   }
   if (Status s = WritePictures(options, map->Merged(), grid); !s.ok()) return fail(s.message());
@@ -105,7 +105,7 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
     json["tiles"] = map->tiles.size();
     json["bytes"] = {{"raw", sizes->raw}, {"zstd", sizes->zstd}};
     json["ms"] = ms;
-    json["dropped_free_rings"] = dropped_rings;
+    json["dropped_free_rings"] = dropped_rings;  // 0 unless the codec refuses rings without area
     out << json.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
   } else {
     out << options.map_yaml << " -> " << options.output_vmap << " (" << options.method
@@ -113,9 +113,13 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
         << map->tile_size << " m)\n"
         << "obstacles: " << map->ObstacleVertexCount() << " vertices, "
         << map->ObstacleSegmentCount() << " segments; free space: " << map->FreeVertexCount()
-        << " vertices (" << dropped_rings << " rings without area left out)\n"
+        << " vertices\n"
         << "size:      " << sizes->raw << " bytes (" << sizes->zstd << " with zstd -19)\n"
         << "time:      " << ms << " ms\n";
+    if (dropped_rings > 0) {
+      out << "note:      " << dropped_rings
+          << " free rings of one or two vertices left out (the .vmap codec refuses them)\n";
+    }
   }
   out.flush();
   return out ? kExitOk : kExitBadInput;
