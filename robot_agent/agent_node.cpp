@@ -21,9 +21,13 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError("--robot-id \"" + robot.value +
                                 "\" is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, <= 64)");
   }
-  if (map_path.empty() == ros_topic.empty()) {
-    return InvalidArgumentError("give exactly one map source: --map FILE or --ros-topic TOPIC");
+  if (static_cast<int>(!map_path.empty()) + static_cast<int>(!ros_topic.empty()) +
+          static_cast<int>(sim.has_value()) !=
+      1) {
+    return InvalidArgumentError(
+        "give exactly one map source: --map FILE, --ros-topic TOPIC or --sim KIND");
   }
+  if (sim) FLEETMAP_RETURN_IF_ERROR(sim->Validate());
   if (!ros_topic.empty() && ros_topic.rfind("rt/", 0) != 0) {
     return InvalidArgumentError("--ros-topic \"" + ros_topic +
                                 "\" is not a DDS topic of a ROS 2 topic (it starts with rt/)");
@@ -50,6 +54,11 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   // A bad map file is the user's to fix: fail before touching DDS.
   if (!o.map_path.empty()) {
     FLEETMAP_ASSIGN_OR_RETURN(node->source_, FileMapSource::Create(o.map_path));
+  }
+  if (o.sim) {
+    FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SimMapSource> sim, SimMapSource::Create(*o.sim));
+    node->sim_source_ = sim.get();
+    node->source_ = std::move(sim);
   }
 
   transport::ParticipantOptions dds = o.dds;
@@ -119,6 +128,7 @@ Status AgentNode::OnNewMap(const grid::OccupancyGrid& map) {
 
 Status AgentNode::PublishStatus() {
   status_.stamp = Clock::now();
+  if (sim_source_ != nullptr) status_.map_from_robot = sim_source_->pose();
   ++status_.sequence_number;
   return status_writer_->Write(status_);
 }

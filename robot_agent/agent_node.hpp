@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/core/robot_status.hpp"
@@ -13,6 +14,7 @@
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "robot_agent/map_source.hpp"
+#include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/tile_publisher.hpp"
 
 namespace fleetmap::agent {
@@ -24,8 +26,9 @@ enum class Wire { kTiles, kGrid };
 
 struct AgentOptions {
   RobotId robot;
-  std::string map_path;   // a ROS map_server YAML (re-read when it changes), or
-  std::string ros_topic;  // a DDS topic carrying nav_msgs/OccupancyGrid, e.g. rt/map
+  std::string map_path;           // a ROS map_server YAML (re-read when it changes), or
+  std::string ros_topic;          // a DDS topic carrying nav_msgs/OccupancyGrid, e.g. rt/map, or
+  std::optional<SimOptions> sim;  // the built-in simulated robot
   Wire wire = Wire::kTiles;
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
@@ -63,6 +66,7 @@ class AgentNode {
   RobotStatus status_;
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<MapSource> source_;
+  SimMapSource* sim_source_ = nullptr;  // source_, when it is the simulator (for the pose)
   std::unique_ptr<transport::RobotStatusWriter> status_writer_;
   std::unique_ptr<transport::OccupancyGridWriter> grid_writer_;  // Wire::kGrid
   std::unique_ptr<TilePublisher> tile_publisher_;                // Wire::kTiles

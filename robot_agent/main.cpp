@@ -36,6 +36,15 @@ int main(int argc, char** argv) {
   std::string wire = "tiles";
   app.add_option("--wire", wire, "tiles (vector tiles) or grid (nav_msgs/OccupancyGrid baseline)")
       ->check(CLI::IsMember({"tiles", "grid"}));
+  std::string sim_kind;
+  fleetmap::agent::SimOptions sim;
+  app.add_option("--sim", sim_kind,
+                 "built-in robot exploring a terrain: office, maze, unstructured");
+  app.add_option("--sim-size", sim.size, "simulated terrain side, metres");
+  app.add_option("--sim-seed", sim.seed, "simulated terrain seed (the same for the whole fleet)");
+  app.add_option("--sim-robot-index", sim.robot_index, "this robot's start among the fleet's");
+  app.add_option("--sim-robots", sim.robots, "robots in the simulated fleet");
+  app.add_option("--sim-rate", sim.scans_per_second, "simulated laser scans per second");
   app.add_option("--tile-size", options.tiles.tile_size, "tile side in metres (fleet frame)");
   app.add_option("--epsilon", options.tiles.epsilon,
                  "vector map error bound, metres (0: sqrt(2) res)");
@@ -51,6 +60,17 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   options.wire = wire == "grid" ? fleetmap::agent::Wire::kGrid : fleetmap::agent::Wire::kTiles;
+  if (!sim_kind.empty()) {
+    const auto kind = fleetmap::sim::TerrainKindFromName(sim_kind);
+    if (!kind) {
+      spdlog::error(
+          "fleetmap-agent: --sim \"{}\" is not a terrain kind (office, maze, unstructured)",
+          sim_kind);
+      return 2;
+    }
+    sim.kind = *kind;
+    options.sim = sim;
+  }
   options.fleet_from_map = PoseFrom(fleet_from_map);
   options.map_from_robot = PoseFrom(pose);
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));

@@ -197,7 +197,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
     message.robot_id = store::kFleetOwner;
     message.tile = tile.tile;
     message.revision = tile.revision;
-    message.stamp = Clock::now();
+    message.stamp = tile.source_stamp;  // lets receivers measure end-to-end latency
     message.tile_size = options_.fusion.tile_size;
     message.map = std::move(tile.map);
     StatusOr<size_t> written = fused_writer_->Write(message);

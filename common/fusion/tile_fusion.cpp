@@ -72,6 +72,7 @@ Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
     }
   }
   contribution.cells = std::move(cells);
+  state.newest_input = std::max(state.newest_input, stamp);
   to_refuse_.insert(tile);
   return Status::Ok();
 }
@@ -112,7 +113,12 @@ bool TileFusion::Refuse(const TileId& tile, TileState* state) {
   }
   state->fused = std::move(fused);
   if (max_x < 0) return false;
-  to_vectorize_.insert(tile);
+  // Every tile re-vectorized because of this change carries the change's stamp.
+  const auto mark = [&](const TileId& id) {
+    Timestamp& trigger = to_vectorize_[id];
+    trigger = std::max(trigger, state->newest_input);
+  };
+  mark(tile);
   const int margin = options_.margin_cells + 2;  // the vectorizer looks a little past its rect
   for (const TileId& offset : kNeighbourOffsets) {
     const bool reaches_x = (offset.x < 0 && min_x < margin) ||
@@ -120,7 +126,7 @@ bool TileFusion::Refuse(const TileId& tile, TileState* state) {
     const bool reaches_y = (offset.y < 0 && min_y < margin) ||
                            (offset.y > 0 && max_y >= cells - margin) || offset.y == 0;
     const TileId neighbour{tile.x + offset.x, tile.y + offset.y};
-    if (reaches_x && reaches_y && tiles_.count(neighbour) > 0) to_vectorize_.insert(neighbour);
+    if (reaches_x && reaches_y && tiles_.count(neighbour) > 0) mark(neighbour);
   }
   return true;
 }
@@ -158,13 +164,14 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
   to_refuse_.clear();
   std::vector<FusedTile> changed;
-  for (const TileId& tile : to_vectorize_) {
+  for (const auto& [tile, trigger] : to_vectorize_) {
     FLEETMAP_ASSIGN_OR_RETURN(vector_map::VectorMap map, VectorizeWithContext(tile));
     FusedTile& fused = vector_tiles_[tile];
     if (fused.revision > 0 && SameGeometry(fused.map, map)) continue;
     fused.tile = tile;
     ++fused.revision;
     fused.map = std::move(map);
+    fused.source_stamp = trigger;
     changed.push_back(fused);
   }
   to_vectorize_.clear();

@@ -21,6 +21,9 @@ struct FusedTile {
   TileId tile;
   uint32_t revision = 0;
   vector_map::VectorMap map;
+  // The newest robot tile stamp this revision reflects: a receiver's clock minus it is the
+  // update's latency from the robot that caused it.
+  Timestamp source_stamp;
 };
 
 // The fleet's fused map, tile by tile. Each robot's tile is rasterized onto the tile's fused cells;
@@ -60,6 +63,7 @@ class TileFusion {
   struct TileState {
     std::map<std::string, Contribution> robots;
     grid::OccupancyGrid fused;  // 3-state
+    Timestamp newest_input;     // the latest robot tile stamp received for this tile
   };
 
   explicit TileFusion(const FusionOptions& options);
@@ -76,7 +80,8 @@ class TileFusion {
   Timestamp epoch_;
   std::map<TileId, TileState> tiles_;
   std::set<TileId> to_refuse_;     // robot input changed
-  std::set<TileId> to_vectorize_;  // fused cells (or a neighbour's border) changed
+  // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
+  std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;
 };
 

@@ -17,7 +17,8 @@ class RobotRun {
   RobotRun(const ExplorationOptions& options, const LaserScanner& laser,
            const grid::OccupancyGrid& truth, OccupancyMapper mapper, SlamErrorModel error,
            FrontierPlanner planner, const Pose2& start,
-           const std::function<void(const ExplorationProgress&)>& on_progress)
+           const std::function<void(const ExplorationProgress&)>& on_progress,
+           const ScanObserver& on_scan)
       : options_(options),
         laser_(laser),
         truth_(truth),
@@ -26,7 +27,8 @@ class RobotRun {
         planner_(std::move(planner)),
         laser_random_(options.seed * 2246822519u + 1u),
         pose_(start),
-        on_progress_(on_progress) {
+        on_progress_(on_progress),
+        on_scan_(on_scan) {
     const double r = options.robot_radius / truth.resolution() + 1.0;
     const int reach = static_cast<int>(std::ceil(r));
     for (int dy = -reach; dy <= reach; ++dy) {
@@ -53,7 +55,8 @@ class RobotRun {
 
  private:
   bool BudgetSpent() const {
-    return result_.scans >= options_.max_scans || result_.distance >= options_.max_distance;
+    return cancelled_ || result_.scans >= options_.max_scans ||
+           result_.distance >= options_.max_distance;
   }
 
   void Scan() {
@@ -68,6 +71,7 @@ class RobotRun {
     if (on_progress_ && result_.scans % 100 == 0) {
       on_progress_({result_.scans, result_.distance, result_.goals_reached});
     }
+    if (on_scan_ && !on_scan_(result_.scans, pose_, mapper_)) cancelled_ = true;
   }
 
   // Turns in place to `yaw`, scanning every scan_rotation radians.
@@ -209,6 +213,8 @@ class RobotRun {
   Random laser_random_;
   Pose2 pose_;
   const std::function<void(const ExplorationProgress&)>& on_progress_;
+  const ScanObserver& on_scan_;
+  bool cancelled_ = false;  // the observer asked to stop
   std::vector<std::pair<int, int>> footprint_;
   double since_scan_ = 0.0;
   double turned_since_scan_ = 0.0;
@@ -243,7 +249,8 @@ StatusOr<ExplorationSimulator> ExplorationSimulator::Create(const ExplorationOpt
 
 StatusOr<ExplorationResult> ExplorationSimulator::Run(
     const grid::OccupancyGrid& truth, const Pose2& start,
-    const std::function<void(const ExplorationProgress&)>& on_progress) const {
+    const std::function<void(const ExplorationProgress&)>& on_progress,
+    const ScanObserver& on_scan) const {
   if (truth.origin().yaw != 0.0 || truth.empty()) {
     return InvalidArgumentError("exploration truth grid must be non-empty with origin yaw 0");
   }
@@ -263,7 +270,7 @@ StatusOr<ExplorationResult> ExplorationSimulator::Run(
       SlamErrorModel::Create(options_.error, options_.seed * 3266489917u + 7u));
   FLEETMAP_ASSIGN_OR_RETURN(FrontierPlanner planner, FrontierPlanner::Create(options_.frontier));
   RobotRun run(options_, laser_, truth, std::move(mapper), std::move(error), std::move(planner),
-               start, on_progress);
+               start, on_progress, on_scan);
   return run.Explore();
 }
 

@@ -61,6 +61,11 @@ struct ExplorationResult {
   bool explored = false;  // false when a budget ended the run
 };
 
+// After every scan of a live run: how many scans so far, the robot's true pose, and its map as it
+// stands (call ToGrid() for a snapshot). Return false to end the run early (explored = false).
+using ScanObserver =
+    std::function<bool(int scans, const Pose2& pose, const OccupancyMapper& mapper)>;
+
 class ExplorationSimulator {
  public:
   // Errors (kInvalidArgument) name the option (laser, mapper, error model, frontier, budgets).
@@ -70,9 +75,11 @@ class ExplorationSimulator {
 
   // Explores `truth` from `start`. Errors (kInvalidArgument): start outside the grid or not free,
   // truth with a rotated origin. `on_progress` (optional) is called after every 100th scan.
+  // `on_scan` (optional) is called after every scan, e.g. to publish the map live.
   StatusOr<ExplorationResult> Run(
       const grid::OccupancyGrid& truth, const Pose2& start,
-      const std::function<void(const ExplorationProgress&)>& on_progress = {}) const;
+      const std::function<void(const ExplorationProgress&)>& on_progress = {},
+      const ScanObserver& on_scan = {}) const;
 
  private:
   ExplorationSimulator(const ExplorationOptions& options, LaserScanner laser)

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/sim/terrain.hpp"
+#include "robot_agent/map_source.hpp"
+
+namespace fleetmap::agent {
+
+struct SimOptions {
+  sim::TerrainKind kind = sim::TerrainKind::kOffice;
+  double size = 40.0;   // metres
+  uint32_t seed = 1;    // the terrain's; every robot of a fleet uses the same
+  int robot_index = 0;  // which of the fleet's spread-out start poses is this robot's
+  int robots = 1;
+  double resolution = 0.05;
+  double scans_per_second = 10.0;  // real-time pace of the simulated laser
+  int scans_per_map = 5;           // a map snapshot every this many scans
+
+  Status Validate() const;
+};
+
+// The built-in robot: explores a seeded terrain (common/sim) on its own thread at a real-time
+// pace and hands out its SLAM-like map every few scans. The map frame is the terrain's frame,
+// shared by every simulated robot (fleet_from_map = identity). Poll() and pose() from the agent's
+// thread.
+class SimMapSource : public MapSource {
+ public:
+  static StatusOr<std::unique_ptr<SimMapSource>> Create(const SimOptions& options);
+  ~SimMapSource() override;
+
+  std::optional<grid::OccupancyGrid> Poll() override;
+  std::string Describe() const override;
+  Pose2 pose() const;
+  bool finished() const { return finished_.load(); }
+
+ private:
+  explicit SimMapSource(const SimOptions& options) : options_(options) {}
+  void Explore(grid::OccupancyGrid truth, Pose2 start);
+
+  SimOptions options_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> finished_{false};
+  mutable std::mutex mutex_;
+  std::optional<grid::OccupancyGrid> latest_;  // guarded by mutex_
+  Pose2 pose_;                                 // guarded by mutex_
+};
+
+}  // namespace fleetmap::agent
