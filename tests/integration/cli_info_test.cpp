@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -15,10 +15,10 @@ namespace {
 using ::testing::HasSubstr;
 
 // Runs the real fleetmap binary with `args`.
-testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
   argv.insert(argv.end(), args.begin(), args.end());
-  return testing::RunCommand(std::move(argv));
+  return process::RunCommand(std::move(argv));
 }
 
 std::string DataPath(const std::string& name) {
@@ -26,7 +26,7 @@ std::string DataPath(const std::string& name) {
 }
 
 TEST(CliInfoTest, PrintsJsonSummary) {
-  const testing::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--json"});
+  const process::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
   const nlohmann::json json = nlohmann::json::parse(run.out);
@@ -54,7 +54,7 @@ TEST(CliInfoTest, PrintsJsonSummary) {
 }
 
 TEST(CliInfoTest, PrintsTextSummary) {
-  const testing::CommandResult run = RunFleetmap({"info", DataPath("raw_4x3.yaml")});
+  const process::CommandResult run = RunFleetmap({"info", DataPath("raw_4x3.yaml")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("size:       4 x 3 cells (12)"));
   EXPECT_THAT(run.out, HasSubstr("resolution: 0.5 m/cell"));
@@ -92,7 +92,7 @@ TEST(CliInfoTest, BadInputsExitWithCode2AndNameTheFile) {
     for (const bool json : {false, true}) {
       std::vector<std::string> args = {"info", DataPath(c.yaml)};
       if (json) args.push_back("--json");
-      const testing::CommandResult run = RunFleetmap(args);
+      const process::CommandResult run = RunFleetmap(args);
       EXPECT_EQ(run.exit_code, 2) << c.yaml;
       EXPECT_EQ(run.out, "") << c.yaml;
       EXPECT_THAT(run.err, HasSubstr(c.message)) << c.yaml;
@@ -101,7 +101,7 @@ TEST(CliInfoTest, BadInputsExitWithCode2AndNameTheFile) {
 }
 
 TEST(CliInfoTest, OptionsReachTheLoader) {
-  testing::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
+  process::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("more than the limit of 11"));
   run = RunFleetmap({"info", DataPath("escaping_path.yaml"), "--allow-outside-dir"});
@@ -112,11 +112,11 @@ TEST(CliInfoTest, OptionsReachTheLoader) {
 TEST(CliInfoTest, UsageErrorsExitNonZero) {
   for (const std::vector<std::string>& args :
        std::vector<std::vector<std::string>>{{}, {"info"}, {"nonsense"}, {"info", "--bogus"}}) {
-    const testing::CommandResult run = RunFleetmap(args);
+    const process::CommandResult run = RunFleetmap(args);
     EXPECT_NE(run.exit_code, 0) << ::testing::PrintToString(args);
     EXPECT_NE(run.err, "") << ::testing::PrintToString(args);
   }
-  const testing::CommandResult help = RunFleetmap({"--help"});
+  const process::CommandResult help = RunFleetmap({"--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_THAT(help.out, HasSubstr("info"));
 }
@@ -126,7 +126,7 @@ TEST(CliInfoTest, EverySharedMapHasInfo) {
   if (!std::filesystem::is_directory(maps_dir)) GTEST_SKIP() << "no shared maps";
   for (const auto& entry : std::filesystem::directory_iterator(maps_dir)) {
     if (entry.path().extension() != ".yaml") continue;
-    const testing::CommandResult run = RunFleetmap({"info", entry.path().string(), "--json"});
+    const process::CommandResult run = RunFleetmap({"info", entry.path().string(), "--json"});
     ASSERT_EQ(run.exit_code, 0) << entry.path() << ": " << run.err;
     const nlohmann::json json = nlohmann::json::parse(run.out);
     const int64_t cells = json["cells"];

@@ -10,17 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
 
-testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
   argv.insert(argv.end(), args.begin(), args.end());
-  return testing::RunCommand(std::move(argv), std::chrono::seconds(120));
+  return process::RunCommand(std::move(argv), std::chrono::seconds(120));
 }
 
 std::string TempDir(const std::string& name) {
@@ -42,7 +42,7 @@ std::string ReadFile(const std::string& path) {
 TEST(CliSimTest, TerrainWritesMapAndGeoJsonReproducibly) {
   const std::string dir = TempDir("terrain");
   for (const char* name : {"a", "b"}) {
-    const testing::CommandResult run =
+    const process::CommandResult run =
         RunFleetmap({"terrain", "--kind", "office", "--size", "12", "--seed", "7", "-o",
                      dir + "/" + name + ".yaml", "--geojson", dir + "/" + name + ".geojson"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -50,7 +50,7 @@ TEST(CliSimTest, TerrainWritesMapAndGeoJsonReproducibly) {
   EXPECT_EQ(ReadFile(dir + "/a.pgm"), ReadFile(dir + "/b.pgm"));
   EXPECT_EQ(ReadFile(dir + "/a.geojson"), ReadFile(dir + "/b.geojson"));
   EXPECT_THAT(ReadFile(dir + "/a.geojson"), HasSubstr("\"door\""));
-  const testing::CommandResult info = RunFleetmap({"info", dir + "/a.yaml"});
+  const process::CommandResult info = RunFleetmap({"info", dir + "/a.yaml"});
   EXPECT_THAT(info.out, HasSubstr("240 x 240 cells"));
   std::filesystem::remove_all(dir);
 }
@@ -75,7 +75,7 @@ TEST(CliSimTest, BadInputNamesTheOptionAndExitsTwo) {
       {{"bench", "paper", "--out", dir, "--laser-fov", "0"}, "--laser-fov"},
   };
   for (const Case& c : cases) {
-    const testing::CommandResult run = RunFleetmap(c.args);
+    const process::CommandResult run = RunFleetmap(c.args);
     EXPECT_EQ(run.exit_code, 2) << c.option << ": " << run.output();
     EXPECT_THAT(run.err, HasSubstr(c.option));
   }
@@ -85,7 +85,7 @@ TEST(CliSimTest, BadInputNamesTheOptionAndExitsTwo) {
 
 TEST(CliSimTest, BenchPaperWritesReportCsvAndCharts) {
   const std::string dir = TempDir("paper");
-  const testing::CommandResult run = RunFleetmap(
+  const process::CommandResult run = RunFleetmap(
       {"bench", "paper", "--out", dir, "--sizes", "10", "--kinds", "office,maze", "--seed", "3"});
   ASSERT_EQ(run.exit_code, 0) << run.output();
   EXPECT_THAT(run.out, HasSubstr("| office 10 m |"));

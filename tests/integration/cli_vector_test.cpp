@@ -16,17 +16,17 @@
 #include "common/grid/occupancy_grid.hpp"
 #include "common/transport/vmap_file.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
 
-testing::CommandResult RunFleetmap(const std::vector<std::string>& args) {
+process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
   argv.insert(argv.end(), args.begin(), args.end());
-  return testing::RunCommand(std::move(argv));
+  return process::RunCommand(std::move(argv));
 }
 
 // A fresh directory per test and process, so parallel ctest runs never share files.
@@ -79,7 +79,7 @@ TEST(CliVectorTest, VectorizeValidateRasterizeCompareRoundTrip) {
   const std::string map = Save(Room(), dir, "room");
   const std::string vmap = dir + "/room.vmap";
 
-  testing::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
+  process::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary = nlohmann::json::parse(run.out);
   EXPECT_GT(summary["vertices"].get<int>(), 0);
@@ -149,7 +149,7 @@ TEST(CliVectorTest, ValidateExitsOneOnABrokenVmap) {
   const std::string vmap = dir + "/broken.vmap";
   ASSERT_TRUE(transport::WriteVmapFile(broken, vmap).ok());
 
-  testing::CommandResult run = RunFleetmap({"validate", map, vmap, "--json"});
+  process::CommandResult run = RunFleetmap({"validate", map, vmap, "--json"});
   EXPECT_EQ(run.exit_code, 1) << run.err;
   const nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_FALSE(report["valid"].get<bool>());
@@ -167,7 +167,7 @@ TEST(CliVectorTest, CompareSaysUndefinedForAnAllUnknownMap) {
   const grid::OccupancyGrid unknown(room.width(), room.height(), room.resolution(), room.origin());
   const std::string truth = Save(room, dir, "room");
   const std::string robot = Save(unknown, dir, "unknown");
-  testing::CommandResult run = RunFleetmap({"compare", robot, truth});
+  process::CommandResult run = RunFleetmap({"compare", robot, truth});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("OPDF undefined"));
   EXPECT_THAT(run.out, HasSubstr("UPDF undefined"));
@@ -198,7 +198,7 @@ TEST(CliVectorTest, DegenerateGridsWork) {
   for (const Case& c : cases) {
     const std::string map = Save(c.grid, dir, c.name);
     const std::string vmap = dir + "/" + c.name + ".vmap";
-    testing::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
+    process::CommandResult run = RunFleetmap({"vectorize", map, "-o", vmap, "--json"});
     ASSERT_EQ(run.exit_code, 0) << c.name << ": " << run.err;
     const nlohmann::json summary = nlohmann::json::parse(run.out);
     run = RunFleetmap({"validate", map, vmap});
@@ -230,7 +230,7 @@ TEST(CliVectorTest, GeoJsonHasTheRequiredStructure) {
   const std::string dir = TestDir();
   const std::string map = Save(Room(), dir, "room");
   const std::string geojson = dir + "/room.geojson";
-  const testing::CommandResult run =
+  const process::CommandResult run =
       RunFleetmap({"vectorize", map, "-o", dir + "/room.vmap", "--geojson", geojson, "--svg",
                    dir + "/room.svg", "--png", dir + "/room.png"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -270,7 +270,7 @@ TEST(CliVectorTest, RenderDrawsVectorMapsAndGrids) {
   ASSERT_EQ(RunFleetmap({"vectorize", map, "-o", vmap}).exit_code, 0);
   for (const auto& [input, output] : std::vector<std::pair<std::string, std::string>>{
            {vmap, "v.svg"}, {vmap, "v.png"}, {map, "g.svg"}, {map, "g.png"}}) {
-    const testing::CommandResult run = RunFleetmap({"render", input, "-o", dir + "/" + output});
+    const process::CommandResult run = RunFleetmap({"render", input, "-o", dir + "/" + output});
     ASSERT_EQ(run.exit_code, 0) << output << ": " << run.err;
     const std::string bytes = ReadText(dir + "/" + output);
     if (output.ends_with(".svg")) {
@@ -344,7 +344,7 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       {{"bench", "vectorize", "--maps", dir, "--runs", "3"}, {"--runs must be >= 5"}},
   };
   for (const Case& c : cases) {
-    const testing::CommandResult run = RunFleetmap(c.args);
+    const process::CommandResult run = RunFleetmap(c.args);
     const std::string label = ::testing::PrintToString(c.args);
     EXPECT_EQ(run.exit_code, 2) << label << "\n" << run.out << run.err;
     EXPECT_EQ(run.out, "") << label;
@@ -360,7 +360,7 @@ TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
   Save(Room(), dir + "/maps", "room");
   const std::string json_path = dir + "/bench.json";
   const std::string csv_path = dir + "/bench.csv";
-  const testing::CommandResult run = RunFleetmap(
+  const process::CommandResult run = RunFleetmap(
       {"bench", "vectorize", "--maps", dir + "/maps", "--json", json_path, "--csv", csv_path});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("| room |"));

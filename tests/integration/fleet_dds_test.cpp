@@ -19,15 +19,15 @@
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 namespace fleetmap {
 namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-using testing::RandomDomainId;
-using testing::Subprocess;
+using process::RandomDomainId;
+using process::Subprocess;
 
 const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
 const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
@@ -384,14 +384,14 @@ TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {
 
 TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
   const auto result =
-      testing::RunCommand({kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml",
+      process::RunCommand({kAgent, "--robot-id", "alpha", "--map", "/nonexistent/map.yaml",
                            "--domain", std::to_string(domain_), "--localhost-only"});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output().find("/nonexistent/map.yaml"), std::string::npos) << result.output();
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
-  const auto result = testing::RunCommand({kAgent, "--robot-id", "no/slash", "--map", map_path_});
+  const auto result = process::RunCommand({kAgent, "--robot-id", "no/slash", "--map", map_path_});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output().find("no/slash"), std::string::npos) << result.output();
 }

@@ -16,7 +16,7 @@
 #include "common/transport/topics.hpp"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 namespace fleetmap {
 namespace {
@@ -51,7 +51,7 @@ nav_msgs::msg::dds_::OccupancyGrid_ Grid(uint32_t width, uint32_t height, size_t
 // `keep_alive` is called on every round too (to renew the robot's status while its map goes).
 template <typename Sample>
 bool WriteUntilServerSays(
-    dds::DataWriter* writer, Sample& sample, const testing::Subprocess& server,
+    dds::DataWriter* writer, Sample& sample, const process::Subprocess& server,
     const std::string& text, const std::function<void()>& keep_alive = [] {}) {
   const auto deadline = std::chrono::steady_clock::now() + kDeadline;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -89,11 +89,11 @@ class RawOccupancyGridType : public dds::TopicDataType {
 };
 
 TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
-  const int domain = testing::RandomDomainId();
+  const int domain = process::RandomDomainId();
   const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
                                                   {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  testing::Subprocess server({kServer, "--duration", "60"}, env);
-  testing::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap, "--wire", "grid"}, env);
+  process::Subprocess server({kServer, "--duration", "60"}, env);
+  process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap, "--wire", "grid"}, env);
   ASSERT_TRUE(server.WaitForOutput("map from alpha", kDeadline)) << server.Output();
 
   transport::ParticipantOptions options;

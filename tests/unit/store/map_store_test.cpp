@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 #include "tests/unit/store/writer_batches.hpp"
 
 namespace fleetmap::store {
@@ -355,7 +355,7 @@ int LastCommittedBatch(const std::string& output) {
 }
 
 TEST_F(MapStoreTest, EveryReportedBatchSurvivesSigkill) {
-  fleetmap::testing::Subprocess writer({FLEETMAP_STORE_WRITER_HELPER, path_});
+  fleetmap::process::Subprocess writer({FLEETMAP_STORE_WRITER_HELPER, path_});
   ASSERT_TRUE(writer.started());
   ASSERT_TRUE(writer.WaitForOutput("committed 25\n", std::chrono::seconds(20))) << writer.Output();
   writer.Signal(SIGKILL);

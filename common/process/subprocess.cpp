@@ -1,4 +1,4 @@
-#include "tests/support/subprocess.hpp"
+#include "common/process/subprocess.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -15,7 +15,7 @@
 
 extern char** environ;
 
-namespace fleetmap::testing {
+namespace fleetmap::process {
 namespace {
 
 std::vector<std::string> MergedEnvironment(const std::map<std::string, std::string>& extra) {
@@ -136,4 +136,27 @@ int RandomDomainId() {
   return 1 + static_cast<int>(random() % 200);
 }
 
-}  // namespace fleetmap::testing
+std::optional<ProcessUsage> ReadUsage(pid_t pid) {
+  const std::string proc = "/proc/" + std::to_string(pid);
+  std::ifstream stat(proc + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return std::nullopt;
+  // Fields after the command name, which is in parentheses and may hold spaces.
+  const size_t close = line.rfind(')');
+  if (close == std::string::npos) return std::nullopt;
+  std::istringstream fields(line.substr(close + 2));
+  std::vector<std::string> values;
+  for (std::string value; fields >> value;) values.push_back(value);
+  // utime and stime are fields 14 and 15 of the whole line: 12 and 13 after the name.
+  if (values.size() < 13) return std::nullopt;
+  const double ticks = static_cast<double>(sysconf(_SC_CLK_TCK));
+  ProcessUsage usage;
+  usage.cpu_seconds = (std::stod(values[11]) + std::stod(values[12])) / ticks;
+  std::ifstream status(proc + "/status");
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) usage.peak_rss_bytes = std::stoll(line.substr(6)) * 1024;
+  }
+  return usage;
+}
+
+}  // namespace fleetmap::process

@@ -3,15 +3,16 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace fleetmap::testing {
+namespace fleetmap::process {
 
-// A real child process for integration tests: started with posix_spawn, its stdout and stderr
-// captured in temporary files that the test can poll. Killed (SIGKILL) on destruction if still
+// A child process (a fleetmap-server, an agent, a tool under test): started with posix_spawn, its
+// stdout and stderr captured in temporary files that the parent can poll. Killed (SIGKILL) on destruction if still
 // running. Use from one thread.
 class Subprocess {
  public:
@@ -55,7 +56,15 @@ struct CommandResult {
 CommandResult RunCommand(std::vector<std::string> argv,
                          std::chrono::milliseconds timeout = std::chrono::seconds(60));
 
-// A DDS domain id for one test, random so that tests running in parallel never meet.
+// A DDS domain id for one run or test, random so that runs in parallel never meet.
 int RandomDomainId();
 
-}  // namespace fleetmap::testing
+// Resource use of a running process, from /proc: CPU seconds (user + system) and peak resident
+// memory (VmHWM), or nullopt once it is gone.
+struct ProcessUsage {
+  double cpu_seconds = 0.0;
+  int64_t peak_rss_bytes = 0;
+};
+std::optional<ProcessUsage> ReadUsage(pid_t pid);
+
+}  // namespace fleetmap::process
