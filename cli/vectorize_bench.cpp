@@ -144,13 +144,22 @@ int FlipCells(const grid::CellRect& rect, grid::OccupancyGrid* grid) {
   return flipped;
 }
 
-Status MeasureTiled(const grid::OccupancyGrid& grid, const VectorizeBenchOptions& options,
-                    VectorizeBenchRow* row) {
-  vector_map::TiledVectorizeOptions tiled_options;
-  tiled_options.tile_size = options.tile_size;
+vector_map::TiledVectorizeOptions TiledOptions(const VectorizeBenchOptions& options,
+                                               bool free_space) {
+  vector_map::TiledVectorizeOptions tiled;
+  tiled.tile_size = options.tile_size;
+  tiled.vectorizer.extract_free_space = free_space;
+  return tiled;
+}
+
+// The full .vmap as `fleetmap vectorize` writes it, and what a reader of the file gets: decode,
+// validate, rasterize over G's geometry, compare with G. Returns the tiles for the update test.
+StatusOr<vector_map::TiledVectorMap> MeasureVmap(const grid::OccupancyGrid& grid,
+                                                 const VectorizeBenchOptions& options,
+                                                 VectorizeBenchRow* row) {
   FLEETMAP_ASSIGN_OR_RETURN(
       vector_map::TiledVectorMap tiled,
-      vector_map::VectorizeTiled(grid, Transform2::Identity(), tiled_options));
+      vector_map::VectorizeTiled(grid, Transform2::Identity(), TiledOptions(options, true)));
   row->vmap_tiles = tiled.tiles.size();
   FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes,
                             EncodeVmapBytes(&tiled, &row->vmap_dropped_free_rings));
@@ -158,7 +167,6 @@ Status MeasureTiled(const grid::OccupancyGrid& grid, const VectorizeBenchOptions
   row->vmap_raw = full.raw;
   row->vmap_zstd = full.zstd;
 
-  // What a reader of the file gets: decode, validate, rasterize over G's geometry, compare.
   FLEETMAP_ASSIGN_OR_RETURN(const vector_map::TiledVectorMap decoded,
                             transport::DecodeVmap(bytes, row->name + ".vmap"));
   const vector_map::VectorMap merged = decoded.Merged();
@@ -171,34 +179,41 @@ Status MeasureTiled(const grid::OccupancyGrid& grid, const VectorizeBenchOptions
   row->round_trip_ms = scores.map_score;
   row->round_trip_opdf = scores.occupied_picture_distance;
   row->round_trip_updf = scores.unoccupied_picture_distance;
+  return tiled;
+}
 
-  vector_map::TiledVectorizeOptions obstacles_options = tiled_options;
-  obstacles_options.vectorizer.extract_free_space = false;
+// The .vmap without free space.
+Status MeasureObstacleVmap(const grid::OccupancyGrid& grid, const VectorizeBenchOptions& options,
+                           VectorizeBenchRow* row) {
   FLEETMAP_ASSIGN_OR_RETURN(
       const vector_map::TiledVectorMap obstacles,
-      vector_map::VectorizeTiled(grid, Transform2::Identity(), obstacles_options));
-  FLEETMAP_ASSIGN_OR_RETURN(const std::string obstacle_bytes, transport::EncodeVmap(obstacles));
-  FLEETMAP_ASSIGN_OR_RETURN(const EncodedSizes obstacle_sizes, Sizes(obstacle_bytes));
-  row->vmap_obstacles_raw = obstacle_sizes.raw;
-  row->vmap_obstacles_zstd = obstacle_sizes.zstd;
+      vector_map::VectorizeTiled(grid, Transform2::Identity(), TiledOptions(options, false)));
+  FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes, transport::EncodeVmap(obstacles));
+  FLEETMAP_ASSIGN_OR_RETURN(const EncodedSizes sizes, Sizes(bytes));
+  row->vmap_obstacles_raw = sizes.raw;
+  row->vmap_obstacles_zstd = sizes.zstd;
+  return Status::Ok();
+}
 
-  // One changed tile: flip a few cells, re-vectorize that tile only. Each run flips the same
-  // cells back or forth, so every run sees a real change.
+// One changed tile: flip a few cells, re-vectorize that tile only. Each run flips the same cells
+// back or forth, so every run sees a real change.
+Status MeasureTileUpdate(const grid::OccupancyGrid& grid, const VectorizeBenchOptions& options,
+                         vector_map::TiledVectorMap* tiled, VectorizeBenchRow* row) {
   FLEETMAP_ASSIGN_OR_RETURN(const auto rects,
                             grid::TileCellRects(grid, Transform2::Identity(), options.tile_size));
   const auto [tile, rect] = BusiestTile(grid, rects);
   row->changed_tile = tile;
+  const vector_map::TiledVectorizeOptions tiled_options = TiledOptions(options, true);
   grid::OccupancyGrid changed = grid;
-  Status status;
   std::vector<double> times;
-  for (int i = 0; i < options.runs && status.ok(); ++i) {
+  for (int i = 0; i < options.runs; ++i) {
     row->changed_cells = FlipCells(rect, &changed);
     const Clock::time_point start = Clock::now();
-    status =
-        vector_map::RevectorizeTile(changed, Transform2::Identity(), tile, tiled_options, &tiled);
+    const Status status =
+        vector_map::RevectorizeTile(changed, Transform2::Identity(), tile, tiled_options, tiled);
     times.push_back(MillisecondsSince(start));
+    FLEETMAP_RETURN_IF_ERROR(status);
   }
-  FLEETMAP_RETURN_IF_ERROR(status);
   row->revectorize_tile_ms = Median(std::move(times));
   return Status::Ok();
 }
@@ -250,7 +265,9 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
   row.grid_gzip = grid_sizes.cells.gzip;
   row.grid_zstd = grid_sizes.cells.zstd;
   row.grid_png = grid_sizes.png;
-  FLEETMAP_RETURN_IF_ERROR(MeasureTiled(grid, options, &row));
+  FLEETMAP_ASSIGN_OR_RETURN(vector_map::TiledVectorMap tiled, MeasureVmap(grid, options, &row));
+  FLEETMAP_RETURN_IF_ERROR(MeasureObstacleVmap(grid, options, &row));
+  FLEETMAP_RETURN_IF_ERROR(MeasureTileUpdate(grid, options, &tiled, &row));
   return row;
 }
 
