@@ -6,21 +6,65 @@ namespace fleetmap::vector_map {
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
                                           const grid::StateThresholds& thresholds,
-                                          double epsilon_cells) {
+                                          const FreeSpaceOptions& options) {
+  const double epsilon_cells = options.epsilon_cells;
   std::vector<CellPolygon> polygons;
   if (rect.empty()) return polygons;
-  cv::Mat mask(rect.height, rect.width, CV_8UC1);
+  // kIn: free (must come back free); kOut: unknown and not painted (must not come back free);
+  // kAny: painted by an obstacle anyway, or occupied (wrong as free or as unknown alike).
+  constexpr uint8_t kOut = 0;
+  constexpr uint8_t kIn = 1;
+  constexpr uint8_t kAny = 2;
+  cv::Mat cls(rect.height, rect.width, CV_8UC1);
   bool any = false;
+  bool any_dont_care = false;
   for (int y = 0; y < rect.height; ++y) {
-    uint8_t* row = mask.ptr<uint8_t>(y);
+    uint8_t* row = cls.ptr<uint8_t>(y);
+    const int8_t* cells =
+        grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
+    const uint8_t* painted =
+        options.painted != nullptr ? options.painted->data() + static_cast<size_t>(y) * rect.width
+                                   : nullptr;
     for (int x = 0; x < rect.width; ++x) {
-      const bool free =
-          grid::StateOf(grid.at(rect.x0 + x, rect.y0 + y), thresholds) == grid::CellState::kFree;
-      row[x] = free ? 255 : 0;
-      any = any || free;
+      const grid::CellState state = grid::StateOf(cells[x], thresholds);
+      if (state == grid::CellState::kFree) {
+        row[x] = kIn;
+        any = true;
+      } else if ((painted != nullptr && painted[x] != 0) || state == grid::CellState::kOccupied) {
+        row[x] = kAny;
+        any_dont_care = true;
+      } else {
+        row[x] = kOut;
+      }
     }
   }
   if (!any) return polygons;
+  cv::Mat mask = cls == kIn;
+  if (any_dont_care) {
+    // Don't-care cells join the region only one cell or more away from a must-out cell: outlines
+    // simplified at epsilon then stray into don't-care cells, never into must-out ones.
+    cv::Mat near_out;
+    cv::dilate(cls == kOut, near_out, cv::Mat::ones(3, 3, CV_8UC1));
+    mask |= (cls == kAny) & ~near_out;
+    // Components without a free cell are not free space.
+    cv::Mat labels;
+    const int count = cv::connectedComponents(mask, labels, 8, CV_32S);
+    std::vector<uint8_t> keep(static_cast<size_t>(count), 0);
+    for (int y = 0; y < rect.height; ++y) {
+      const uint8_t* row = cls.ptr<uint8_t>(y);
+      const int* label = labels.ptr<int>(y);
+      for (int x = 0; x < rect.width; ++x) {
+        if (row[x] == kIn) keep[label[x]] = 1;
+      }
+    }
+    for (int y = 0; y < rect.height; ++y) {
+      uint8_t* row = mask.ptr<uint8_t>(y);
+      const int* label = labels.ptr<int>(y);
+      for (int x = 0; x < rect.width; ++x) {
+        if (row[x] != 0 && keep[label[x]] == 0) row[x] = 0;
+      }
+    }
+  }
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
@@ -37,7 +81,10 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     CellPolygon polygon;
     polygon.outer = convert(contours[i]);
     for (int child = hierarchy[i][2]; child >= 0; child = hierarchy[child][0]) {
-      polygon.holes.push_back(convert(contours[child]));
+      auto hole = convert(contours[child]);
+      // A hole simplified to a point or a line encloses no cell: it would cost bytes for nothing.
+      if (hole.size() < 3) continue;
+      polygon.holes.push_back(std::move(hole));
     }
     polygons.push_back(std::move(polygon));
   }

@@ -4,7 +4,16 @@
 // (CellFrame). Outlines pass through the centres of the region's boundary cells (OpenCV border
 // following) and are simplified with Douglas-Peucker at `epsilon_cells`; the Rasterizer fills a
 // polygon including its outline, which rebuilds an unsimplified region exactly.
+//
+// The region is not just the free cells. The Rasterizer paints obstacles over free space, so the
+// cells it will paint (`painted`) and the occupied cells (wrong as free or as unknown alike) are
+// "don't care": they join the region wherever they are at least one cell away from a must-stay-
+// unknown cell. Then an obstacle inside free space costs no hole, a wall between free and unknown
+// space pulls the outline to its far side only where that is safe, and Douglas-Peucker errors of up
+// to epsilon land in don't-care cells rather than in unknown ones. Components without a free cell
+// are dropped, and so are holes that simplify to fewer than 3 vertices (they enclose no cell).
 
+#include <cstdint>
 #include <vector>
 
 #include "common/core/types.hpp"
@@ -18,8 +27,15 @@ struct CellPolygon {
   std::vector<std::vector<Point2>> holes;
 };
 
+struct FreeSpaceOptions {
+  double epsilon_cells = 1.0;
+  // One byte per cell of the rectangle (row-major), non-zero where the rasterizer paints an
+  // obstacle anyway (PaintedCells); such cells may fall inside or outside the polygons. Null: none.
+  const std::vector<uint8_t>* painted = nullptr;
+};
+
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
                                           const grid::StateThresholds& thresholds,
-                                          double epsilon_cells);
+                                          const FreeSpaceOptions& options);
 
 }  // namespace fleetmap::vector_map

@@ -11,6 +11,7 @@
 #include "common/vector_map/free_space_extractor.hpp"
 #include "common/vector_map/half_width.hpp"
 #include "common/vector_map/lattice.hpp"
+#include "common/vector_map/painted_cells.hpp"
 #include "common/vector_map/paper_vectorizer.hpp"
 
 namespace fleetmap::vector_map {
@@ -92,8 +93,21 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   }
   if (options_.extract_free_space) {
     const double free_eps = options_.free_epsilon > 0.0 ? options_.free_epsilon : epsilon;
+    FreeSpaceOptions free_options;
+    free_options.epsilon_cells = free_eps / resolution;
+    // The cells the rasterizer will paint for these obstacles, from the emitted (snapped)
+    // vertices and half widths, exactly as a reader sees them.
+    std::vector<CellPolyline> emitted(map.obstacles.size());
+    std::vector<double> radii(map.obstacles.size());
+    for (size_t k = 0; k < map.obstacles.size(); ++k) {
+      for (const Point2& p : map.obstacles[k].points) emitted[k].points.push_back(frame.ToCell(p));
+      emitted[k].closed = map.obstacles[k].closed;
+      radii[k] = map.obstacles[k].half_width / resolution;
+    }
+    const std::vector<uint8_t> painted = PaintedCells(rect, emitted, radii, 0.5);
+    free_options.painted = &painted;
     for (const auto& polygon :
-         ExtractFreeSpace(grid, rect, options_.thresholds, free_eps / resolution)) {
+         ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
       FreePolygon out;
       for (const Point2& p : polygon.outer) out.outer.push_back(lattice.Snap(frame.ToMap(p)));
       for (const auto& hole : polygon.holes) {
