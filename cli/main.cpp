@@ -4,6 +4,7 @@
 
 #include "cli/exit_codes.hpp"
 #include "cli/info_command.hpp"
+#include "cli/sim_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/bench_paper_command.hpp"
 #include "cli/compare_command.hpp"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = fleetmap::cli::kExitOk;
   fleetmap::cli::AddInfoCommand(app, &exit_code);
+  fleetmap::cli::AddSimCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::cli::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);
