@@ -86,6 +86,71 @@ TEST(RasterizerTest, FreePolygonWithHoleRebuildsTheRegion) {
   EXPECT_EQ(*Rasterizer().Rasterize(map, grid), grid);
 }
 
+// Free space may overlap obstacles (the rasterizer paints them over it), never unknown space: with
+// outlines left unsimplified, no cell the grid calls free comes back unknown and no unknown cell
+// comes back free. (At free_epsilon the outline may cut a corner between free and unknown cells.)
+void ExpectFreeSpaceKept(const OccupancyGrid& grid, const OccupancyGrid& back) {
+  int lost_free = 0;
+  int invented_free = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const CellState was = grid.StateAt(x, y);
+      const CellState now = back.StateAt(x, y);
+      lost_free += was == CellState::kFree && now == CellState::kUnknown ? 1 : 0;
+      invented_free += was == CellState::kUnknown && now == CellState::kFree ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(lost_free, 0);
+  EXPECT_EQ(invented_free, 0);
+}
+
+TEST(RasterizerTest, ObstaclesInsideFreeSpaceCostNoHoles) {
+  // A room (walls between free and unknown space) with a wall stub, a pillar and a speck inside.
+  OccupancyGrid grid(60, 40, 0.05, {}, grid::kUnknownValue);
+  testing::FillRect(grid, 5, 5, 54, 34, grid::kOccupiedValue);
+  testing::FillRect(grid, 6, 6, 53, 33, grid::kFreeValue);
+  testing::FillRect(grid, 20, 6, 20, 20, grid::kOccupiedValue);
+  testing::FillRect(grid, 35, 15, 37, 17, grid::kOccupiedValue);
+  grid.at(45, 28) = grid::kOccupiedValue;
+  const VectorMap map = *Vectorizer().Vectorize(grid);
+  ASSERT_EQ(map.free_space.size(), 1u);
+  EXPECT_TRUE(map.free_space[0].holes.empty());
+  // The outline may run inside the walls, so a rectangle needs no more than its corners.
+  EXPECT_LE(map.free_space[0].outer.size(), 6u);
+  ExpectFreeSpaceKept(grid, *Rasterizer().Rasterize(map, grid));
+  VectorizerOptions exact;
+  exact.free_epsilon = 0.001;
+  const VectorMap exact_map = *Vectorizer(exact).Vectorize(grid);
+  EXPECT_TRUE(exact_map.free_space[0].holes.empty());
+  ExpectFreeSpaceKept(grid, *Rasterizer().Rasterize(exact_map, grid));
+}
+
+TEST(RasterizerTest, UnknownHoleNextToAWallStaysUnknown) {
+  OccupancyGrid grid(40, 30, 0.05, {}, grid::kFreeValue);
+  testing::FillRect(grid, 10, 10, 25, 10, grid::kOccupiedValue);   // a wall
+  testing::FillRect(grid, 14, 11, 20, 15, grid::kUnknownValue);    // unseen space behind it
+  testing::FillRect(grid, 30, 20, 33, 23, grid::kUnknownValue);    // an unseen patch
+  VectorizerOptions exact;
+  exact.free_epsilon = 0.001;
+  const VectorMap map = *Vectorizer(exact).Vectorize(grid);
+  ASSERT_EQ(map.free_space.size(), 1u);
+  EXPECT_EQ(map.free_space[0].holes.size(), 2u);
+  ExpectFreeSpaceKept(grid, *Rasterizer().Rasterize(map, grid));
+}
+
+TEST(RasterizerTest, FreeSpaceOfAFloorPlanIsCheap) {
+  const OccupancyGrid grid = testing::FloorPlan();
+  const VectorMap map = *Vectorizer().Vectorize(grid);
+  size_t rings = 0;
+  for (const FreePolygon& polygon : map.free_space) rings += 1 + polygon.holes.size();
+  // Measured: 2 rings, 8 vertices (the room and the space beyond its open side; no holes).
+  EXPECT_LE(rings, 2u);
+  EXPECT_LE(map.FreeVertexCount(), 10u);
+  VectorizerOptions exact;
+  exact.free_epsilon = 0.001;
+  ExpectFreeSpaceKept(grid, *Rasterizer().Rasterize(*Vectorizer(exact).Vectorize(grid), grid));
+}
+
 TEST(RasterizerTest, RoundTripOfAFloorPlanScoresHigh) {
   const OccupancyGrid grid = testing::FloorPlan();
   const VectorMap map = *Vectorizer().Vectorize(grid);

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <map>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 #include "common/metrics/map_quality.hpp"
 #include "common/vector_map/rasterizer.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
 #include "common/vector_map/validator.hpp"
 #include "common/vector_map/vectorizer.hpp"
 #include "tests/unit/vector_map/test_grids.hpp"
@@ -68,6 +70,32 @@ TEST_P(RealMapTest, DefaultMethodHoldsBothConstraintsAndRoundTrips) {
   // and OPDF is not met yet on every map (see docs/vector-maps.md, "Round trip").
   EXPECT_GE(*scores.map_score, 97.0);
   EXPECT_GE(*scores.occupied_picture_distance, 98.3);
+  EXPECT_GE(*scores.unoccupied_picture_distance, 99.8);
+}
+
+// What a .vmap carries: 10 m tiles, free space included. Free-space size is guarded by its ring
+// and vertex counts (4 bytes a vertex, 4 a ring on the wire), at the measured level plus 5 %.
+TEST_P(RealMapTest, TiledFreeSpaceStaysSmallAndRoundTrips) {
+  const grid::OccupancyGrid grid = Load(GetParam());
+  if (grid.empty()) GTEST_SKIP() << "map " << GetParam() << " not available";
+  const TiledVectorMap tiled = *VectorizeTiled(grid, Transform2::Identity());
+  const VectorMap merged = tiled.Merged();
+  size_t rings = 0;
+  for (const FreePolygon& polygon : merged.free_space) rings += 1 + polygon.holes.size();
+  const size_t free_bytes = 4 * (rings + merged.FreeVertexCount());
+  // Measured free-space bytes; before obstacles and occupied cells were don't care for free space:
+  // 64524, 92600, 7196, 16576, 5784, 1428, 384.
+  static const std::map<std::string, size_t> kMeasured = {
+      {"intel_lab", 14084},       {"aces3_austin", 18872}, {"nav2_warehouse", 3816},
+      {"willow_garage_2010", 10592}, {"strands_kth", 2068}, {"aws_small_house", 540},
+      {"tb3_world", 336}};
+  std::cout << GetParam() << ": tiled free rings " << rings << ", free vertices "
+            << merged.FreeVertexCount() << ", free bytes " << free_bytes << "\n";
+  EXPECT_LE(static_cast<double>(free_bytes), 1.05 * static_cast<double>(kMeasured.at(GetParam())));
+  const grid::OccupancyGrid back = *Rasterizer().Rasterize(merged, grid);
+  const auto scores = *metrics::CompareMaps(back, grid);
+  EXPECT_GE(*scores.map_score, 97.5);
+  EXPECT_GE(*scores.occupied_picture_distance, 98.4);
   EXPECT_GE(*scores.unoccupied_picture_distance, 99.8);
 }
 
