@@ -22,9 +22,9 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     uint8_t* row = cls.ptr<uint8_t>(y);
     const int8_t* cells =
         grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
-    const uint8_t* painted =
-        options.painted != nullptr ? options.painted->data() + static_cast<size_t>(y) * rect.width
-                                   : nullptr;
+    const uint8_t* painted = options.painted != nullptr
+                                 ? options.painted->data() + static_cast<size_t>(y) * rect.width
+                                 : nullptr;
     for (int x = 0; x < rect.width; ++x) {
       const grid::CellState state = grid::StateOf(cells[x], thresholds);
       if (state == grid::CellState::kFree) {

@@ -86,7 +86,8 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     if (!half_widths.empty()) {
       double h = half_widths[k] * resolution;
       // On a lattice, rounded up to whole quanta (a codec storing quanta then loses nothing).
-      if (lattice.enabled()) h = std::min(epsilon, std::ceil(h / lattice.quantum()) * lattice.quantum());
+      if (lattice.enabled())
+        h = std::min(epsilon, std::ceil(h / lattice.quantum()) * lattice.quantum());
       out.half_width = h;
     }
     map.obstacles.push_back(std::move(out));
@@ -106,8 +107,7 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     }
     const std::vector<uint8_t> painted = PaintedCells(rect, emitted, radii, 0.5);
     free_options.painted = &painted;
-    for (const auto& polygon :
-         ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
+    for (const auto& polygon : ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
       FreePolygon out;
       for (const Point2& p : polygon.outer) out.outer.push_back(lattice.Snap(frame.ToMap(p)));
       for (const auto& hole : polygon.holes) {

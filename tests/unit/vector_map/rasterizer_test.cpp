@@ -127,9 +127,9 @@ TEST(RasterizerTest, ObstaclesInsideFreeSpaceCostNoHoles) {
 
 TEST(RasterizerTest, UnknownHoleNextToAWallStaysUnknown) {
   OccupancyGrid grid(40, 30, 0.05, {}, grid::kFreeValue);
-  testing::FillRect(grid, 10, 10, 25, 10, grid::kOccupiedValue);   // a wall
-  testing::FillRect(grid, 14, 11, 20, 15, grid::kUnknownValue);    // unseen space behind it
-  testing::FillRect(grid, 30, 20, 33, 23, grid::kUnknownValue);    // an unseen patch
+  testing::FillRect(grid, 10, 10, 25, 10, grid::kOccupiedValue);  // a wall
+  testing::FillRect(grid, 14, 11, 20, 15, grid::kUnknownValue);   // unseen space behind it
+  testing::FillRect(grid, 30, 20, 33, 23, grid::kUnknownValue);   // an unseen patch
   VectorizerOptions exact;
   exact.free_epsilon = 0.001;
   const VectorMap map = *Vectorizer(exact).Vectorize(grid);

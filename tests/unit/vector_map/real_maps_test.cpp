@@ -86,8 +86,9 @@ TEST_P(RealMapTest, TiledFreeSpaceStaysSmallAndRoundTrips) {
   // Measured free-space bytes; before obstacles and occupied cells were don't care for free space:
   // 64524, 92600, 7196, 16576, 5784, 1428, 384.
   static const std::map<std::string, size_t> kMeasured = {
-      {"intel_lab", 14084},       {"aces3_austin", 18872}, {"nav2_warehouse", 3816},
-      {"willow_garage_2010", 10592}, {"strands_kth", 2068}, {"aws_small_house", 540},
+      {"intel_lab", 14084},     {"aces3_austin", 18872},
+      {"nav2_warehouse", 3816}, {"willow_garage_2010", 10592},
+      {"strands_kth", 2068},    {"aws_small_house", 540},
       {"tb3_world", 336}};
   std::cout << GetParam() << ": tiled free rings " << rings << ", free vertices "
             << merged.FreeVertexCount() << ", free bytes " << free_bytes << "\n";
