@@ -135,7 +135,11 @@ void FusionWorker::HandleTileEvents() {
     if (event.kind == transport::TileEvent::Kind::kRejected) {
       spdlog::warn("server: dropped a robot tile: {}", event.error.message());
       std::lock_guard lock(stats_mutex_);
-      ++stats_.rejected_unattributed;
+      if (robot.empty()) {
+        ++stats_.rejected_unattributed;
+      } else {
+        ++stats_.robots[robot].rejected;
+      }
       continue;
     }
     if (!registry_->MaySpeakFor(robot, event.writer)) {

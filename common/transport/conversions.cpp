@@ -209,6 +209,21 @@ uint64_t Sum(const std::vector<T>& values) {
   return sum;
 }
 
+// A vertex may sit a little outside its tile (a cell centre beyond a border that is not on the
+// cell lattice); more than this many quanta outside means a broken or hostile tile.
+constexpr int kOutsideSlack = vector_map::kTileQuantaPerSide / 16;
+
+Status CheckInsideTile(const std::vector<int16_t>& coordinates, const char* name) {
+  for (const int16_t value : coordinates) {
+    if (value < -kOutsideSlack || value > vector_map::kTileQuantaPerSide + kOutsideSlack) {
+      return InvalidArgumentError(std::string(name) + " value " + std::to_string(value) +
+                                  " lies outside its tile (0.." +
+                                  std::to_string(vector_map::kTileQuantaPerSide) + " quanta)");
+    }
+  }
+  return Status::Ok();
+}
+
 Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
   const size_t polylines = tile.obstacle_sizes().size();
   if (tile.obstacle_x().size() != tile.obstacle_y().size()) {
@@ -253,7 +268,34 @@ Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
                                 std::to_string(Sum(tile.free_ring_sizes())) + " vertices but " +
                                 std::to_string(tile.free_x().size()) + " are given");
   }
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_x(), "obstacle_x"));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_y(), "obstacle_y"));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.free_x(), "free_x"));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.free_y(), "free_y"));
   return Status::Ok();
+}
+
+// Everything a tile must satisfy, on the way out and on the way in.
+Status CheckTile(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+  if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
+    return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
+                                " is not a positive number");
+  }
+  const double expected_quantum = vector_map::TileQuantum(tile.tile_size());
+  if (!(std::abs(tile.quantum() - expected_quantum) <= 1e-12 * tile.tile_size())) {
+    return InvalidArgumentError("quantum " + std::to_string(tile.quantum()) +
+                                " m is not tile_size / " +
+                                std::to_string(vector_map::kTileQuantaPerSide));
+  }
+  if (!std::isfinite(tile.epsilon()) || tile.epsilon() <= 0.0f) {
+    return InvalidArgumentError("epsilon " + std::to_string(tile.epsilon()) +
+                                " is not a positive distance");
+  }
+  if (!std::isfinite(tile.resolution()) || tile.resolution() <= 0.0f) {
+    return InvalidArgumentError("resolution " + std::to_string(tile.resolution()) +
+                                " is not a positive distance");
+  }
+  return CheckTileCounts(tile);
 }
 
 }  // namespace
@@ -302,26 +344,12 @@ StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& m
     for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
   }
   // Refuse here whatever FromIdl would refuse on the other side.
-  FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(out));
+  FLEETMAP_RETURN_IF_ERROR(CheckTile(out));
   return out;
 }
 
 StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
-  if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
-    return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
-                                " is not a positive number");
-  }
-  const double expected_quantum = vector_map::TileQuantum(tile.tile_size());
-  if (!(std::abs(tile.quantum() - expected_quantum) <= 1e-12 * tile.tile_size())) {
-    return InvalidArgumentError("quantum " + std::to_string(tile.quantum()) +
-                                " m is not tile_size / " +
-                                std::to_string(vector_map::kTileQuantaPerSide));
-  }
-  if (!std::isfinite(tile.epsilon()) || tile.epsilon() < 0.0f ||
-      !std::isfinite(tile.resolution()) || tile.resolution() <= 0.0f) {
-    return InvalidArgumentError("epsilon or resolution is not a valid distance");
-  }
-  FLEETMAP_RETURN_IF_ERROR(CheckTileCounts(tile));
+  FLEETMAP_RETURN_IF_ERROR(CheckTile(tile));
 
   VectorTileMessage out;
   out.robot_id = tile.robot_id();

@@ -52,6 +52,10 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
     StatusOr<VectorTileMessage> tile = FromIdl(sample);
     if (!tile.ok()) {
       event.kind = TileEvent::Kind::kRejected;
+      // Name the robot when the name itself is sound, so the server can count per robot.
+      if (IsValidRobotName(sample.robot_id()) || sample.robot_id() == "fleet") {
+        event.tile.robot_id = sample.robot_id();
+      }
       event.error = tile.status().WithContext(
           topic_name_ + ": tile (" + std::to_string(sample.tile_x()) + ", " +
           std::to_string(sample.tile_y()) + ") from " + sample.robot_id().substr(0, 64));

@@ -336,6 +336,27 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
   EXPECT_GT(Agreement(beta_map->grid, Pose2{30.0, 0.0, 0.0}, fleet_map->grid), 0.95);
 }
 
+TEST_F(FleetDdsTest, KilledAgentsTilesStayInTheFusedMap) {
+  Subprocess server({kServer, "--duration", "60"}, env_);
+  auto alpha = StartAgent("alpha", map_path_);
+  ASSERT_TRUE(alpha->WaitForOutput("changed tiles", kDeadline)) << alpha->Output();
+  ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  alpha->Signal(SIGKILL);
+  ASSERT_TRUE(server.WaitForOutput("robot alpha lost", kDeadline)) << server.Output();
+
+  // A reader that arrives after the robot died still gets its part of the map.
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  const auto alpha_map = grid::LoadMap(map_path_);
+  ASSERT_TRUE(alpha_map.ok());
+  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
+  });
+  ASSERT_TRUE(fleet_map.has_value()) << server.Output();
+  EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
+}
+
 TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   auto first = StartAgent("twin", map_path_);

@@ -9,14 +9,19 @@
 
 #include <cstring>
 #include <functional>
+#include <limits>
+#include <sstream>
+#include <thread>
 
+#include "common/process/subprocess.hpp"
+#include "common/transport/checked_type_support.hpp"
 #include "common/transport/endpoint.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/VectorTile.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
-#include "common/process/subprocess.hpp"
 
 namespace fleetmap {
 namespace {
@@ -167,6 +172,101 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
   EXPECT_NE(server.Output().find("alpha            active"), std::string::npos) << server.Output();
   EXPECT_NE(server.Output().find("gamma            "), std::string::npos) << server.Output();
+}
+
+// A valid-looking tile of `robot` at (0, 0): one 2-vertex polyline.
+fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
+  fleetmap_msgs::msg::dds_::VectorTile_ tile;
+  tile.robot_id(robot);
+  tile.frame_id("fleet");
+  tile.tile_size(10.0);
+  tile.quantum(10.0 / 16384);
+  tile.epsilon(0.07f);
+  tile.resolution(0.05f);
+  tile.obstacle_sizes({2});
+  tile.obstacle_closed({0});
+  tile.obstacle_half_widths({0});
+  tile.obstacle_x({100, 900});
+  tile.obstacle_y({100, 100});
+  return tile;
+}
+
+TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server({kServer, "--duration", "60"}, env);
+  process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
+  ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
+
+  transport::ParticipantOptions options;
+  options.domain_id = domain;
+  options.localhost_only = true;
+  auto participant = transport::Participant::Create(options);
+  ASSERT_TRUE(participant.ok()) << participant.status();
+  auto status_writer = transport::WriterEndpoint::Create(
+      **participant, transport::kRobotStatusTopic, transport::RobotStatusTypeSupport(),
+      transport::RobotStatusQos().writer);
+  auto tile_writer = transport::WriterEndpoint::Create(**participant, transport::kRobotTilesTopic,
+                                                       transport::VectorTileTypeSupport(),
+                                                       transport::VectorTileQos().writer);
+  ASSERT_TRUE(status_writer.ok() && tile_writer.ok());
+  auto gamma = StatusOf("gamma");
+  gamma.map_topic("rt/fleetmap/robot_tiles");  // on the tile wire
+  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
+      << server.Output();
+  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
+
+  struct Case {
+    const char* expect;
+    std::function<void(fleetmap_msgs::msg::dds_::VectorTile_&)> spoil;
+  };
+  const Case cases[] = {
+      {"obstacle_sizes add up to", [](auto& t) { t.obstacle_sizes({3}); }},
+      {"epsilon 0.000000 is not a positive distance", [](auto& t) { t.epsilon(0.0f); }},
+      {"outside its tile",
+       [](auto& t) {
+         t.obstacle_x({100, 30000});
+       }},
+      {"tile_size nan is not a positive number",
+       [](auto& t) { t.tile_size(std::numeric_limits<double>::quiet_NaN()); }},
+  };
+  int32_t x = 0;
+  for (const Case& c : cases) {
+    auto tile = Tile("gamma");
+    tile.tile_x(x++);  // one instance each, so no bad sample replaces another
+    c.spoil(tile);
+    EXPECT_TRUE(WriteUntilServerSays((*tile_writer)->writer(), tile, server, c.expect, gamma_alive))
+        << c.expect << "\n"
+        << server.Output();
+  }
+  // A sound tile from the same peer is fused as usual.
+  auto good = Tile("gamma");
+  good.tile_y(7);
+  (*tile_writer)->writer()->write(&good);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+
+  tile_writer->reset();
+  status_writer->reset();
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  // The summary counts gamma's rejected tiles; alpha kept being served.
+  std::istringstream lines(server.Output());
+  bool saw_gamma = false;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string robot, state, tiles, maps, bytes, rejected;
+    fields >> robot >> state >> tiles >> maps >> bytes >> rejected;
+    if (robot == "gamma") {
+      saw_gamma = true;
+      EXPECT_GE(std::stoi(rejected), 4) << line;
+      EXPECT_GE(std::stoi(tiles), 1) << line;
+    }
+    if (robot == "alpha") {
+      EXPECT_GE(std::stoi(tiles), 1) << line;
+    }
+  }
+  EXPECT_TRUE(saw_gamma) << server.Output();
 }
 
 }  // namespace

@@ -85,6 +85,8 @@ TEST(VmapFileTest, BorderVertexIsTheSamePointFromBothTiles) {
   const Point2 from_right = At(TileId{1, 0}, 10.0, 0, 123);
   EXPECT_EQ(from_left, from_right);
   TiledVectorMap map;
+  map.epsilon = 0.0707;
+  for (const TileId id : {TileId{0, 0}, TileId{1, 0}}) map.tiles[id].epsilon = map.epsilon;
   map.tiles[{0, 0}].obstacles.push_back(Polyline{{At({0, 0}, 10, 100, 123), from_left}});
   map.tiles[{1, 0}].obstacles.push_back(Polyline{{from_right, At({1, 0}, 10, 900, 123)}});
   const auto decoded = DecodeVmap(Encoded(map), "border.vmap");
@@ -107,10 +109,18 @@ TEST(VmapFileTest, FileRoundTripAndMissingFile) {
   EXPECT_THAT(missing.status().message(), HasSubstr(path));
 }
 
-TEST(VmapFileTest, RefusesVerticesThatDoNotFitTheTileEncoding) {
+TEST(VmapFileTest, RefusesVerticesOutsideTheirTile) {
   TiledVectorMap map;
+  map.tiles[{0, 0}].epsilon = 0.07;
   map.tiles[{0, 0}].obstacles.push_back(Polyline{{Point2(0, 0), Point2(25.0, 0)}});
   EXPECT_THAT(EncodeVmap(map).status().message(), HasSubstr("does not fit"));
+  map.tiles[{0, 0}].obstacles[0].points[1] = Point2(11.0, 0);  // 1 m outside a 10 m tile
+  EXPECT_THAT(EncodeVmap(map).status().message(), HasSubstr("outside its tile"));
+  map.tiles[{0, 0}].obstacles[0].points[1] = Point2(10.0, 0);  // on the border: fine
+  EXPECT_TRUE(EncodeVmap(map).ok());
+  map.tiles[{0, 0}].epsilon = 0.0;
+  EXPECT_THAT(EncodeVmap(map).status().message(), HasSubstr("epsilon"));
+  map.tiles[{0, 0}].epsilon = 0.07;
   map.tiles[{0, 0}].obstacles[0].points[1] = Point2(std::nan(""), 0);
   EXPECT_FALSE(EncodeVmap(map).ok());
 }
