@@ -5,6 +5,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/info_command.hpp"
 #include "cli/sim_command.hpp"
+#include "cli/bench_fleet_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/bench_paper_command.hpp"
 #include "cli/compare_command.hpp"
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   int exit_code = fleetmap::cli::kExitOk;
   fleetmap::cli::AddInfoCommand(app, &exit_code);
   fleetmap::cli::AddSimCommand(app, &exit_code);
+  fleetmap::cli::AddBenchFleetCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::cli::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);

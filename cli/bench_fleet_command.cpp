@@ -1,0 +1,168 @@
+#include "cli/bench_fleet_command.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/bench_command.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/fleet_sim.hpp"
+#include "cli/fleet_sim_report.hpp"
+#include "common/metrics/map_quality.hpp"
+#include "common/sim/terrain_generator.hpp"
+#include "common/sim/terrain_rasterizer.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+struct BenchFleetArgs {
+  std::vector<int> robots = {1, 4, 16};
+  std::string terrain = "office";
+  double size = 80.0;
+  uint32_t seed = 1;
+  double duration_s = 60.0;
+  double rate = 10.0;
+  std::string json_path;
+};
+
+struct Row {
+  int robots = 0;
+  FleetRunResult tiles;
+  FleetRunResult grid;
+  metrics::QualityScores quality;
+};
+
+std::string Fmt(const std::optional<double>& value, const char* unit) {
+  return value ? fmt::format("{:.1f}{}", *value, unit) : std::string("n/a");
+}
+
+uint64_t Updates(const FleetRunResult& run) {
+  uint64_t updates = 0;
+  for (const auto& [name, robot] : run.robots) updates += robot.updates;
+  return updates;
+}
+
+int RunBenchFleet(const BenchFleetArgs& args) {
+  const auto kind = sim::TerrainKindFromName(args.terrain);
+  if (!kind) {
+    std::cerr << "fleetmap bench fleet: --terrain \"" << args.terrain
+              << "\" is not a terrain kind\n";
+    return kExitBadInput;
+  }
+  FleetSimOptions base;
+  base.kind = *kind;
+  base.size = args.size;
+  base.seed = args.seed;
+  base.scans_per_second = args.rate;
+  base.duration = std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1000));
+  for (const int robots : args.robots) {
+    base.robots = robots;
+    if (const Status valid = base.Validate(); !valid.ok()) {
+      std::cerr << "fleetmap bench fleet: " << valid.message() << "\n";
+      return kExitBadInput;
+    }
+  }
+  StatusOr<std::string> binaries = FindFleetBinaries();
+  if (!binaries.ok()) {
+    std::cerr << "fleetmap bench fleet: " << binaries.status().message() << "\n";
+    return 1;
+  }
+  base.bin_dir = *binaries;
+  auto generator =
+      sim::TerrainGenerator::Create({.kind = *kind, .size = args.size, .seed = args.seed});
+  if (!generator.ok()) {
+    std::cerr << "fleetmap bench fleet: " << generator.status().message() << "\n";
+    return kExitBadInput;
+  }
+  const auto truth = sim::RasterizeTerrain(generator->Generate(), 0.05);
+  if (!truth.ok()) {
+    std::cerr << "fleetmap bench fleet: " << truth.status().message() << "\n";
+    return 1;
+  }
+
+  std::vector<Row> rows;
+  for (const int robots : args.robots) {
+    Row row;
+    row.robots = robots;
+    for (const std::string wire : {"tiles", "grid"}) {
+      FleetSimOptions options = base;
+      options.robots = robots;
+      options.wire = wire;
+      StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
+        std::cerr << fmt::format("\r{} robots, {} wire: {:.0f} / {:.0f} s   ", robots, wire,
+                                 seconds, args.duration_s)
+                  << std::flush;
+      });
+      if (!run.ok()) {
+        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        return 1;
+      }
+      (wire == std::string("tiles") ? row.tiles : row.grid) = std::move(run).value();
+    }
+    auto quality = metrics::CompareMaps(ResampleOnto(row.tiles.fused, *truth), *truth);
+    if (quality.ok()) row.quality = *quality;
+    rows.push_back(std::move(row));
+  }
+  std::cerr << "\n";
+
+  std::cout << fmt::format(
+      "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n", args.terrain,
+      args.size, args.seed, args.duration_s, args.rate);
+  std::cout << "| robots | tile bytes | grid bytes | grid/tiles | tile updates | bytes/update | "
+               "latency p50 / p95 / p99 | server CPU | server MB | MS / OPDF / UPDF |\n"
+               "|---|---|---|---|---|---|---|---|---|---|\n";
+  nlohmann::json json = nlohmann::json::array();
+  for (const Row& row : rows) {
+    const uint64_t updates = Updates(row.tiles);
+    const double ratio = row.tiles.total_bytes > 0
+                             ? static_cast<double>(row.grid.total_bytes) / row.tiles.total_bytes
+                             : 0.0;
+    const auto p50 = Percentile(row.tiles.latencies_ms, 50);
+    const auto p95 = Percentile(row.tiles.latencies_ms, 95);
+    const auto p99 = Percentile(row.tiles.latencies_ms, 99);
+    const double cpu = 100.0 * row.tiles.server_cpu_seconds / std::max(1e-9, row.tiles.seconds);
+    std::cout << fmt::format(
+        "| {} | {} | {} | {:.1f}x | {} | {:.0f} | {} / {} / {} | {:.0f} % | {:.0f} | {} / {} / {} "
+        "|\n",
+        row.robots, row.tiles.total_bytes, row.grid.total_bytes, ratio, updates,
+        updates > 0 ? static_cast<double>(row.tiles.total_bytes) / updates : 0.0, Fmt(p50, " ms"),
+        Fmt(p95, ""), Fmt(p99, ""), cpu, row.tiles.server_peak_rss_bytes / 1e6,
+        Fmt(row.quality.map_score, ""), Fmt(row.quality.occupied_picture_distance, ""),
+        Fmt(row.quality.unoccupied_picture_distance, ""));
+    json.push_back(
+        {{"robots", row.robots},
+         {"tile_bytes", row.tiles.total_bytes},
+         {"grid_bytes", row.grid.total_bytes},
+         {"tile_updates", updates},
+         {"latency_ms",
+          {{"p50", p50.value_or(-1)}, {"p95", p95.value_or(-1)}, {"p99", p99.value_or(-1)}}},
+         {"server_cpu_percent", cpu},
+         {"server_peak_rss_bytes", row.tiles.server_peak_rss_bytes},
+         {"ms", row.quality.map_score.value_or(-1)},
+         {"opdf", row.quality.occupied_picture_distance.value_or(-1)},
+         {"updf", row.quality.unoccupied_picture_distance.value_or(-1)}});
+  }
+  if (!args.json_path.empty()) std::ofstream(args.json_path) << json.dump(2) << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<BenchFleetArgs>();
+  CLI::App* command = BenchCommand(app)->add_subcommand(
+      "fleet", "Simulated fleets of growing size, tile wire vs grid wire: a scaling table");
+  command->add_option("--robots", args->robots, "fleet sizes, e.g. 1 4 16");
+  command->add_option("--terrain", args->terrain, "office, maze or unstructured");
+  command->add_option("--size", args->size, "terrain side, metres");
+  command->add_option("--seed", args->seed, "terrain seed");
+  command->add_option("--duration", args->duration_s, "seconds per run");
+  command->add_option("--rate", args->rate, "laser scans per second per robot");
+  command->add_option("--json", args->json_path, "write the rows as JSON");
+  command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
+}
+
+}  // namespace fleetmap::cli
