@@ -9,17 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "common/core/number_format.hpp"
 #include "common/sim/random.hpp"
 
 namespace fleetmap::sim {
 namespace {
-
-// Shortest readable form of a number for messages (0.05, not 0.050000).
-std::string Num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g", value);
-  return buffer;
-}
 
 constexpr double kPi = std::numbers::pi;
 
@@ -403,9 +397,9 @@ void GenerateUnstructured(const TerrainOptions& options, Random* random, Terrain
 
 StatusOr<TerrainGenerator> TerrainGenerator::Create(const TerrainOptions& options) {
   if (!(options.size >= kMinTerrainSize && options.size <= kMaxTerrainSize)) {
-    return InvalidArgumentError("terrain size " + Num(options.size) +
-                                " m is out of bounds: it must be in [" + Num(kMinTerrainSize) +
-                                ", " + Num(kMaxTerrainSize) + "] m");
+    return InvalidArgumentError(
+        "terrain size " + ShortNumber(options.size) + " m is out of bounds: it must be in [" +
+        ShortNumber(kMinTerrainSize) + ", " + ShortNumber(kMaxTerrainSize) + "] m");
   }
   if (!(options.wall_thickness > 0.0 && options.wall_thickness <= 1.0)) {
     return InvalidArgumentError("terrain wall_thickness must be in (0, 1] m");

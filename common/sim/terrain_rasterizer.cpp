@@ -6,15 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "common/core/number_format.hpp"
+
 namespace fleetmap::sim {
 namespace {
-
-// Shortest readable form of a number for messages (0.05, not 0.050000).
-std::string Num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g", value);
-  return buffer;
-}
 
 double SegmentDistance(const Point2& p, const Point2& a, const Point2& b) {
   const Point2 ab = b - a;
@@ -75,12 +70,13 @@ void FillPolygon(const std::vector<Point2>& points, grid::OccupancyGrid* grid) {
 
 StatusOr<grid::OccupancyGrid> RasterizeTerrain(const Terrain& terrain, double resolution) {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
-    return InvalidArgumentError("resolution " + Num(resolution) + " m is invalid: it must be > 0");
+    return InvalidArgumentError("resolution " + ShortNumber(resolution) +
+                                " m is invalid: it must be > 0");
   }
   const double side = std::ceil(terrain.size / resolution - 1e-9);
   if (!(side * side <= static_cast<double>(kMaxGroundTruthCells))) {
-    return InvalidArgumentError("resolution " + Num(resolution) + " m on a " + Num(terrain.size) +
-                                " m terrain needs more than " +
+    return InvalidArgumentError("resolution " + ShortNumber(resolution) + " m on a " +
+                                ShortNumber(terrain.size) + " m terrain needs more than " +
                                 std::to_string(kMaxGroundTruthCells) + " cells");
   }
   const int cells = std::max(1, static_cast<int>(side));

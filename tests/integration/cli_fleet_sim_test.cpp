@@ -9,23 +9,20 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "common/process/subprocess.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap {
 namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kFleetmap = std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap";
+using testing::RunFleetmap;
 
 TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
-  const std::string out =
-      ::testing::TempDir() + "/fleet_sim_" + std::to_string(getpid());
+  const std::string out = ::testing::TempDir() + "/fleet_sim_" + std::to_string(getpid());
   std::filesystem::remove_all(out);
-  const auto result = process::RunCommand(
-      {kFleetmap, "sim", "--robots", "2", "--terrain", "office", "--size", "10", "--seed", "3",
-       "--duration", "6", "--rate", "40", "--out", out},
-      std::chrono::seconds(120));
+  const auto result = RunFleetmap({"sim", "--robots", "2", "--terrain", "office", "--size", "10",
+                                   "--seed", "3", "--duration", "6", "--rate", "40", "--out", out});
   ASSERT_EQ(result.exit_code, 0) << result.output();
   EXPECT_THAT(result.out, HasSubstr("fewer than the grid wire"));
   EXPECT_TRUE(std::filesystem::exists(out + "/report.md"));
@@ -46,13 +43,13 @@ TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
 }
 
 TEST(CliFleetSimTest, BadOptionsExitTwoAndNameTheOption) {
-  const auto robots = process::RunCommand({kFleetmap, "sim", "--robots", "0", "--no-compare"});
+  const auto robots = RunFleetmap({"sim", "--robots", "0", "--no-compare"});
   EXPECT_EQ(robots.exit_code, 2);
   EXPECT_THAT(robots.err, HasSubstr("--robots"));
-  const auto terrain = process::RunCommand({kFleetmap, "sim", "--terrain", "castle"});
+  const auto terrain = RunFleetmap({"sim", "--terrain", "castle"});
   EXPECT_EQ(terrain.exit_code, 2);
   EXPECT_THAT(terrain.err, HasSubstr("castle"));
-  const auto size = process::RunCommand({kFleetmap, "sim", "--size", "-4"});
+  const auto size = RunFleetmap({"sim", "--size", "-4"});
   EXPECT_EQ(size.exit_code, 2);
   EXPECT_THAT(size.err, HasSubstr("--size"));
 }

@@ -8,18 +8,13 @@
 #include <vector>
 
 #include "common/process/subprocess.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
-
-// Runs the real fleetmap binary with `args`.
-process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
-  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return process::RunCommand(std::move(argv));
-}
+using testing::RunFleetmap;
 
 std::string DataPath(const std::string& name) {
   return std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/" + name;
@@ -101,7 +96,8 @@ TEST(CliInfoTest, BadInputsExitWithCode2AndNameTheFile) {
 }
 
 TEST(CliInfoTest, OptionsReachTheLoader) {
-  process::CommandResult run = RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
+  process::CommandResult run =
+      RunFleetmap({"info", DataPath("trinary_4x3.yaml"), "--max-cells", "11"});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("more than the limit of 11"));
   run = RunFleetmap({"info", DataPath("escaping_path.yaml"), "--allow-outside-dir"});

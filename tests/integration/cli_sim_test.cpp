@@ -11,17 +11,13 @@
 #include <vector>
 
 #include "common/process/subprocess.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
-
-process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
-  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return process::RunCommand(std::move(argv), std::chrono::seconds(120));
-}
+using testing::RunFleetmap;
 
 std::string TempDir(const std::string& name) {
   const std::string dir = (std::filesystem::temp_directory_path() /

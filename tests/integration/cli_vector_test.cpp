@@ -14,20 +14,16 @@
 
 #include "common/grid/map_io.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/process/subprocess.hpp"
 #include "common/transport/vmap_file.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
-#include "common/process/subprocess.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
-
-process::CommandResult RunFleetmap(const std::vector<std::string>& args) {
-  std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
-  argv.insert(argv.end(), args.begin(), args.end());
-  return process::RunCommand(std::move(argv));
-}
+using testing::RunFleetmap;
 
 // A fresh directory per test and process, so parallel ctest runs never share files.
 std::string TestDir() {

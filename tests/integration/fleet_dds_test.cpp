@@ -13,21 +13,21 @@
 #include <thread>
 
 #include "common/grid/map_io.hpp"
+#include "common/process/subprocess.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
-#include "common/process/subprocess.hpp"
 
 namespace fleetmap {
 namespace {
 
-using std::chrono::milliseconds;
-using std::chrono::seconds;
 using process::RandomDomainId;
 using process::Subprocess;
+using std::chrono::milliseconds;
+using std::chrono::seconds;
 
 const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
 const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
@@ -238,8 +238,7 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
 
   EXPECT_TRUE(server.WaitForOutput("robot alpha joined (tiles wire", kDeadline)) << server.Output();
   EXPECT_TRUE(server.WaitForOutput("robot beta joined (grid wire", kDeadline)) << server.Output();
-  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline))
-      << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("map from beta: 260 x 781 cells", kDeadline)) << server.Output();
 
   beta->Signal(SIGKILL);
   EXPECT_TRUE(server.WaitForOutput("robot beta lost", kDeadline)) << server.Output();
@@ -302,8 +301,8 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
   auto wake_up = std::make_shared<transport::WakeUp>();
-  auto fused = transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic,
-                                                   wake_up);
+  auto fused =
+      transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic, wake_up);
   ASSERT_TRUE(fused.ok()) << fused.status();
   std::set<TileId> tiles;
   const auto deadline = std::chrono::steady_clock::now() + kDeadline;
@@ -362,8 +361,7 @@ TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
   auto first = StartAgent("twin", map_path_);
   ASSERT_TRUE(server.WaitForOutput("robot twin joined", kDeadline)) << server.Output();
   auto second = StartAgent("twin", tall_map_path_);
-  EXPECT_TRUE(server.WaitForOutput("two agents claim robot id twin", kDeadline))
-      << server.Output();
+  EXPECT_TRUE(server.WaitForOutput("two agents claim robot id twin", kDeadline)) << server.Output();
   server.Signal(SIGINT);
   ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
 }
@@ -392,10 +390,9 @@ TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {
   ASSERT_NE(participant, nullptr);
   const auto alpha_map = grid::LoadMap(map_path_);
   ASSERT_TRUE(alpha_map.ok());
-  const auto fleet_map =
-      WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
-        return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
-      });
+  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
+  });
   ASSERT_TRUE(fleet_map.has_value()) << restarted.Output();
   EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
   restarted.Signal(SIGINT);

@@ -67,6 +67,16 @@ bool WriteUntilServerSays(
   return false;
 }
 
+// A participant of the test's own, on `domain`, loopback only.
+std::unique_ptr<transport::Participant> TestParticipant(int domain) {
+  transport::ParticipantOptions options;
+  options.domain_id = domain;
+  options.localhost_only = true;
+  auto participant = transport::Participant::Create(options);
+  EXPECT_TRUE(participant.ok()) << participant.status();
+  return participant.ok() ? std::move(participant).value() : nullptr;
+}
+
 // A type that writes whatever bytes it is given under the name of nav_msgs/OccupancyGrid: a
 // hostile or broken peer whose payload lengths lie.
 class RawOccupancyGridType : public dds::TopicDataType {
@@ -101,18 +111,15 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap, "--wire", "grid"}, env);
   ASSERT_TRUE(server.WaitForOutput("map from alpha", kDeadline)) << server.Output();
 
-  transport::ParticipantOptions options;
-  options.domain_id = domain;
-  options.localhost_only = true;
-  auto participant = transport::Participant::Create(options);
-  ASSERT_TRUE(participant.ok()) << participant.status();
+  auto participant = TestParticipant(domain);
+  ASSERT_NE(participant, nullptr);
   auto status_writer = transport::WriterEndpoint::Create(
-      **participant, transport::kRobotStatusTopic,
+      *participant, transport::kRobotStatusTopic,
       dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
       transport::RobotStatusQos().writer);
   ASSERT_TRUE(status_writer.ok()) << status_writer.status();
   auto map_writer = transport::WriterEndpoint::Create(
-      **participant, transport::RobotMapTopic(RobotId{"gamma"}),
+      *participant, transport::RobotMapTopic(RobotId{"gamma"}),
       dds::TypeSupport(new nav_msgs::msg::dds_::OccupancyGrid_PubSubType()),
       transport::OccupancyGridQos().writer);
   ASSERT_TRUE(map_writer.ok()) << map_writer.status();
@@ -138,10 +145,10 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   // A payload whose data length claims two billion cells in a few bytes: refused before decoding.
   {
     // Its own participant: the type registered under this name must be the raw one.
-    auto raw_participant = transport::Participant::Create(options);
-    ASSERT_TRUE(raw_participant.ok()) << raw_participant.status();
+    auto raw_participant = TestParticipant(domain);
+    ASSERT_NE(raw_participant, nullptr);
     auto raw_writer = transport::WriterEndpoint::Create(
-        **raw_participant, transport::RobotMapTopic(RobotId{"gamma"}),
+        *raw_participant, transport::RobotMapTopic(RobotId{"gamma"}),
         dds::TypeSupport(new RawOccupancyGridType()), transport::OccupancyGridQos().writer);
     ASSERT_TRUE(raw_writer.ok()) << raw_writer.status();
     // A valid 1 x 3 grid, serialized, then its data length patched to 2^31 - 1 cells.
@@ -199,15 +206,12 @@ TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
   process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
   ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
 
-  transport::ParticipantOptions options;
-  options.domain_id = domain;
-  options.localhost_only = true;
-  auto participant = transport::Participant::Create(options);
-  ASSERT_TRUE(participant.ok()) << participant.status();
-  auto status_writer = transport::WriterEndpoint::Create(
-      **participant, transport::kRobotStatusTopic, transport::RobotStatusTypeSupport(),
-      transport::RobotStatusQos().writer);
-  auto tile_writer = transport::WriterEndpoint::Create(**participant, transport::kRobotTilesTopic,
+  auto participant = TestParticipant(domain);
+  ASSERT_NE(participant, nullptr);
+  auto status_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotStatusTopic,
+                                                         transport::RobotStatusTypeSupport(),
+                                                         transport::RobotStatusQos().writer);
+  auto tile_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotTilesTopic,
                                                        transport::VectorTileTypeSupport(),
                                                        transport::VectorTileQos().writer);
   ASSERT_TRUE(status_writer.ok() && tile_writer.ok());
