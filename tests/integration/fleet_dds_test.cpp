@@ -113,6 +113,10 @@ class FleetDdsTest : public ::testing::Test {
     return std::nullopt;
   }
 
+  // Expects the server's fused grid on rt/fleetmap/map to come to agree with the map at
+  // `map_path` (placed at the fleet origin) on more than 95 % of its known cells.
+  void ExpectFleetMapShowsMap(const std::string& map_path, const Subprocess& server);
+
   int domain_ = 0;
   std::map<std::string, std::string> env_;
 };
@@ -291,6 +295,18 @@ double Agreement(const grid::OccupancyGrid& source, const Pose2& fleet_from_map,
   return known == 0 ? 0.0 : static_cast<double>(same) / known;
 }
 
+void FleetDdsTest::ExpectFleetMapShowsMap(const std::string& map_path, const Subprocess& server) {
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  const auto expected = grid::LoadMap(map_path);
+  ASSERT_TRUE(expected.ok()) << expected.status();
+  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return Agreement(expected->grid, Pose2{}, map.grid) > 0.95;
+  });
+  ASSERT_TRUE(fleet_map.has_value()) << server.Output();
+  EXPECT_GT(Agreement(expected->grid, Pose2{}, fleet_map->grid), 0.95);
+}
+
 TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   auto alpha = StartAgent("alpha", map_path_);
@@ -345,15 +361,7 @@ TEST_F(FleetDdsTest, KilledAgentsTilesStayInTheFusedMap) {
   ASSERT_TRUE(server.WaitForOutput("robot alpha lost", kDeadline)) << server.Output();
 
   // A reader that arrives after the robot died still gets its part of the map.
-  auto participant = MakeParticipant();
-  ASSERT_NE(participant, nullptr);
-  const auto alpha_map = grid::LoadMap(map_path_);
-  ASSERT_TRUE(alpha_map.ok());
-  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
-    return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
-  });
-  ASSERT_TRUE(fleet_map.has_value()) << server.Output();
-  EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
+  ExpectFleetMapShowsMap(map_path_, server);
 }
 
 TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
@@ -386,15 +394,7 @@ TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {
 
   Subprocess restarted({kServer, "--duration", "60", "--store", store}, env_);
   EXPECT_TRUE(restarted.WaitForOutput("restored", kDeadline)) << restarted.Output();
-  auto participant = MakeParticipant();
-  ASSERT_NE(participant, nullptr);
-  const auto alpha_map = grid::LoadMap(map_path_);
-  ASSERT_TRUE(alpha_map.ok());
-  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
-    return Agreement(alpha_map->grid, Pose2{}, map.grid) > 0.95;
-  });
-  ASSERT_TRUE(fleet_map.has_value()) << restarted.Output();
-  EXPECT_GT(Agreement(alpha_map->grid, Pose2{}, fleet_map->grid), 0.95);
+  ExpectFleetMapShowsMap(map_path_, restarted);
   restarted.Signal(SIGINT);
   EXPECT_EQ(restarted.Wait(kDeadline), 0);
   std::remove(store.c_str());
