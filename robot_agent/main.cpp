@@ -6,6 +6,7 @@
 #include <csignal>
 #include <vector>
 
+#include "common/config/fleet_transforms.hpp"
 #include "robot_agent/agent_node.hpp"
 
 namespace {
@@ -49,8 +50,13 @@ int main(int argc, char** argv) {
   app.add_option("--epsilon", options.tiles.epsilon,
                  "vector map error bound, metres (0: sqrt(2) res)");
   app.add_option("--max-kbps", options.tiles.max_kbps, "bandwidth budget for tiles (0: none)");
-  app.add_option("--fleet-from-map", fleet_from_map, "x y yaw of the map frame in the fleet frame")
-      ->expected(3);
+  auto* fleet_option = app.add_option("--fleet-from-map", fleet_from_map,
+                                      "x y yaw of the map frame in the fleet frame")
+                           ->expected(3);
+  std::string transforms_path;
+  app.add_option("--transforms", transforms_path,
+                 "YAML of every robot's fleet_from_map (robots: {name: [x, y, yaw]})")
+      ->excludes(fleet_option);
   app.add_option("--pose", pose, "x y yaw of the robot in its map frame")->expected(3);
   app.add_option("--duration", duration_s, "seconds to run before leaving (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
@@ -72,6 +78,20 @@ int main(int argc, char** argv) {
     options.sim = sim;
   }
   options.fleet_from_map = PoseFrom(fleet_from_map);
+  if (!transforms_path.empty()) {
+    const auto transforms = fleetmap::config::LoadFleetTransforms(transforms_path);
+    if (!transforms.ok()) {
+      spdlog::error("fleetmap-agent: {}", transforms.status().message());
+      return 2;
+    }
+    const auto mine = transforms->find(options.robot);
+    if (mine == transforms->end()) {
+      spdlog::error("fleetmap-agent: {}: no entry for robot {}", transforms_path,
+                    options.robot.value);
+      return 2;
+    }
+    options.fleet_from_map = mine->second;
+  }
   options.map_from_robot = PoseFrom(pose);
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;

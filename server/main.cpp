@@ -5,6 +5,7 @@
 #include <atomic>
 #include <csignal>
 
+#include "common/config/fleet_transforms.hpp"
 #include "server/server_node.hpp"
 
 namespace {
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
   app.add_option("--store", options.fusion.store_path,
                  "SQLite map store: the fused map survives restarts (empty: keep nothing)");
+  std::string transforms_path;
+  app.add_option("--transforms", transforms_path,
+                 "YAML of known fleet_from_map transforms (robots: {name: [x, y, yaw]})");
   app.add_option("--tile-size", options.fusion.fusion.tile_size, "fleet tile side, metres");
   app.add_option("--resolution", options.fusion.fusion.resolution, "fused grid cell size, metres");
   double map_period_s = 1.0;
@@ -40,6 +44,14 @@ int main(int argc, char** argv) {
   options.fusion.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
+  if (!transforms_path.empty()) {
+    auto transforms = fleetmap::config::LoadFleetTransforms(transforms_path);
+    if (!transforms.ok()) {
+      spdlog::error("fleetmap-server: {}", transforms.status().message());
+      return 2;
+    }
+    options.transforms = std::move(transforms).value();
+  }
   if (localhost_only) options.dds.localhost_only = true;
 
   std::signal(SIGINT, OnSignal);

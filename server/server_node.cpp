@@ -42,9 +42,9 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
                                                       *node->participant_, node->wake_up_));
-  FLEETMAP_ASSIGN_OR_RETURN(node->fusion_worker_,
-                            FusionWorker::Create(*node->participant_, node->options_.fusion,
-                                                 node->registry_));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      node->fusion_worker_,
+      FusionWorker::Create(*node->participant_, node->options_.fusion, node->registry_));
   return node;
 }
 
@@ -115,6 +115,17 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
       record.map_reader = std::move(reader).value();
     }
   }
+  const auto configured = options_.transforms.find(status.robot);
+  if (!grid_wire && configured != options_.transforms.end() &&
+      !(configured->second == status.fleet_from_map) && !record.transform_mismatch_reported) {
+    record.transform_mismatch_reported = true;
+    spdlog::warn(
+        "server: robot {} tiles its map with fleet_from_map ({}, {}, {}) but the "
+        "transforms file says ({}, {}, {})",
+        status.robot.value, status.fleet_from_map.x, status.fleet_from_map.y,
+        status.fleet_from_map.yaw, configured->second.x, configured->second.y,
+        configured->second.yaw);
+  }
   if (!joining) return;
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
@@ -141,6 +152,12 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state) {
   }
 }
 
+Pose2 ServerNode::FleetFromMap(const RobotRecord& record) const {
+  const auto configured = options_.transforms.find(record.last_status.robot);
+  return configured != options_.transforms.end() ? configured->second
+                                                 : record.last_status.fleet_from_map;
+}
+
 void ServerNode::HandleMaps() {
   for (auto& [robot, record] : robots_) {
     if (record.map_reader == nullptr) continue;
@@ -155,7 +172,7 @@ void ServerNode::HandleMaps() {
       spdlog::info("server: map from {}: {} x {} cells at {:.3f} m, {} bytes (total {} bytes)",
                    robot.value, map->grid.width(), map->grid.height(), map->grid.resolution(),
                    map->serialized_bytes, record.bytes_received);
-      fusion_worker_->SubmitGrid(robot.value, *map, record.last_status.fleet_from_map);
+      fusion_worker_->SubmitGrid(robot.value, *map, FleetFromMap(record));
       record.latest_map = std::move(map).value();
     }
   }

@@ -23,6 +23,9 @@ struct ServerOptions {
   std::chrono::milliseconds duration{0};  // run this long; 0: until stopped
   transport::ParticipantOptions dds;
   FusionWorkerOptions fusion;
+  // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what
+  // their status says; a tile-wire robot whose status disagrees is reported.
+  std::map<RobotId, Pose2> transforms;
 
   Status Validate() const;
 };
@@ -37,6 +40,7 @@ struct RobotRecord {
   uint64_t bytes_received = 0;
   uint64_t rejected_samples = 0;
   uint64_t id_clashes = 0;  // status samples from a second agent claiming this robot id
+  bool transform_mismatch_reported = false;
   // While a robot on the grid wire is active: its rt/<robot>/map.
   std::unique_ptr<transport::OccupancyGridReader> map_reader;
 };
@@ -65,6 +69,8 @@ class ServerNode {
   void HandleRobotEvents();
   void OnRobotAlive(const RobotStatus& status, const std::string& writer);
   void OnRobotGone(const RobotId& robot, RobotRecord::State state);
+  // Where the robot's map frame sits in the fleet: the configured transform, else its own word.
+  Pose2 FleetFromMap(const RobotRecord& record) const;
   void HandleMaps();
   void PrintSummary(const FusionStats& fusion) const;
 

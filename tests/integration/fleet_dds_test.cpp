@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <set>
 #include <string>
@@ -362,6 +363,25 @@ TEST_F(FleetDdsTest, KilledAgentsTilesStayInTheFusedMap) {
 
   // A reader that arrives after the robot died still gets its part of the map.
   ExpectFleetMapShowsMap(map_path_, server);
+}
+
+TEST_F(FleetDdsTest, ServerPlacesGridRobotsWithItsTransformsFile) {
+  const std::string transforms = ::testing::TempDir() + "/transforms_" + std::to_string(getpid()) +
+                                 "_" + std::to_string(domain_) + ".yaml";
+  std::ofstream(transforms) << "robots:\n  alpha: [30.0, 0.0, 0.0]\n";
+  Subprocess server({kServer, "--duration", "60", "--transforms", transforms}, env_);
+  // The agent says nothing about where its map is: the server's file places it.
+  auto alpha = StartAgent("alpha", map_path_, {"--wire", "grid"});
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+  const auto expected = grid::LoadMap(map_path_);
+  ASSERT_TRUE(expected.ok());
+  const auto fleet_map = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return Agreement(expected->grid, Pose2{30.0, 0.0, 0.0}, map.grid) > 0.95;
+  });
+  ASSERT_TRUE(fleet_map.has_value()) << server.Output();
+  EXPECT_GT(Agreement(expected->grid, Pose2{30.0, 0.0, 0.0}, fleet_map->grid), 0.95);
+  std::remove(transforms.c_str());
 }
 
 TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
