@@ -36,7 +36,7 @@ Status RobotStatusWriter::Leave(const RobotId& robot) {
   if (written_.erase(robot) == 0) return Status::Ok();  // never announced: nothing to dispose
   fleetmap_msgs::msg::dds_::RobotStatus_ key;
   key.robot_id(robot.value);
-  // HANDLE_NIL: the instance is found from the key (lookup_instance is not implemented in 2.9).
+  // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
   if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
     return UnavailableError("could not dispose RobotStatus of " + robot.value);
   }

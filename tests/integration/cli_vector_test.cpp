@@ -36,7 +36,7 @@ std::string TestDir() {
 }
 
 // A 15 x 12.5 m room at 0.05 m (so it spans several 10 m tiles, and walls cross tile borders):
-// unknown outside, a wall 2 cells thick, free inside, a 6 x 6 pillar, a 1-cell wall stub, and an
+// unknown outside, a wall 2 cells thick, free inside, a 6 x 6 pillar, a short 1-cell wall, and an
 // isolated occupied cell.
 grid::OccupancyGrid Room() {
   grid::OccupancyGrid grid(300, 250, 0.05, Pose2{-2.5, -1.0, 0.0});

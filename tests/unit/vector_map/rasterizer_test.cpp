@@ -105,7 +105,7 @@ void ExpectFreeSpaceKept(const OccupancyGrid& grid, const OccupancyGrid& back) {
 }
 
 TEST(RasterizerTest, ObstaclesInsideFreeSpaceCostNoHoles) {
-  // A room (walls between free and unknown space) with a wall stub, a pillar and a speck inside.
+  // A room (walls between free and unknown space) with a short wall, a pillar and a speck inside.
   OccupancyGrid grid(60, 40, 0.05, {}, grid::kUnknownValue);
   testing::FillRect(grid, 5, 5, 54, 34, grid::kOccupiedValue);
   testing::FillRect(grid, 6, 6, 53, 33, grid::kFreeValue);
