@@ -23,7 +23,7 @@ using eprosima::fastrtps::rtps::Locator_t;
 constexpr int kMaxDomainId = 232;  // the highest domain whose RTPS ports fit in 16 bits
 // Participants on one host that unicast discovery reaches: each announces to this many
 // participant ids on 127.0.0.1.
-constexpr uint32_t kLocalhostParticipants = 64;
+constexpr uint32_t kLocalhostParticipants = 128;
 
 bool EnvironmentFlag(const char* name) {
   const char* value = std::getenv(name);
