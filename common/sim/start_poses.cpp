@@ -49,9 +49,15 @@ StatusOr<std::vector<Pose2>> SpreadStarts(const grid::OccupancyGrid& truth, cons
   if (count < 1) return InvalidArgumentError("a fleet needs at least one robot");
   const std::vector<int> clear = ClearanceCells(truth);
   const int needed = static_cast<int>(std::ceil(clearance / truth.resolution()));
+  // Candidates on a lattice coarse enough to keep the sampling cheap for large fleets on large
+  // terrains (about 20 000 cells), fine enough to find room in narrow ones.
+  constexpr int64_t kMaxCandidates = 20000;
+  const int stride = std::max<int>(
+      1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(truth.cell_count()) /
+                                              kMaxCandidates))));
   std::vector<grid::CellIndex> candidates;
-  for (int y = 0; y < truth.height(); ++y) {
-    for (int x = 0; x < truth.width(); ++x) {
+  for (int y = 0; y < truth.height(); y += stride) {
+    for (int x = 0; x < truth.width(); x += stride) {
       if (clear[static_cast<size_t>(y) * truth.width() + x] >= needed) candidates.push_back({x, y});
     }
   }
