@@ -26,6 +26,9 @@ struct BenchFleetArgs {
   double duration_s = 60.0;
   double rate = 10.0;
   std::string json_path;
+  // Also run one robot for robots x duration on the same terrain, and compare its map with the
+  // fused map of the largest fleet: does fusing lose quality against one robot's own map?
+  bool single_robot = false;
 };
 
 struct Row {
@@ -145,6 +148,35 @@ int RunBenchFleet(const BenchFleetArgs& args) {
          {"opdf", row.quality.occupied_picture_distance.value_or(-1)},
          {"updf", row.quality.unoccupied_picture_distance.value_or(-1)}});
   }
+  if (args.single_robot && !rows.empty()) {
+    const Row& fleet = rows.back();
+    FleetSimOptions options = base;
+    options.robots = 1;
+    options.wire = "tiles";
+    options.duration = base.duration * fleet.robots;
+    StatusOr<FleetRunResult> single = RunFleet(options, [&](double seconds) {
+      std::cerr << fmt::format("\r1 robot for {:.0f} s: {:.0f} s   ",
+                               std::chrono::duration<double>(options.duration).count(), seconds)
+                << std::flush;
+    });
+    std::cerr << "\n";
+    if (!single.ok()) {
+      std::cerr << "fleetmap bench fleet: " << single.status().message() << "\n";
+      return 1;
+    }
+    const auto alone = metrics::CompareMaps(ResampleOnto(single->fused, *truth), *truth);
+    if (alone.ok()) {
+      std::cout << fmt::format(
+          "\nOne robot for {:.0f} s against {} robots for {:.0f} s, fused map vs ground truth: "
+          "MS {} vs {}, OPDF {} vs {}, UPDF {} vs {}\n",
+          std::chrono::duration<double>(options.duration).count(), fleet.robots, args.duration_s,
+          Fmt(alone->map_score, ""), Fmt(fleet.quality.map_score, ""),
+          Fmt(alone->occupied_picture_distance, ""),
+          Fmt(fleet.quality.occupied_picture_distance, ""),
+          Fmt(alone->unoccupied_picture_distance, ""),
+          Fmt(fleet.quality.unoccupied_picture_distance, ""));
+    }
+  }
   if (!args.json_path.empty()) std::ofstream(args.json_path) << json.dump(2) << "\n";
   return kExitOk;
 }
@@ -162,6 +194,8 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   command->add_option("--duration", args->duration_s, "seconds per run");
   command->add_option("--rate", args->rate, "laser scans per second per robot");
   command->add_option("--json", args->json_path, "write the rows as JSON");
+  command->add_flag("--single-robot", args->single_robot,
+                    "also one robot for (largest fleet x duration), to compare map quality");
   command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
 }
 
