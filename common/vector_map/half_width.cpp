@@ -1,6 +1,8 @@
 #include "common/vector_map/half_width.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -28,7 +30,8 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
   std::vector<float>& best = NoDistances(raster.size());
   thread_local std::vector<int> owner;
   if (owner.size() < raster.size()) owner.resize(raster.size());
-  std::vector<int> touched;
+  thread_local std::vector<int> touched;
+  touched.clear();
   auto visit = [&](int polyline, const Point2& a, const Point2& b) {
     ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
       if (!rect.Contains(x, y)) return;
@@ -51,44 +54,51 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
     for (size_t k = 0; k + 1 < pts.size(); ++k) visit(id, pts[k], pts[k + 1]);
     if (polylines[p].closed && pts.size() >= 3) visit(id, pts.back(), pts.front());
   }
-  // (polyline, distance, +1 occupied / -1 not) for the cells beyond the minimum radius.
-  struct Cell {
-    int polyline;
-    float d2;
-    int gain;
-  };
-  std::vector<Cell> cells;
+  // Cells beyond the minimum radius, grouped by polyline (counting sort), each as the key
+  // (float bits of d2) << 1 | occupied: d2 >= 0, so its bits order like the value, and sorting the
+  // keys of one polyline orders its cells by distance (ties side by side).
   const double min2 = ToleratedSquare(min_half_width);
+  thread_local std::vector<int> start;
+  thread_local std::vector<uint32_t> keys;
+  start.assign(polylines.size() + 1, 0);
+  size_t count = 0;
   for (const int i : touched) {
     if (static_cast<double>(best[i]) > min2) {
-      cells.push_back({owner[i], best[i], raster.Has(i, CellRaster::kOccupied) ? 1 : -1});
+      ++start[owner[i] + 1];
+      ++count;
+    }
+  }
+  for (size_t p = 1; p < start.size(); ++p) start[p] += start[p - 1];
+  keys.resize(count);
+  for (const int i : touched) {
+    if (static_cast<double>(best[i]) > min2) {
+      const uint32_t bits = std::bit_cast<uint32_t>(best[i]);
+      keys[start[owner[i]]++] = bits << 1 | (raster.Has(i, CellRaster::kOccupied) ? 1u : 0u);
     }
     best[i] = -1.0f;
   }
-  std::sort(cells.begin(), cells.end(), [](const Cell& l, const Cell& r) {
-    return l.polyline != r.polyline ? l.polyline < r.polyline : l.d2 < r.d2;
-  });
+  // start[p] now ends polyline p's keys.
   std::vector<double> half_widths(polylines.size(), 0.0);
-  for (size_t begin = 0; begin < cells.size();) {
-    size_t end = begin;
+  int begin = 0;
+  for (size_t p = 0; p < polylines.size(); ++p) {
+    const int end = start[p];
+    if (end == begin) continue;
+    std::sort(keys.begin() + begin, keys.begin() + end);
     int sum = 0;
     int best_sum = 0;
-    double best_d2 = 0.0;
-    while (end < cells.size() && cells[end].polyline == cells[begin].polyline) {
-      sum += cells[end].gain;
+    uint32_t best_bits = 0;
+    for (int k = begin; k < end; ++k) {
+      sum += (keys[k] & 1u) ? 1 : -1;
       // Ties at one distance are decided together (a radius takes all of them or none).
-      const bool last_at_distance =
-          end + 1 == cells.size() || cells[end + 1].polyline != cells[begin].polyline ||
-          cells[end + 1].d2 != cells[end].d2;
+      const bool last_at_distance = k + 1 == end || (keys[k + 1] >> 1) != (keys[k] >> 1);
       if (last_at_distance && sum > best_sum) {
         best_sum = sum;
-        best_d2 = cells[end].d2;
+        best_bits = keys[k] >> 1;
       }
-      ++end;
     }
+    const double best_d2 = static_cast<double>(std::bit_cast<float>(best_bits));
     // Rounded up by a float ulp or so: the radius must not fall short of the cells it chose.
-    half_widths[cells[begin].polyline] =
-        std::min(epsilon, std::sqrt(best_d2) * (1.0 + 1e-6));
+    half_widths[p] = std::min(epsilon, std::sqrt(best_d2) * (1.0 + 1e-6));
     begin = end;
   }
   return half_widths;

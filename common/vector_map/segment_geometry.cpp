@@ -5,14 +5,6 @@
 
 namespace fleetmap::vector_map {
 
-double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point2& b) {
-  const Point2 ab = b - a;
-  const double length_squared = ab.squaredNorm();
-  if (length_squared == 0.0) return (p - a).squaredNorm();
-  const double t = std::clamp((p - a).dot(ab) / length_squared, 0.0, 1.0);
-  return (p - (a + t * ab)).squaredNorm();
-}
-
 bool IntervalsCover(std::vector<std::pair<double, double>>& intervals, double length) {
   // Intervals arrive nearly sorted (cells are visited along the major axis, which runs with or
   // against the segment): orient, then insertion sort, linear in practice.

@@ -22,7 +22,14 @@ inline double ToleratedSquare(double distance) {
   return distance * distance * (1.0 + kDistanceTolerance) + kDistanceTolerance;
 }
 
-double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point2& b);
+// Inline: it runs per cell in the inner loops of the vectorizer and the half widths.
+inline double PointSegmentDistanceSquared(const Point2& p, const Point2& a, const Point2& b) {
+  const Point2 ab = b - a;
+  const double length_squared = ab.squaredNorm();
+  if (length_squared == 0.0) return (p - a).squaredNorm();
+  const double t = std::clamp((p - a).dot(ab) / length_squared, 0.0, 1.0);
+  return (p - (a + t * ab)).squaredNorm();
+}
 
 // Calls f(x, y) for every integer cell (x, y) whose centre may lie within `radius` of segment
 // [a, b] (a superset: a band about 2 * radius + 3 cells wide along the segment; never misses one).
