@@ -109,46 +109,70 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
   for (const int i : list) {
     for (const int o : window) ++support[i + o];
   }
+  // The low bits of support count skeleton pixels; the top two cache verdicts of the check below
+  // so that repeated passes skip pixels whose verdict cannot have changed (the result is the same
+  // as checking them all). kFixed: not removable; support only falls, so that is final. kClean:
+  // the neighbourhood mask was neither simple nor a line end, which holds until a neighbour is
+  // deleted (anchors never change), so each deletion clears kClean on its 8 neighbours.
+  constexpr uint16_t kFixed = 0x8000;
+  constexpr uint16_t kClean = 0x4000;
+  constexpr uint16_t kCount = 0x3FFF;
+  const bool cache = window.size() < kCount;
   auto removable = [&](int i) {
     for (const int o : window) {
-      if (support[i + o] <= 1 && raster.Has(i + o, CellRaster::kOwned)) return false;
+      if ((support[i + o] & kCount) <= 1 && raster.Has(i + o, CellRaster::kOwned)) return false;
     }
     return true;
   };
   constexpr uint8_t kBody = CellRaster::kSkeleton | CellRaster::kAnchor;
+  const uint8_t* flags = &raster.at(0);
   auto mask_of = [&](int i) {
     int mask = 0;
-    for (int k = 0; k < 8; ++k) {
-      if (raster.Has(i + offset[k], kBody)) mask |= 1 << k;
-    }
+    for (int k = 0; k < 8; ++k) mask |= ((flags[i + offset[k]] & kBody) != 0 ? 1 : 0) << k;
     return mask;
   };
   const auto& simple = SimplePointTable();
   static constexpr std::array<int, 4> kSides = {2, 6, 0, 4};  // N, S, E, W
+  // Pixels that may still be deleted (kFixed ones leave it), in row-major order like `list`.
+  std::vector<int> active = list;
   std::vector<int> candidates;
   bool changed = true;
   while (changed) {
     changed = false;
     for (const int side : kSides) {
       candidates.clear();
-      for (const int i : list) {
-        if (!raster.Has(i + offset[side], kBody)) candidates.push_back(i);
+      for (const int i : active) {
+        if (!(flags[i + offset[side]] & kBody)) candidates.push_back(i);
       }
       bool deleted = false;
+      bool fixed = false;
       for (const int i : candidates) {
+        if (support[i] & (kFixed | kClean)) continue;
         const int mask = mask_of(i);
         const bool line_end = mask != 0 && (mask & (mask - 1)) == 0;
-        if (!(simple[mask] || line_end) || !removable(i)) continue;
+        if (!(simple[mask] || line_end)) {
+          if (cache) support[i] |= kClean;
+          continue;
+        }
+        if (!removable(i)) {
+          if (cache) support[i] |= kFixed;
+          fixed = true;
+          continue;
+        }
         raster.at(i) &= static_cast<uint8_t>(~CellRaster::kSkeleton);
         for (const int o : window) --support[i + o];
+        for (const int o : offset) support[i + o] &= static_cast<uint16_t>(~kClean);
         deleted = true;
       }
-      if (deleted) {
-        changed = true;
-        std::erase_if(list, [&](int i) { return !raster.Has(i, CellRaster::kSkeleton); });
+      if (deleted) changed = true;
+      if (deleted || fixed) {
+        std::erase_if(active, [&](int i) {
+          return !raster.Has(i, CellRaster::kSkeleton) || (support[i] & kFixed) != 0;
+        });
       }
     }
   }
+  std::erase_if(list, [&](int i) { return !raster.Has(i, CellRaster::kSkeleton); });
   for (const int i : list) {
     for (const int o : window) support[i + o] = 0;
   }
