@@ -24,6 +24,13 @@ struct Chain {
   int base = 0;  // global position of points[0]
 };
 
+// A zeroed per-thread int image, reused across calls (callers restore the zeros).
+std::vector<int>& ZeroedSlots(size_t size) {
+  thread_local std::vector<int> slots;
+  if (slots.size() < size) slots.resize(size, 0);
+  return slots;
+}
+
 class TileRun {
  public:
   TileRun(CellRaster& raster, const grid::OccupancyGrid& grid,
@@ -90,8 +97,10 @@ class TileRun {
   // that pixel is interior to a chain, simplifying that chain must keep the point within epsilon.
   // Points nearest to a chain end need nothing: ends are always vertices.
   void Attach() {
-    // (pixel, global position or -1 for "an end somewhere"), sorted by pixel.
-    std::vector<std::pair<int, int>> where;
+    // Per pixel: 0 for none, else 1 + (global position, or -1 for "an end somewhere"); a pixel
+    // in several chains keeps the smallest (an end wins). Restored to 0 after use.
+    std::vector<int>& where = ZeroedSlots(raster_.size());
+    marked_.clear();
     for (size_t c = 0; c < chains_.size(); ++c) {
       const auto& pixels = chain_pixels_[c]->pixels;
       const int shift = chains_[c].on_border[0] ? 1 : 0;
@@ -100,12 +109,19 @@ class TileRun {
         const bool end = !chains_[c].ring && ((k == 0 && !chains_[c].on_border[0]) ||
                                               (k == n - 1 && !chains_[c].on_border[1]));
         if (chains_[c].ring && k == n - 1) continue;  // repeats pixel 0
-        where.emplace_back(pixels[k], end ? -1 : chains_[c].base + k + shift);
+        const int value = 1 + (end ? -1 : chains_[c].base + k + shift);
+        int& slot = where[pixels[k]];
+        if (slot == 0) {
+          marked_.push_back(pixels[k]);
+          slot = value + 1;
+        } else {
+          slot = std::min(slot, value + 1);
+        }
       }
     }
-    std::sort(where.begin(), where.end());  // an end (-1) sorts first for its pixel
     const std::vector<int> disc = DiscOffsets(raster_, eps_);
-    std::vector<std::pair<int, int>> attached;  // (global position, P point)
+    std::vector<std::pair<int, int>>& attached = attached_;  // (global position, P point)
+    attached.clear();
     for (const int p : raster_.owned_delimitation()) {
       int best = -1;
       for (const int o : disc) {
@@ -115,10 +131,11 @@ class TileRun {
         }
       }
       if (best < 0) continue;
-      const auto it = std::lower_bound(where.begin(), where.end(), std::make_pair(best, -1));
-      if (it == where.end() || it->first != best || it->second < 0) continue;
-      attached.emplace_back(it->second, p);
+      const int slot = where[best];
+      if (slot <= 1) continue;  // not in a chain, or an end
+      attached.emplace_back(slot - 2, p);
     }
+    for (const int pixel : marked_) where[pixel] = 0;
     bucket_start_.assign(static_cast<size_t>(positions_) + 1, 0);
     for (const auto& [position, p] : attached) ++bucket_start_[position + 1];
     for (size_t i = 1; i < bucket_start_.size(); ++i) bucket_start_[i] += bucket_start_[i - 1];
@@ -208,6 +225,8 @@ class TileRun {
   std::vector<Point2> rotated_;
   std::vector<std::vector<int>> pieces_;
   std::vector<std::pair<double, double>> intervals_;
+  std::vector<int> marked_;
+  std::vector<std::pair<int, int>> attached_;
 };
 
 }  // namespace
