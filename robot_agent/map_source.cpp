@@ -38,19 +38,35 @@ StatusOr<std::unique_ptr<TopicMapSource>> TopicMapSource::Create(
   std::unique_ptr<TopicMapSource> source(new TopicMapSource(topic));
   FLEETMAP_ASSIGN_OR_RETURN(source->reader_,
                             transport::OccupancyGridReader::Create(participant, topic));
+  FLEETMAP_ASSIGN_OR_RETURN(source->updates_,
+                            transport::MapUpdateReader::Create(participant, topic + "_updates"));
   return source;
 }
 
 std::optional<grid::OccupancyGrid> TopicMapSource::Poll() {
-  std::optional<grid::OccupancyGrid> newest;
+  bool changed = false;
   for (StatusOr<transport::MapMessage>& message : reader_->Drain()) {
     if (!message.ok()) {
       spdlog::warn("dropped a map from {}: {}", topic_, message.status().message());
       continue;
     }
-    newest = std::move(message->grid);  // only the newest matters
+    current_ = std::move(message->grid);  // a full map replaces everything before it
+    changed = true;
   }
-  return newest;
+  for (StatusOr<transport::MapUpdate>& update : updates_->Drain()) {
+    if (!update.ok()) {
+      spdlog::warn("dropped a map update from {}_updates: {}", topic_, update.status().message());
+      continue;
+    }
+    if (!current_) continue;  // an update means nothing before the first full map
+    if (const Status applied = transport::ApplyMapUpdate(*update, &*current_); !applied.ok()) {
+      spdlog::warn("dropped a map update from {}_updates: {}", topic_, applied.message());
+      continue;
+    }
+    changed = true;
+  }
+  if (!changed) return std::nullopt;
+  return current_;
 }
 
 }  // namespace fleetmap::agent

@@ -7,6 +7,7 @@
 
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/transport/map_update_reader.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 
@@ -38,7 +39,8 @@ class FileMapSource : public MapSource {
   std::filesystem::file_time_type mtime_;
 };
 
-// nav_msgs/OccupancyGrid samples on a DDS topic (a ROS 2 SLAM's /map is rt/map).
+// nav_msgs/OccupancyGrid samples on a DDS topic (a ROS 2 SLAM's /map is rt/map), patched by the
+// map_msgs/OccupancyGridUpdate samples on <topic>_updates (/map_updates) between full maps.
 class TopicMapSource : public MapSource {
  public:
   static StatusOr<std::unique_ptr<TopicMapSource>> Create(transport::Participant& participant,
@@ -51,6 +53,8 @@ class TopicMapSource : public MapSource {
 
   std::string topic_;
   std::unique_ptr<transport::OccupancyGridReader> reader_;
+  std::unique_ptr<transport::MapUpdateReader> updates_;
+  std::optional<grid::OccupancyGrid> current_;  // the last full map with its updates applied
 };
 
 }  // namespace fleetmap::agent

@@ -3,6 +3,7 @@
 #include "common/transport/idl_shapes.hpp"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
+#include "map_msgs/msg/OccupancyGridUpdatePubSubTypes.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
 
 namespace fleetmap::transport {
@@ -28,6 +29,12 @@ eprosima::fastdds::dds::TypeSupport RobotStatusTypeSupport() {
 eprosima::fastdds::dds::TypeSupport OccupancyGridTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<nav_msgs::msg::dds_::OccupancyGrid_PubSubType>(OccupancyGridShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport OccupancyGridUpdateTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<map_msgs::msg::dds_::OccupancyGridUpdate_PubSubType>(
+          OccupancyGridUpdateShape()));
 }
 
 eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport() {

@@ -116,6 +116,43 @@ StatusOr<MapMessage> FromIdl(const nav_msgs::msg::dds_::OccupancyGrid_& message)
   return out;
 }
 
+StatusOr<MapUpdate> FromIdl(const map_msgs::msg::dds_::OccupancyGridUpdate_& update) {
+  const uint64_t cells = static_cast<uint64_t>(update.width()) * update.height();
+  if (cells != update.data().size()) {
+    return InvalidArgumentError("OccupancyGridUpdate says " + std::to_string(update.width()) +
+                                " x " + std::to_string(update.height()) + " cells but carries " +
+                                std::to_string(update.data().size()));
+  }
+  if (update.width() > static_cast<uint32_t>(INT32_MAX) ||
+      update.height() > static_cast<uint32_t>(INT32_MAX)) {
+    return InvalidArgumentError("OccupancyGridUpdate is too large");
+  }
+  for (const int8_t value : update.data()) {
+    if (value < -1 || value > 100) {
+      return InvalidArgumentError("OccupancyGridUpdate has a cell outside -1..100");
+    }
+  }
+  MapUpdate out;
+  out.x = update.x();
+  out.y = update.y();
+  out.width = static_cast<int>(update.width());
+  out.height = static_cast<int>(update.height());
+  out.data = update.data();
+  out.stamp = FromIdl(update.header().stamp());
+  return out;
+}
+
+map_msgs::msg::dds_::OccupancyGridUpdate_ ToIdl(const MapUpdate& update) {
+  map_msgs::msg::dds_::OccupancyGridUpdate_ out;
+  out.header().stamp(ToIdl(update.stamp));
+  out.x(update.x);
+  out.y(update.y);
+  out.width(static_cast<uint32_t>(update.width));
+  out.height(static_cast<uint32_t>(update.height));
+  out.data(update.data);
+  return out;
+}
+
 fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status) {
   fleetmap_msgs::msg::dds_::RobotStatus_ out;
   out.robot_id(status.robot.value);

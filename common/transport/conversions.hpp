@@ -13,6 +13,7 @@
 #include "fleetmap_msgs/msg/VectorTile.h"
 #include "geometry_msgs/msg/Pose.h"
 #include "geometry_msgs/msg/Pose2D.h"
+#include "map_msgs/msg/OccupancyGridUpdate.h"
 #include "nav_msgs/msg/OccupancyGrid.h"
 
 namespace fleetmap::transport {
@@ -30,6 +31,9 @@ StatusOr<Pose2> FromIdl(const geometry_msgs::msg::dds_::Pose_& pose);
 
 nav_msgs::msg::dds_::OccupancyGrid_ ToIdl(const MapMessage& message);
 StatusOr<MapMessage> FromIdl(const nav_msgs::msg::dds_::OccupancyGrid_& message);
+
+StatusOr<MapUpdate> FromIdl(const map_msgs::msg::dds_::OccupancyGridUpdate_& update);
+map_msgs::msg::dds_::OccupancyGridUpdate_ ToIdl(const MapUpdate& update);
 
 fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status);
 StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& status);

@@ -51,6 +51,13 @@ const CdrShape& OccupancyGridShape() {
   return shape;
 }
 
+const CdrShape& OccupancyGridUpdateShape() {
+  static const CdrShape shape = {
+      Struct("header", HeaderShape()), Primitive("x", 4),      Primitive("y", 4),
+      Primitive("width", 4),           Primitive("height", 4), Sequence("data", 1)};
+  return shape;
+}
+
 const CdrShape& RobotStatusShape() {
   static const CdrShape shape = {String("robot_id"),
                                  Struct("stamp", TimeShape()),

@@ -10,6 +10,7 @@
 namespace fleetmap::transport {
 
 const CdrShape& OccupancyGridShape();
+const CdrShape& OccupancyGridUpdateShape();
 const CdrShape& RobotStatusShape();
 const CdrShape& VectorTileShape();
 const CdrShape& VectorMapShape();

@@ -2,8 +2,10 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "common/core/robot_status.hpp"
+#include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 
 namespace fleetmap::transport {
@@ -15,5 +17,20 @@ struct MapMessage {
   Timestamp stamp;
   size_t serialized_bytes = 0;  // CDR payload size, set by readers and writers
 };
+
+// A map_msgs/OccupancyGridUpdate: new values for the cells [x, x + width) x [y, y + height) of
+// the last full map on the matching map topic, row-major.
+struct MapUpdate {
+  int x = 0;
+  int y = 0;
+  int width = 0;
+  int height = 0;
+  std::vector<int8_t> data;
+  Timestamp stamp;
+};
+
+// Writes `update` into `map`. Fails (kInvalidArgument, naming the rectangle) when the rectangle
+// does not lie inside the map; `map` is unchanged then.
+Status ApplyMapUpdate(const MapUpdate& update, grid::OccupancyGrid* map);
 
 }  // namespace fleetmap::transport

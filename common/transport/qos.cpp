@@ -55,6 +55,19 @@ EndpointQos OccupancyGridQos() {
   return qos;
 }
 
+EndpointQos OccupancyGridUpdateQos() {
+  EndpointQos qos;
+  for (auto* history : {&qos.writer.history(), &qos.reader.history()}) {
+    history->kind = dds::KEEP_LAST_HISTORY_QOS;
+    history->depth = 16;
+  }
+  qos.writer.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  qos.reader.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  qos.writer.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  qos.reader.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  return qos;
+}
+
 EndpointQos VectorTileQos() {
   EndpointQos qos;
   StateTopic(qos.writer);

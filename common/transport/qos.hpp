@@ -25,6 +25,10 @@ EndpointQos RobotStatusQos();
 // local, keep last 1), published asynchronously since a grid is often larger than one datagram.
 EndpointQos OccupancyGridQos();
 
+// rt/<map>_updates (map_msgs/OccupancyGridUpdate): reliable, volatile, keep last 16, as ROS 2
+// SLAM nodes publish their incremental map updates.
+EndpointQos OccupancyGridUpdateQos();
+
 // rt/fleetmap/robot_tiles and rt/fleetmap/fused_tiles: reliable, transient local, keep last 1
 // per tile instance, no instance limit (a map has thousands of tiles).
 EndpointQos VectorTileQos();

@@ -105,6 +105,35 @@ TEST(ConversionsTest, RobotStatusRoundTripsAndValidatesName) {
   EXPECT_FALSE(FromIdl(nan_pose).ok());
 }
 
+TEST(MapUpdateTest, AppliesInsideTheMapAndRefusesTheRest) {
+  grid::OccupancyGrid map(4, 3, 0.1, Pose2{}, grid::kUnknownValue);
+  const MapUpdate update{
+      .x = 1, .y = 1, .width = 3, .height = 2, .data = {0, 0, 100, 0, 100, 0}, .stamp = {}};
+  ASSERT_TRUE(ApplyMapUpdate(update, &map).ok());
+  EXPECT_EQ(map.at(3, 1), 100);
+  EXPECT_EQ(map.at(2, 2), 100);
+  EXPECT_EQ(map.at(0, 0), grid::kUnknownValue);
+  const grid::OccupancyGrid before = map;
+  const MapUpdate too_wide{.x = 2, .y = 0, .width = 3, .height = 1, .data = {0, 0, 0}, .stamp = {}};
+  EXPECT_NE(ApplyMapUpdate(too_wide, &map).message().find("outside the 4 x 3 map"),
+            std::string::npos);
+  EXPECT_EQ(map, before);
+  const MapUpdate negative{.x = -1, .y = 0, .width = 1, .height = 1, .data = {0}, .stamp = {}};
+  EXPECT_FALSE(ApplyMapUpdate(negative, &map).ok());
+}
+
+TEST(MapUpdateTest, FromIdlChecksCountsAndValues) {
+  const MapUpdate update{.x = 1, .y = 2, .width = 2, .height = 1, .data = {0, 100}, .stamp = {}};
+  auto idl = ToIdl(update);
+  const auto back = FromIdl(idl);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->data, update.data);
+  idl.data().push_back(0);
+  EXPECT_NE(FromIdl(idl).status().message().find("2 x 1 cells but carries 3"), std::string::npos);
+  idl.data({0, 120});
+  EXPECT_FALSE(FromIdl(idl).ok());
+}
+
 TEST(ParticipantOptionsTest, DomainComesFromOptionThenEnvironment) {
   EXPECT_EQ(*ResolveDomainId(7), 7);
   EXPECT_FALSE(ResolveDomainId(233).ok());
