@@ -165,13 +165,19 @@ class TileRun {
       const double ux = subset_test ? (b.x() - a.x()) / length : 0.0;
       const double uy = subset_test ? (b.y() - a.y()) / length : 0.0;
       intervals_.clear();
+      // The intervals arrive roughly in order along the segment: a greedy sweep in arrival order
+      // that reaches `length` proves cover (every interval it takes starts within the part already
+      // covered, so the sorted sweep of IntervalsCover cannot stop earlier), and then the
+      // remaining points need only the epsilon-error test. Otherwise IntervalsCover decides.
+      double swept = 0.0;
+      bool covered = !subset_test;
       for (int m = i; m <= j; ++m) {
         const int position = chain.base + (m + shift) % period;
         const bool interior = m > i && m < j;
         for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
           const Point2& p = bucket_points_[k];
           if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
-          if (!subset_test) continue;
+          if (covered) continue;
           const double wx = p.x() - a.x();
           const double wy = p.y() - a.y();
           const double along = wx * ux + wy * uy;
@@ -180,9 +186,13 @@ class TileRun {
           const double half = std::sqrt(half2);
           if (along + half < 0.0 || along - half > length) continue;
           intervals_.emplace_back(along - half, along + half);
+          if (along - half <= swept + kDistanceTolerance) {
+            swept = std::max(swept, along + half);
+            covered = swept >= length;
+          }
         }
       }
-      if (subset_test && IntervalsCover(intervals_, length)) return true;
+      if (subset_test && (covered || IntervalsCover(intervals_, length))) return true;
       return Continuous(a, b);
     };
     pieces_.clear();
