@@ -1,6 +1,7 @@
 #include "common/vector_map/cell_raster.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 namespace fleetmap::vector_map {
@@ -16,22 +17,28 @@ int FirstOccupiedValue(const grid::StateThresholds& thresholds) {
 }
 
 // Appends the indices of cells in [begin, end) of `row` (raster index `base` at begin) with any of
-// `bits` set, skipping eight empty cells at a time.
+// `bits` set, in order, eight cells at a time (assumes a little-endian host, as x86 and ARM are).
 void CollectRow(const uint8_t* row, int begin, int end, int base, uint8_t bits,
                 std::vector<int>& out) {
+  constexpr uint64_t kLow7 = 0x7F7F7F7F7F7F7F7FULL;
+  constexpr uint64_t kHigh = 0x8080808080808080ULL;
   const uint64_t word_bits = 0x0101010101010101ULL * bits;
   int x = begin;
-  while (x < end) {
-    if (x + 8 <= end) {
-      uint64_t word;
-      std::memcpy(&word, row + x, sizeof(word));
-      if ((word & word_bits) == 0) {
-        x += 8;
-        continue;
-      }
+  for (; x + 8 <= end; x += 8) {
+    uint64_t word;
+    std::memcpy(&word, row + x, sizeof(word));
+    const uint64_t hit = word & word_bits;
+    if (hit == 0) continue;
+    // The top bit of each byte of `nonzero` says whether that byte of `hit` is nonzero; bytes
+    // are in memory order (little-endian), so the lowest set bit is the leftmost cell.
+    uint64_t nonzero = (((hit & kLow7) + kLow7) | hit) & kHigh;
+    while (nonzero != 0) {
+      out.push_back(base + x + std::countr_zero(nonzero) / 8);
+      nonzero &= nonzero - 1;
     }
+  }
+  for (; x < end; ++x) {
     if (row[x] & bits) out.push_back(base + x);
-    ++x;
   }
 }
 

@@ -1,5 +1,8 @@
 #include "common/vector_map/free_space_extractor.hpp"
 
+#include <array>
+#include <cstdint>
+
 #include <opencv2/imgproc.hpp>
 
 namespace fleetmap::vector_map {
@@ -15,6 +18,11 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   constexpr uint8_t kOut = 0;
   constexpr uint8_t kIn = 1;
   constexpr uint8_t kAny = 2;
+  // The state of every possible cell value, looked up instead of classified per cell.
+  std::array<grid::CellState, 256> state_of{};
+  for (int v = -128; v < 128; ++v) {
+    state_of[static_cast<uint8_t>(v)] = grid::StateOf(static_cast<int8_t>(v), thresholds);
+  }
   cv::Mat cls(rect.height, rect.width, CV_8UC1);
   bool any = false;
   bool any_dont_care = false;
@@ -26,7 +34,7 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
                                  ? options.painted->data() + static_cast<size_t>(y) * rect.width
                                  : nullptr;
     for (int x = 0; x < rect.width; ++x) {
-      const grid::CellState state = grid::StateOf(cells[x], thresholds);
+      const grid::CellState state = state_of[static_cast<uint8_t>(cells[x])];
       if (state == grid::CellState::kFree) {
         row[x] = kIn;
         any = true;
