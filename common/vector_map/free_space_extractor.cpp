@@ -18,34 +18,38 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   constexpr uint8_t kOut = 0;
   constexpr uint8_t kIn = 1;
   constexpr uint8_t kAny = 2;
-  // The state of every possible cell value, looked up instead of classified per cell.
-  std::array<grid::CellState, 256> state_of{};
+  // The class of every (painted, cell value) pair, looked up instead of classified per cell.
+  std::array<uint8_t, 512> class_of{};
   for (int v = -128; v < 128; ++v) {
-    state_of[static_cast<uint8_t>(v)] = grid::StateOf(static_cast<int8_t>(v), thresholds);
+    const uint8_t byte = static_cast<uint8_t>(v);
+    const grid::CellState state = grid::StateOf(static_cast<int8_t>(v), thresholds);
+    class_of[byte] = state == grid::CellState::kFree       ? kIn
+                     : state == grid::CellState::kOccupied ? kAny
+                                                           : kOut;
+    class_of[256 + byte] = state == grid::CellState::kFree ? kIn : kAny;
   }
   cv::Mat cls(rect.height, rect.width, CV_8UC1);
-  bool any = false;
-  bool any_dont_care = false;
+  unsigned seen = 0;  // bit c: some cell has class c
   for (int y = 0; y < rect.height; ++y) {
     uint8_t* row = cls.ptr<uint8_t>(y);
     const int8_t* cells =
         grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
-    const uint8_t* painted = options.painted != nullptr
-                                 ? options.painted->data() + static_cast<size_t>(y) * rect.width
-                                 : nullptr;
-    for (int x = 0; x < rect.width; ++x) {
-      const grid::CellState state = state_of[static_cast<uint8_t>(cells[x])];
-      if (state == grid::CellState::kFree) {
-        row[x] = kIn;
-        any = true;
-      } else if ((painted != nullptr && painted[x] != 0) || state == grid::CellState::kOccupied) {
-        row[x] = kAny;
-        any_dont_care = true;
-      } else {
-        row[x] = kOut;
+    if (options.painted != nullptr) {
+      const uint8_t* painted = options.painted->data() + static_cast<size_t>(y) * rect.width;
+      for (int x = 0; x < rect.width; ++x) {
+        const int key = (painted[x] != 0 ? 256 : 0) + static_cast<uint8_t>(cells[x]);
+        row[x] = class_of[key];
+        seen |= 1u << row[x];
+      }
+    } else {
+      for (int x = 0; x < rect.width; ++x) {
+        row[x] = class_of[static_cast<uint8_t>(cells[x])];
+        seen |= 1u << row[x];
       }
     }
   }
+  const bool any = (seen & (1u << kIn)) != 0;
+  const bool any_dont_care = (seen & (1u << kAny)) != 0;
   if (!any) return polygons;
   cv::Mat mask = cls == kIn;
   if (any_dont_care) {
@@ -61,16 +65,13 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     for (int y = 0; y < rect.height; ++y) {
       const uint8_t* row = cls.ptr<uint8_t>(y);
       const int* label = labels.ptr<int>(y);
-      for (int x = 0; x < rect.width; ++x) {
-        if (row[x] == kIn) keep[label[x]] = 1;
-      }
+      for (int x = 0; x < rect.width; ++x) keep[label[x]] |= row[x] == kIn ? 1 : 0;
     }
     for (int y = 0; y < rect.height; ++y) {
       uint8_t* row = mask.ptr<uint8_t>(y);
       const int* label = labels.ptr<int>(y);
-      for (int x = 0; x < rect.width; ++x) {
-        if (row[x] != 0 && keep[label[x]] == 0) row[x] = 0;
-      }
+      // keep[] is 0 or 1 (and 0 for the background label, whose cells are 0 already).
+      for (int x = 0; x < rect.width; ++x) row[x] &= static_cast<uint8_t>(-keep[label[x]]);
     }
   }
   std::vector<std::vector<cv::Point>> contours;
