@@ -2,13 +2,42 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include "common/vector_map/skeleton.hpp"
 
 namespace fleetmap::vector_map {
 namespace {
+
+// Bit k of kLinkTable[mask]: the m-adjacency link to neighbour k of a pixel whose skeleton
+// 8-neighbourhood is `mask` (a 4-neighbour always; a diagonal one only if neither 4-neighbour
+// beside it is skeleton).
+constexpr std::array<uint8_t, 256> BuildLinkTable() {
+  std::array<uint8_t, 256> table{};
+  for (int mask = 0; mask < 256; ++mask) {
+    int links = 0;
+    for (int k = 0; k < 8; ++k) {
+      if (!((mask >> k) & 1)) continue;
+      const bool before = (mask >> ((k + 7) % 8)) & 1;
+      const bool after = (mask >> ((k + 1) % 8)) & 1;
+      if (k % 2 == 0 || (!before && !after)) links |= 1 << k;
+    }
+    table[mask] = static_cast<uint8_t>(links);
+  }
+  return table;
+}
+constexpr std::array<uint8_t, 256> kLinkTable = BuildLinkTable();
+constexpr std::array<uint8_t, 256> BuildDegreeTable() {
+  std::array<uint8_t, 256> table{};
+  for (int mask = 0; mask < 256; ++mask) {
+    table[mask] = static_cast<uint8_t>(std::popcount(static_cast<unsigned>(kLinkTable[mask])));
+  }
+  return table;
+}
+constexpr std::array<uint8_t, 256> kDegreeTable = BuildDegreeTable();
 
 struct Neighbourhood {
   explicit Neighbourhood(const CellRaster& raster) : raster(raster) {
@@ -17,16 +46,14 @@ struct Neighbourhood {
     }
   }
   bool Skeleton(int index) const { return raster.Has(index, CellRaster::kSkeleton); }
-  // m-adjacency link from `index` to its neighbour k.
-  bool Linked(int index, int k) const {
-    if (!Skeleton(index + offset[k])) return false;
-    if (k % 2 == 0) return true;
-    return !Skeleton(index + offset[(k + 7) % 8]) && !Skeleton(index + offset[(k + 1) % 8]);
-  }
-  int Degree(int index) const {
-    int degree = 0;
-    for (int k = 0; k < 8; ++k) degree += Linked(index, k);
-    return degree;
+  // Bit k: m-adjacency link from `index` to its neighbour k.
+  unsigned Links(int index) const { return kLinkTable[Mask(index)]; }
+  int Degree(int index) const { return kDegreeTable[Mask(index)]; }
+  // Bit k: neighbour k is skeleton.
+  unsigned Mask(int index) const {
+    unsigned mask = 0;
+    for (int k = 0; k < 8; ++k) mask |= (Skeleton(index + offset[k]) ? 1u : 0u) << k;
+    return mask;
   }
   const CellRaster& raster;
   std::array<int, 8> offset{};
@@ -152,8 +179,9 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
       chains.push_back({{p}});
       continue;
     }
+    const unsigned p_links = nb.Links(p);
     for (int k = 0; k < 8; ++k) {
-      if (!nb.Linked(p, k)) continue;
+      if (!((p_links >> k) & 1u)) continue;
       const int q = p + nb.offset[k];
       if (terminal(q)) {
         if (p < q) chains.push_back({{p, q}});
@@ -167,8 +195,9 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
         visit(current);
         chain.pixels.push_back(current);
         int next = -1;
+        const unsigned links = nb.Links(current);
         for (int j = 0; j < 8; ++j) {
-          if (!nb.Linked(current, j)) continue;
+          if (!((links >> j) & 1u)) continue;
           const int r = current + nb.offset[j];
           if (r != previous && (terminal(r) || !visited(r) || r == p)) {
             next = r;
@@ -191,8 +220,9 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
     int current = p;
     while (true) {
       int next = -1;
+      const unsigned links = nb.Links(current);
       for (int j = 0; j < 8; ++j) {
-        if (!nb.Linked(current, j)) continue;
+        if (!((links >> j) & 1u)) continue;
         const int r = current + nb.offset[j];
         if (r == previous) continue;
         if (r == p && chain.pixels.size() > 2) {
