@@ -164,13 +164,27 @@ class TileRun {
       const bool subset_test = length > kDistanceTolerance;
       const double ux = subset_test ? (b.x() - a.x()) / length : 0.0;
       const double uy = subset_test ? (b.y() - a.y()) / length : 0.0;
-      intervals_.clear();
-      // The intervals arrive roughly in order along the segment: a greedy sweep in arrival order
-      // that reaches `length` proves cover (every interval it takes starts within the part already
-      // covered, so the sorted sweep of IntervalsCover cannot stop earlier), and then the
-      // remaining points need only the epsilon-error test. Otherwise IntervalsCover decides.
+      // The epsilon-disc interval [lo, hi] of p along the segment, if it meets the segment.
+      auto interval = [&](const Point2& p, double& lo, double& hi) {
+        const double wx = p.x() - a.x();
+        const double wy = p.y() - a.y();
+        const double along = wx * ux + wy * uy;
+        const double half2 = eps2_ - (wx * wx + wy * wy - along * along);
+        if (half2 < 0.0) return false;
+        const double half = std::sqrt(half2);
+        lo = along - half;
+        hi = along + half;
+        return !(hi < 0.0 || lo > length);
+      };
+      // The intervals arrive roughly in order along the segment, so a greedy sweep in arrival
+      // order decides without sorting them: each interval it takes starts within the part already
+      // covered, so the sorted sweep of IntervalsCover cannot stop before the greedy one's reach.
+      // Reaching `length` proves cover (the remaining points then need only the epsilon-error
+      // test); taking every interval makes the greedy reach the union's, so it decides as
+      // IntervalsCover would. Only if some interval was skipped does IntervalsCover decide.
       double swept = 0.0;
       bool covered = !subset_test;
+      bool skipped = false;
       for (int m = i; m <= j; ++m) {
         const int position = chain.base + (m + shift) % period;
         const bool interior = m > i && m < j;
@@ -178,21 +192,32 @@ class TileRun {
           const Point2& p = bucket_points_[k];
           if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
           if (covered) continue;
-          const double wx = p.x() - a.x();
-          const double wy = p.y() - a.y();
-          const double along = wx * ux + wy * uy;
-          const double half2 = eps2_ - (wx * wx + wy * wy - along * along);
-          if (half2 < 0.0) continue;
-          const double half = std::sqrt(half2);
-          if (along + half < 0.0 || along - half > length) continue;
-          intervals_.emplace_back(along - half, along + half);
-          if (along - half <= swept + kDistanceTolerance) {
-            swept = std::max(swept, along + half);
+          double lo = 0.0;
+          double hi = 0.0;
+          if (!interval(p, lo, hi)) continue;
+          if (lo <= swept + kDistanceTolerance) {
+            swept = std::max(swept, hi);
             covered = swept >= length;
+          } else {
+            skipped = true;
           }
         }
       }
-      if (subset_test && (covered || IntervalsCover(intervals_, length))) return true;
+      if (subset_test) {
+        if (covered || (!skipped && swept >= length - kDistanceTolerance)) return true;
+        if (skipped) {
+          intervals_.clear();
+          for (int m = i; m <= j; ++m) {
+            const int position = chain.base + (m + shift) % period;
+            for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
+              double lo = 0.0;
+              double hi = 0.0;
+              if (interval(bucket_points_[k], lo, hi)) intervals_.emplace_back(lo, hi);
+            }
+          }
+          if (IntervalsCover(intervals_, length)) return true;
+        }
+      }
       return Continuous(a, b);
     };
     pieces_.clear();
