@@ -25,6 +25,14 @@ void CollectRow(const uint8_t* row, int begin, int end, int base, uint8_t bits,
   const uint64_t word_bits = 0x0101010101010101ULL * bits;
   int x = begin;
   for (; x + 8 <= end; x += 8) {
+    if (x + 32 <= end) {  // skip empty stretches 32 cells at a time
+      uint64_t words[4];
+      std::memcpy(words, row + x, sizeof(words));
+      if (((words[0] | words[1] | words[2] | words[3]) & word_bits) == 0) {
+        x += 24;
+        continue;
+      }
+    }
     uint64_t word;
     std::memcpy(&word, row + x, sizeof(word));
     const uint64_t hit = word & word_bits;
