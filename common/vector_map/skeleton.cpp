@@ -105,10 +105,20 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
     }
   }
   const std::vector<int> window = DiscOffsets(raster, epsilon);
+  // The default epsilon (sqrt(2) cells) gives the 3 x 3 block; a fixed-size copy lets the
+  // compiler unroll the window loops, which run for every pixel.
+  std::array<int, 9> block{};
+  const bool is_block = window.size() == block.size();
+  if (is_block) std::copy(window.begin(), window.end(), block.begin());
+  auto for_window = [&](int i, auto&& f) {
+    if (is_block) {
+      for (const int o : block) f(i + o);
+    } else {
+      for (const int o : window) f(i + o);
+    }
+  };
   std::vector<uint16_t>& support = ZeroedCounters(raster.size());
-  for (const int i : list) {
-    for (const int o : window) ++support[i + o];
-  }
+  for (const int i : list) for_window(i, [&](int c) { ++support[c]; });
   // The low bits of support count skeleton pixels; the top two cache verdicts of the check below
   // so that repeated passes skip pixels whose verdict cannot have changed (the result is the same
   // as checking them all). kFixed: not removable; support only falls, so that is final. kClean:
@@ -119,10 +129,11 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
   constexpr uint16_t kCount = 0x3FFF;
   const bool cache = window.size() < kCount;
   auto removable = [&](int i) {
-    for (const int o : window) {
-      if ((support[i + o] & kCount) <= 1 && raster.Has(i + o, CellRaster::kOwned)) return false;
-    }
-    return true;
+    bool ok = true;
+    for_window(i, [&](int c) {
+      ok &= !((support[c] & kCount) <= 1 && raster.Has(c, CellRaster::kOwned));
+    });
+    return ok;
   };
   constexpr uint8_t kBody = CellRaster::kSkeleton | CellRaster::kAnchor;
   const uint8_t* flags = &raster.at(0);
@@ -160,7 +171,7 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
           continue;
         }
         raster.at(i) &= static_cast<uint8_t>(~CellRaster::kSkeleton);
-        for (const int o : window) --support[i + o];
+        for_window(i, [&](int c) { --support[c]; });
         for (const int o : offset) support[i + o] &= static_cast<uint16_t>(~kClean);
         deleted = true;
       }
@@ -174,7 +185,7 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
   }
   std::erase_if(list, [&](int i) { return !raster.Has(i, CellRaster::kSkeleton); });
   for (const int i : list) {
-    for (const int o : window) support[i + o] = 0;
+    for_window(i, [&](int c) { support[c] = 0; });
   }
   return list;
 }
