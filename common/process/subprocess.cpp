@@ -33,7 +33,7 @@ std::vector<std::string> MergedEnvironment(const std::map<std::string, std::stri
 
 // A new empty temporary file; returns its descriptor and sets `path`.
 int TemporaryFile(std::string* path) {
-  char path_template[] = "/tmp/fleetmap-test-output-XXXXXX";
+  char path_template[] = "/tmp/fleetmap-process-output-XXXXXX";
   const int fd = mkstemp(path_template);
   if (fd < 0) throw std::runtime_error("mkstemp failed");
   *path = path_template;
