@@ -30,7 +30,10 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
                                                      participant, transport::kFleetMapTopic));
   if (!options.store_path.empty()) {
-    FLEETMAP_ASSIGN_OR_RETURN(worker->store_, store::MapStore::Open(options.store_path));
+    store::StoreOptions store_options;
+    store_options.max_history_rows = options.history_rows;
+    FLEETMAP_ASSIGN_OR_RETURN(worker->store_,
+                              store::MapStore::Open(options.store_path, store_options));
     FLEETMAP_RETURN_IF_ERROR(worker->Restore());
   }
   return worker;

@@ -27,6 +27,9 @@ struct FusionWorkerOptions {
   // SQLite map store (WAL): every robot tile and fused tile revision, and the robots. Empty: keep
   // nothing. On start the fused map is rebuilt from the robot tiles it holds.
   std::string store_path;
+  // Tile revisions the store's history keeps, oldest dropped first (0: all). A fleet of 16
+  // robots writes a few hundred revisions a minute; the default keeps days of them.
+  int64_t history_rows = 2'000'000;
   // The fused grid goes out on rt/fleetmap/map at most this often (when it changed).
   std::chrono::milliseconds map_period{1000};
 };

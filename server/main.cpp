@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
   app.add_option("--store", options.fusion.store_path,
                  "SQLite map store: the fused map survives restarts (empty: keep nothing)");
+  app.add_option("--history-rows", options.fusion.history_rows,
+                 "tile revisions kept in the store's history (0: all)")
+      ->check(CLI::NonNegativeNumber);
   std::string transforms_path;
   app.add_option("--transforms", transforms_path,
                  "YAML of known fleet_from_map transforms (robots: {name: [x, y, yaw]})");
