@@ -1,0 +1,76 @@
+#pragma once
+
+// Every threshold and parameter of object learning, with its default (docs/object-learning.md has
+// the reasons). One struct per component, gathered in LearnOptions; ValidateLearnOptions checks
+// them once, where they are made.
+
+#include <cstdint>
+
+#include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
+
+namespace fleetmap::object_learning {
+
+// Map differencing (SnapshotExtractor). A cell of map t is a difference when it is occupied in t
+// and free in some other map t' with no occupied cell of t' within `guard_radius` (a wall seen one
+// cell further in t' is not a moved object); the difference mask is low-pass filtered (box mean
+// over (2 filter_radius + 1)^2 cells, kept where >= filter_threshold) against the speckle along
+// occupied/free borders; region growing (8-connected) makes one snapshot per region.
+struct SnapshotOptions {
+  grid::StateThresholds thresholds;  // how a map cell reads as occupied / free
+  int guard_radius = 1;              // cells, >= 0
+  int filter_radius = 1;             // cells, >= 0 (0: no filter)
+  double filter_threshold = 0.25;    // in [0, 1]
+  int min_region_cells = 8;          // smaller regions are noise, >= 1
+  int max_region_cells = 4000;       // larger ones are not objects (a wall moved), >= min
+  int margin_cells = 3;              // empty border around the largest snapshot, >= 0
+  int patch_cells = 0;               // side of every patch in cells; 0: from the largest snapshot
+};
+
+// One EM run (HierarchicalEm, FlatEm) for a fixed (N, M).
+struct EmOptions {
+  double sigma = 0.25;         // snapshot noise (eq. 1), final value, > 0
+  double tau = 0.25;           // object-to-template noise (eq. 4), final value, > 0
+  double sigma_initial = 1.0;  // annealing start (eq. 27), >= sigma
+  double tau_initial = 1.0;    // annealing start (eq. 28), >= tau
+  double annealing = 0.8;      // kappa in (0, 1)
+  int iterations = 30;         // EM iterations per run, >= 1
+  // Alignment search (hill climbing over dx, dy, dphi), seeded by a coarse scan over rotations
+  // every `rotation_scan_every` iterations (objects are seen in any orientation, and a local
+  // climb cannot turn a snapshot by 90 degrees).
+  double rotation_scan_step = 0.2617993877991494;  // radians (15 degrees), > 0
+  int rotation_scan_every = 5;                     // iterations, >= 1
+  double initial_shift_step = 0.1;                 // metres, > 0
+  double initial_turn_step = 0.1308996938995747;   // radians (7.5 degrees), > 0
+  double min_shift_step = 0.0125;                  // metres, > 0: the climb stops below
+  // Above this many snapshots in one map the exact E-step (eq. 19) is replaced by Gibbs sampling
+  // over injective assignments, and the result carries a warning.
+  int max_exact_snapshots = 12;  // in [1, 20]
+  int gibbs_sweeps = 200;        // samples kept, >= 1
+  int gibbs_burn_in = 50;        // sweeps dropped, >= 0
+};
+
+// The search over (N objects, M templates) (ModelSelection): max_t K_t <= N <= sum_t K_t,
+// 1 <= M <= N, score log p(data, model) - object_penalty * N - template_penalty * M (eq. 30).
+struct SelectionOptions {
+  double object_penalty = 60.0;    // c_N, nats per object, >= 0
+  double template_penalty = 60.0;  // c_M, nats per template, >= 0
+  int max_objects = 16;            // cap on N (a warning says when it bites), >= 1
+  // The search along N (and along M for each N) stops after this many candidates in a row
+  // without a new best; 0 searches the whole grid.
+  int patience = 2;
+};
+
+struct LearnOptions {
+  SnapshotOptions snapshots;
+  EmOptions em;
+  SelectionOptions selection;
+  int restarts = 4;          // random starts per (N, M); the best is kept, >= 1
+  uint32_t seed = 1;         // every random start derives from it: same seed, same model
+  bool hierarchical = true;  // false: the flat model of Biswas et al. 2002 (objects only, M = 0)
+};
+
+// kInvalidArgument naming the first bad option (e.g. "em.annealing 1.5 must be in (0, 1)").
+Status ValidateLearnOptions(const LearnOptions& options);
+
+}  // namespace fleetmap::object_learning

@@ -1,0 +1,60 @@
+#pragma once
+
+// Learns models of the things that move in an environment (chairs, bins, boxes) from occupancy
+// maps of the same place taken at different times, and the classes (templates) they belong to:
+// the hierarchical object maps of Anguelov, Biswas, Koller, Limketkai and Thrun (UAI 2002),
+// ALGORITHMS.md section 2, docs/object-learning.md.
+//
+// Pipeline: map differencing cuts one snapshot per moved object out of every map
+// (SnapshotExtractor); hierarchical EM with deterministic annealing learns objects, templates,
+// correspondences and alignments for each candidate (N objects, M templates) (HierarchicalEm);
+// model selection keeps the (N, M) of highest log posterior (ModelSelection).
+//
+// Thread-safety: LearnObjects is a pure function of its arguments; it may run concurrently.
+
+#include <string>
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/learn_options.hpp"
+#include "common/object_learning/patch.hpp"
+
+namespace fleetmap::object_learning {
+
+// Where snapshot `k` of map `map_index` went: the object it shows (MAP correspondence), the
+// map-frame centre of its patch, and the alignment that maps it onto the object's patch.
+struct SnapshotAssignment {
+  int map_index = 0;
+  int object = 0;
+  Point2 centre = Point2::Zero();  // map frame, metres
+  Alignment alignment;
+};
+
+// One point of the (N, M) grid that model selection searched.
+struct ModelScore {
+  int num_objects = 0;
+  int num_templates = 0;
+  double log_posterior = 0.0;  // log p(data, model) - c_N * N - c_M * M, nats
+};
+
+struct LearnedModel {
+  int num_objects = 0;
+  int num_templates = 0;
+  double log_posterior = 0.0;
+  std::vector<Patch> templates;               // alpha_1..alpha_M
+  std::vector<Patch> objects;                 // theta_1..theta_N
+  std::vector<int> object_template;           // z_n: template of each object (MAP)
+  std::vector<SnapshotAssignment> snapshots;  // every snapshot, in extraction order
+  std::vector<ModelScore> searched;           // the (N, M) grid, in search order
+  std::vector<std::string> warnings;          // e.g. the approximate E-step was used
+};
+
+// Learns objects and templates from `maps` (at least two, same size, resolution and origin; they
+// must share a frame). A difference-free set of maps gives an empty model (N = M = 0) and a
+// warning saying so. Errors (kInvalidArgument): fewer than two maps, maps whose geometry differs
+// (the message names the map indices), invalid options (the message names the option).
+StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps,
+                                    const LearnOptions& options = {});
+
+}  // namespace fleetmap::object_learning
