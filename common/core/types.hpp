@@ -11,6 +11,8 @@ namespace fleetmap {
 
 using Point2 = Eigen::Vector2d;
 using Point2f = Eigen::Vector2f;
+// A direction or displacement in the plane (a Point2 by another name, for readability).
+using Vector2 = Eigen::Vector2d;
 using Transform2 = Eigen::Isometry2d;
 
 // A planar pose: position in metres and heading (yaw) in radians, counter-clockwise from +x.

@@ -1,0 +1,84 @@
+#pragma once
+
+// Map extrapolation (ALGORITHMS.md 3, eq. 1-5): from a robot's local occupancy grid and the
+// entities it recognised, builds the sub-map graph: the observed sub-map (augmented with the free
+// space people's tracks imply), one predicted sub-map behind each closed door and one at the top
+// of each flight of stairs.
+//
+// Kernels are thresholded after normalising each to a peak of 1 (a confidence in [0, 1]), so
+// p_th means the same thing whatever sigma is (docs/extrapolation.md). Predicted free space never
+// claims a cell the local map shows occupied, and is clipped: doors' predictions spread only
+// through cells the local map does not show occupied (4-connected from the doorway, so a known
+// wall stops them) on the unseen side of the door and within `door_max_range`; stairs'
+// predictions cover only the half-plane beyond the top of the flight; people's only cells in line
+// of sight of the person (through the local map).
+//
+// Thread-safety: stateless; safe to call concurrently.
+
+#include <string>
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/extrapolation/entities.hpp"
+#include "common/extrapolation/submap_graph.hpp"
+#include "common/grid/occupancy_grid.hpp"
+
+namespace fleetmap::extrapolation {
+
+struct ExtrapolationOptions {
+  // Free where the peak-normalised kernel exceeds p_th, in (0, 1).
+  double p_th = 0.5;
+
+  // Stairs: f_s = N(0, sigma^2 I) at the top of the flight, sigma = stairs_sigma_per_width * w.
+  double stairs_sigma_per_width = 1.2;
+  // Pitch assumed when a stairs entity gives no run length (radians; 32 deg ~ 17 cm / 28 cm).
+  double stairs_default_pitch = 0.5585;
+
+  // Doors: f_d = 2 phi(u) Phi(alpha^T u / sigma) at the hinge, sigma = door_sigma_per_width * w,
+  // alpha = (0, door_skew_per_width * w) (w in metres) pointing into the unseen side.
+  double door_sigma_per_width = 1.3;
+  double door_skew_per_width = 3.0;
+  // The predicted sub-map's frame sits this far behind the door's centre (the paper's d).
+  double door_submap_distance = 1.0;
+  // No predicted cell further than this from the door's centre (metres).
+  double door_max_range = 2.5;
+
+  // People: a skew-normal personal-space kernel in the person's frame (x forward, y left):
+  // sigma_forward / sigma_side (metres), skew alpha = (person_skew_forward,
+  // dominant_side * person_skew_side): more space ahead and away from the dominant side.
+  double person_sigma_forward = 0.45;
+  double person_sigma_side = 0.35;
+  double person_skew_forward = 2.0;
+  double person_skew_side = 1.0;
+  // Linear prediction horizon when a person leaves / enters the view (seconds), and the spacing
+  // of the poses the kernel is swept over (metres).
+  double track_horizon = 1.5;
+  double track_sample_spacing = 0.1;
+  // Where the dominant side is inferred, obstacles are searched up to this far sideways (metres).
+  double dominant_side_search = 2.0;
+
+  // Cells of the grid a predicted sub-map may have at most (a bad entity must not allocate the
+  // world): larger kernels are cut to this size.
+  int max_submap_cells_side = 2000;
+};
+
+// Errors (kInvalidArgument): p_th outside (0, 1), a non-positive or non-finite parameter.
+Status ValidateOptions(const ExtrapolationOptions& options);
+
+struct ExtrapolationResult {
+  SubmapGraph graph;
+  // The free space people's tracks imply (0 where conditionally free, -1 elsewhere), with the
+  // local map's geometry. These cells are also free in the observed sub-map (U' = U + U_i).
+  grid::OccupancyGrid conditionally_free;
+  // Entities skipped or adjusted (an unusable door or track, an inferred dominant side...),
+  // each naming the entity.
+  std::vector<std::string> warnings;
+};
+
+// Errors (kInvalidArgument): bad options, an empty local map. Unusable entities are skipped with
+// a warning, never an error.
+StatusOr<ExtrapolationResult> Extrapolate(const grid::OccupancyGrid& local_map,
+                                          const Entities& entities,
+                                          const ExtrapolationOptions& options = {});
+
+}  // namespace fleetmap::extrapolation

@@ -1,0 +1,44 @@
+#pragma once
+
+// Finds flights of stairs in a 3D point cloud (ALGORITHMS.md 3, static entities): voxel filter,
+// drop the floor, RANSAC for planes tilted about 45 degrees (the steps' nosings and risers lie
+// within a few centimetres of one inclined plane), keep the largest connected patch of inliers and
+// accept it if its area and its extents across and along the flight are large enough. With n the
+// patch normal and z vertical, w = (n x z) x n and the ascending direction o = w sgn(w^T z).
+//
+// Thread-safety: stateless.
+
+#include <string>
+#include <vector>
+
+#include "common/extrapolation/entities.hpp"
+#include "common/extrapolation/point_cloud.hpp"
+
+namespace fleetmap::extrapolation {
+
+struct StairsDetectorOptions {
+  double voxel_size = 0.04;
+  double floor_clearance = 0.06;  // points below this height are floor
+  double plane_threshold = 0.09;  // inclined-plane band half-width (the step sawtooth fits in)
+  double min_tilt = 0.35;         // radians (20 deg)
+  double max_tilt = 1.05;         // radians (60 deg)
+  double min_area = 0.8;          // m^2 of the inclined patch
+  double min_width = 0.5;         // m across the flight
+  double min_length = 0.6;        // m along the slope
+  double patch_cell = 0.1;        // m: connectivity grid on the plane
+  int iterations = 400;
+  int max_flights = 3;
+  uint32_t seed = 7;
+};
+
+struct DetectedStairs {
+  StairsEntity entity;
+  double area = 0;  // m^2 of the patch
+  int inliers = 0;
+};
+
+// Ids are "stairs_<k>" in detection order.
+std::vector<DetectedStairs> DetectStairs(const PointCloud& cloud,
+                                         const StairsDetectorOptions& options = {});
+
+}  // namespace fleetmap::extrapolation
