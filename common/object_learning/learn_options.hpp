@@ -70,6 +70,9 @@ struct LearnOptions {
   bool hierarchical = true;  // false: the flat model of Biswas et al. 2002 (objects only, M = 0)
 };
 
+// kInvalidArgument naming the first bad snapshot option ("snapshots.guard_radius ...").
+Status ValidateSnapshotOptions(const SnapshotOptions& options);
+
 // kInvalidArgument naming the first bad option (e.g. "em.annealing 1.5 must be in (0, 1)").
 Status ValidateLearnOptions(const LearnOptions& options);
 

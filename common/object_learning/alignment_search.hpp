@@ -1,0 +1,29 @@
+#pragma once
+
+// The alignment M-step of ALGORITHMS.md 2 (eq. 26): the alignment delta of one snapshot minimises
+// sum_n E[c = n] |f(mu, delta) - theta_n|^2, which equals |f(mu, delta) - theta_bar|^2 plus a
+// constant, theta_bar = sum_n E[c = n] theta_n. Hill climbing over (dx, dy, dphi): try a step
+// either way along each axis, take the best improving move, halve the steps when none improves,
+// stop when the shift step drops below min_shift_step. Objects are seen in any orientation and a
+// local climb cannot turn a snapshot half a turn, so a scan over rotations (every
+// rotation_scan_step) can seed the climb.
+//
+// Thread-safety: stateless.
+
+#include "common/object_learning/learn_options.hpp"
+#include "common/object_learning/patch.hpp"
+
+namespace fleetmap::object_learning {
+
+struct AlignmentResult {
+  Alignment alignment;
+  double squared_distance = 0.0;  // |f(mu, alignment) - target|^2
+};
+
+// `target` is row-major with the snapshot's size. `scan_rotations`: first try every rotation of
+// the scan (keeping start's shift, and with no shift) and climb from the best; otherwise climb
+// from `start` with steps `fine_factor` times the initial ones.
+AlignmentResult AlignSnapshot(const Patch& snapshot, const float* target, const Alignment& start,
+                              bool scan_rotations, double fine_factor, const EmOptions& options);
+
+}  // namespace fleetmap::object_learning

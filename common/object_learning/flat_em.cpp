@@ -1,0 +1,57 @@
+#include "common/object_learning/flat_em.hpp"
+
+#include <cassert>
+#include <random>
+
+#include "common/object_learning/m_step.hpp"
+
+namespace fleetmap::object_learning {
+namespace {
+
+constexpr double kExpectationTolerance = 1e-3;
+constexpr double kModelTolerance = 1e-4;
+
+}  // namespace
+
+EmResult RunFlatEm(const EmProblem& problem, int num_objects, const EmOptions& options,
+                   uint64_t seed) {
+  assert(num_objects >= problem.max_per_map());
+  std::mt19937_64 random(seed);
+  EmResult r;
+  RandomStart(problem, num_objects, options, &random, &r.objects, &r.alignments);
+  r.templates.resize(0, problem.cells());
+  r.responsibilities.resize(num_objects, 0);
+  Eigen::MatrixXd previous_c;
+  for (int j = 0; j < options.iterations; ++j) {
+    const double sigma = Annealed(options.sigma, options.sigma_initial, options.annealing, j);
+    const Eigen::MatrixXd aligned = AlignedMatrix(problem, r.alignments);
+    const CorrespondenceStep c = CorrespondenceEStep(
+        problem, SnapshotLogLikelihoods(aligned, r.objects, sigma), options, &random);
+    r.approximate = r.approximate || c.approximate;
+    r.correspondences = c.expectations;
+    const Eigen::MatrixXd previous_objects = r.objects;
+    r.objects = FlatMStep(aligned, r.correspondences, r.objects);
+    AlignmentStep(problem, r.correspondences, r.objects, j % options.rotation_scan_every == 0,
+                  options, &r.alignments);
+    r.iterations = j + 1;
+    if (sigma == options.sigma && previous_c.size() == r.correspondences.size() &&
+        (r.correspondences - previous_c).cwiseAbs().maxCoeff() < kExpectationTolerance &&
+        (r.objects - previous_objects).cwiseAbs().maxCoeff() < kModelTolerance) {
+      break;
+    }
+    previous_c = r.correspondences;
+  }
+  const Eigen::MatrixXd aligned = AlignedMatrix(problem, r.alignments);
+  const Eigen::MatrixXd ll = SnapshotLogLikelihoods(aligned, r.objects, options.sigma);
+  const CorrespondenceStep c = CorrespondenceEStep(problem, ll, options, &random);
+  r.approximate = r.approximate || c.approximate;
+  r.correspondences = c.expectations;
+  r.snapshot_object = MapAssignments(problem, ll, options);
+  r.log_likelihood =
+      c.log_likelihood +
+      GaussianLogConstant(static_cast<double>(problem.snapshots.size()) * problem.cells(),
+                          options.sigma);
+  return r;
+}
+
+}  // namespace fleetmap::object_learning

@@ -1,0 +1,26 @@
+#pragma once
+
+// One run of hierarchical EM (ALGORITHMS.md 2) for a fixed number of objects N and templates M,
+// from one random start: E-step (correspondences under mutual exclusion, template
+// responsibilities), closed-form model M-step, alignment M-step, with sigma and tau annealed
+// from their initial to their final values. Ends with the log joint p(data, theta, alpha | delta)
+// at the final sigma and tau (c and z summed out under uniform priors), for model selection.
+//
+// Thread-safety: stateless; runs may go concurrently.
+
+#include <cstdint>
+
+#include "common/object_learning/em_problem.hpp"
+#include "common/object_learning/learn_options.hpp"
+
+namespace fleetmap::object_learning {
+
+// Requires 1 <= M <= N, N >= problem.max_per_map(), N <= number of snapshots.
+EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_templates,
+                           const EmOptions& options, uint64_t seed);
+
+// The object level of the log joint: sum_n log((1 / M) sum_m N(theta_n; alpha_m, tau^2 I)).
+double ObjectLevelLogLikelihood(const Eigen::MatrixXd& objects, const Eigen::MatrixXd& templates,
+                                double tau);
+
+}  // namespace fleetmap::object_learning

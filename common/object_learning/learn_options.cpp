@@ -1,0 +1,97 @@
+#include "common/object_learning/learn_options.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace fleetmap::object_learning {
+namespace {
+
+std::string Number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+Status Bad(const std::string& name, double value, const std::string& rule) {
+  return InvalidArgumentError(name + " " + Number(value) + " is invalid: it must be " + rule);
+}
+
+bool Positive(double v) { return std::isfinite(v) && v > 0.0; }
+
+}  // namespace
+
+Status ValidateSnapshotOptions(const SnapshotOptions& o) {
+  const auto& t = o.thresholds;
+  if (!(t.free >= 0.0 && t.free <= t.occupied && t.occupied <= 1.0)) {
+    return InvalidArgumentError("snapshots.thresholds must satisfy 0 <= free <= occupied <= 1");
+  }
+  if (o.guard_radius < 0 || o.guard_radius > 20) {
+    return Bad("snapshots.guard_radius", o.guard_radius, "in [0, 20]");
+  }
+  if (o.filter_radius < 0 || o.filter_radius > 20) {
+    return Bad("snapshots.filter_radius", o.filter_radius, "in [0, 20]");
+  }
+  if (!(o.filter_threshold >= 0.0 && o.filter_threshold <= 1.0)) {
+    return Bad("snapshots.filter_threshold", o.filter_threshold, "in [0, 1]");
+  }
+  if (o.min_region_cells < 1) return Bad("snapshots.min_region_cells", o.min_region_cells, ">= 1");
+  if (o.max_region_cells < o.min_region_cells) {
+    return Bad("snapshots.max_region_cells", o.max_region_cells, ">= min_region_cells");
+  }
+  if (o.margin_cells < 0 || o.margin_cells > 100) {
+    return Bad("snapshots.margin_cells", o.margin_cells, "in [0, 100]");
+  }
+  if (o.patch_cells < 0 || o.patch_cells > 1000) {
+    return Bad("snapshots.patch_cells", o.patch_cells, "in [0, 1000] (0: automatic)");
+  }
+  return Status::Ok();
+}
+
+Status ValidateLearnOptions(const LearnOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(ValidateSnapshotOptions(options.snapshots));
+  const EmOptions& e = options.em;
+  if (!Positive(e.sigma)) return Bad("em.sigma", e.sigma, "> 0");
+  if (!Positive(e.tau)) return Bad("em.tau", e.tau, "> 0");
+  if (!(std::isfinite(e.sigma_initial) && e.sigma_initial >= e.sigma)) {
+    return Bad("em.sigma_initial", e.sigma_initial, ">= em.sigma");
+  }
+  if (!(std::isfinite(e.tau_initial) && e.tau_initial >= e.tau)) {
+    return Bad("em.tau_initial", e.tau_initial, ">= em.tau");
+  }
+  if (!(e.annealing > 0.0 && e.annealing < 1.0))
+    return Bad("em.annealing", e.annealing, "in (0, 1)");
+  if (e.iterations < 1 || e.iterations > 10000) {
+    return Bad("em.iterations", e.iterations, "in [1, 10000]");
+  }
+  if (!Positive(e.rotation_scan_step))
+    return Bad("em.rotation_scan_step", e.rotation_scan_step, "> 0");
+  if (e.rotation_scan_every < 1)
+    return Bad("em.rotation_scan_every", e.rotation_scan_every, ">= 1");
+  if (!Positive(e.initial_shift_step)) {
+    return Bad("em.initial_shift_step", e.initial_shift_step, "> 0");
+  }
+  if (!Positive(e.initial_turn_step))
+    return Bad("em.initial_turn_step", e.initial_turn_step, "> 0");
+  if (!Positive(e.min_shift_step)) return Bad("em.min_shift_step", e.min_shift_step, "> 0");
+  if (e.max_exact_snapshots < 1 || e.max_exact_snapshots > 20) {
+    return Bad("em.max_exact_snapshots", e.max_exact_snapshots, "in [1, 20]");
+  }
+  if (e.gibbs_sweeps < 1) return Bad("em.gibbs_sweeps", e.gibbs_sweeps, ">= 1");
+  if (e.gibbs_burn_in < 0) return Bad("em.gibbs_burn_in", e.gibbs_burn_in, ">= 0");
+  const SelectionOptions& s = options.selection;
+  if (!(std::isfinite(s.object_penalty) && s.object_penalty >= 0.0)) {
+    return Bad("selection.object_penalty", s.object_penalty, ">= 0");
+  }
+  if (!(std::isfinite(s.template_penalty) && s.template_penalty >= 0.0)) {
+    return Bad("selection.template_penalty", s.template_penalty, ">= 0");
+  }
+  if (s.max_objects < 1) return Bad("selection.max_objects", s.max_objects, ">= 1");
+  if (s.patience < 0) return Bad("selection.patience", s.patience, ">= 0");
+  if (options.restarts < 1 || options.restarts > 1000) {
+    return Bad("restarts", options.restarts, "in [1, 1000]");
+  }
+  return Status::Ok();
+}
+
+}  // namespace fleetmap::object_learning

@@ -1,0 +1,45 @@
+#pragma once
+
+// Model selection over the number of objects N and templates M (ALGORITHMS.md 2, eqs. 29, 30):
+// EM (with restarts, the best log joint kept) for every candidate max_t K_t <= N <= sum_t K_t,
+// 1 <= M <= N, scored by log p(data, model) - c_N N - c_M M. Candidates are visited in order of
+// N, and of M within N; with `patience` > 0 the search along M (and along N) stops after that many
+// candidates in a row without a new best, since the score rises to its peak and then falls.
+//
+// Thread-safety: stateless.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/object_learning/em_problem.hpp"
+#include "common/object_learning/learn_options.hpp"
+#include "common/object_learning/object_learner.hpp"
+
+namespace fleetmap::object_learning {
+
+struct SelectionResult {
+  int num_objects = 0;
+  int num_templates = 0;  // 0 for the flat model
+  double log_posterior = 0.0;
+  EmResult model;
+  std::vector<ModelScore> searched;
+  std::vector<std::string> warnings;
+};
+
+// The seed of one random start, derived from the user's seed and the candidate.
+uint64_t RestartSeed(uint32_t seed, int num_objects, int num_templates, int restart);
+
+// The best of options.restarts EM runs for a fixed (N, M) (hierarchical, or flat when
+// options.hierarchical is false; M is ignored then).
+EmResult BestOfRestarts(const EmProblem& problem, int num_objects, int num_templates,
+                        const LearnOptions& options);
+
+// log p(data, model) - c_N N - c_M M.
+double LogPosterior(const EmResult& result, int num_objects, int num_templates,
+                    const SelectionOptions& options);
+
+// Requires at least one snapshot.
+SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& options);
+
+}  // namespace fleetmap::object_learning

@@ -1,0 +1,229 @@
+#include "common/object_learning/snapshot_extractor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+namespace fleetmap::object_learning {
+namespace {
+
+using Mask = std::vector<uint8_t>;
+
+std::string Number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Dilation of a mask by a square of side 2 r + 1 (separable: rows, then columns).
+Mask Dilate(const Mask& mask, int width, int height, int r) {
+  if (r <= 0) return mask;
+  Mask rows(mask.size(), 0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      uint8_t any = 0;
+      for (int i = std::max(0, x - r); i <= std::min(width - 1, x + r) && !any; ++i) {
+        any = mask[static_cast<size_t>(y) * width + i];
+      }
+      rows[static_cast<size_t>(y) * width + x] = any;
+    }
+  }
+  Mask out(mask.size(), 0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      uint8_t any = 0;
+      for (int j = std::max(0, y - r); j <= std::min(height - 1, y + r) && !any; ++j) {
+        any = rows[static_cast<size_t>(j) * width + x];
+      }
+      out[static_cast<size_t>(y) * width + x] = any;
+    }
+  }
+  return out;
+}
+
+// Keeps the cells of `mask` whose box mean over (2 r + 1)^2 cells (outside counts as 0) is at
+// least `threshold`: the low-pass filter, via a summed-area table.
+Mask LowPass(const Mask& mask, int width, int height, int r, double threshold) {
+  if (r <= 0) return mask;
+  std::vector<int32_t> sat(static_cast<size_t>(width + 1) * (height + 1), 0);
+  auto s = [&](int x, int y) -> int32_t& { return sat[static_cast<size_t>(y) * (width + 1) + x]; };
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      s(x + 1, y + 1) =
+          mask[static_cast<size_t>(y) * width + x] + s(x, y + 1) + s(x + 1, y) - s(x, y);
+    }
+  }
+  const double window = (2.0 * r + 1.0) * (2.0 * r + 1.0);
+  Mask out(mask.size(), 0);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!mask[static_cast<size_t>(y) * width + x]) continue;
+      const int x0 = std::max(0, x - r), x1 = std::min(width, x + r + 1);
+      const int y0 = std::max(0, y - r), y1 = std::min(height, y + r + 1);
+      const int32_t count = s(x1, y1) - s(x0, y1) - s(x1, y0) + s(x0, y0);
+      if (count >= threshold * window - 1e-9) out[static_cast<size_t>(y) * width + x] = 1;
+    }
+  }
+  return out;
+}
+
+struct Region {
+  std::vector<grid::CellIndex> cells;
+};
+
+std::vector<Region> GrowRegions(Mask mask, int width, int height) {
+  std::vector<Region> regions;
+  std::vector<grid::CellIndex> stack;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!mask[static_cast<size_t>(y) * width + x]) continue;
+      Region region;
+      mask[static_cast<size_t>(y) * width + x] = 0;
+      stack.push_back({x, y});
+      while (!stack.empty()) {
+        const grid::CellIndex c = stack.back();
+        stack.pop_back();
+        region.cells.push_back(c);
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = c.x + dx, ny = c.y + dy;
+            if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+            uint8_t& m = mask[static_cast<size_t>(ny) * width + nx];
+            if (!m) continue;
+            m = 0;
+            stack.push_back({nx, ny});
+          }
+        }
+      }
+      regions.push_back(std::move(region));
+    }
+  }
+  return regions;
+}
+
+}  // namespace
+
+std::string GeometryMismatch(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b) {
+  if (a.width() != b.width() || a.height() != b.height()) {
+    return "size " + std::to_string(a.width()) + " x " + std::to_string(a.height()) + " vs " +
+           std::to_string(b.width()) + " x " + std::to_string(b.height()) + " cells";
+  }
+  if (std::abs(a.resolution() - b.resolution()) > 1e-9 * a.resolution()) {
+    return "resolution " + Number(a.resolution()) + " vs " + Number(b.resolution()) + " m";
+  }
+  const Pose2& p = a.origin();
+  const Pose2& q = b.origin();
+  const double tolerance = 1e-3 * a.resolution();
+  if (std::abs(p.x - q.x) > tolerance || std::abs(p.y - q.y) > tolerance ||
+      std::abs(p.yaw - q.yaw) > 1e-6) {
+    return "origin (" + Number(p.x) + ", " + Number(p.y) + ", " + Number(p.yaw) + ") vs (" +
+           Number(q.x) + ", " + Number(q.y) + ", " + Number(q.yaw) + ")";
+  }
+  return "";
+}
+
+StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& maps,
+                                       const SnapshotOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(ValidateSnapshotOptions(options));
+  if (maps.size() < 2) {
+    return InvalidArgumentError("object learning needs at least two maps of the same place, got " +
+                                std::to_string(maps.size()));
+  }
+  for (size_t t = 1; t < maps.size(); ++t) {
+    const std::string mismatch = GeometryMismatch(maps[0], maps[t]);
+    if (!mismatch.empty()) {
+      return InvalidArgumentError("map " + std::to_string(t) +
+                                  " does not share map 0's frame: " + mismatch);
+    }
+  }
+  const int width = maps[0].width();
+  const int height = maps[0].height();
+  if (width == 0 || height == 0) return InvalidArgumentError("map 0 is empty");
+  const size_t cells = static_cast<size_t>(width) * height;
+
+  std::vector<Mask> occupied(maps.size(), Mask(cells, 0));
+  std::vector<Mask> clear(maps.size(), Mask(cells, 0));  // free, no occupied cell near
+  for (size_t t = 0; t < maps.size(); ++t) {
+    Mask free(cells, 0);
+    for (size_t i = 0; i < cells; ++i) {
+      const grid::CellState state = grid::StateOf(maps[t].data()[i], options.thresholds);
+      occupied[t][i] = state == grid::CellState::kOccupied;
+      free[i] = state == grid::CellState::kFree;
+    }
+    const Mask near = Dilate(occupied[t], width, height, options.guard_radius);
+    for (size_t i = 0; i < cells; ++i) clear[t][i] = free[i] && !near[i];
+  }
+
+  struct Found {
+    int map_index;
+    Region region;
+    grid::CellIndex centre;
+    double radius;  // cells, farthest region cell from the centre cell
+  };
+  std::vector<Found> found;
+  SnapshotSet result;
+  result.per_map.assign(maps.size(), 0);
+  for (size_t t = 0; t < maps.size(); ++t) {
+    Mask diff(cells, 0);
+    for (size_t i = 0; i < cells; ++i) {
+      if (!occupied[t][i]) continue;
+      for (size_t u = 0; u < maps.size() && !diff[i]; ++u) diff[i] = u != t && clear[u][i];
+    }
+    diff = LowPass(diff, width, height, options.filter_radius, options.filter_threshold);
+    for (Region& region : GrowRegions(std::move(diff), width, height)) {
+      const int n = static_cast<int>(region.cells.size());
+      if (n < options.min_region_cells) continue;
+      if (n > options.max_region_cells) {
+        result.warnings.push_back("map " + std::to_string(t) + ": a changed region of " +
+                                  std::to_string(n) + " cells is larger than max_region_cells (" +
+                                  std::to_string(options.max_region_cells) + ") and was ignored");
+        continue;
+      }
+      double sx = 0.0, sy = 0.0;
+      for (const grid::CellIndex& c : region.cells) {
+        sx += c.x;
+        sy += c.y;
+      }
+      const grid::CellIndex centre{static_cast<int>(std::lround(sx / n)),
+                                   static_cast<int>(std::lround(sy / n))};
+      double radius = 0.0;
+      for (const grid::CellIndex& c : region.cells) {
+        radius = std::max(radius, std::hypot(c.x - centre.x, c.y - centre.y));
+      }
+      found.push_back({static_cast<int>(t), std::move(region), centre, radius});
+      ++result.per_map[t];
+    }
+  }
+
+  // One size for all: a disc of the largest radius fits at any rotation, plus the margin.
+  int side = options.patch_cells;
+  if (side == 0) {
+    double radius = 0.0;
+    for (const Found& f : found) radius = std::max(radius, f.radius);
+    side = 2 * (static_cast<int>(std::ceil(radius)) + options.margin_cells) + 1;
+  }
+  const int half = side / 2;
+  const double resolution = maps[0].resolution();
+  for (const Found& f : found) {
+    Snapshot snapshot;
+    snapshot.map_index = f.map_index;
+    snapshot.centre = maps[0].CellCenter(f.centre.x, f.centre.y);
+    snapshot.cells = static_cast<int>(f.region.cells.size());
+    snapshot.patch.width = side;
+    snapshot.patch.height = side;
+    snapshot.patch.resolution = resolution;
+    snapshot.patch.occupancy.assign(static_cast<size_t>(side) * side, 0.0f);
+    const grid::OccupancyGrid& map = maps[f.map_index];
+    for (const grid::CellIndex& c : f.region.cells) {
+      const int px = c.x - f.centre.x + half;
+      const int py = c.y - f.centre.y + half;
+      if (px < 0 || py < 0 || px >= side || py >= side) continue;  // patch_cells set too small
+      snapshot.patch.at(px, py) = std::clamp(map.at(c.x, c.y) / 100.0f, 0.0f, 1.0f);
+    }
+    result.snapshots.push_back(std::move(snapshot));
+  }
+  return result;
+}
+
+}  // namespace fleetmap::object_learning

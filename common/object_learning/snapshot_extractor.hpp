@@ -1,0 +1,47 @@
+#pragma once
+
+// Map differencing (ALGORITHMS.md 2, "Snapshot extraction"): cuts one snapshot per moved object
+// out of every map. A cell of map t is a difference when it is occupied in t and free in some
+// other map t' with no occupied cell of t' within SnapshotOptions::guard_radius; a low-pass filter
+// (box mean) removes the speckle along occupied/free borders; 8-connected region growing makes one
+// region per object, which is cropped into a patch centred on the region's centroid cell. Every
+// patch has the same size (the largest region's, plus a margin, unless patch_cells is set).
+//
+// Objects that touch (no free cell between them) form one region and so one snapshot: the
+// method's known limit (docs/object-learning.md).
+//
+// Thread-safety: stateless.
+
+#include <string>
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/learn_options.hpp"
+#include "common/object_learning/patch.hpp"
+
+namespace fleetmap::object_learning {
+
+struct Snapshot {
+  int map_index = 0;
+  Point2 centre = Point2::Zero();  // map frame, metres: centre of the patch's centre cell
+  int cells = 0;                   // cells in the region
+  Patch patch;                     // 1 on the region's cells, 0 elsewhere
+};
+
+struct SnapshotSet {
+  std::vector<Snapshot> snapshots;  // grouped by map, maps in order
+  std::vector<int> per_map;         // K_t, snapshots of each map
+  std::vector<std::string> warnings;
+};
+
+// Errors (kInvalidArgument): fewer than two maps, maps whose size, resolution or origin differ
+// (naming the two map indices), snapshot options out of range.
+StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& maps,
+                                       const SnapshotOptions& options);
+
+// Kinds of geometry mismatch, for callers that name files: "" when `a` and `b` share size,
+// resolution and origin, otherwise what differs ("size 100 x 80 vs 120 x 80 cells").
+std::string GeometryMismatch(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b);
+
+}  // namespace fleetmap::object_learning
