@@ -1,7 +1,11 @@
 #include "common/transport/checked_type_support.hpp"
 
 #include "common/transport/idl_shapes.hpp"
+#include "fleetmap_msgs/msg/EntityPubSubTypes.h"
+#include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
+#include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
 #include "map_msgs/msg/OccupancyGridUpdatePubSubTypes.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
@@ -40,6 +44,27 @@ eprosima::fastdds::dds::TypeSupport OccupancyGridUpdateTypeSupport() {
 eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<fleetmap_msgs::msg::dds_::VectorTile_PubSubType>(VectorTileShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport EntityTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::Entity_PubSubType>(EntityShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport SubmapTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::Submap_PubSubType>(SubmapShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport ObjectTemplateTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::ObjectTemplate_PubSubType>(
+          ObjectTemplateShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::ObjectModel_PubSubType>(ObjectModelShape()));
 }
 
 }  // namespace fleetmap::transport

@@ -94,5 +94,9 @@ eprosima::fastdds::dds::TypeSupport RobotStatusTypeSupport();
 eprosima::fastdds::dds::TypeSupport OccupancyGridTypeSupport();
 eprosima::fastdds::dds::TypeSupport OccupancyGridUpdateTypeSupport();
 eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport();
+eprosima::fastdds::dds::TypeSupport EntityTypeSupport();
+eprosima::fastdds::dds::TypeSupport SubmapTypeSupport();
+eprosima::fastdds::dds::TypeSupport ObjectTemplateTypeSupport();
+eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport();
 
 }  // namespace fleetmap::transport

@@ -109,4 +109,65 @@ const CdrShape& VectorMapShape() {
   return shape;
 }
 
+const CdrShape& EntityShape() {
+  static const CdrShape shape = {String("robot_id"),
+                                 String("entity_id"),
+                                 Struct("stamp", TimeShape()),
+                                 String("frame_id"),
+                                 Primitive("entity_class", 1),
+                                 Sequence("x", 8),
+                                 Sequence("y", 8),
+                                 Sequence("track_stamps", 8),
+                                 Sequence("track_headings", 8),
+                                 Primitive("direction", 8),
+                                 Primitive("step_width", 8),
+                                 Primitive("next_floor_height", 8),
+                                 Primitive("open", 1),
+                                 Primitive("dominant_side", 1),
+                                 Primitive("left_view", 1),
+                                 Primitive("entered_view", 1)};
+  return shape;
+}
+
+const CdrShape& SubmapShape() {
+  static const CdrShape shape = {Primitive("submap_id", 4),
+                                 Struct("stamp", TimeShape()),
+                                 String("frame_id"),
+                                 Primitive("kind", 1),
+                                 Primitive("state", 1),
+                                 Primitive("place", 4),
+                                 Struct("fleet_from_submap", Pose2DShape()),
+                                 String("source_robot"),
+                                 String("source_entity"),
+                                 Primitive("precision", 4),
+                                 Primitive("observed_fraction", 4),
+                                 Primitive("resolution", 4),
+                                 Primitive("width", 4),
+                                 Primitive("height", 4),
+                                 Struct("origin", Pose2DShape()),
+                                 Sequence("data", 1),
+                                 Sequence("edge_to", 4),
+                                 Sequence("edge_x", 8),
+                                 Sequence("edge_y", 8),
+                                 Sequence("edge_theta", 8)};
+  return shape;
+}
+
+const CdrShape& ObjectTemplateShape() {
+  static const CdrShape shape = {Primitive("template_id", 4),  Struct("stamp", TimeShape()),
+                                 Primitive("learning_run", 4), Primitive("object_count", 4),
+                                 Primitive("resolution", 4),   Primitive("width", 4),
+                                 Primitive("height", 4),       Sequence("data", 1)};
+  return shape;
+}
+
+const CdrShape& ObjectModelShape() {
+  static const CdrShape shape = {
+      Primitive("object_id", 4),   Struct("stamp", TimeShape()), Primitive("learning_run", 4),
+      Primitive("template_id", 4), Primitive("resolution", 4),   Primitive("width", 4),
+      Primitive("height", 4),      Sequence("data", 1),          Sequence("sighting_session", 4),
+      Sequence("sighting_x", 8),   Sequence("sighting_y", 8),    Sequence("sighting_theta", 8)};
+  return shape;
+}
+
 }  // namespace fleetmap::transport

@@ -14,5 +14,9 @@ const CdrShape& OccupancyGridUpdateShape();
 const CdrShape& RobotStatusShape();
 const CdrShape& VectorTileShape();
 const CdrShape& VectorMapShape();
+const CdrShape& EntityShape();
+const CdrShape& SubmapShape();
+const CdrShape& ObjectTemplateShape();
+const CdrShape& ObjectModelShape();
 
 }  // namespace fleetmap::transport

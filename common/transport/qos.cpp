@@ -68,7 +68,7 @@ EndpointQos OccupancyGridUpdateQos() {
   return qos;
 }
 
-EndpointQos VectorTileQos() {
+EndpointQos KeyedStateQos() {
   EndpointQos qos;
   StateTopic(qos.writer);
   StateTopic(qos.reader);
@@ -78,5 +78,7 @@ EndpointQos VectorTileQos() {
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return qos;
 }
+
+EndpointQos VectorTileQos() { return KeyedStateQos(); }
 
 }  // namespace fleetmap::transport

@@ -33,4 +33,9 @@ EndpointQos OccupancyGridUpdateQos();
 // per tile instance, no instance limit (a map has thousands of tiles).
 EndpointQos VectorTileQos();
 
+// rt/fleetmap/entities, rt/fleetmap/submap_graph, rt/fleetmap/object_templates and
+// rt/fleetmap/objects: state topics like the tiles (reliable, transient local, keep last 1 per
+// instance, no instance limit), so a late joiner gets the current entities, graph and models.
+EndpointQos KeyedStateQos();
+
 }  // namespace fleetmap::transport

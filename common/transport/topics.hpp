@@ -13,6 +13,10 @@ inline constexpr char kRobotStatusTopic[] = "rt/fleetmap/robot_status";
 inline constexpr char kRobotTilesTopic[] = "rt/fleetmap/robot_tiles";
 inline constexpr char kFusedTilesTopic[] = "rt/fleetmap/fused_tiles";
 inline constexpr char kFleetMapTopic[] = "rt/fleetmap/map";
+inline constexpr char kEntitiesTopic[] = "rt/fleetmap/entities";
+inline constexpr char kSubmapGraphTopic[] = "rt/fleetmap/submap_graph";
+inline constexpr char kObjectTemplatesTopic[] = "rt/fleetmap/object_templates";
+inline constexpr char kObjectsTopic[] = "rt/fleetmap/objects";
 
 // Where a robot publishes its own grid: what a ROS 2 robot named `robot` publishes as /<robot>/map.
 inline std::string RobotMapTopic(const RobotId& robot) { return "rt/" + robot.value + "/map"; }

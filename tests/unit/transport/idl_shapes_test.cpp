@@ -6,7 +6,11 @@
 
 #include <string>
 
+#include "fleetmap_msgs/msg/Entity.h"
+#include "fleetmap_msgs/msg/ObjectModel.h"
+#include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotStatus.h"
+#include "fleetmap_msgs/msg/Submap.h"
 #include "fleetmap_msgs/msg/VectorMap.h"
 #include "nav_msgs/msg/OccupancyGrid.h"
 
@@ -93,6 +97,57 @@ TEST(CdrShapeTest, RefusesAHugeSequenceLengthWithoutAllocating) {
   const Status checked = CheckCdr(payload, OccupancyGridShape());
   ASSERT_FALSE(checked.ok());
   EXPECT_NE(checked.message().find("data claims"), std::string::npos) << checked;
+}
+
+TEST(IdlShapesTest, EntityShapeMatchesGeneratedCode) {
+  fleetmap_msgs::msg::dds_::Entity_ entity;
+  entity.robot_id("r");
+  entity.entity_id("door_1");
+  entity.frame_id("map");
+  entity.entity_class(3);
+  entity.x({1.0, 2.0, 3.0});
+  entity.y({0.5, 0.5, 0.5});
+  entity.track_stamps({0.0, 0.5, 1.0});
+  entity.track_headings({0.0, 0.0, 0.1});
+  entity.dominant_side(-1);
+  entity.entered_view(true);
+  ExpectShapeMatches(entity, EntityShape());
+}
+
+TEST(IdlShapesTest, SubmapShapeMatchesGeneratedCode) {
+  fleetmap_msgs::msg::dds_::Submap_ submap;
+  submap.submap_id(7);
+  submap.frame_id("fleet");
+  submap.kind(2);
+  submap.source_robot("abc");
+  submap.source_entity("d");
+  submap.width(3);
+  submap.height(1);
+  submap.data({0, -1, 0});
+  submap.edge_to({1});
+  submap.edge_x({1.5});
+  submap.edge_y({-2.0});
+  submap.edge_theta({0.25});
+  ExpectShapeMatches(submap, SubmapShape());
+}
+
+TEST(IdlShapesTest, ObjectShapesMatchGeneratedCode) {
+  fleetmap_msgs::msg::dds_::ObjectTemplate_ object_template;
+  object_template.template_id(2);
+  object_template.width(3);
+  object_template.height(1);
+  object_template.data({0, 50, 100});
+  ExpectShapeMatches(object_template, ObjectTemplateShape());
+  fleetmap_msgs::msg::dds_::ObjectModel_ object;
+  object.object_id(4);
+  object.width(1);
+  object.height(1);
+  object.data({100});
+  object.sighting_session({0, 3});
+  object.sighting_x({1.0, 2.0});
+  object.sighting_y({1.0, 2.0});
+  object.sighting_theta({0.0, 1.5});
+  ExpectShapeMatches(object, ObjectModelShape());
 }
 
 }  // namespace

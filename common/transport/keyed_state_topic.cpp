@@ -1,0 +1,234 @@
+#include "common/transport/keyed_state_topic.hpp"
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <map>
+#include <mutex>
+
+#include "common/transport/checked_type_support.hpp"
+#include "common/transport/conversions.hpp"
+#include "common/transport/endpoint.hpp"
+#include "common/transport/qos.hpp"
+#include "common/transport/state_conversions.hpp"
+#include "common/transport/topics.hpp"
+#include "common/transport/writer_id.hpp"
+
+namespace fleetmap::transport {
+namespace {
+
+namespace dds = eprosima::fastdds::dds;
+
+// What differs between the four topics: the wire type, the topic, and which fields are the key.
+template <typename Message>
+struct TopicTraits;
+
+template <>
+struct TopicTraits<EntityMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::Entity_;
+  static constexpr const char* kTopic = kEntitiesTopic;
+  static dds::TypeSupport Type() { return EntityTypeSupport(); }
+  static EntityMessage KeyOf(const EntityMessage& message) {
+    extrapolation::DoorEntity key_only;  // any alternative carries the id
+    key_only.id = message.entity_id();
+    EntityMessage key;
+    key.robot = message.robot;
+    key.entity = std::move(key_only);
+    return key;
+  }
+  // Names the sender of a refused sample when its key fields are readable.
+  static std::string Sender(const Sample& sample) {
+    return sample.robot_id().substr(0, 64) + "/" + sample.entity_id().substr(0, 64);
+  }
+};
+
+template <>
+struct TopicTraits<SubmapMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::Submap_;
+  static constexpr const char* kTopic = kSubmapGraphTopic;
+  static dds::TypeSupport Type() { return SubmapTypeSupport(); }
+  static SubmapMessage KeyOf(const SubmapMessage& message) {
+    SubmapMessage key;
+    key.submap.id = message.submap.id;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "sub-map " + std::to_string(sample.submap_id());
+  }
+};
+
+template <>
+struct TopicTraits<ObjectTemplateMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::ObjectTemplate_;
+  static constexpr const char* kTopic = kObjectTemplatesTopic;
+  static dds::TypeSupport Type() { return ObjectTemplateTypeSupport(); }
+  static ObjectTemplateMessage KeyOf(const ObjectTemplateMessage& message) {
+    ObjectTemplateMessage key;
+    key.template_id = message.template_id;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "template " + std::to_string(sample.template_id());
+  }
+};
+
+template <>
+struct TopicTraits<ObjectModelMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::ObjectModel_;
+  static constexpr const char* kTopic = kObjectsTopic;
+  static dds::TypeSupport Type() { return ObjectModelTypeSupport(); }
+  static ObjectModelMessage KeyOf(const ObjectModelMessage& message) {
+    ObjectModelMessage key;
+    key.object_id = message.object_id;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "object " + std::to_string(sample.object_id());
+  }
+};
+
+}  // namespace
+
+template <typename Message>
+StatusOr<std::unique_ptr<KeyedStateWriter<Message>>> KeyedStateWriter<Message>::Create(
+    Participant& participant) {
+  using Traits = TopicTraits<Message>;
+  std::unique_ptr<KeyedStateWriter> self(new KeyedStateWriter());
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      WriterEndpoint::Create(participant, Traits::kTopic, Traits::Type(), KeyedStateQos().writer));
+  return self;
+}
+
+template <typename Message>
+KeyedStateWriter<Message>::~KeyedStateWriter() = default;
+
+template <typename Message>
+StatusOr<size_t> KeyedStateWriter<Message>::Write(const Message& message) {
+  using Sample = typename TopicTraits<Message>::Sample;
+  FLEETMAP_ASSIGN_OR_RETURN(Sample sample, ToIdl(message));
+  if (!endpoint_->writer()->write(&sample)) {
+    return UnavailableError("could not write on " + endpoint_->topic_name());
+  }
+  return Sample::getCdrSerializedSize(sample) + 4;
+}
+
+template <typename Message>
+Status KeyedStateWriter<Message>::Dispose(const Message& key) {
+  using Traits = TopicTraits<Message>;
+  FLEETMAP_ASSIGN_OR_RETURN(typename Traits::Sample sample, ToIdl(Traits::KeyOf(key)));
+  // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
+  if (endpoint_->writer()->dispose(&sample, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not dispose an instance on " + endpoint_->topic_name());
+  }
+  return Status::Ok();
+}
+
+template <typename Message>
+int KeyedStateWriter<Message>::matched_readers() const {
+  dds::PublicationMatchedStatus matched;
+  endpoint_->writer()->get_publication_matched_status(matched);
+  return matched.current_count;
+}
+
+// Runs on DDS threads: checks, decodes and queues, nothing more.
+template <typename Message>
+class KeyedStateReader<Message>::Listener : public dds::DataReaderListener, public MalformedSink {
+ public:
+  using Traits = TopicTraits<Message>;
+  using Sample = typename Traits::Sample;
+  using Event = KeyedEvent<Message>;
+
+  explicit Listener(std::shared_ptr<WakeUp> wake_up) : wake_up_(std::move(wake_up)) {}
+
+  void on_data_available(dds::DataReader* reader) override {
+    TakeAll<Sample>(reader, this, [this](const Sample& sample, const dds::SampleInfo& info) {
+      Event event;
+      event.writer = WriterId(info.publication_handle);
+      if (info.valid_data) {
+        OnSample(sample, info, std::move(event));
+      } else {
+        OnInstanceGone(info, std::move(event));
+      }
+    });
+    if (wake_up_) wake_up_->Notify();
+  }
+
+  std::vector<Event> Drain() { return events_.Drain(); }
+
+ protected:
+  void OnMalformed(const Status& error) override {
+    Event event;
+    event.kind = Event::Kind::kRejected;
+    event.error = error.WithContext(std::string(Traits::kTopic) + ": malformed payload");
+    events_.Push(std::move(event));
+  }
+
+ private:
+  void OnSample(const Sample& sample, const dds::SampleInfo& info, Event event) {
+    StatusOr<Message> message = FromIdl(sample);
+    if (!message.ok()) {
+      event.kind = Event::Kind::kRejected;
+      event.error =
+          message.status().WithContext(std::string(Traits::kTopic) + ": " + Traits::Sender(sample));
+      events_.Push(std::move(event));
+      return;
+    }
+    {
+      std::lock_guard lock(mutex_);
+      key_by_instance_[info.instance_handle] = Traits::KeyOf(*message);
+    }
+    event.message = *std::move(message);
+    events_.Push(std::move(event));
+  }
+
+  // Only a disposal withdraws an instance; a writer that vanished leaves its state in place.
+  void OnInstanceGone(const dds::SampleInfo& info, Event event) {
+    if (info.instance_state != dds::NOT_ALIVE_DISPOSED_INSTANCE_STATE) return;
+    std::lock_guard lock(mutex_);
+    // get_key_value is not supported by Fast DDS 2.9: remember each instance's key.
+    const auto it = key_by_instance_.find(info.instance_handle);
+    if (it == key_by_instance_.end()) return;
+    event.kind = Event::Kind::kRemoved;
+    event.message = it->second;
+    events_.Push(std::move(event));
+  }
+
+  std::shared_ptr<WakeUp> wake_up_;
+  SampleQueue<Event> events_;
+  std::mutex mutex_;
+  std::map<dds::InstanceHandle_t, Message> key_by_instance_;  // guarded by mutex_
+};
+
+template <typename Message>
+StatusOr<std::unique_ptr<KeyedStateReader<Message>>> KeyedStateReader<Message>::Create(
+    Participant& participant, std::shared_ptr<WakeUp> wake_up) {
+  using Traits = TopicTraits<Message>;
+  std::unique_ptr<KeyedStateReader> self(new KeyedStateReader());
+  self->listener_ = std::make_unique<Listener>(std::move(wake_up));
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
+                                                   KeyedStateQos().reader, self->listener_.get()));
+  return self;
+}
+
+template <typename Message>
+KeyedStateReader<Message>::~KeyedStateReader() {
+  endpoint_.reset();
+}
+
+template <typename Message>
+std::vector<KeyedEvent<Message>> KeyedStateReader<Message>::Drain() {
+  return listener_->Drain();
+}
+
+template class KeyedStateWriter<EntityMessage>;
+template class KeyedStateReader<EntityMessage>;
+template class KeyedStateWriter<SubmapMessage>;
+template class KeyedStateReader<SubmapMessage>;
+template class KeyedStateWriter<ObjectTemplateMessage>;
+template class KeyedStateReader<ObjectTemplateMessage>;
+template class KeyedStateWriter<ObjectModelMessage>;
+template class KeyedStateReader<ObjectModelMessage>;
+
+}  // namespace fleetmap::transport

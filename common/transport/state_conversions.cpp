@@ -1,0 +1,401 @@
+#include "common/transport/state_conversions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/transport/conversions.hpp"
+
+namespace fleetmap::transport {
+namespace {
+
+using fleetmap_msgs::msg::dds_::Entity_;
+using fleetmap_msgs::msg::dds_::ObjectModel_;
+using fleetmap_msgs::msg::dds_::ObjectTemplate_;
+using fleetmap_msgs::msg::dds_::Submap_;
+
+// Ids are names a log can print: bounded, printable, no spaces.
+constexpr size_t kMaxIdLength = 128;
+// A patch or a predicted sub-map is a local thing: refuse grids beyond this many cells.
+constexpr uint64_t kMaxCells = 64ull * 1024 * 1024;
+
+Status CheckId(const std::string& id, const char* what) {
+  if (id.empty() || id.size() > kMaxIdLength) {
+    return InvalidArgumentError(std::string(what) + " must have 1 to " +
+                                std::to_string(kMaxIdLength) + " characters");
+  }
+  const bool printable =
+      std::all_of(id.begin(), id.end(), [](char c) { return c > ' ' && c < 127; });
+  if (!printable) return InvalidArgumentError(std::string(what) + " has unprintable characters");
+  return Status::Ok();
+}
+
+bool AllFinite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+}
+
+Vector2 Direction(double radians) { return {std::cos(radians), std::sin(radians)}; }
+double Angle(const Vector2& direction) { return std::atan2(direction.y(), direction.x()); }
+
+// Checks a grid header against its data: positive finite resolution, width * height cells.
+Status CheckGrid(float resolution, uint32_t width, uint32_t height, size_t data_size) {
+  if (!std::isfinite(resolution) || resolution <= 0.0F) {
+    return InvalidArgumentError("resolution " + std::to_string(resolution) + " is not positive");
+  }
+  const uint64_t cells = static_cast<uint64_t>(width) * height;
+  if (cells > kMaxCells) {
+    return InvalidArgumentError(std::to_string(width) + " x " + std::to_string(height) +
+                                " cells is more than the limit of " + std::to_string(kMaxCells));
+  }
+  if (cells != data_size) {
+    return InvalidArgumentError(std::to_string(width) + " x " + std::to_string(height) +
+                                " cells but " + std::to_string(data_size) + " values");
+  }
+  return Status::Ok();
+}
+
+std::vector<int8_t> ToPercent(const std::vector<float>& occupancy) {
+  std::vector<int8_t> data(occupancy.size());
+  std::transform(occupancy.begin(), occupancy.end(), data.begin(), [](float p) {
+    return static_cast<int8_t>(std::lround(std::clamp(p, 0.0F, 1.0F) * 100.0F));
+  });
+  return data;
+}
+
+StatusOr<object_learning::Patch> PatchFromIdl(float resolution, uint32_t width, uint32_t height,
+                                              const std::vector<int8_t>& data) {
+  FLEETMAP_RETURN_IF_ERROR(CheckGrid(resolution, width, height, data.size()));
+  object_learning::Patch patch;
+  patch.width = static_cast<int>(width);
+  patch.height = static_cast<int>(height);
+  patch.resolution = resolution;
+  patch.occupancy.reserve(data.size());
+  for (const int8_t value : data) {
+    if (value < 0 || value > 100) {
+      return InvalidArgumentError("patch value " + std::to_string(value) + " is not in 0..100");
+    }
+    patch.occupancy.push_back(static_cast<float>(value) / 100.0F);
+  }
+  return patch;
+}
+
+void SetPoints(Entity_& sample, const std::vector<Point2>& points) {
+  std::vector<double> x;
+  std::vector<double> y;
+  for (const Point2& point : points) {
+    x.push_back(point.x());
+    y.push_back(point.y());
+  }
+  sample.x(std::move(x));
+  sample.y(std::move(y));
+}
+
+struct EntityToIdl {
+  Entity_& sample;
+
+  void operator()(const extrapolation::DoorEntity& door) const {
+    sample.entity_class(kEntityDoor);
+    SetPoints(sample, {door.hinge, door.latch});
+    sample.direction(Angle(door.opening_direction));
+    sample.open(door.open);
+  }
+  void operator()(const extrapolation::StairsEntity& stairs) const {
+    sample.entity_class(kEntityStairs);
+    SetPoints(sample, {stairs.position});
+    sample.direction(Angle(stairs.ascending));
+    sample.step_width(stairs.step_width);
+    sample.next_floor_height(stairs.next_floor_height);
+  }
+  void operator()(const extrapolation::PersonTrack& track) const {
+    sample.entity_class(kEntityPerson);
+    std::vector<Point2> points;
+    std::vector<double> stamps;
+    std::vector<double> headings;
+    for (const extrapolation::TrackPoint& point : track.points) {
+      points.push_back(point.position);
+      stamps.push_back(point.stamp);
+      headings.push_back(point.heading);
+    }
+    SetPoints(sample, points);
+    sample.track_stamps(std::move(stamps));
+    sample.track_headings(std::move(headings));
+    sample.dominant_side(static_cast<int8_t>(track.dominant_side));
+    sample.left_view(track.left_view);
+    sample.entered_view(track.entered_view);
+  }
+};
+
+StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
+  const std::vector<double>& x = sample.x();
+  const std::vector<double>& y = sample.y();
+  if (x.size() != y.size()) {
+    return InvalidArgumentError(std::to_string(x.size()) + " x values but " +
+                                std::to_string(y.size()) + " y values");
+  }
+  if (!AllFinite(x) || !AllFinite(y) || !std::isfinite(sample.direction())) {
+    return InvalidArgumentError("a coordinate or the direction is not finite");
+  }
+  switch (sample.entity_class()) {
+    case kEntityDoor: {
+      if (x.size() != 2) {
+        return InvalidArgumentError("a door needs 2 points (hinge, latch), got " +
+                                    std::to_string(x.size()));
+      }
+      extrapolation::DoorEntity door;
+      door.id = sample.entity_id();
+      door.hinge = {x[0], y[0]};
+      door.latch = {x[1], y[1]};
+      if ((door.latch - door.hinge).norm() <= 1e-6) {
+        return InvalidArgumentError("a door of zero width");
+      }
+      door.opening_direction = Direction(sample.direction());
+      door.open = sample.open();
+      return EntityMessage::Entity(door);
+    }
+    case kEntityStairs: {
+      if (x.size() != 1) {
+        return InvalidArgumentError("stairs need 1 point, got " + std::to_string(x.size()));
+      }
+      if (!std::isfinite(sample.step_width()) || sample.step_width() <= 0.0 ||
+          !std::isfinite(sample.next_floor_height())) {
+        return InvalidArgumentError("stairs need a positive step width and a finite height");
+      }
+      extrapolation::StairsEntity stairs;
+      stairs.id = sample.entity_id();
+      stairs.position = {x[0], y[0]};
+      stairs.ascending = Direction(sample.direction());
+      stairs.step_width = sample.step_width();
+      stairs.next_floor_height = sample.next_floor_height();
+      return EntityMessage::Entity(stairs);
+    }
+    case kEntityPerson: {
+      const std::vector<double>& stamps = sample.track_stamps();
+      const std::vector<double>& headings = sample.track_headings();
+      if (x.empty() || stamps.size() != x.size() || headings.size() != x.size()) {
+        return InvalidArgumentError("a track needs as many stamps and headings as points (" +
+                                    std::to_string(x.size()) + " points, " +
+                                    std::to_string(stamps.size()) + " stamps, " +
+                                    std::to_string(headings.size()) + " headings)");
+      }
+      if (!AllFinite(stamps) || !AllFinite(headings)) {
+        return InvalidArgumentError("a track stamp or heading is not finite");
+      }
+      if (!std::is_sorted(stamps.begin(), stamps.end())) {
+        return InvalidArgumentError("track stamps are not increasing");
+      }
+      if (sample.dominant_side() < -1 || sample.dominant_side() > 1) {
+        return InvalidArgumentError("dominant side " + std::to_string(sample.dominant_side()) +
+                                    " is not -1, 0 or +1");
+      }
+      extrapolation::PersonTrack track;
+      track.id = sample.entity_id();
+      for (size_t i = 0; i < x.size(); ++i) {
+        track.points.push_back({stamps[i], Point2(x[i], y[i]), headings[i]});
+      }
+      track.dominant_side = sample.dominant_side();
+      track.left_view = sample.left_view();
+      track.entered_view = sample.entered_view();
+      return EntityMessage::Entity(track);
+    }
+    default:
+      return InvalidArgumentError("unknown entity class " +
+                                  std::to_string(static_cast<int>(sample.entity_class())));
+  }
+}
+
+}  // namespace
+
+StatusOr<Entity_> ToIdl(const EntityMessage& message) {
+  Entity_ sample;
+  sample.robot_id(message.robot.value);
+  sample.entity_id(message.entity_id());
+  sample.stamp(ToIdl(message.stamp));
+  sample.frame_id(message.frame_id);
+  std::visit(EntityToIdl{sample}, message.entity);
+  return sample;
+}
+
+StatusOr<EntityMessage> FromIdl(const Entity_& sample) {
+  if (!IsValidRobotName(sample.robot_id())) {
+    return InvalidArgumentError("robot id \"" + sample.robot_id().substr(0, 64) +
+                                "\" is not a ROS 2 name");
+  }
+  FLEETMAP_RETURN_IF_ERROR(CheckId(sample.entity_id(), "entity id"));
+  StatusOr<EntityMessage::Entity> entity = EntityFromIdl(sample);
+  if (!entity.ok()) {
+    return entity.status().WithContext("entity " + sample.entity_id() + " of " + sample.robot_id());
+  }
+  EntityMessage message;
+  message.robot = RobotId{sample.robot_id()};
+  message.stamp = FromIdl(sample.stamp());
+  message.frame_id = sample.frame_id();
+  message.entity = *std::move(entity);
+  return message;
+}
+
+StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
+  const extrapolation::Submap& submap = message.submap;
+  Submap_ sample;
+  sample.submap_id(submap.id);
+  sample.stamp(ToIdl(message.stamp));
+  sample.frame_id("fleet");
+  sample.kind(static_cast<uint8_t>(submap.kind));
+  sample.state(static_cast<uint8_t>(message.state));
+  sample.place(submap.place);
+  sample.fleet_from_submap(ToIdl(submap.map_from_submap));
+  sample.source_robot(message.source_robot);
+  sample.source_entity(message.source_entity);
+  sample.precision(message.precision);
+  sample.observed_fraction(message.observed_fraction);
+  const grid::OccupancyGrid& cells = submap.navigable;
+  sample.resolution(static_cast<float>(cells.resolution()));
+  sample.width(static_cast<uint32_t>(cells.width()));
+  sample.height(static_cast<uint32_t>(cells.height()));
+  sample.origin(ToIdl(cells.origin()));
+  sample.data(cells.data());
+  std::vector<uint32_t> to;
+  std::vector<double> x;
+  std::vector<double> y;
+  std::vector<double> theta;
+  for (const extrapolation::SubmapEdge& edge : message.edges) {
+    to.push_back(edge.to);
+    x.push_back(edge.from_T_to.x);
+    y.push_back(edge.from_T_to.y);
+    theta.push_back(edge.from_T_to.yaw);
+  }
+  sample.edge_to(std::move(to));
+  sample.edge_x(std::move(x));
+  sample.edge_y(std::move(y));
+  sample.edge_theta(std::move(theta));
+  return sample;
+}
+
+StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
+  const std::string name = "sub-map " + std::to_string(sample.submap_id());
+  if (sample.kind() > static_cast<uint8_t>(extrapolation::SubmapKind::kPredictedDoor)) {
+    return InvalidArgumentError(name + ": unknown kind " + std::to_string(sample.kind()));
+  }
+  if (sample.state() > static_cast<uint8_t>(SubmapState::kRetracted)) {
+    return InvalidArgumentError(name + ": unknown state " + std::to_string(sample.state()));
+  }
+  if (Status grid =
+          CheckGrid(sample.resolution(), sample.width(), sample.height(), sample.data().size());
+      !grid.ok()) {
+    return grid.WithContext(name);
+  }
+  const size_t edges = sample.edge_to().size();
+  if (sample.edge_x().size() != edges || sample.edge_y().size() != edges ||
+      sample.edge_theta().size() != edges) {
+    return InvalidArgumentError(name + ": edge arrays of different lengths");
+  }
+  const Pose2 fleet_from_submap = FromIdl(sample.fleet_from_submap());
+  const Pose2 origin = FromIdl(sample.origin());
+  if (!AllFinite({fleet_from_submap.x, fleet_from_submap.y, fleet_from_submap.yaw, origin.x,
+                  origin.y, origin.yaw}) ||
+      !AllFinite(sample.edge_x()) || !AllFinite(sample.edge_y()) ||
+      !AllFinite(sample.edge_theta())) {
+    return InvalidArgumentError(name + ": a pose is not finite");
+  }
+  SubmapMessage message;
+  extrapolation::Submap& submap = message.submap;
+  submap.id = sample.submap_id();
+  submap.kind = static_cast<extrapolation::SubmapKind>(sample.kind());
+  submap.place = sample.place();
+  submap.map_from_submap = fleet_from_submap;
+  submap.navigable =
+      grid::OccupancyGrid(static_cast<int>(sample.width()), static_cast<int>(sample.height()),
+                          sample.resolution(), origin);
+  submap.navigable.mutable_data() = sample.data();
+  if (!sample.source_entity().empty()) submap.entity_ids.push_back(sample.source_entity());
+  message.state = static_cast<SubmapState>(sample.state());
+  message.source_robot = sample.source_robot();
+  message.source_entity = sample.source_entity();
+  message.precision = sample.precision();
+  message.observed_fraction = sample.observed_fraction();
+  for (size_t k = 0; k < edges; ++k) {
+    extrapolation::SubmapEdge edge;
+    edge.from = submap.id;
+    edge.to = sample.edge_to()[k];
+    edge.from_T_to = Pose2{sample.edge_x()[k], sample.edge_y()[k], sample.edge_theta()[k]};
+    message.edges.push_back(std::move(edge));
+  }
+  message.stamp = FromIdl(sample.stamp());
+  return message;
+}
+
+StatusOr<ObjectTemplate_> ToIdl(const ObjectTemplateMessage& message) {
+  ObjectTemplate_ sample;
+  sample.template_id(message.template_id);
+  sample.stamp(ToIdl(message.stamp));
+  sample.learning_run(message.learning_run);
+  sample.object_count(message.object_count);
+  sample.resolution(static_cast<float>(message.patch.resolution));
+  sample.width(static_cast<uint32_t>(message.patch.width));
+  sample.height(static_cast<uint32_t>(message.patch.height));
+  sample.data(ToPercent(message.patch.occupancy));
+  return sample;
+}
+
+StatusOr<ObjectTemplateMessage> FromIdl(const ObjectTemplate_& sample) {
+  StatusOr<object_learning::Patch> patch =
+      PatchFromIdl(sample.resolution(), sample.width(), sample.height(), sample.data());
+  if (!patch.ok()) {
+    return patch.status().WithContext("template " + std::to_string(sample.template_id()));
+  }
+  ObjectTemplateMessage message;
+  message.template_id = sample.template_id();
+  message.learning_run = sample.learning_run();
+  message.object_count = sample.object_count();
+  message.patch = *std::move(patch);
+  message.stamp = FromIdl(sample.stamp());
+  return message;
+}
+
+StatusOr<ObjectModel_> ToIdl(const ObjectModelMessage& message) {
+  ObjectModel_ sample;
+  sample.object_id(message.object_id);
+  sample.stamp(ToIdl(message.stamp));
+  sample.learning_run(message.learning_run);
+  sample.template_id(message.template_id);
+  sample.resolution(static_cast<float>(message.patch.resolution));
+  sample.width(static_cast<uint32_t>(message.patch.width));
+  sample.height(static_cast<uint32_t>(message.patch.height));
+  sample.data(ToPercent(message.patch.occupancy));
+  for (const ObjectSighting& sighting : message.sightings) {
+    sample.sighting_session().push_back(sighting.session);
+    sample.sighting_x().push_back(sighting.fleet_from_object.x);
+    sample.sighting_y().push_back(sighting.fleet_from_object.y);
+    sample.sighting_theta().push_back(sighting.fleet_from_object.yaw);
+  }
+  return sample;
+}
+
+StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
+  const std::string name = "object " + std::to_string(sample.object_id());
+  StatusOr<object_learning::Patch> patch =
+      PatchFromIdl(sample.resolution(), sample.width(), sample.height(), sample.data());
+  if (!patch.ok()) return patch.status().WithContext(name);
+  const size_t sightings = sample.sighting_session().size();
+  if (sample.sighting_x().size() != sightings || sample.sighting_y().size() != sightings ||
+      sample.sighting_theta().size() != sightings) {
+    return InvalidArgumentError(name + ": sighting arrays of different lengths");
+  }
+  if (!AllFinite(sample.sighting_x()) || !AllFinite(sample.sighting_y()) ||
+      !AllFinite(sample.sighting_theta())) {
+    return InvalidArgumentError(name + ": a sighting pose is not finite");
+  }
+  ObjectModelMessage message;
+  message.object_id = sample.object_id();
+  message.learning_run = sample.learning_run();
+  message.template_id = sample.template_id();
+  message.patch = *std::move(patch);
+  for (size_t k = 0; k < sightings; ++k) {
+    message.sightings.push_back(
+        {sample.sighting_session()[k],
+         Pose2{sample.sighting_x()[k], sample.sighting_y()[k], sample.sighting_theta()[k]}});
+  }
+  message.stamp = FromIdl(sample.stamp());
+  return message;
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,77 @@
+#pragma once
+
+// fleetmap's own types for the entity, sub-map graph and object-model topics. Conversions to the
+// wire types are in conversions.hpp; the readers and writers in keyed_state_topic.hpp.
+
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/core/ids.hpp"
+#include "common/core/robot_status.hpp"
+#include "common/core/types.hpp"
+#include "common/extrapolation/entities.hpp"
+#include "common/extrapolation/submap_graph.hpp"
+#include "common/object_learning/object_learner.hpp"
+
+namespace fleetmap::transport {
+
+// One entity a robot recognised (rt/fleetmap/entities), in the robot's map frame. The entity's
+// own id is the instance key beside the robot's.
+struct EntityMessage {
+  using Entity = std::variant<extrapolation::DoorEntity, extrapolation::StairsEntity,
+                              extrapolation::PersonTrack>;
+  RobotId robot;
+  Timestamp stamp{};
+  std::string frame_id = "map";
+  Entity entity;
+
+  const std::string& entity_id() const;
+};
+
+// Where a sub-map stands: observed by the robots, predicted, or a prediction that robots have
+// since observed and found right (confirmed) or wrong (retracted).
+enum class SubmapState : uint8_t { kObserved = 0, kPredicted = 1, kConfirmed = 2, kRetracted = 3 };
+const char* SubmapStateName(SubmapState state);
+
+// One node of the sub-map graph (rt/fleetmap/submap_graph), in the fleet frame, with the edges
+// that start from it. `submap.navigable` is empty for observed sub-maps (their cells are the
+// fused map).
+struct SubmapMessage {
+  extrapolation::Submap submap;
+  SubmapState state = SubmapState::kPredicted;
+  std::string source_robot;
+  std::string source_entity;
+  float precision = -1.0F;  // measured against later observation; -1 before any
+  float observed_fraction = -1.0F;
+  std::vector<extrapolation::SubmapEdge> edges;  // each edge's `from` is this sub-map
+  Timestamp stamp{};
+};
+
+// A learned class of movable objects (rt/fleetmap/object_templates).
+struct ObjectTemplateMessage {
+  uint32_t template_id = 0;
+  uint32_t learning_run = 0;
+  uint32_t object_count = 0;
+  object_learning::Patch patch;
+  Timestamp stamp{};
+};
+
+// One sighting of a learned object: in which mapping session, and its pose in the fleet frame.
+struct ObjectSighting {
+  uint32_t session = 0;
+  Pose2 fleet_from_object;
+};
+
+// A learned physical object (rt/fleetmap/objects).
+struct ObjectModelMessage {
+  uint32_t object_id = 0;
+  uint32_t learning_run = 0;
+  uint32_t template_id = 0;
+  object_learning::Patch patch;
+  std::vector<ObjectSighting> sightings;
+  Timestamp stamp{};
+};
+
+}  // namespace fleetmap::transport
