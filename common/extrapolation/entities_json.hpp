@@ -1,10 +1,12 @@
 #pragma once
 
-// The entities JSON file (docs/extrapolation.md): {"doors": [...], "stairs": [...],
-// "people": [...]}. Parsing is strict about the file and lenient about single entries: a file
-// that is not JSON, or whose top level is not an object of known arrays, is an error; an entry
-// that is unusable (missing field, NaN, a zero-width door, a one-point track, an unknown class)
-// is skipped with a warning naming it and what is wrong, and the rest of the file is used.
+// The entities JSON file (docs/extrapolation.md): {"entities": [{"class": "door" | "stairs" |
+// "person", "id": ..., ...}, ...]}. Parsing is strict about the file and lenient about single
+// entries: a file that is not JSON, whose top level is not an object, or that has no "entities"
+// array is an error; an entry that is unusable (unknown class, missing or mistyped field, a
+// non-finite number, a door of (near) zero width, a track of fewer than two points, a duplicate
+// id) is skipped with a warning naming it and what is wrong, and the rest of the file is used.
+// Unknown keys are ignored with a warning.
 //
 // Thread-safety: stateless.
 
@@ -22,8 +24,8 @@ struct ParsedEntities {
   std::vector<std::string> warnings;  // one per skipped entry or ignored key, naming it
 };
 
-// Errors (kInvalidArgument) start with `source_name`: not JSON, top level not an object, a known
-// class whose value is not an array.
+// Errors (kInvalidArgument) start with `source_name`: not JSON, top level not an object, no
+// "entities" array.
 StatusOr<ParsedEntities> ParseEntitiesJson(std::string_view text, std::string_view source_name);
 
 // The JSON text of `entities` (reads back with ParseEntitiesJson to the same entities).

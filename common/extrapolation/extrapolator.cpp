@@ -1,0 +1,367 @@
+#include "common/extrapolation/extrapolator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <numbers>
+#include <optional>
+
+#include "common/extrapolation/kernels.hpp"
+#include "common/extrapolation/map_queries.hpp"
+#include "common/extrapolation/track_predictor.hpp"
+
+namespace fleetmap::extrapolation {
+namespace {
+
+// A window of the local map's cell lattice (indices may lie outside the map): predicted grids are
+// cut from it, so their cells coincide with the local map's cells.
+struct LatticeWindow {
+  int x0 = 0;
+  int y0 = 0;
+  int width = 0;
+  int height = 0;
+};
+
+// The lattice window covering the disc (map frame), at most `max_side` cells a side.
+LatticeWindow WindowAround(const grid::OccupancyGrid& map, const Point2& centre, double radius,
+                           int max_side) {
+  const Point2 in_grid = map.origin().ToTransform().inverse() * centre;
+  const double r = map.resolution();
+  const double half = std::min(radius / r, 0.5 * max_side);
+  LatticeWindow window;
+  window.x0 = static_cast<int>(std::floor(in_grid.x() / r - half));
+  window.y0 = static_cast<int>(std::floor(in_grid.y() / r - half));
+  window.width = std::max(1, std::min(max_side, static_cast<int>(std::ceil(2.0 * half)) + 1));
+  window.height = window.width;
+  return window;
+}
+
+// An empty predicted sub-map whose grid is `window` of the local lattice, in the frame
+// `map_from_submap`.
+Submap MakePredictedSubmap(const grid::OccupancyGrid& map, const LatticeWindow& window,
+                           const Pose2& map_from_submap) {
+  Submap submap;
+  submap.map_from_submap = map_from_submap;
+  Transform2 map_from_window = map.origin().ToTransform();
+  map_from_window.translate(Vector2(window.x0 * map.resolution(), window.y0 * map.resolution()));
+  const Pose2 submap_from_window =
+      Pose2::FromTransform(map_from_submap.ToTransform().inverse() * map_from_window);
+  submap.navigable = grid::OccupancyGrid(window.width, window.height, map.resolution(),
+                                         submap_from_window, grid::kUnknownValue);
+  submap.confidence.assign(static_cast<size_t>(submap.navigable.cell_count()), 0.0f);
+  return submap;
+}
+
+bool Finite(const Point2& p) { return p.allFinite(); }
+
+// Keeps the cells of `mask` (row-major, window-sized) 4-connected to a seed.
+std::vector<uint8_t> ConnectedToSeeds(const std::vector<uint8_t>& mask, int width, int height,
+                                      const std::vector<int>& seeds) {
+  std::vector<uint8_t> reached(mask.size(), 0);
+  std::deque<int> queue;
+  for (int s : seeds) {
+    if (s >= 0 && s < static_cast<int>(mask.size()) && mask[s] && !reached[s]) {
+      reached[s] = 1;
+      queue.push_back(s);
+    }
+  }
+  while (!queue.empty()) {
+    const int i = queue.front();
+    queue.pop_front();
+    const int x = i % width, y = i / width;
+    const int neighbours[4][2] = {{x + 1, y}, {x - 1, y}, {x, y + 1}, {x, y - 1}};
+    for (const auto& n : neighbours) {
+      if (n[0] < 0 || n[1] < 0 || n[0] >= width || n[1] >= height) continue;
+      const int j = n[1] * width + n[0];
+      if (mask[j] && !reached[j]) {
+        reached[j] = 1;
+        queue.push_back(j);
+      }
+    }
+  }
+  return reached;
+}
+
+class Extrapolator {
+ public:
+  Extrapolator(const grid::OccupancyGrid& map, const ExtrapolationOptions& options)
+      : map_(map), options_(options) {}
+
+  ExtrapolationResult Run(const Entities& entities) {
+    Submap observed;
+    observed.id = 0;
+    observed.kind = SubmapKind::kObserved;
+    observed.place = 0;
+    observed.navigable = map_;
+    result_.graph.submaps.push_back(std::move(observed));
+    result_.conditionally_free =
+        grid::OccupancyGrid(map_.width(), map_.height(), map_.resolution(), map_.origin());
+    for (const PersonTrack& person : entities.people) AddPerson(person);
+    for (const DoorEntity& door : entities.doors) AddDoor(door);
+    for (const StairsEntity& stairs : entities.stairs) AddStairs(stairs);
+    return std::move(result_);
+  }
+
+ private:
+  void Warn(const std::string& message) { result_.warnings.push_back(message); }
+
+  uint32_t AddPredicted(Submap submap, const std::string& entity_id) {
+    const uint32_t id = static_cast<uint32_t>(result_.graph.submaps.size());
+    submap.id = id;
+    submap.place = id;  // a predicted sub-map is a place of its own
+    submap.entity_ids.push_back(entity_id);
+    const Submap& observed = result_.graph.submaps.front();
+    result_.graph.edges.push_back({observed.id, id,
+                                   RelativePose(observed.map_from_submap, submap.map_from_submap),
+                                   entity_id});
+    result_.graph.submaps.push_back(std::move(submap));
+    return id;
+  }
+
+  void AddPerson(const PersonTrack& person) {
+    const std::string name = "person '" + person.id + "'";
+    if (person.points.size() < 2) {
+      Warn(name + " skipped: a track needs at least two points");
+      return;
+    }
+    for (size_t i = 0; i < person.points.size(); ++i) {
+      const TrackPoint& p = person.points[i];
+      if (!Finite(p.position) || !std::isfinite(p.stamp) || !std::isfinite(p.heading) ||
+          (i > 0 && !(p.stamp > person.points[i - 1].stamp))) {
+        Warn(name + " skipped: point " + std::to_string(i) +
+             " is not finite or its stamp does not increase");
+        return;
+      }
+    }
+    int side = person.dominant_side;
+    if (side != -1 && side != 1) {
+      const std::optional<int> inferred =
+          InferDominantSide(map_, person, options_.dominant_side_search);
+      side = inferred.value_or(1);
+      if (!inferred) Warn(name + ": no obstacle beside the track, dominant side taken as right");
+    }
+    TrackPredictorOptions sweep_options;
+    sweep_options.horizon = options_.track_horizon;
+    sweep_options.sample_spacing = options_.track_sample_spacing;
+    std::vector<SweptPose> poses = SweepTrack(person, sweep_options);
+    // A predicted walk stops at the first known obstacle.
+    for (size_t i = 1; i < poses.size(); ++i) {
+      if (poses[i].predicted && !LineOfSight(map_, poses[i - 1].position, poses[i].position)) {
+        poses.resize(i);
+        break;
+      }
+    }
+    const SkewNormalKernel kernel(
+        options_.person_sigma_forward, options_.person_sigma_side,
+        Vector2(options_.person_skew_forward, side * options_.person_skew_side));
+    const double radius = kernel.SupportRadius(options_.p_th);
+    grid::OccupancyGrid& out = result_.conditionally_free;
+    grid::OccupancyGrid& observed = result_.graph.submaps.front().navigable;
+    int64_t claimed = 0;
+    for (const SweptPose& pose : poses) {
+      const LatticeWindow w = WindowAround(map_, pose.position, radius, 4096);
+      const Eigen::Rotation2Dd person_from_map(-pose.heading);
+      for (int y = std::max(0, w.y0); y < std::min(map_.height(), w.y0 + w.height); ++y) {
+        for (int x = std::max(0, w.x0); x < std::min(map_.width(), w.x0 + w.width); ++x) {
+          if (out.at(x, y) == grid::kFreeValue) continue;
+          if (map_.StateAt(x, y) == grid::CellState::kOccupied) continue;
+          const Point2 c = map_.CellCenter(x, y);
+          if (kernel.Normalized(person_from_map * (c - pose.position)) <= options_.p_th) continue;
+          if (!LineOfSight(map_, pose.position, c)) continue;
+          out.at(x, y) = grid::kFreeValue;
+          if (observed.StateAt(x, y) != grid::CellState::kFree)
+            observed.at(x, y) = grid::kFreeValue;
+          ++claimed;
+        }
+      }
+    }
+    result_.graph.submaps.front().entity_ids.push_back(person.id);
+    if (claimed == 0) Warn(name + ": no cell of the local map could be claimed free");
+  }
+
+  void AddDoor(const DoorEntity& door) {
+    const std::string name = "door '" + door.id + "'";
+    const double w = door.width();
+    if (!Finite(door.hinge) || !Finite(door.latch) || !door.opening_direction.allFinite()) {
+      Warn(name + " skipped: a coordinate is not finite");
+      return;
+    }
+    if (!(w >= 0.2)) {
+      Warn(name + " skipped: width " + std::to_string(w) + " m (hinge and latch coincide)");
+      return;
+    }
+    if (door.open) {
+      // The doorway is seen through: the space behind it is observed, not predicted.
+      result_.graph.submaps.front().entity_ids.push_back(door.id);
+      return;
+    }
+    const Vector2 along = (door.latch - door.hinge) / w;
+    Vector2 opening = door.opening_direction;
+    if (opening.norm() < 1e-6) {
+      const std::optional<Vector2> inferred = InferOpeningDirection(map_, door);
+      if (!inferred) {
+        Warn(name +
+             " skipped: no opening direction given and the map does not tell which side "
+             "is unseen");
+        return;
+      }
+      opening = *inferred;
+    }
+    opening -= opening.dot(along) * along;
+    if (opening.norm() < 1e-6) {
+      Warn(name + " skipped: its opening direction runs along the door");
+      return;
+    }
+    opening.normalize();
+
+    const Point2 centre = door.center();
+    const Point2 origin = centre + options_.door_submap_distance * opening;
+    const double yaw = std::atan2(opening.y(), opening.x()) - 0.5 * std::numbers::pi;
+    const Pose2 map_from_submap{origin.x(), origin.y(), NormalizeAngle(yaw)};
+    // Kernel frame: origin at the hinge, x along the door line (either sense), y into the room.
+    const Vector2 kx(opening.y(), -opening.x());
+    const SkewNormalKernel kernel(options_.door_sigma_per_width * w,
+                                  options_.door_sigma_per_width * w,
+                                  Vector2(0.0, options_.door_skew_per_width * w));
+    const double reach =
+        std::min(options_.door_max_range, kernel.SupportRadius(options_.p_th) + 0.5 * w);
+    const LatticeWindow window = WindowAround(map_, centre, reach, options_.max_submap_cells_side);
+    Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
+    submap.kind = SubmapKind::kPredictedDoor;
+
+    std::vector<uint8_t> candidate(submap.confidence.size(), 0);
+    for (int y = 0; y < window.height; ++y) {
+      for (int x = 0; x < window.width; ++x) {
+        const Point2 c = map_.CellCenter(window.x0 + x, window.y0 + y);
+        const Vector2 d = c - door.hinge;
+        const double conf = kernel.Normalized(Vector2(kx.dot(d), opening.dot(d)));
+        const size_t i = static_cast<size_t>(y) * window.width + x;
+        submap.confidence[i] = static_cast<float>(conf);
+        const bool behind = (c - centre).dot(opening) > 0.5 * map_.resolution();
+        const bool in_range = (c - centre).norm() <= options_.door_max_range;
+        const bool blocked = StateAtPoint(map_, c) == grid::CellState::kOccupied;
+        candidate[i] = conf > options_.p_th && behind && in_range && !blocked;
+      }
+    }
+    // Seeds: just behind the doorway.
+    std::vector<int> seeds;
+    for (double s = 0.0; s <= w; s += 0.5 * map_.resolution()) {
+      const Point2 p = door.hinge + s * along + (0.5 * map_.resolution() + 0.1) * opening;
+      const Point2 in_grid = map_.origin().ToTransform().inverse() * p / map_.resolution();
+      const int x = static_cast<int>(std::floor(in_grid.x())) - window.x0;
+      const int y = static_cast<int>(std::floor(in_grid.y())) - window.y0;
+      if (x >= 0 && y >= 0 && x < window.width && y < window.height) {
+        seeds.push_back(y * window.width + x);
+      }
+    }
+    const std::vector<uint8_t> reached =
+        ConnectedToSeeds(candidate, window.width, window.height, seeds);
+    int64_t free = 0;
+    for (int y = 0; y < window.height; ++y) {
+      for (int x = 0; x < window.width; ++x) {
+        if (reached[static_cast<size_t>(y) * window.width + x]) {
+          submap.navigable.at(x, y) = grid::kFreeValue;
+          ++free;
+        }
+      }
+    }
+    if (free == 0) Warn(name + ": no free space predicted behind it (blocked or below p_th)");
+    AddPredicted(std::move(submap), door.id);
+  }
+
+  void AddStairs(const StairsEntity& stairs) {
+    const std::string name = "stairs '" + stairs.id + "'";
+    if (!Finite(stairs.position) || !stairs.ascending.allFinite() ||
+        !std::isfinite(stairs.step_width) || !std::isfinite(stairs.next_floor_height) ||
+        !std::isfinite(stairs.run_length)) {
+      Warn(name + " skipped: a value is not finite");
+      return;
+    }
+    if (stairs.ascending.norm() < 1e-6 || !(stairs.step_width > 0.0) ||
+        !(stairs.next_floor_height > 0.0) || stairs.run_length < 0.0) {
+      Warn(name + " skipped: zero ascending direction, or step width / floor height <= 0");
+      return;
+    }
+    const Vector2 up = stairs.ascending.normalized();
+    const double run = stairs.run_length > 0.0
+                           ? stairs.run_length
+                           : stairs.next_floor_height / std::tan(options_.stairs_default_pitch);
+    const Point2 top = stairs.position + run * up;
+    const Pose2 map_from_submap{top.x(), top.y(), std::atan2(up.y(), up.x())};
+    const double sigma = options_.stairs_sigma_per_width * stairs.step_width;
+    const double radius = sigma * std::sqrt(-2.0 * std::log(options_.p_th));
+    const LatticeWindow window = WindowAround(map_, top, radius, options_.max_submap_cells_side);
+    Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
+    submap.kind = SubmapKind::kPredictedStairs;
+    submap.elevation = stairs.next_floor_height;
+    // The floor above is not this map's: only the half-plane beyond the top edge is predicted
+    // (behind it is the stairwell).
+    for (int y = 0; y < window.height; ++y) {
+      for (int x = 0; x < window.width; ++x) {
+        const Vector2 d = map_.CellCenter(window.x0 + x, window.y0 + y) - top;
+        const double conf = NormalizedGaussian(d, sigma);
+        submap.confidence[static_cast<size_t>(y) * window.width + x] = static_cast<float>(conf);
+        if (conf > options_.p_th && d.dot(up) > 0.5 * map_.resolution()) {
+          submap.navigable.at(x, y) = grid::kFreeValue;
+        }
+      }
+    }
+    AddPredicted(std::move(submap), stairs.id);
+  }
+
+  const grid::OccupancyGrid& map_;
+  const ExtrapolationOptions& options_;
+  ExtrapolationResult result_;
+};
+
+}  // namespace
+
+Status ValidateOptions(const ExtrapolationOptions& o) {
+  if (!(o.p_th > 0.0 && o.p_th < 1.0)) {
+    return InvalidArgumentError("p_th " + std::to_string(o.p_th) + " must be in (0, 1)");
+  }
+  const std::pair<const char*, double> positive[] = {
+      {"stairs_sigma_per_width", o.stairs_sigma_per_width},
+      {"stairs_default_pitch", o.stairs_default_pitch},
+      {"door_sigma_per_width", o.door_sigma_per_width},
+      {"door_max_range", o.door_max_range},
+      {"person_sigma_forward", o.person_sigma_forward},
+      {"person_sigma_side", o.person_sigma_side},
+      {"track_sample_spacing", o.track_sample_spacing},
+      {"dominant_side_search", o.dominant_side_search},
+  };
+  for (const auto& [name, value] : positive) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      return InvalidArgumentError(std::string(name) + " must be a finite number > 0");
+    }
+  }
+  const std::pair<const char*, double> non_negative[] = {
+      {"door_skew_per_width", o.door_skew_per_width},
+      {"door_submap_distance", o.door_submap_distance},
+      {"person_skew_forward", o.person_skew_forward},
+      {"person_skew_side", o.person_skew_side},
+      {"track_horizon", o.track_horizon},
+  };
+  for (const auto& [name, value] : non_negative) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      return InvalidArgumentError(std::string(name) + " must be a finite number >= 0");
+    }
+  }
+  if (!(o.stairs_default_pitch < 0.5 * std::numbers::pi)) {
+    return InvalidArgumentError("stairs_default_pitch must be below pi / 2");
+  }
+  if (o.max_submap_cells_side < 1) {
+    return InvalidArgumentError("max_submap_cells_side must be >= 1");
+  }
+  return Status::Ok();
+}
+
+StatusOr<ExtrapolationResult> Extrapolate(const grid::OccupancyGrid& local_map,
+                                          const Entities& entities,
+                                          const ExtrapolationOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(ValidateOptions(options));
+  if (local_map.empty()) return InvalidArgumentError("the local map is empty");
+  return Extrapolator(local_map, options).Run(entities);
+}
+
+}  // namespace fleetmap::extrapolation

@@ -1,0 +1,48 @@
+#include "common/extrapolation/submap_graph_json.hpp"
+
+namespace fleetmap::extrapolation {
+namespace {
+
+nlohmann::json PoseJson(const Pose2& pose) {
+  return {{"x", pose.x}, {"y", pose.y}, {"yaw", pose.yaw}};
+}
+
+}  // namespace
+
+nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
+                                 const std::vector<std::string>& grid_files) {
+  nlohmann::json submaps = nlohmann::json::array();
+  for (size_t i = 0; i < graph.submaps.size(); ++i) {
+    const Submap& s = graph.submaps[i];
+    const grid::StateCounts counts = s.navigable.CountStates();
+    nlohmann::json j = {
+        {"id", s.id},
+        {"kind", SubmapKindName(s.kind)},
+        {"place", s.place},
+        {"map_from_submap", PoseJson(s.map_from_submap)},
+        {"elevation", s.elevation},
+        {"entities", s.entity_ids},
+        {"grid",
+         {{"width", s.navigable.width()},
+          {"height", s.navigable.height()},
+          {"resolution", s.navigable.resolution()},
+          {"origin_in_submap", PoseJson(s.navigable.origin())},
+          {"free_cells", counts.free},
+          {"occupied_cells", counts.occupied},
+          {"free_area_m2", static_cast<double>(counts.free) * s.navigable.resolution() *
+                               s.navigable.resolution()}}},
+    };
+    if (i < grid_files.size() && !grid_files[i].empty()) j["grid"]["file"] = grid_files[i];
+    submaps.push_back(std::move(j));
+  }
+  nlohmann::json edges = nlohmann::json::array();
+  for (const SubmapEdge& e : graph.edges) {
+    edges.push_back({{"from", e.from},
+                     {"to", e.to},
+                     {"from_T_to", PoseJson(e.from_T_to)},
+                     {"entity", e.entity_id}});
+  }
+  return {{"submaps", submaps}, {"edges", edges}};
+}
+
+}  // namespace fleetmap::extrapolation

@@ -1,0 +1,297 @@
+#include "common/extrapolation/extrapolator.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "common/extrapolation/prediction_check.hpp"
+
+namespace fleetmap::extrapolation {
+namespace {
+
+using ::testing::HasSubstr;
+
+constexpr double kRes = 0.05;
+
+void Fill(grid::OccupancyGrid* map, double x0, double y0, double x1, double y1, int8_t value) {
+  for (int y = 0; y < map->height(); ++y) {
+    for (int x = 0; x < map->width(); ++x) {
+      const Point2 c = map->CellCenter(x, y);
+      if (c.x() >= x0 && c.x() < x1 && c.y() >= y0 && c.y() < y1) map->at(x, y) = value;
+    }
+  }
+}
+
+// 10 x 8 m: a corridor y in [0.15, 2] the robot has seen, walls below it and above it (y in
+// [2, 2.15]) with a closed door between x = 4 and 5; above the wall nothing is known.
+grid::OccupancyGrid Corridor() {
+  grid::OccupancyGrid map(200, 160, kRes);
+  Fill(&map, 0, 0, 10, 0.15, grid::kOccupiedValue);
+  Fill(&map, 0, 0.15, 10, 2.0, grid::kFreeValue);
+  Fill(&map, 0, 2.0, 10, 2.15, grid::kOccupiedValue);
+  return map;
+}
+
+DoorEntity Door() {
+  DoorEntity door;
+  door.id = "door_1";
+  door.hinge = Point2(4.0, 2.075);
+  door.latch = Point2(5.0, 2.075);
+  door.opening_direction = Vector2(0, 1);
+  return door;
+}
+
+std::vector<Point2> FreeCellsInMap(const Submap& submap) {
+  std::vector<Point2> out;
+  for (int y = 0; y < submap.navigable.height(); ++y) {
+    for (int x = 0; x < submap.navigable.width(); ++x) {
+      if (submap.navigable.StateAt(x, y) == grid::CellState::kFree) {
+        out.push_back(submap.map_from_submap.ToTransform() * submap.navigable.CellCenter(x, y));
+      }
+    }
+  }
+  return out;
+}
+
+TEST(ExtrapolatorTest, ClosedDoorMakesAPredictedSubmapBehindIt) {
+  const grid::OccupancyGrid map = Corridor();
+  Entities entities;
+  entities.doors.push_back(Door());
+  ExtrapolationOptions options;
+  const auto result = Extrapolate(map, entities, options);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const SubmapGraph& graph = result->graph;
+  ASSERT_EQ(graph.submaps.size(), 2u);
+  ASSERT_EQ(graph.edges.size(), 1u);
+  const Submap& observed = graph.submaps[0];
+  const Submap& predicted = graph.submaps[1];
+  EXPECT_EQ(observed.kind, SubmapKind::kObserved);
+  EXPECT_EQ(predicted.kind, SubmapKind::kPredictedDoor);
+  EXPECT_NE(predicted.place, observed.place);
+  EXPECT_EQ(predicted.entity_ids, std::vector<std::string>{"door_1"});
+  EXPECT_EQ(graph.edges[0].from, 0u);
+  EXPECT_EQ(graph.edges[0].to, predicted.id);
+  EXPECT_EQ(graph.edges[0].entity_id, "door_1");
+  // The sub-map sits d behind the door's centre, its +y into the room.
+  EXPECT_NEAR(predicted.map_from_submap.x, 4.5, 1e-9);
+  EXPECT_NEAR(predicted.map_from_submap.y, 2.075 + options.door_submap_distance, 1e-9);
+  EXPECT_NEAR(graph.edges[0].from_T_to.y, predicted.map_from_submap.y, 1e-9);
+
+  const std::vector<Point2> free = FreeCellsInMap(predicted);
+  ASSERT_GT(free.size(), 200u);
+  for (const Point2& p : free) {
+    EXPECT_GT(p.y(), 2.15);  // behind the door, past the wall
+    EXPECT_LE((p - Point2(4.5, 2.075)).norm(), options.door_max_range + 1e-9);
+    const auto cell = map.CellAt(p);
+    ASSERT_TRUE(cell);
+    EXPECT_NE(map.StateAt(cell->x, cell->y), grid::CellState::kOccupied);
+  }
+  // Skewed into the room and centred on the hinge: more space near the hinge's side.
+  int hinge_side = 0, latch_side = 0;
+  for (const Point2& p : free) (p.x() < 4.5 ? hinge_side : latch_side)++;
+  EXPECT_GT(hinge_side, latch_side);
+  ASSERT_EQ(predicted.confidence.size(), static_cast<size_t>(predicted.navigable.cell_count()));
+}
+
+TEST(ExtrapolatorTest, KnownWallStopsTheDoorPrediction) {
+  grid::OccupancyGrid map = Corridor();
+  Entities entities;
+  entities.doors.push_back(Door());
+  auto beyond_wall = [](const Submap& s) {
+    int n = 0;
+    for (const Point2& p : FreeCellsInMap(s)) n += p.x() < 3.25;
+    return n;
+  };
+  const auto open_room = Extrapolate(map, entities);
+  ASSERT_TRUE(open_room.ok());
+  ASSERT_GT(beyond_wall(open_room->graph.submaps[1]), 0);  // the test can fail
+  Fill(&map, 3.25, 2.15, 3.4, 8.0, grid::kOccupiedValue);  // a wall the robot saw earlier
+  const auto walled = Extrapolate(map, entities);
+  ASSERT_TRUE(walled.ok());
+  EXPECT_EQ(beyond_wall(walled->graph.submaps[1]), 0);
+}
+
+TEST(ExtrapolatorTest, HigherThresholdPredictsLess) {
+  const grid::OccupancyGrid map = Corridor();
+  Entities entities;
+  entities.doors.push_back(Door());
+  size_t previous = std::numeric_limits<size_t>::max();
+  for (double p_th : {0.5, 0.6, 0.7}) {
+    ExtrapolationOptions options;
+    options.p_th = p_th;
+    options.door_max_range = 10.0;  // let the kernel, not the range, bound the region
+    const auto result = Extrapolate(map, entities, options);
+    ASSERT_TRUE(result.ok());
+    const size_t n = FreeCellsInMap(result->graph.submaps[1]).size();
+    EXPECT_LT(n, previous) << p_th;
+    previous = n;
+  }
+}
+
+TEST(ExtrapolatorTest, OpenDoorPredictsNothing) {
+  Entities entities;
+  entities.doors.push_back(Door());
+  entities.doors[0].open = true;
+  const auto result = Extrapolate(Corridor(), entities);
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(result->graph.submaps.size(), 1u);
+  EXPECT_THAT(result->graph.submaps[0].entity_ids, ::testing::Contains("door_1"));
+}
+
+TEST(ExtrapolatorTest, OpeningDirectionInferredFromTheMap) {
+  Entities entities;
+  entities.doors.push_back(Door());
+  entities.doors[0].opening_direction = Vector2::Zero();
+  const auto result = Extrapolate(Corridor(), entities);
+  ASSERT_TRUE(result.ok());
+  ASSERT_EQ(result->graph.submaps.size(), 2u);
+  for (const Point2& p : FreeCellsInMap(result->graph.submaps[1])) EXPECT_GT(p.y(), 2.15);
+}
+
+TEST(ExtrapolatorTest, PersonFreeSpaceFollowsTheTrackAndExtendsForwardOnLeaving) {
+  // The robot saw only x < 3 of the corridor; a person walks along y = 1 from x = 0.5 to 2.5.
+  grid::OccupancyGrid map = Corridor();
+  Fill(&map, 3.0, 0.15, 10.0, 2.0, grid::kUnknownValue);
+  PersonTrack person;
+  person.id = "p1";
+  for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(0.5 + 0.2 * i, 1.0), 0});
+  auto free_at = [](const ExtrapolationResult& r, const Point2& p) {
+    const auto cell = r.conditionally_free.CellAt(p);
+    return cell && r.conditionally_free.StateAt(cell->x, cell->y) == grid::CellState::kFree;
+  };
+  Entities entities;
+  entities.people.push_back(person);
+  const auto stays = Extrapolate(map, entities);
+  ASSERT_TRUE(stays.ok());
+  EXPECT_TRUE(free_at(*stays, Point2(1.5, 1.0)));
+  EXPECT_TRUE(free_at(*stays, Point2(2.5, 1.0)));
+  EXPECT_FALSE(free_at(*stays, Point2(3.6, 1.0)));
+  entities.people[0].left_view = true;  // 1 m/s for 1.5 s more: up to x = 4
+  const auto leaves = Extrapolate(map, entities);
+  ASSERT_TRUE(leaves.ok());
+  EXPECT_TRUE(free_at(*leaves, Point2(3.6, 1.0)));
+  EXPECT_FALSE(free_at(*leaves, Point2(5.0, 1.0)));
+  // Never on an occupied cell, never far from the (extended) track; the observed sub-map grows.
+  const grid::OccupancyGrid& cf = leaves->conditionally_free;
+  int64_t claimed = 0;
+  for (int y = 0; y < cf.height(); ++y) {
+    for (int x = 0; x < cf.width(); ++x) {
+      if (cf.StateAt(x, y) != grid::CellState::kFree) continue;
+      ++claimed;
+      EXPECT_NE(map.StateAt(x, y), grid::CellState::kOccupied);
+      EXPECT_LT(std::abs(cf.CellCenter(x, y).y() - 1.0), 1.0);
+      EXPECT_EQ(leaves->graph.submaps[0].navigable.StateAt(x, y), grid::CellState::kFree);
+    }
+  }
+  EXPECT_GT(claimed, 100);
+}
+
+TEST(ExtrapolatorTest, PredictedWalkStopsAtAKnownWall) {
+  grid::OccupancyGrid map = Corridor();
+  Fill(&map, 3.0, 0.15, 3.15, 2.0, grid::kOccupiedValue);  // the corridor ends at x = 3
+  Fill(&map, 3.15, 0.15, 10.0, 2.0, grid::kUnknownValue);
+  PersonTrack person;
+  person.id = "p1";
+  person.left_view = true;
+  for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(0.5 + 0.2 * i, 1.0), 0});
+  Entities entities;
+  entities.people.push_back(person);
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok());
+  const grid::OccupancyGrid& cf = result->conditionally_free;
+  for (int y = 0; y < cf.height(); ++y) {
+    for (int x = 0; x < cf.width(); ++x) {
+      if (cf.StateAt(x, y) == grid::CellState::kFree) {
+        EXPECT_LT(cf.CellCenter(x, y).x(), 3.0);
+      }
+    }
+  }
+}
+
+TEST(ExtrapolatorTest, StairsMakeASubmapAtTheTopOnTheNextFloor) {
+  StairsEntity stairs;
+  stairs.id = "stairs_1";
+  stairs.position = Point2(6.0, 1.0);
+  stairs.ascending = Vector2(1, 0);
+  stairs.step_width = 1.0;
+  stairs.next_floor_height = 3.0;
+  stairs.run_length = 2.0;
+  Entities entities;
+  entities.stairs.push_back(stairs);
+  ExtrapolationOptions options;
+  const auto result = Extrapolate(Corridor(), entities, options);
+  ASSERT_TRUE(result.ok());
+  ASSERT_EQ(result->graph.submaps.size(), 2u);
+  const Submap& top = result->graph.submaps[1];
+  EXPECT_EQ(top.kind, SubmapKind::kPredictedStairs);
+  EXPECT_DOUBLE_EQ(top.elevation, 3.0);
+  EXPECT_NEAR(top.map_from_submap.x, 8.0, 1e-9);
+  EXPECT_NEAR(top.map_from_submap.y, 1.0, 1e-9);
+  const std::vector<Point2> free = FreeCellsInMap(top);
+  ASSERT_GT(free.size(), 100u);
+  const double radius = options.stairs_sigma_per_width * std::sqrt(2.0 * std::log(2.0));
+  for (const Point2& p : free) {
+    EXPECT_GT(p.x(), 8.0);  // beyond the top edge
+    EXPECT_LE((p - Point2(8.0, 1.0)).norm(), radius + 1e-9);
+  }
+}
+
+TEST(ExtrapolatorTest, UnusableEntitiesAreSkippedWithWarnings) {
+  Entities entities;
+  entities.doors.push_back(Door());
+  DoorEntity zero = Door();
+  zero.id = "flat";
+  zero.latch = zero.hinge;
+  entities.doors.push_back(zero);
+  PersonTrack lonely;
+  lonely.id = "lonely";
+  lonely.points.push_back({0.0, Point2(1, 1), 0.0});
+  entities.people.push_back(lonely);
+  StairsEntity nan_stairs;
+  nan_stairs.id = "nan";
+  nan_stairs.position = Point2(std::nan(""), 0.0);
+  entities.stairs.push_back(nan_stairs);
+  const auto result = Extrapolate(Corridor(), entities);
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(result->graph.submaps.size(), 2u);  // the good door
+  ASSERT_EQ(result->warnings.size(), 3u);
+  EXPECT_THAT(result->warnings[0], HasSubstr("person 'lonely'"));
+  EXPECT_THAT(result->warnings[1], HasSubstr("door 'flat'"));
+  EXPECT_THAT(result->warnings[2], HasSubstr("stairs 'nan'"));
+}
+
+TEST(ExtrapolatorTest, BadOptionsAndEmptyMapAreErrors) {
+  ExtrapolationOptions options;
+  options.p_th = 1.0;
+  EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
+  options.p_th = 0.5;
+  options.door_sigma_per_width = std::nan("");
+  EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
+  EXPECT_FALSE(Extrapolate(grid::OccupancyGrid(), {}).ok());
+}
+
+TEST(PredictionCheckTest, CountsAgainstAnObservation) {
+  Submap predicted;
+  predicted.map_from_submap = Pose2{1.0, 0.0, 0.0};
+  predicted.navigable = grid::OccupancyGrid(4, 1, 1.0);  // cells at x = 1.5 .. 4.5 in the map
+  for (int x = 0; x < 4; ++x) predicted.navigable.at(x, 0) = grid::kFreeValue;
+  grid::OccupancyGrid observed(4, 1, 1.0);  // x in [0, 4)
+  observed.at(1, 0) = grid::kFreeValue;
+  observed.at(2, 0) = grid::kFreeValue;
+  observed.at(3, 0) = grid::kOccupiedValue;
+  const PredictionCheck check = CheckPrediction(predicted, observed);
+  EXPECT_EQ(check.true_free, 2);
+  EXPECT_EQ(check.false_free, 1);
+  EXPECT_EQ(check.unobserved, 1);  // x = 4.5 is outside
+  EXPECT_DOUBLE_EQ(check.precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(check.observed_fraction, 0.75);
+  PredictionCheck sum = check;
+  sum += check;
+  EXPECT_EQ(sum.true_free, 4);
+  EXPECT_DOUBLE_EQ(sum.precision, 2.0 / 3.0);
+}
+
+}  // namespace
+}  // namespace fleetmap::extrapolation
