@@ -10,8 +10,8 @@
 namespace fleetmap::store {
 namespace {
 
-// Schema version 1. Documented in docs/file-formats.md, "Map store (SQLite)": change both together
-// and bump MapStore::kSchemaVersion with a migration.
+// Schema version 1, then the migrations to each later version. Documented in docs/file-formats.md,
+// "Map store (SQLite)": change both together, and bump MapStore::kSchemaVersion with a migration.
 constexpr char kCreateSchemaV1[] = R"sql(
 CREATE TABLE tile_latest (
   owner    TEXT    NOT NULL,
@@ -42,6 +42,18 @@ CREATE TABLE robots (
   status_payload BLOB    NOT NULL
 );
 PRAGMA user_version = 1;
+)sql";
+
+// Version 2: finished mapping sessions, the object learner's input.
+constexpr char kMigrateToV2[] = R"sql(
+CREATE TABLE sessions (
+  id         INTEGER PRIMARY KEY,
+  robot      TEXT    NOT NULL,
+  started_ns INTEGER NOT NULL,
+  ended_ns   INTEGER NOT NULL,
+  payload    BLOB    NOT NULL
+);
+PRAGMA user_version = 2;
 )sql";
 
 // Upsert, never INSERT OR REPLACE: REPLACE deletes the old row, and the delete would cascade to
@@ -95,6 +107,14 @@ ON CONFLICT (robot) DO UPDATE SET
 
 constexpr char kSelectRobots[] = R"sql(
 SELECT robot, first_seen_ns, last_seen_ns, state, status_payload FROM robots ORDER BY robot
+)sql";
+
+constexpr char kInsertSession[] = R"sql(
+INSERT INTO sessions (robot, started_ns, ended_ns, payload) VALUES (?1, ?2, ?3, ?4)
+)sql";
+
+constexpr char kSelectSessions[] = R"sql(
+SELECT id, robot, started_ns, ended_ns, payload FROM sessions ORDER BY id
 )sql";
 
 // The tile's history goes with it (ON DELETE CASCADE).
@@ -163,7 +183,7 @@ Status MapStore::Initialize() {
       "setting the synchronous mode"));
   FLEETMAP_RETURN_IF_ERROR(db_->Exec("PRAGMA foreign_keys = ON", "enabling foreign keys"));
 
-  if (version == 0) FLEETMAP_RETURN_IF_ERROR(CreateSchema());
+  FLEETMAP_RETURN_IF_ERROR(CreateOrMigrateSchema(version));
 
   FLEETMAP_RETURN_IF_ERROR(PrepareStatements());
   FLEETMAP_ASSIGN_OR_RETURN(history_rows_, CountHistoryRows());
@@ -179,7 +199,7 @@ StatusOr<int64_t> MapStore::ReadSchemaVersion() {
                                 std::to_string(kSchemaVersion) +
                                 "); open it with a newer fleetmap");
   }
-  if (version == kSchemaVersion) return version;
+  if (version >= 1) return version;  // current, or older and migrated by Initialize()
   if (version < 0) {
     return InvalidArgumentError(path() + ": schema version " + std::to_string(version) +
                                 " is not a fleetmap map store version");
@@ -196,10 +216,15 @@ StatusOr<int64_t> MapStore::ReadSchemaVersion() {
   return version;
 }
 
-Status MapStore::CreateSchema() {
+Status MapStore::CreateOrMigrateSchema(int64_t version) {
+  if (version == kSchemaVersion) return Status::Ok();
+  // One transaction: a crash mid-way leaves the file at its old version, whole.
   SqliteTransaction transaction(*db_);
   FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
-  FLEETMAP_RETURN_IF_ERROR(db_->Exec(kCreateSchemaV1, "creating the schema"));
+  if (version < 1) FLEETMAP_RETURN_IF_ERROR(db_->Exec(kCreateSchemaV1, "creating the schema"));
+  if (version < 2) {
+    FLEETMAP_RETURN_IF_ERROR(db_->Exec(kMigrateToV2, "migrating the schema to version 2"));
+  }
   return transaction.Commit();
 }
 
@@ -244,6 +269,8 @@ Status MapStore::PrepareStatements() {
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_history_, kSelectHistory, "reading tile history"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_robot_, kUpsertRobot, "writing a robot"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_robots_, kSelectRobots, "reading the robots"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&insert_session_, kInsertSession, "writing a session"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&select_sessions_, kSelectSessions, "reading the sessions"));
   return prepare(&delete_owner_, kDeleteOwner, "deleting an owner's tiles");
 }
 
@@ -364,6 +391,33 @@ Status MapStore::DeleteOwner(const std::string& owner) {
   FLEETMAP_RETURN_IF_ERROR(transaction.Commit());
   history_rows_ = history_rows;
   return Status::Ok();
+}
+
+StatusOr<int64_t> MapStore::PutSession(const SessionRecord& session) {
+  FLEETMAP_RETURN_IF_ERROR(ValidateSessionRecord(session).WithContext(path()));
+  insert_session_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->BindText(1, session.robot));
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->Bind(2, session.started_ns));
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->Bind(3, session.ended_ns));
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->BindBlob(4, session.payload));
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->Run());
+  return static_cast<int64_t>(sqlite3_last_insert_rowid(db_->handle()));
+}
+
+StatusOr<std::vector<SessionRecord>> MapStore::Sessions() const {
+  select_sessions_->Reset();
+  std::vector<SessionRecord> sessions;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_sessions_->Step());
+    if (!row) break;
+    SessionRecord& session = sessions.emplace_back();
+    session.id = select_sessions_->ColumnInt64(0);
+    session.robot = select_sessions_->ColumnText(1);
+    session.started_ns = select_sessions_->ColumnInt64(2);
+    session.ended_ns = select_sessions_->ColumnInt64(3);
+    session.payload = select_sessions_->ColumnBlob(4);
+  }
+  return sessions;
 }
 
 StatusOr<int64_t> MapStore::HistoryRowCount() const { return CountHistoryRows(); }

@@ -24,7 +24,7 @@ namespace fleetmap::store {
 class MapStore {
  public:
   // The schema version this code writes, kept in PRAGMA user_version.
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
 
   // Opens `path`, creating the file and its schema if missing. Fails with a message naming the
   // file when it is not an SQLite database, is corrupt (quick check), holds another application's
@@ -60,6 +60,12 @@ class MapStore {
 
   StatusOr<int64_t> HistoryRowCount() const;
 
+  // Appends a finished mapping session; returns its id (ids increase). kInvalidArgument for a
+  // record that fails ValidateSessionRecord.
+  StatusOr<int64_t> PutSession(const SessionRecord& session);
+  // Every stored session, oldest first.
+  StatusOr<std::vector<SessionRecord>> Sessions() const;
+
   // PRAGMA integrity_check over the whole file: OK, or kDataLoss naming the file.
   Status CheckIntegrity() const;
 
@@ -68,9 +74,10 @@ class MapStore {
  private:
   MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options);
   Status Initialize();
-  // The file's schema version: kSchemaVersion, or 0 for a new empty file; anything else fails.
+  // The file's schema version: 1..kSchemaVersion, or 0 for a new empty file; anything else fails.
   StatusOr<int64_t> ReadSchemaVersion();
-  Status CreateSchema();
+  // Creates the schema in a new file (version 0) or migrates an older one, in one transaction.
+  Status CreateOrMigrateSchema(int64_t version);
   Status PrepareStatements();
   Status RunCheck(const char* pragma) const;
   StatusOr<int64_t> CountHistoryRows() const;
@@ -92,6 +99,8 @@ class MapStore {
   std::unique_ptr<SqliteStatement> select_history_;
   std::unique_ptr<SqliteStatement> upsert_robot_;
   std::unique_ptr<SqliteStatement> select_robots_;
+  std::unique_ptr<SqliteStatement> insert_session_;
+  std::unique_ptr<SqliteStatement> select_sessions_;
   std::unique_ptr<SqliteStatement> delete_owner_;
 };
 

@@ -36,4 +36,18 @@ Status ValidateRobotRecord(const RobotRecord& record) {
   return InvalidArgumentError("robot record '" + record.robot + "': " + what.str());
 }
 
+Status ValidateSessionRecord(const SessionRecord& record) {
+  std::ostringstream what;
+  if (!IsValidRobotName(record.robot)) {
+    what << "'" << record.robot
+         << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
+  } else if (record.started_ns < 0 || record.ended_ns < record.started_ns) {
+    what << "started_ns " << record.started_ns << " and ended_ns " << record.ended_ns
+         << " do not satisfy 0 <= started_ns <= ended_ns";
+  } else {
+    return Status::Ok();
+  }
+  return InvalidArgumentError("session of '" + record.robot + "': " + what.str());
+}
+
 }  // namespace fleetmap::store

@@ -34,9 +34,23 @@ struct RobotRecord {
   friend bool operator==(const RobotRecord&, const RobotRecord&) = default;
 };
 
+// A finished mapping session: one robot's map of its session, from joining to leaving (or being
+// lost). The payload is opaque to the store (the server stores the session's vector map).
+struct SessionRecord {
+  int64_t id = 0;  // assigned by the store
+  std::string robot;
+  int64_t started_ns = 0;
+  int64_t ended_ns = 0;
+  std::string payload;
+
+  friend bool operator==(const SessionRecord&, const SessionRecord&) = default;
+};
+
 // OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one), stamp_ns >= 0.
 Status ValidateTileRecord(const TileRecord& record);
 // OK when `record` may be stored: valid robot name, known state, 0 <= first_seen <= last_seen.
 Status ValidateRobotRecord(const RobotRecord& record);
+// OK when `record` may be stored: valid robot name, 0 <= started_ns <= ended_ns.
+Status ValidateSessionRecord(const SessionRecord& record);
 
 }  // namespace fleetmap::store

@@ -296,7 +296,7 @@ TEST_F(MapStoreTest, RefusesASchemaVersionFromTheFuture) {
   EXPECT_EQ(store.status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(store.status().message(),
             path_ +
-                ": schema version 7 is newer than this fleetmap supports (1); open it with a "
+                ": schema version 7 is newer than this fleetmap supports (2); open it with a "
                 "newer fleetmap");
 }
 
@@ -388,6 +388,47 @@ TEST_F(MapStoreTest, EveryReportedBatchSurvivesSigkill) {
             static_cast<int64_t>(batches) * (testing::kWriterTilesPerBatch + 1));
   // The store is writable again after the crash.
   EXPECT_TRUE(store->PutTiles(testing::WriterBatch(static_cast<int>(batches))).ok());
+}
+
+TEST_F(MapStoreTest, SessionsRoundTripInOrderAndSurviveReopening) {
+  {
+    auto store = OpenOrDie();
+    ASSERT_NE(store, nullptr);
+    const auto first = store->PutSession({0, "alpha", 100, 200, std::string("v\0map", 5)});
+    const auto second = store->PutSession({0, "beta", 150, 400, "other"});
+    ASSERT_TRUE(first.ok()) << first.status();
+    ASSERT_TRUE(second.ok()) << second.status();
+    EXPECT_LT(*first, *second);
+  }
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const auto sessions = store->Sessions();
+  ASSERT_TRUE(sessions.ok()) << sessions.status();
+  ASSERT_EQ(sessions->size(), 2u);
+  EXPECT_EQ((*sessions)[0].robot, "alpha");
+  EXPECT_EQ((*sessions)[0].payload, std::string("v\0map", 5));
+  EXPECT_EQ((*sessions)[1].ended_ns, 400);
+}
+
+TEST_F(MapStoreTest, RefusesAnInvalidSession) {
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const auto backwards = store->PutSession({0, "alpha", 500, 100, ""});
+  ASSERT_FALSE(backwards.ok());
+  EXPECT_THAT(backwards.status().message(), HasSubstr("started_ns 500 and ended_ns 100"));
+  EXPECT_FALSE(store->PutSession({0, "not a name", 0, 1, ""}).ok());
+  EXPECT_TRUE(store->Sessions()->empty());
+}
+
+TEST_F(MapStoreTest, MigratesAVersionOneFileAndKeepsItsTiles) {
+  WriteSampleStore();
+  // What a version 1 fleetmap left: no sessions table.
+  ExecRaw(path_, "DROP TABLE sessions; PRAGMA user_version = 1");
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  EXPECT_FALSE(store->LatestTiles()->empty());
+  EXPECT_TRUE(store->Sessions()->empty());
+  EXPECT_TRUE(store->PutSession({0, "alpha", 1, 2, "x"}).ok());
 }
 
 }  // namespace
