@@ -2,12 +2,14 @@
 
 // Finds closed doors in a 3D point cloud (ALGORITHMS.md 3, quasi-static entities): voxel filter,
 // RANSAC for vertical planes, and in each plane's 2D image (s along the plane, z up) the connected
-// patches whose four corners sit at the floor and at a door's height and whose width matches a
-// door. The rotation axis is on the side opposite the handle: the points just off the plane near
-// handle height are counted on both sides, and the side with more of them is the latch side.
+// patches, cut into runs of densely filled columns, whose four corners sit at the floor and at a
+// door's height and whose width matches a door. The rotation axis is on the side opposite the
+// handle: the points just off the plane near handle height are counted on both sides, and the side
+// with more of them is the latch side.
 //
 // The opening direction is the plane normal pointing away from `viewpoint` (the sensor), i.e. into
-// the side the robot cannot see; OrientDoorsTowardUnseen() can instead use the local map.
+// the side the robot cannot see; without a viewpoint it is left zero, and the extrapolator orients
+// the door from the local map (InferOpeningDirection in map_queries.hpp).
 //
 // Thread-safety: stateless.
 
@@ -21,9 +23,9 @@ namespace fleetmap::extrapolation {
 
 struct DoorDetectorOptions {
   double voxel_size = 0.03;
-  double plane_threshold = 0.02;  // m
-  double max_tilt_error = 0.17;   // radians from vertical
-  int max_planes = 8;
+  double plane_threshold = 0.015;  // m
+  double max_tilt_error = 0.17;    // radians from vertical
+  int max_planes = 16;
   int min_plane_points = 150;
   double image_cell = 0.05;  // m, the plane's 2D image
   double min_width = 0.6;    // door width range, m
@@ -32,6 +34,9 @@ struct DoorDetectorOptions {
   double max_height = 2.3;
   double floor_tolerance = 0.15;  // the leaf's bottom corners within this of the floor, m
   double min_fill = 0.75;         // fraction of the leaf's rectangle the patch covers
+  // A corner is found if the patch has a point this close to it (m): the jambs and the lintel
+  // hide a strip of the leaf's edge when the door is seen at an angle.
+  double corner_tolerance = 0.15;
   // Handle search: points this far in front of the leaf (m) ...
   double handle_min_offset = 0.025;
   double handle_max_offset = 0.15;
@@ -50,8 +55,7 @@ struct DetectedDoor {
   int handle_points_hinge = 0;
 };
 
-// Ids are "door_<k>" in detection order. `viewpoint` (map frame, 2D) orients the doors; without
-// it the normal's sign is arbitrary until OrientDoorsTowardUnseen().
+// Ids are "door_<k>" in detection order. `viewpoint` (map frame, 2D) orients the doors.
 std::vector<DetectedDoor> DetectDoors(const PointCloud& cloud,
                                       const std::optional<Point2>& viewpoint,
                                       const DoorDetectorOptions& options = {});

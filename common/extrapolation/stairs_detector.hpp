@@ -5,6 +5,9 @@
 // within a few centimetres of one inclined plane), keep the largest connected patch of inliers and
 // accept it if its area and its extents across and along the flight are large enough. With n the
 // patch normal and z vertical, w = (n x z) x n and the ascending direction o = w sgn(w^T z).
+// The foot is the lowest riser seen, the step width the patch's extent across the flight, and the
+// run from the foot to the top edge (next_floor_height - riser_height) / tan(pitch), the pitch
+// being the patch's.
 //
 // Thread-safety: stateless.
 
@@ -25,9 +28,18 @@ struct StairsDetectorOptions {
   double min_area = 0.8;          // m^2 of the inclined patch
   double min_width = 0.5;         // m across the flight
   double min_length = 0.6;        // m along the slope
-  double patch_cell = 0.1;        // m: connectivity grid on the plane
+  // Area over (width x length): a band where a tilted plane cuts walls is long and thin, or an L.
+  double min_fill = 0.5;
+  double patch_cell = 0.1;  // m: connectivity grid on the plane
+  // The floor height assumed at the top when the sensor does not see that high (the paper's
+  // "expected height of the new floor"); a patch reaching higher sets it instead.
+  double expected_floor_height = 3.0;
+  // The last riser lifts onto the upper floor: the top edge is one riser below the floor height
+  // on the patch's slope, run = (next_floor_height - riser_height) / tan(pitch).
+  double riser_height = 0.17;
   int iterations = 400;
   int max_flights = 3;
+  int max_attempts = 8;  // planes tried (rejected patches included)
   uint32_t seed = 7;
 };
 
