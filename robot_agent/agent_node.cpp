@@ -82,6 +82,11 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fused_reader_,
       transport::VectorTileReader::Create(*node->participant_, transport::kFusedTilesTopic));
+  if (!o.entities_path.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->entity_publisher_,
+        EntityPublisher::Create(*node->participant_, o.robot, o.entities_path));
+  }
 
   RobotStatus& status = node->status_;
   status.robot = o.robot;
@@ -145,6 +150,7 @@ void AgentNode::DrainFusedTiles() {
 Status AgentNode::Run(const std::atomic<bool>& stop) {
   if (auto first = source_->Poll()) FLEETMAP_RETURN_IF_ERROR(OnNewMap(*first));
   FLEETMAP_RETURN_IF_ERROR(PublishStatus());
+  if (entity_publisher_ != nullptr) FLEETMAP_RETURN_IF_ERROR(entity_publisher_->Poll());
   spdlog::info("{}: in the fleet on DDS domain {}{}, map from {}, wire {}", options_.robot.value,
                participant_->domain_id(), participant_->localhost_only() ? " (localhost only)" : "",
                source_->Describe(), options_.wire == Wire::kGrid ? "grid" : "tiles");
@@ -166,6 +172,11 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
         }
         status_.tiles_published = tile_publisher_->tiles_published();
         status_.bytes_published = tile_publisher_->bytes_published();
+      }
+      if (entity_publisher_ != nullptr) {
+        if (const Status published = entity_publisher_->Poll(); !published.ok()) {
+          spdlog::warn("{}: {}", options_.robot.value, published.message());
+        }
       }
       next_map_check = now + options_.map_check_period;
     }

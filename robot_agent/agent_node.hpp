@@ -13,6 +13,7 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_reader.hpp"
+#include "robot_agent/entity_publisher.hpp"
 #include "robot_agent/map_source.hpp"
 #include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/tile_publisher.hpp"
@@ -29,6 +30,9 @@ struct AgentOptions {
   std::string map_path;           // a ROS map_server YAML (re-read when it changes), or
   std::string ros_topic;          // a DDS topic carrying nav_msgs/OccupancyGrid, e.g. rt/map, or
   std::optional<SimOptions> sim;  // the built-in simulated robot
+  // An entities JSON file (doors, stairs, people's tracks; docs/extrapolation.md) the robot's
+  // perception writes, re-read when it changes and published on rt/fleetmap/entities. Optional.
+  std::string entities_path;
   Wire wire = Wire::kTiles;
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
@@ -71,6 +75,7 @@ class AgentNode {
   std::unique_ptr<transport::OccupancyGridWriter> grid_writer_;  // Wire::kGrid
   std::unique_ptr<TilePublisher> tile_publisher_;                // Wire::kTiles
   std::unique_ptr<transport::VectorTileReader> fused_reader_;
+  std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
   uint64_t fused_tiles_received_ = 0;
 };
 

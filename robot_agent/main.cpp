@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
                  "ROS map_server YAML of the robot's map (re-read on change)");
   app.add_option("--ros-topic", options.ros_topic,
                  "DDS topic with the robot's nav_msgs/OccupancyGrid, e.g. rt/map");
+  app.add_option("--entities", options.entities_path,
+                 "entities JSON (doors, stairs, people's tracks) to publish (re-read on change)");
   std::string wire = "tiles";
   app.add_option("--wire", wire, "tiles (vector tiles) or grid (nav_msgs/OccupancyGrid baseline)")
       ->check(CLI::IsMember({"tiles", "grid"}));

@@ -36,6 +36,13 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
                               store::MapStore::Open(options.store_path, store_options));
     FLEETMAP_RETURN_IF_ERROR(worker->Restore());
   }
+  worker->sessions_ =
+      std::make_unique<SessionArchive>(options.fusion.tile_size, worker->store_.get());
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<std::string> skipped, worker->sessions_->Restore());
+  for (const std::string& warning : skipped) {
+    spdlog::warn("server: skipping a stored mapping session: {}", warning);
+  }
+  worker->stats_.sessions_finished = worker->sessions_->finished().size();
   return worker;
 }
 
@@ -77,7 +84,13 @@ void FusionWorker::RecordRobot(store::RobotRecord robot) {
   wake_up_->Notify();
 }
 
+void FusionWorker::SetListeners(FusedMapListener on_fused_map, SessionsListener on_sessions) {
+  on_fused_map_ = std::move(on_fused_map);
+  on_sessions_ = std::move(on_sessions);
+}
+
 void FusionWorker::Start() {
+  if (on_sessions_ && !sessions_->finished().empty()) on_sessions_(sessions_->finished());
   thread_ = std::thread([this] { Loop(); });
 }
 
@@ -104,13 +117,46 @@ void FusionWorker::Loop() {
     HandleTileEvents();
     HandleGrids();
     PublishFused(std::chrono::steady_clock::now());
+    HandleRobotRecords();
     Persist();
+  }
+}
+
+void FusionWorker::HandleRobotRecords() {
+  std::vector<store::RobotRecord> records = robot_records_.Drain();
+  for (const store::RobotRecord& robot : records) {
+    if (robot.state == "active") continue;
+    const Timestamp ended{
+        std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(robot.last_seen_ns))};
+    StatusOr<std::optional<MappingSession>> finished = sessions_->EndSession(robot.robot, ended);
+    if (!finished.ok()) {
+      spdlog::error("server: map store: {}", finished.status().message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.store_errors;
+    } else if (!finished->has_value()) {
+      continue;
+    } else {
+      spdlog::info("server: mapping session {} of {} finished ({} tiles)", (**finished).id,
+                   robot.robot, (**finished).map.tiles.size());
+    }
+    {
+      std::lock_guard lock(stats_mutex_);
+      stats_.sessions_finished = sessions_->finished().size();
+    }
+    if (on_sessions_) on_sessions_(sessions_->finished());
+  }
+  if (store_ == nullptr) return;
+  for (const store::RobotRecord& robot : records) {
+    if (const Status saved = store_->PutRobot(robot); !saved.ok()) {
+      spdlog::error("server: map store: {}", saved.message());
+      std::lock_guard lock(stats_mutex_);
+      ++stats_.store_errors;
+    }
   }
 }
 
 void FusionWorker::Persist() {
   if (store_ == nullptr) {
-    robot_records_.Drain();
     unsaved_.clear();
     return;
   }
@@ -122,13 +168,6 @@ void FusionWorker::Persist() {
       ++stats_.store_errors;
     }
     unsaved_.clear();
-  }
-  for (const store::RobotRecord& robot : robot_records_.Drain()) {
-    if (const Status saved = store_->PutRobot(robot); !saved.ok()) {
-      spdlog::error("server: map store: {}", saved.message());
-      std::lock_guard lock(stats_mutex_);
-      ++stats_.store_errors;
-    }
   }
 }
 
@@ -154,11 +193,15 @@ void FusionWorker::HandleTileEvents() {
     }
     if (event.kind == transport::TileEvent::Kind::kRemoved) {
       fusion_.RemoveRobotTile(robot, event.tile.tile);
+      sessions_->RemoveTile(robot, event.tile.tile);
       continue;
     }
     const Status updated =
         fusion_.UpdateRobotTile(robot, event.tile.tile, event.tile.map, event.tile.stamp);
-    if (updated.ok() && store_ != nullptr) Remember(robot, event.tile);
+    if (updated.ok()) {
+      sessions_->RecordTile(robot, event.tile.tile, event.tile.map, event.tile.stamp);
+      if (store_ != nullptr) Remember(robot, event.tile);
+    }
     std::lock_guard lock(stats_mutex_);
     FusionStats::Robot& stats = stats_.robots[robot];
     if (!updated.ok()) {
@@ -187,7 +230,11 @@ void FusionWorker::HandleGrids() {
     }
     for (const auto& [tile, map] : tiled->tiles) {
       const Status updated = fusion_.UpdateRobotTile(update.robot, tile, map, update.map.stamp);
-      if (!updated.ok()) spdlog::warn("server: {}: {}", update.robot, updated.message());
+      if (!updated.ok()) {
+        spdlog::warn("server: {}: {}", update.robot, updated.message());
+        continue;
+      }
+      sessions_->RecordTile(update.robot, tile, map, update.map.stamp);
     }
   }
 }
@@ -223,6 +270,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
     map.frame_id = "fleet";
     map.stamp = Clock::now();
     if (StatusOr<size_t> written = map_writer_->Write(map); written.ok()) {
+      if (on_fused_map_) on_fused_map_(map.grid);
       map_sent = true;
       map_dirty_ = false;
       last_map_ = now;

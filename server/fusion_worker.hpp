@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -19,6 +20,7 @@
 #include "common/transport/vector_tile_writer.hpp"
 #include "common/transport/wake_up.hpp"
 #include "server/robot_registry.hpp"
+#include "server/session_archive.hpp"
 
 namespace fleetmap::server {
 
@@ -49,18 +51,28 @@ struct FusionStats {
   size_t fused_tiles = 0;
   size_t restored_tiles = 0;  // robot tiles read back from the store at start
   uint64_t store_errors = 0;
+  size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
 };
 
 // The server's fusion worker: drains robot tiles (and grids of robots on the grid wire), fuses
 // them, publishes changed fused tiles on rt/fleetmap/fused_tiles and the fused grid on
-// rt/fleetmap/map. Everything runs on its own thread, never on a DDS callback. Start() and Stop()
-// from the owning thread; SubmitGrid() and stats() from any thread.
+// rt/fleetmap/map, and archives each robot's mapping session when it leaves or is lost.
+// Everything runs on its own thread, never on a DDS callback. Start() and Stop() from the owning
+// thread; SubmitGrid() and stats() from any thread. The listeners run on the worker's thread and
+// must be set before Start().
 class FusionWorker {
  public:
   static StatusOr<std::unique_ptr<FusionWorker>> Create(transport::Participant& participant,
                                                         const FusionWorkerOptions& options,
                                                         std::shared_ptr<RobotRegistry> registry);
   ~FusionWorker();
+
+  // Called with every fused grid published on rt/fleetmap/map.
+  using FusedMapListener = std::function<void(const grid::OccupancyGrid& fused)>;
+  // Called with all finished sessions (oldest first) when one more finished, and at start when
+  // the store held some.
+  using SessionsListener = std::function<void(std::vector<MappingSession> finished)>;
+  void SetListeners(FusedMapListener on_fused_map, SessionsListener on_sessions);
 
   void Start();
   void Stop();
@@ -87,6 +99,8 @@ class FusionWorker {
   void Loop();
   void HandleTileEvents();
   void Persist();
+  // Robot state changes: a robot that left or was lost ends its mapping session.
+  void HandleRobotRecords();
   // Queues a tile revision for the store.
   void Remember(const std::string& owner, const transport::VectorTileMessage& tile);
   void HandleGrids();
@@ -101,7 +115,10 @@ class FusionWorker {
   std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
   transport::SampleQueue<GridUpdate> grids_{64};
   transport::SampleQueue<store::RobotRecord> robot_records_{1024};
-  std::unique_ptr<store::MapStore> store_;  // worker thread only (after Create)
+  std::unique_ptr<store::MapStore> store_;    // worker thread only (after Create)
+  std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)
+  FusedMapListener on_fused_map_;
+  SessionsListener on_sessions_;
   std::vector<store::TileRecord> unsaved_;  // worker thread only
   std::atomic<bool> stop_{false};
   std::thread thread_;

@@ -17,7 +17,9 @@ void OnSignal(int /*signal*/) { g_stop.store(true); }
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"fleetmap-server: follows the robot fleet over DDS and keeps its maps"};
+  CLI::App app{
+      "fleetmap-server: follows the robot fleet over DDS, fuses its maps, learns the objects "
+      "that move and predicts the space behind doors and up stairs"};
   fleetmap::server::ServerOptions options;
   double duration_s = 0.0;
   int domain = -1;
@@ -39,6 +41,19 @@ int main(int argc, char** argv) {
   app.add_option("--map-period", map_period_s,
                  "at most one fused grid on rt/fleetmap/map per this many seconds")
       ->check(CLI::PositiveNumber);
+  bool no_learning = false;
+  app.add_flag("--no-object-learning", no_learning,
+               "do not learn movable objects from finished mapping sessions");
+  app.add_option("--learn-sessions", options.learning.max_sessions,
+                 "object learning uses at most this many newest finished sessions")
+      ->check(CLI::PositiveNumber);
+  bool no_prediction = false;
+  app.add_flag("--no-extrapolation", no_prediction,
+               "do not predict sub-maps from the entities robots publish");
+  app.add_option("--pth", options.prediction.extrapolation.p_th,
+                 "extrapolation threshold on the peak-normalised kernels, in (0, 1)");
+  app.add_option("--confirm-precision", options.prediction.confirm_precision,
+                 "a judged prediction is confirmed at this observed precision, else retracted");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
@@ -56,6 +71,8 @@ int main(int argc, char** argv) {
     options.transforms = std::move(transforms).value();
   }
   if (localhost_only) options.dds.localhost_only = true;
+  options.learning.enabled = !no_learning;
+  options.prediction.enabled = !no_prediction;
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

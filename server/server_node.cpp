@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/transport/topics.hpp"
+#include "server/entity_frames.hpp"
 
 namespace fleetmap::server {
 
@@ -45,12 +46,36 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fusion_worker_,
       FusionWorker::Create(*node->participant_, node->options_.fusion, node->registry_));
+  if (node->options_.learning.enabled) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->learning_worker_,
+        ObjectLearningWorker::Create(*node->participant_, node->options_.learning,
+                                     node->options_.fusion.fusion));
+  }
+  if (node->options_.prediction.enabled) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->prediction_worker_,
+        PredictionWorker::Create(*node->participant_, node->options_.prediction));
+    FLEETMAP_ASSIGN_OR_RETURN(node->entity_reader_,
+                              transport::EntityReader::Create(*node->participant_, node->wake_up_));
+  }
+  ObjectLearningWorker* learning = node->learning_worker_.get();
+  PredictionWorker* prediction = node->prediction_worker_.get();
+  node->fusion_worker_->SetListeners(
+      [prediction](const grid::OccupancyGrid& fused) {
+        if (prediction != nullptr) prediction->SubmitMap(fused);
+      },
+      [learning](std::vector<MappingSession> finished) {
+        if (learning != nullptr) learning->Submit(std::move(finished));
+      });
   return node;
 }
 
 Status ServerNode::Run(const std::atomic<bool>& stop) {
   spdlog::info("server: listening on DDS domain {}{}", participant_->domain_id(),
                participant_->localhost_only() ? " (localhost only)" : "");
+  if (learning_worker_) learning_worker_->Start();
+  if (prediction_worker_) prediction_worker_->Start();
   fusion_worker_->Start();
   const auto start = std::chrono::steady_clock::now();
   while (!stop.load()) {
@@ -61,11 +86,17 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
     wake_up_->WaitFor(std::chrono::milliseconds(100));
     HandleRobotEvents();
     HandleMaps();
+    HandleEntities();
   }
   fusion_worker_->Stop();
+  if (prediction_worker_) prediction_worker_->Stop();
+  if (learning_worker_) learning_worker_->Stop();
   PrintSummary(fusion_worker_->stats());
   // Readers and writers go before the participant that owns their topics.
   fusion_worker_.reset();
+  prediction_worker_.reset();
+  learning_worker_.reset();
+  entity_reader_.reset();
   for (auto& [robot, record] : robots_) record.map_reader.reset();
   status_reader_.reset();
   return Status::Ok();
@@ -126,6 +157,10 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
         status.fleet_from_map.yaw, configured->second.x, configured->second.y,
         configured->second.yaw);
   }
+  if (const auto early = early_entities_.find(status.robot); early != early_entities_.end()) {
+    for (transport::EntityMessage& entity : early->second) SubmitEntity(std::move(entity), record);
+    early_entities_.erase(early);
+  }
   if (!joining) return;
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
@@ -178,6 +213,42 @@ void ServerNode::HandleMaps() {
   }
 }
 
+void ServerNode::HandleEntities() {
+  if (entity_reader_ == nullptr) return;
+  for (transport::EntityEvent& event : entity_reader_->Drain()) {
+    const RobotId& robot = event.message.robot;
+    if (event.kind == transport::EntityEvent::Kind::kRejected) {
+      ++rejected_entities_;
+      spdlog::warn("server: dropped an entity: {}", event.error.message());
+      continue;
+    }
+    if (!registry_->MaySpeakFor(robot.value, event.writer)) {
+      ++rejected_entities_;
+      spdlog::warn("server: dropped entity {} claiming robot {} from a second agent",
+                   event.message.entity_id(), robot.value);
+      continue;
+    }
+    if (event.kind == transport::EntityEvent::Kind::kRemoved) {
+      prediction_worker_->RemoveEntity(robot, event.message.entity_id());
+      continue;
+    }
+    const auto record = robots_.find(robot);
+    if (record == robots_.end() || record->second.last_status.robot.value.empty()) {
+      // Its fleet_from_map comes with its status: keep the entity until then (bounded).
+      std::vector<transport::EntityMessage>& early = early_entities_[robot];
+      if (early.size() < 1024) early.push_back(std::move(event.message));
+      continue;
+    }
+    SubmitEntity(std::move(event.message), record->second);
+  }
+}
+
+void ServerNode::SubmitEntity(transport::EntityMessage entity, const RobotRecord& record) {
+  entity.entity = ToFleetFrame(entity.entity, FleetFromMap(record).ToTransform());
+  entity.frame_id = "fleet";
+  prediction_worker_->SubmitEntity(std::move(entity));
+}
+
 void ServerNode::PrintSummary(const FusionStats& fusion) const {
   fmt::print("\n{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", "robot", "state", "tiles", "maps",
              "bytes in", "rejected", "clashes");
@@ -195,6 +266,22 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
       "rt/fleetmap/map; {} samples rejected before they named a robot\n",
       fusion.fused_tiles, fusion.fused_tiles_published, fusion.fused_bytes_published,
       fusion.maps_published, fusion.rejected_unattributed);
+  if (learning_worker_) {
+    const ObjectLearningStats learning = learning_worker_->stats();
+    fmt::print(
+        "object learning: {} sessions finished; {} runs ({} failed); last: {} objects of {} "
+        "templates from {} sessions\n",
+        fusion.sessions_finished, learning.runs, learning.failures, learning.num_objects,
+        learning.num_templates, learning.sessions_used);
+  }
+  if (prediction_worker_) {
+    const PredictionStats prediction = prediction_worker_->stats();
+    fmt::print(
+        "extrapolation: {} entities ({} rejected), {} predicted sub-maps ({} confirmed, {} "
+        "retracted), {} sub-map samples published\n",
+        prediction.entities, rejected_entities_, prediction.predictions, prediction.confirmed,
+        prediction.retracted, prediction.submaps_published);
+  }
   std::fflush(stdout);
 }
 

@@ -9,12 +9,15 @@
 
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
+#include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/map_message.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/wake_up.hpp"
 #include "server/fusion_worker.hpp"
+#include "server/object_learning_worker.hpp"
+#include "server/prediction_worker.hpp"
 #include "server/robot_registry.hpp"
 
 namespace fleetmap::server {
@@ -23,6 +26,8 @@ struct ServerOptions {
   std::chrono::milliseconds duration{0};  // run this long; 0: until stopped
   transport::ParticipantOptions dds;
   FusionWorkerOptions fusion;
+  ObjectLearningOptions learning;
+  PredictionOptions prediction;
   // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what
   // their status says; a tile-wire robot whose status disagrees is reported.
   std::map<RobotId, Pose2> transforms;
@@ -49,11 +54,13 @@ const char* RobotStateName(RobotRecord::State state);
 
 // fleetmap-server's node: follows the fleet on rt/fleetmap/robot_status (joins, departures,
 // deaths, two agents claiming one id) and runs the FusionWorker that fuses every robot's tiles
-// and redistributes the fused map. Robots on the grid wire are read on rt/<robot>/map and their
-// grids fused too. A robot that leaves keeps its contribution. A malformed sample from one robot
-// is logged, counted and dropped; it never stops the server. The control work happens on the
-// thread that calls Run(), fusion on the worker's; DDS listeners only queue samples. `stop` may
-// be set from any thread.
+// and redistributes the fused map, the ObjectLearningWorker that learns movable objects from the
+// finished mapping sessions, and the PredictionWorker that turns the entities robots recognise
+// (rt/fleetmap/entities, taken here to the fleet frame) into the sub-map graph. Robots on the grid
+// wire are read on rt/<robot>/map and their grids fused too. A robot that leaves keeps its
+// contribution. A malformed sample from one robot is logged, counted and dropped; it never stops
+// the server. The control work happens on the thread that calls Run(), fusion on the worker's; DDS
+// listeners only queue samples. `stop` may be set from any thread.
 class ServerNode {
  public:
   static StatusOr<std::unique_ptr<ServerNode>> Create(ServerOptions options);
@@ -72,6 +79,9 @@ class ServerNode {
   // Where the robot's map frame sits in the fleet: the configured transform, else its own word.
   Pose2 FleetFromMap(const RobotRecord& record) const;
   void HandleMaps();
+  void HandleEntities();
+  // Hands an entity of a known robot to the prediction worker, in the fleet frame.
+  void SubmitEntity(transport::EntityMessage entity, const RobotRecord& record);
   void PrintSummary(const FusionStats& fusion) const;
 
   ServerOptions options_;
@@ -80,6 +90,12 @@ class ServerNode {
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
   std::shared_ptr<RobotRegistry> registry_ = std::make_shared<RobotRegistry>();
   std::unique_ptr<FusionWorker> fusion_worker_;
+  std::unique_ptr<ObjectLearningWorker> learning_worker_;   // null when disabled
+  std::unique_ptr<PredictionWorker> prediction_worker_;     // null when disabled
+  std::unique_ptr<transport::EntityReader> entity_reader_;  // null when prediction is disabled
+  // Entities of robots whose status (and so fleet_from_map) has not arrived yet, by robot.
+  std::map<RobotId, std::vector<transport::EntityMessage>> early_entities_;
+  uint64_t rejected_entities_ = 0;
   std::map<RobotId, RobotRecord> robots_;
 };
 

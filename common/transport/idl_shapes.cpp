@@ -110,22 +110,13 @@ const CdrShape& VectorMapShape() {
 }
 
 const CdrShape& EntityShape() {
-  static const CdrShape shape = {String("robot_id"),
-                                 String("entity_id"),
-                                 Struct("stamp", TimeShape()),
-                                 String("frame_id"),
-                                 Primitive("entity_class", 1),
-                                 Sequence("x", 8),
-                                 Sequence("y", 8),
-                                 Sequence("track_stamps", 8),
-                                 Sequence("track_headings", 8),
-                                 Primitive("direction", 8),
-                                 Primitive("step_width", 8),
-                                 Primitive("next_floor_height", 8),
-                                 Primitive("open", 1),
-                                 Primitive("dominant_side", 1),
-                                 Primitive("left_view", 1),
-                                 Primitive("entered_view", 1)};
+  static const CdrShape shape = {
+      String("robot_id"),         String("entity_id"),          Struct("stamp", TimeShape()),
+      String("frame_id"),         Primitive("entity_class", 1), Sequence("x", 8),
+      Sequence("y", 8),           Sequence("track_stamps", 8),  Sequence("track_headings", 8),
+      Primitive("direction", 8),  Primitive("step_width", 8),   Primitive("next_floor_height", 8),
+      Primitive("run_length", 8), Primitive("open", 1),         Primitive("dominant_side", 1),
+      Primitive("left_view", 1),  Primitive("entered_view", 1)};
   return shape;
 }
 

@@ -105,6 +105,7 @@ struct EntityToIdl {
     sample.direction(Angle(stairs.ascending));
     sample.step_width(stairs.step_width);
     sample.next_floor_height(stairs.next_floor_height);
+    sample.run_length(stairs.run_length);
   }
   void operator()(const extrapolation::PersonTrack& track) const {
     sample.entity_class(kEntityPerson);
@@ -157,8 +158,10 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
         return InvalidArgumentError("stairs need 1 point, got " + std::to_string(x.size()));
       }
       if (!std::isfinite(sample.step_width()) || sample.step_width() <= 0.0 ||
-          !std::isfinite(sample.next_floor_height())) {
-        return InvalidArgumentError("stairs need a positive step width and a finite height");
+          !std::isfinite(sample.next_floor_height()) || !std::isfinite(sample.run_length()) ||
+          sample.run_length() < 0.0) {
+        return InvalidArgumentError(
+            "stairs need a positive step width, a finite height and a run length >= 0");
       }
       extrapolation::StairsEntity stairs;
       stairs.id = sample.entity_id();
@@ -166,6 +169,7 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
       stairs.ascending = Direction(sample.direction());
       stairs.step_width = sample.step_width();
       stairs.next_floor_height = sample.next_floor_height();
+      stairs.run_length = sample.run_length();
       return EntityMessage::Entity(stairs);
     }
     case kEntityPerson: {

@@ -48,6 +48,32 @@ TEST(StateConversionsTest, DoorRoundTrips) {
   EXPECT_FALSE(door->open);
 }
 
+TEST(StateConversionsTest, StairsRoundTripAndRefuseANegativeRun) {
+  extrapolation::StairsEntity stairs;
+  stairs.id = "stairs_1";
+  stairs.position = {4.0, -1.0};
+  stairs.ascending = {-1.0, 0.0};
+  stairs.step_width = 1.2;
+  stairs.next_floor_height = 2.8;
+  stairs.run_length = 3.5;
+  EntityMessage message;
+  message.robot = RobotId{"gamma"};
+  message.entity = stairs;
+  auto sample = *ToIdl(message);
+  StatusOr<EntityMessage> back = FromIdl(sample);
+  ASSERT_TRUE(back.ok()) << back.status();
+  const auto* got = std::get_if<extrapolation::StairsEntity>(&back->entity);
+  ASSERT_NE(got, nullptr);
+  EXPECT_NEAR(got->ascending.x(), -1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(got->run_length, 3.5);
+  EXPECT_DOUBLE_EQ(got->next_floor_height, 2.8);
+  sample.run_length(-1.0);
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample.run_length(1.0);
+  sample.step_width(0.0);
+  EXPECT_FALSE(FromIdl(sample).ok());
+}
+
 TEST(StateConversionsTest, PersonTrackRoundTrips) {
   StatusOr<EntityMessage> back = FromIdl(*ToIdl(Person()));
   ASSERT_TRUE(back.ok()) << back.status();

@@ -1,0 +1,19 @@
+#pragma once
+
+// Entities arrive in each robot's own map frame; the server predicts in the fleet frame.
+
+#include "common/core/types.hpp"
+#include "common/transport/state_messages.hpp"
+
+namespace fleetmap::server {
+
+// The entity with every point and direction taken from its map frame to the fleet frame.
+transport::EntityMessage::Entity ToFleetFrame(const transport::EntityMessage::Entity& entity,
+                                              const Transform2& fleet_from_map);
+
+// True when two entities say the same thing (same kind, id and values), so a re-sent entity does
+// not reset a prediction that is being checked.
+bool SameEntity(const transport::EntityMessage::Entity& a,
+                const transport::EntityMessage::Entity& b);
+
+}  // namespace fleetmap::server

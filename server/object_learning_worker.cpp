@@ -1,0 +1,167 @@
+#include "server/object_learning_worker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "server/session_grids.hpp"
+
+namespace fleetmap::server {
+
+Status ObjectLearningOptions::Validate() const {
+  if (min_sessions < 2) {
+    return InvalidArgumentError("learning needs at least 2 sessions (min_sessions " +
+                                std::to_string(min_sessions) + ")");
+  }
+  if (max_sessions < min_sessions) {
+    return InvalidArgumentError("max_sessions " + std::to_string(max_sessions) +
+                                " is below min_sessions " + std::to_string(min_sessions));
+  }
+  return object_learning::ValidateLearnOptions(learn);
+}
+
+StatusOr<std::unique_ptr<ObjectLearningWorker>> ObjectLearningWorker::Create(
+    transport::Participant& participant, const ObjectLearningOptions& options,
+    const fusion::FusionOptions& fusion) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("object learning"));
+  std::unique_ptr<ObjectLearningWorker> worker(new ObjectLearningWorker(options, fusion));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->template_writer_,
+                            transport::ObjectTemplateWriter::Create(participant));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->object_writer_,
+                            transport::ObjectModelWriter::Create(participant));
+  return worker;
+}
+
+ObjectLearningWorker::~ObjectLearningWorker() {
+  Stop();
+  template_writer_.reset();
+  object_writer_.reset();
+}
+
+void ObjectLearningWorker::Start() {
+  thread_ = std::thread([this] { Loop(); });
+}
+
+void ObjectLearningWorker::Stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+}
+
+void ObjectLearningWorker::Submit(std::vector<MappingSession> sessions) {
+  if (sessions.size() < options_.min_sessions) return;
+  if (sessions.size() > options_.max_sessions) {
+    sessions.erase(sessions.begin(),
+                   sessions.end() - static_cast<std::ptrdiff_t>(options_.max_sessions));
+  }
+  {
+    std::lock_guard lock(mutex_);
+    pending_ = std::move(sessions);
+  }
+  wake_.notify_one();
+}
+
+ObjectLearningStats ObjectLearningWorker::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+void ObjectLearningWorker::Loop() {
+  while (true) {
+    std::vector<MappingSession> sessions;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
+      if (stop_) return;
+      sessions = std::move(*pending_);
+      pending_.reset();
+    }
+    const Status learned = Learn(sessions);
+    std::lock_guard lock(mutex_);
+    if (!learned.ok()) {
+      ++stats_.failures;
+      stats_.last_error = learned.message();
+      spdlog::warn("server: object learning: {}", learned.message());
+    }
+  }
+}
+
+Status ObjectLearningWorker::Learn(const std::vector<MappingSession>& sessions) {
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<grid::OccupancyGrid> grids,
+                            SessionGrids(sessions, fusion_));
+  FLEETMAP_ASSIGN_OR_RETURN(const object_learning::LearnedModel model,
+                            object_learning::LearnObjects(grids, options_.learn));
+  for (const std::string& warning : model.warnings) {
+    spdlog::info("server: object learning: {}", warning);
+  }
+  FLEETMAP_RETURN_IF_ERROR(Publish(model, sessions));
+  spdlog::info("server: learned {} objects of {} templates from {} sessions (run {})",
+               model.num_objects, model.num_templates, sessions.size(), learning_run_);
+  std::lock_guard lock(mutex_);
+  ++stats_.runs;
+  stats_.num_objects = model.num_objects;
+  stats_.num_templates = model.num_templates;
+  stats_.sessions_used = sessions.size();
+  return Status::Ok();
+}
+
+Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
+                                     const std::vector<MappingSession>& sessions) {
+  ++learning_run_;
+  const Timestamp now = Clock::now();
+  std::vector<uint32_t> object_count(model.templates.size(), 0);
+  for (const int z : model.object_template) {
+    if (z >= 0 && static_cast<size_t>(z) < object_count.size()) ++object_count[z];
+  }
+  for (size_t m = 0; m < model.templates.size(); ++m) {
+    transport::ObjectTemplateMessage message;
+    message.template_id = static_cast<uint32_t>(m);
+    message.learning_run = learning_run_;
+    message.object_count = object_count[m];
+    message.patch = model.templates[m];
+    message.stamp = now;
+    FLEETMAP_RETURN_IF_ERROR(template_writer_->Write(message).status());
+  }
+  for (size_t n = 0; n < model.objects.size(); ++n) {
+    transport::ObjectModelMessage message;
+    message.object_id = static_cast<uint32_t>(n);
+    message.learning_run = learning_run_;
+    message.template_id = n < model.object_template.size()
+                              ? static_cast<uint32_t>(std::max(0, model.object_template[n]))
+                              : 0;
+    message.patch = model.objects[n];
+    message.stamp = now;
+    for (const object_learning::SnapshotAssignment& snapshot : model.snapshots) {
+      if (snapshot.object != static_cast<int>(n)) continue;
+      // The alignment maps the snapshot onto the object: the object sits at the snapshot's
+      // centre, moved back by the shift and turned back by the rotation.
+      const object_learning::Alignment& a = snapshot.alignment;
+      const Vector2 shift = Eigen::Rotation2Dd(-a.dphi) * Vector2(a.dx, a.dy);
+      transport::ObjectSighting sighting;
+      sighting.session = static_cast<uint32_t>(sessions.at(snapshot.map_index).id);
+      sighting.fleet_from_object = {snapshot.centre.x() - shift.x(),
+                                    snapshot.centre.y() - shift.y(), NormalizeAngle(-a.dphi)};
+      message.sightings.push_back(sighting);
+    }
+    FLEETMAP_RETURN_IF_ERROR(object_writer_->Write(message).status());
+  }
+  // What the previous run had and this one has not.
+  for (uint32_t m = static_cast<uint32_t>(model.templates.size()); m < published_templates_; ++m) {
+    transport::ObjectTemplateMessage key;
+    key.template_id = m;
+    FLEETMAP_RETURN_IF_ERROR(template_writer_->Dispose(key));
+  }
+  for (uint32_t n = static_cast<uint32_t>(model.objects.size()); n < published_objects_; ++n) {
+    transport::ObjectModelMessage key;
+    key.object_id = n;
+    FLEETMAP_RETURN_IF_ERROR(object_writer_->Dispose(key));
+  }
+  published_templates_ = static_cast<uint32_t>(model.templates.size());
+  published_objects_ = static_cast<uint32_t>(model.objects.size());
+  return Status::Ok();
+}
+
+}  // namespace fleetmap::server

@@ -1,0 +1,86 @@
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/fusion/fusion_options.hpp"
+#include "common/object_learning/object_learner.hpp"
+#include "common/transport/keyed_state_topic.hpp"
+#include "common/transport/participant.hpp"
+#include "server/session_archive.hpp"
+
+namespace fleetmap::server {
+
+struct ObjectLearningOptions {
+  bool enabled = true;
+  // Learning starts once this many sessions have finished; it uses the newest `max_sessions`.
+  size_t min_sessions = 2;
+  size_t max_sessions = 12;
+  object_learning::LearnOptions learn;
+
+  Status Validate() const;
+};
+
+// What the learner has done. A snapshot; thread-safe to take.
+struct ObjectLearningStats {
+  uint64_t runs = 0;
+  uint64_t failures = 0;
+  int num_objects = 0;  // of the last successful run
+  int num_templates = 0;
+  size_t sessions_used = 0;
+  std::string last_error;
+};
+
+// Runs the object-template learner (hierarchical EM over the differences between mapping
+// sessions, docs/object-learning.md) in the background whenever a session finishes, and
+// publishes the learned templates on rt/fleetmap/object_templates and objects on
+// rt/fleetmap/objects, replacing the previous run's (instances the new run no longer has are
+// disposed). Learning takes seconds: a newer submission replaces one that has not started yet.
+// Submit() and stats() from any thread; Start() and Stop() from the owner's.
+class ObjectLearningWorker {
+ public:
+  static StatusOr<std::unique_ptr<ObjectLearningWorker>> Create(
+      transport::Participant& participant, const ObjectLearningOptions& options,
+      const fusion::FusionOptions& fusion);
+  ~ObjectLearningWorker();
+
+  void Start();
+  void Stop();
+
+  // The finished sessions to learn from (all of them; the worker keeps the newest).
+  void Submit(std::vector<MappingSession> sessions);
+  ObjectLearningStats stats() const;
+
+ private:
+  ObjectLearningWorker(const ObjectLearningOptions& options, const fusion::FusionOptions& fusion)
+      : options_(options), fusion_(fusion) {}
+
+  void Loop();
+  Status Learn(const std::vector<MappingSession>& sessions);
+  Status Publish(const object_learning::LearnedModel& model,
+                 const std::vector<MappingSession>& sessions);
+
+  const ObjectLearningOptions options_;
+  const fusion::FusionOptions fusion_;
+  std::unique_ptr<transport::ObjectTemplateWriter> template_writer_;  // worker thread
+  std::unique_ptr<transport::ObjectModelWriter> object_writer_;       // worker thread
+  uint32_t learning_run_ = 0;                                         // worker thread
+  uint32_t published_templates_ = 0;                                  // worker thread
+  uint32_t published_objects_ = 0;                                    // worker thread
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::optional<std::vector<MappingSession>> pending_;  // guarded by mutex_
+  bool stop_ = false;                                   // guarded by mutex_
+  ObjectLearningStats stats_;                           // guarded by mutex_
+  std::thread thread_;
+};
+
+}  // namespace fleetmap::server

@@ -1,0 +1,316 @@
+#include "server/prediction_worker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "common/extrapolation/prediction_check.hpp"
+#include "server/entity_frames.hpp"
+
+namespace fleetmap::server {
+namespace {
+
+std::string KeyOf(const RobotId& robot, const std::string& entity_id) {
+  return robot.value + "/" + entity_id;
+}
+
+bool PredictsASubmap(const transport::EntityMessage& entity) {
+  return !std::holds_alternative<extrapolation::PersonTrack>(entity.entity);
+}
+
+extrapolation::Entities Single(const transport::EntityMessage& message) {
+  extrapolation::Entities entities;
+  std::visit(
+      [&entities](const auto& entity) {
+        using T = std::decay_t<decltype(entity)>;
+        if constexpr (std::is_same_v<T, extrapolation::DoorEntity>) {
+          entities.doors.push_back(entity);
+        } else if constexpr (std::is_same_v<T, extrapolation::StairsEntity>) {
+          entities.stairs.push_back(entity);
+        } else {
+          entities.people.push_back(entity);
+        }
+      },
+      message.entity);
+  return entities;
+}
+
+// The sub-map with only the free cells that `known` did not already show free or occupied.
+extrapolation::Submap AddedCells(const extrapolation::Submap& submap,
+                                 const grid::OccupancyGrid& known) {
+  extrapolation::Submap added = submap;
+  const Transform2 map_from_submap = submap.map_from_submap.ToTransform();
+  grid::OccupancyGrid& cells = added.navigable;
+  for (int y = 0; y < cells.height(); ++y) {
+    for (int x = 0; x < cells.width(); ++x) {
+      if (cells.StateAt(x, y) != grid::CellState::kFree) continue;
+      const auto index = known.CellAt(map_from_submap * cells.CellCenter(x, y));
+      if (index && known.StateAt(index->x, index->y) != grid::CellState::kUnknown) {
+        cells.at(x, y) = grid::kUnknownValue;
+      }
+    }
+  }
+  return added;
+}
+
+}  // namespace
+
+Status PredictionOptions::Validate() const {
+  if (!(judge_observed_fraction > 0.0 && judge_observed_fraction <= 1.0)) {
+    return InvalidArgumentError("judge_observed_fraction " +
+                                std::to_string(judge_observed_fraction) + " must be in (0, 1]");
+  }
+  if (!(confirm_precision >= 0.0 && confirm_precision <= 1.0)) {
+    return InvalidArgumentError("confirm_precision " + std::to_string(confirm_precision) +
+                                " must be in [0, 1]");
+  }
+  if (min_observed_cells < 1) {
+    return InvalidArgumentError("min_observed_cells " + std::to_string(min_observed_cells) +
+                                " must be at least 1");
+  }
+  return extrapolation::ValidateOptions(extrapolation);
+}
+
+StatusOr<std::unique_ptr<PredictionWorker>> PredictionWorker::Create(
+    transport::Participant& participant, const PredictionOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("map extrapolation"));
+  std::unique_ptr<PredictionWorker> worker(new PredictionWorker(options));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->writer_, transport::SubmapWriter::Create(participant));
+  return worker;
+}
+
+PredictionWorker::~PredictionWorker() {
+  Stop();
+  writer_.reset();
+}
+
+void PredictionWorker::Start() {
+  thread_ = std::thread([this] { Loop(); });
+}
+
+void PredictionWorker::Stop() {
+  stop_.store(true);
+  wake_up_->Notify();
+  if (thread_.joinable()) thread_.join();
+}
+
+void PredictionWorker::SubmitEntity(transport::EntityMessage entity) {
+  inputs_.Push({Input::Kind::kEntity, std::move(entity), {}});
+  wake_up_->Notify();
+}
+
+void PredictionWorker::RemoveEntity(const RobotId& robot, const std::string& entity_id) {
+  Input input;
+  input.kind = Input::Kind::kRemoved;
+  input.entity.robot = robot;
+  extrapolation::DoorEntity key_only;
+  key_only.id = entity_id;
+  input.entity.entity = key_only;
+  inputs_.Push(std::move(input));
+  wake_up_->Notify();
+}
+
+void PredictionWorker::SubmitMap(grid::OccupancyGrid map) {
+  inputs_.Push({Input::Kind::kMap, {}, std::move(map)});
+  wake_up_->Notify();
+}
+
+PredictionStats PredictionWorker::stats() const {
+  std::lock_guard lock(stats_mutex_);
+  return stats_;
+}
+
+void PredictionWorker::Loop() {
+  while (!stop_.load()) {
+    wake_up_->WaitFor(std::chrono::milliseconds(100));
+    HandleInputs();
+  }
+}
+
+void PredictionWorker::HandleInputs() {
+  std::vector<Input> inputs = inputs_.Drain();
+  if (inputs.empty()) return;
+  bool map_changed = false;
+  bool people_changed = false;
+  // Only the newest map matters; entities in arrival order.
+  for (Input& input : inputs) {
+    if (input.kind == Input::Kind::kMap) {
+      map_ = std::move(input.map);
+      map_changed = true;
+      continue;
+    }
+    const std::string key = KeyOf(input.entity.robot, input.entity.entity_id());
+    if (input.kind == Input::Kind::kRemoved) {
+      const auto it = entities_.find(key);
+      if (it == entities_.end()) continue;
+      people_changed |= !PredictsASubmap(it->second);
+      entities_.erase(it);
+      std::erase(unpredicted_, key);
+      Withdraw(key);
+      continue;
+    }
+    const auto it = entities_.find(key);
+    if (it != entities_.end() && SameEntity(it->second.entity, input.entity.entity)) continue;
+    if (it != entities_.end() && PredictsASubmap(it->second) != PredictsASubmap(input.entity)) {
+      Withdraw(key);  // an id reused for another kind of entity
+      people_changed = true;
+    }
+    people_changed |= !PredictsASubmap(input.entity);
+    if (PredictsASubmap(input.entity) &&
+        std::find(unpredicted_.begin(), unpredicted_.end(), key) == unpredicted_.end()) {
+      unpredicted_.push_back(key);
+    }
+    entities_[key] = std::move(input.entity);
+  }
+  if (map_) {
+    for (const std::string& key : unpredicted_) Predict(key, entities_.at(key));
+    unpredicted_.clear();
+    if (people_changed || map_changed) UpdatePeople();
+    if (map_changed) CheckPredictions();
+  }
+  std::lock_guard lock(stats_mutex_);
+  stats_.entities = entities_.size();
+  stats_.predictions = predictions_.size();
+}
+
+void PredictionWorker::Predict(const std::string& key, const transport::EntityMessage& entity) {
+  StatusOr<extrapolation::ExtrapolationResult> result =
+      extrapolation::Extrapolate(*map_, Single(entity), options_.extrapolation);
+  if (!result.ok()) {
+    spdlog::warn("server: cannot extrapolate from {}: {}", key, result.status().message());
+    return;
+  }
+  for (const std::string& warning : result->warnings) {
+    spdlog::info("server: extrapolation of {}: {}", key, warning);
+  }
+  const auto predicted = std::find_if(result->graph.submaps.begin(), result->graph.submaps.end(),
+                                      [](const extrapolation::Submap& submap) {
+                                        return submap.kind != extrapolation::SubmapKind::kObserved;
+                                      });
+  if (predicted == result->graph.submaps.end()) {
+    Withdraw(key);  // e.g. the door is open now: nothing behind it to predict
+    return;
+  }
+  auto [id, inserted] = submap_ids_.try_emplace(key, next_submap_id_);
+  if (inserted) ++next_submap_id_;
+
+  Prediction prediction;
+  transport::SubmapMessage& message = prediction.message;
+  message.submap = *predicted;
+  message.submap.id = id->second;
+  message.submap.place = id->second;  // behind a door or up the stairs: a place of its own
+  message.submap.confidence.clear();  // the wire carries the thresholded cells only
+  message.state = transport::SubmapState::kPredicted;
+  message.source_robot = entity.robot.value;
+  message.source_entity = entity.entity_id();
+  message.stamp = Clock::now();
+  extrapolation::SubmapEdge to_observed;
+  to_observed.from = message.submap.id;
+  to_observed.to = 0;
+  to_observed.from_T_to = extrapolation::RelativePose(message.submap.map_from_submap, Pose2{});
+  to_observed.entity_id = entity.entity_id();
+  message.edges = {to_observed};
+  prediction.added = AddedCells(message.submap, *map_);
+  predictions_[key] = std::move(prediction);
+  Publish(predictions_[key].message);
+  PublishObserved();  // its edges changed
+}
+
+void PredictionWorker::Withdraw(const std::string& key) {
+  const auto it = predictions_.find(key);
+  if (it == predictions_.end()) return;
+  transport::SubmapMessage removed;
+  removed.submap.id = it->second.message.submap.id;
+  if (Status disposed = writer_->Dispose(removed); !disposed.ok()) {
+    spdlog::warn("server: {}", disposed.message());
+  }
+  predictions_.erase(it);
+  PublishObserved();
+}
+
+void PredictionWorker::UpdatePeople() {
+  extrapolation::Entities people;
+  for (const auto& [key, entity] : entities_) {
+    if (const auto* track = std::get_if<extrapolation::PersonTrack>(&entity.entity)) {
+      people.people.push_back(*track);
+    }
+  }
+  if (people.people.empty()) {
+    if (conditionally_free_.empty()) return;
+    conditionally_free_ = grid::OccupancyGrid();
+  } else {
+    StatusOr<extrapolation::ExtrapolationResult> result =
+        extrapolation::Extrapolate(*map_, people, options_.extrapolation);
+    if (!result.ok()) {
+      spdlog::warn("server: cannot extrapolate people's tracks: {}", result.status().message());
+      return;
+    }
+    if (result->conditionally_free == conditionally_free_) return;
+    conditionally_free_ = std::move(result->conditionally_free);
+  }
+  PublishObserved();
+}
+
+void PredictionWorker::CheckPredictions() {
+  for (auto& [key, prediction] : predictions_) {
+    if (prediction.judged) continue;
+    const extrapolation::PredictionCheck check =
+        extrapolation::CheckPrediction(prediction.added, *map_);
+    transport::SubmapMessage& message = prediction.message;
+    const int64_t observed = check.true_free + check.false_free;
+    if (observed == 0) continue;
+    const auto precision = static_cast<float>(check.precision);
+    const auto fraction = static_cast<float>(check.observed_fraction);
+    bool changed = std::abs(precision - message.precision) >= 0.01F ||
+                   std::abs(fraction - message.observed_fraction) >= 0.01F;
+    message.precision = precision;
+    message.observed_fraction = fraction;
+    if (observed >= options_.min_observed_cells &&
+        check.observed_fraction >= options_.judge_observed_fraction) {
+      prediction.judged = true;
+      changed = true;
+      const bool right = check.precision >= options_.confirm_precision;
+      message.state =
+          right ? transport::SubmapState::kConfirmed : transport::SubmapState::kRetracted;
+      spdlog::info("server: prediction {} from {} {}: precision {:.3f} over {} observed cells",
+                   message.submap.id, key, transport::SubmapStateName(message.state),
+                   check.precision, observed);
+      std::lock_guard lock(stats_mutex_);
+      ++(right ? stats_.confirmed : stats_.retracted);
+    }
+    if (changed) {
+      message.stamp = Clock::now();
+      Publish(message);
+    }
+  }
+}
+
+void PredictionWorker::PublishObserved() {
+  transport::SubmapMessage observed;
+  observed.submap.id = 0;
+  observed.submap.kind = extrapolation::SubmapKind::kObserved;
+  observed.submap.navigable = conditionally_free_;
+  observed.state = transport::SubmapState::kObserved;
+  observed.stamp = Clock::now();
+  for (const auto& [key, prediction] : predictions_) {
+    extrapolation::SubmapEdge edge;
+    edge.from = 0;
+    edge.to = prediction.message.submap.id;
+    edge.from_T_to = prediction.message.submap.map_from_submap;
+    edge.entity_id = prediction.message.source_entity;
+    observed.edges.push_back(edge);
+  }
+  Publish(observed);
+}
+
+void PredictionWorker::Publish(const transport::SubmapMessage& message) {
+  StatusOr<size_t> written = writer_->Write(message);
+  if (!written.ok()) {
+    spdlog::warn("server: sub-map {}: {}", message.submap.id, written.status().message());
+    return;
+  }
+  std::lock_guard lock(stats_mutex_);
+  ++stats_.submaps_published;
+}
+
+}  // namespace fleetmap::server

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/core/robot_status.hpp"
+#include "common/core/status.hpp"
+#include "common/store/map_store.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
+
+namespace fleetmap::server {
+
+// One robot's map of one mapping session, in the fleet frame.
+struct MappingSession {
+  int64_t id = 0;  // the store's id, or a counter without a store; increases
+  std::string robot;
+  Timestamp started{};
+  Timestamp ended{};
+  vector_map::TiledVectorMap map;
+};
+
+// The mapping sessions the server has seen: a session is one robot's tiles from its first tile
+// until it leaves or is lost. Finished sessions are maps of the same place taken at different
+// times, the object learner's input; they are kept in the store (when there is one) and read
+// back at start, so a restarted server learns from what it saw before.
+//
+// Not thread-safe: the fusion worker owns it.
+class SessionArchive {
+ public:
+  // `store` may be null (sessions live in memory only); it must outlive the archive.
+  SessionArchive(double tile_size, store::MapStore* store) : tile_size_(tile_size), store_(store) {}
+
+  // Reads the finished sessions kept in the store. A session whose payload does not decode is
+  // skipped and named in the returned warnings.
+  StatusOr<std::vector<std::string>> Restore();
+
+  void RecordTile(const std::string& robot, const TileId& tile, const vector_map::VectorMap& map,
+                  Timestamp stamp);
+  void RemoveTile(const std::string& robot, const TileId& tile);
+
+  // Ends the robot's open session. Returns the finished session, or nullopt when the robot had no
+  // open session with tiles. Fails only when the store refused it; it is kept in memory then.
+  StatusOr<std::optional<MappingSession>> EndSession(const std::string& robot, Timestamp ended);
+
+  const std::vector<MappingSession>& finished() const { return finished_; }
+  size_t open_sessions() const { return open_.size(); }
+
+ private:
+  double tile_size_;
+  store::MapStore* store_;
+  std::map<std::string, MappingSession> open_;  // by robot
+  std::vector<MappingSession> finished_;        // oldest first
+  int64_t next_memory_id_ = 1;
+};
+
+}  // namespace fleetmap::server

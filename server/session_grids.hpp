@@ -1,0 +1,18 @@
+#pragma once
+
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/fusion/fusion_options.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "server/session_archive.hpp"
+
+namespace fleetmap::server {
+
+// Rasterizes each session's vector map onto the fleet's fused cell lattice and pads them all to
+// the smallest box that holds every session, so the maps share size, resolution and origin (what
+// the object learner needs). Cells a session never saw are unknown.
+StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<MappingSession>& sessions,
+                                                        const fusion::FusionOptions& options);
+
+}  // namespace fleetmap::server
