@@ -19,6 +19,7 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
+#include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTile.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
@@ -271,6 +272,87 @@ TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     }
   }
   EXPECT_TRUE(saw_gamma) << server.Output();
+}
+
+// A closed door of `robot`, 0.9 m wide, in its map frame.
+fleetmap_msgs::msg::dds_::Entity_ Door(const std::string& robot, const std::string& id) {
+  fleetmap_msgs::msg::dds_::Entity_ door;
+  door.robot_id(robot);
+  door.entity_id(id);
+  door.frame_id("map");
+  door.entity_class(1);
+  door.x({0.1, 0.1});
+  door.y({0.0, 0.9});
+  door.direction(0.0);
+  return door;
+}
+
+TEST(MalformedSamplesTest, ServerRejectsBadEntitiesNamingThemAndKeepsTheGoodOnes) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server({kServer, "--duration", "60"}, env);
+  process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
+  ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
+
+  auto participant = TestParticipant(domain);
+  ASSERT_NE(participant, nullptr);
+  auto status_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotStatusTopic,
+                                                         transport::RobotStatusTypeSupport(),
+                                                         transport::RobotStatusQos().writer);
+  auto entity_writer = transport::WriterEndpoint::Create(*participant, transport::kEntitiesTopic,
+                                                         transport::EntityTypeSupport(),
+                                                         transport::KeyedStateQos().writer);
+  ASSERT_TRUE(status_writer.ok() && entity_writer.ok());
+  auto gamma = StatusOf("gamma");
+  gamma.map_topic("rt/fleetmap/robot_tiles");
+  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
+      << server.Output();
+  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
+
+  struct Case {
+    const char* expect;
+    std::function<void(fleetmap_msgs::msg::dds_::Entity_&)> spoil;
+  };
+  const Case cases[] = {
+      {"door_0 of gamma: a door of zero width",
+       [](auto& e) {
+         e.y({0.0, 0.0});
+       }},
+      {"door_1 of gamma: unknown entity class 9", [](auto& e) { e.entity_class(9); }},
+      {"door_2 of gamma: a coordinate or the direction is not finite",
+       [](auto& e) {
+         e.x({std::numeric_limits<double>::quiet_NaN(), 0.1});
+       }},
+      {"door_3 of gamma: a track needs as many stamps and headings as points",
+       [](auto& e) {
+         e.entity_class(3);
+         e.track_stamps({0.0});
+       }},
+      {"robot id \"bad robot\" is not a ROS 2 name", [](auto& e) { e.robot_id("bad robot"); }},
+  };
+  int index = 0;
+  for (const Case& c : cases) {
+    auto entity = Door("gamma", "door_" + std::to_string(index++));
+    c.spoil(entity);
+    EXPECT_TRUE(
+        WriteUntilServerSays((*entity_writer)->writer(), entity, server, c.expect, gamma_alive))
+        << c.expect << "\n"
+        << server.Output();
+  }
+  // A sound entity from the same peer is taken.
+  auto good = Door("gamma", "door_ok");
+  (*entity_writer)->writer()->write(&good);
+  gamma_alive();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+
+  entity_writer->reset();
+  status_writer->reset();
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  EXPECT_NE(server.Output().find("extrapolation: 1 entities (5 rejected)"), std::string::npos)
+      << server.Output();
+  EXPECT_NE(server.Output().find("alpha            active"), std::string::npos) << server.Output();
 }
 
 }  // namespace
