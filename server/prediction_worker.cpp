@@ -253,7 +253,9 @@ void PredictionWorker::UpdatePeople() {
 
 void PredictionWorker::CheckPredictions() {
   for (auto& [key, prediction] : predictions_) {
-    if (prediction.judged) continue;
+    // The fused map is one floor: a prediction for another floor (up the stairs) cannot be
+    // checked against it, and stays predicted.
+    if (prediction.judged || prediction.message.submap.elevation != 0.0) continue;
     const extrapolation::PredictionCheck check =
         extrapolation::CheckPrediction(prediction.added, *map_);
     transport::SubmapMessage& message = prediction.message;

@@ -121,26 +121,18 @@ const CdrShape& EntityShape() {
 }
 
 const CdrShape& SubmapShape() {
-  static const CdrShape shape = {Primitive("submap_id", 4),
-                                 Struct("stamp", TimeShape()),
-                                 String("frame_id"),
-                                 Primitive("kind", 1),
-                                 Primitive("state", 1),
-                                 Primitive("place", 4),
-                                 Struct("fleet_from_submap", Pose2DShape()),
-                                 String("source_robot"),
-                                 String("source_entity"),
-                                 Primitive("precision", 4),
-                                 Primitive("observed_fraction", 4),
-                                 Primitive("resolution", 4),
-                                 Primitive("width", 4),
-                                 Primitive("height", 4),
-                                 Struct("origin", Pose2DShape()),
-                                 Sequence("data", 1),
-                                 Sequence("edge_to", 4),
-                                 Sequence("edge_x", 8),
-                                 Sequence("edge_y", 8),
-                                 Sequence("edge_theta", 8)};
+  static const CdrShape shape = {
+      Primitive("submap_id", 4),  Struct("stamp", TimeShape()),
+      String("frame_id"),         Primitive("kind", 1),
+      Primitive("state", 1),      Primitive("place", 4),
+      Primitive("elevation", 8),  Struct("fleet_from_submap", Pose2DShape()),
+      String("source_robot"),     String("source_entity"),
+      Primitive("precision", 4),  Primitive("observed_fraction", 4),
+      Primitive("resolution", 4), Primitive("width", 4),
+      Primitive("height", 4),     Struct("origin", Pose2DShape()),
+      Sequence("data", 1),        Sequence("edge_to", 4),
+      Sequence("edge_x", 8),      Sequence("edge_y", 8),
+      Sequence("edge_theta", 8)};
   return shape;
 }
 

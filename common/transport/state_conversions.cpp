@@ -246,6 +246,7 @@ StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
   sample.kind(static_cast<uint8_t>(submap.kind));
   sample.state(static_cast<uint8_t>(message.state));
   sample.place(submap.place);
+  sample.elevation(submap.elevation);
   sample.fleet_from_submap(ToIdl(submap.map_from_submap));
   sample.source_robot(message.source_robot);
   sample.source_entity(message.source_entity);
@@ -295,7 +296,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   const Pose2 fleet_from_submap = FromIdl(sample.fleet_from_submap());
   const Pose2 origin = FromIdl(sample.origin());
   if (!AllFinite({fleet_from_submap.x, fleet_from_submap.y, fleet_from_submap.yaw, origin.x,
-                  origin.y, origin.yaw}) ||
+                  origin.y, origin.yaw, sample.elevation()}) ||
       !AllFinite(sample.edge_x()) || !AllFinite(sample.edge_y()) ||
       !AllFinite(sample.edge_theta())) {
     return InvalidArgumentError(name + ": a pose is not finite");
@@ -305,6 +306,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   submap.id = sample.submap_id();
   submap.kind = static_cast<extrapolation::SubmapKind>(sample.kind());
   submap.place = sample.place();
+  submap.elevation = sample.elevation();
   submap.map_from_submap = fleet_from_submap;
   submap.navigable =
       grid::OccupancyGrid(static_cast<int>(sample.width()), static_cast<int>(sample.height()),

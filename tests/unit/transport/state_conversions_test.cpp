@@ -124,6 +124,7 @@ TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   message.submap.id = 4;
   message.submap.kind = extrapolation::SubmapKind::kPredictedDoor;
   message.submap.place = 2;
+  message.submap.elevation = 2.75;
   message.submap.map_from_submap = {3.0, 1.0, 0.5};
   message.submap.navigable = grid::OccupancyGrid(3, 2, 0.1, Pose2{-0.15, -0.1, 0.0});
   message.submap.navigable.at(1, 1) = 0;
@@ -138,6 +139,7 @@ TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   EXPECT_EQ(back->submap.id, 4u);
   EXPECT_EQ(back->submap.kind, extrapolation::SubmapKind::kPredictedDoor);
   EXPECT_EQ(back->state, SubmapState::kConfirmed);
+  EXPECT_DOUBLE_EQ(back->submap.elevation, 2.75);
   EXPECT_EQ(back->submap.navigable.width(), 3);
   EXPECT_EQ(back->submap.navigable.at(1, 1), 0);
   EXPECT_EQ(back->submap.navigable.at(0, 0), grid::kUnknownValue);
