@@ -62,8 +62,21 @@ std::vector<int8_t> ToPercent(const std::vector<float>& occupancy) {
   return data;
 }
 
-StatusOr<object_learning::Patch> PatchFromIdl(float resolution, uint32_t width, uint32_t height,
-                                              const std::vector<int8_t>& data) {
+// ObjectTemplate_ and ObjectModel_ carry a patch in the same fields.
+template <typename Sample>
+void SetPatch(const object_learning::Patch& patch, Sample& sample) {
+  sample.resolution(static_cast<float>(patch.resolution));
+  sample.width(static_cast<uint32_t>(patch.width));
+  sample.height(static_cast<uint32_t>(patch.height));
+  sample.data(ToPercent(patch.occupancy));
+}
+
+template <typename Sample>
+StatusOr<object_learning::Patch> PatchOf(const Sample& sample) {
+  const float resolution = sample.resolution();
+  const uint32_t width = sample.width();
+  const uint32_t height = sample.height();
+  const std::vector<int8_t>& data = sample.data();
   FLEETMAP_RETURN_IF_ERROR(CheckGrid(resolution, width, height, data.size()));
   object_learning::Patch patch;
   patch.width = static_cast<int>(width);
@@ -335,16 +348,12 @@ StatusOr<ObjectTemplate_> ToIdl(const ObjectTemplateMessage& message) {
   sample.stamp(ToIdl(message.stamp));
   sample.learning_run(message.learning_run);
   sample.object_count(message.object_count);
-  sample.resolution(static_cast<float>(message.patch.resolution));
-  sample.width(static_cast<uint32_t>(message.patch.width));
-  sample.height(static_cast<uint32_t>(message.patch.height));
-  sample.data(ToPercent(message.patch.occupancy));
+  SetPatch(message.patch, sample);
   return sample;
 }
 
 StatusOr<ObjectTemplateMessage> FromIdl(const ObjectTemplate_& sample) {
-  StatusOr<object_learning::Patch> patch =
-      PatchFromIdl(sample.resolution(), sample.width(), sample.height(), sample.data());
+  StatusOr<object_learning::Patch> patch = PatchOf(sample);
   if (!patch.ok()) {
     return patch.status().WithContext("template " + std::to_string(sample.template_id()));
   }
@@ -363,10 +372,7 @@ StatusOr<ObjectModel_> ToIdl(const ObjectModelMessage& message) {
   sample.stamp(ToIdl(message.stamp));
   sample.learning_run(message.learning_run);
   sample.template_id(message.template_id);
-  sample.resolution(static_cast<float>(message.patch.resolution));
-  sample.width(static_cast<uint32_t>(message.patch.width));
-  sample.height(static_cast<uint32_t>(message.patch.height));
-  sample.data(ToPercent(message.patch.occupancy));
+  SetPatch(message.patch, sample);
   for (const ObjectSighting& sighting : message.sightings) {
     sample.sighting_session().push_back(sighting.session);
     sample.sighting_x().push_back(sighting.fleet_from_object.x);
@@ -378,8 +384,7 @@ StatusOr<ObjectModel_> ToIdl(const ObjectModelMessage& message) {
 
 StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
   const std::string name = "object " + std::to_string(sample.object_id());
-  StatusOr<object_learning::Patch> patch =
-      PatchFromIdl(sample.resolution(), sample.width(), sample.height(), sample.data());
+  StatusOr<object_learning::Patch> patch = PatchOf(sample);
   if (!patch.ok()) return patch.status().WithContext(name);
   const size_t sightings = sample.sighting_session().size();
   if (sample.sighting_x().size() != sightings || sample.sighting_y().size() != sightings ||

@@ -21,6 +21,7 @@
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
+#include "tests/integration/fleet_binaries.hpp"
 
 namespace fleetmap {
 namespace {
@@ -30,8 +31,8 @@ using process::Subprocess;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
-const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
+const std::string& kAgent = testing::kAgentBinary;
+const std::string& kServer = testing::kServerBinary;
 // Generous deadlines for a loaded 2-core CI machine; they bound waits, they are not assertions.
 constexpr seconds kDeadline{20};
 

@@ -23,6 +23,7 @@
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTile.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+#include "tests/integration/fleet_binaries.hpp"
 
 namespace fleetmap {
 namespace {
@@ -30,8 +31,8 @@ namespace {
 namespace dds = eprosima::fastdds::dds;
 using std::chrono::seconds;
 
-const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
-const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
+const std::string& kAgent = testing::kAgentBinary;
+const std::string& kServer = testing::kServerBinary;
 const std::string kMap = std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/trinary_4x3.yaml";
 constexpr seconds kDeadline{20};
 
@@ -182,6 +183,61 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   EXPECT_NE(server.Output().find("gamma            "), std::string::npos) << server.Output();
 }
 
+// A server, one well-behaved agent (alpha), and a peer of the test's own that has joined as
+// robot gamma on the tile wire and may then send whatever it likes.
+class TileWirePeerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const int domain = process::RandomDomainId();
+    const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                    {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+    server_ = std::make_unique<process::Subprocess>(
+        std::vector<std::string>{kServer, "--duration", "60"}, env);
+    alpha_ = std::make_unique<process::Subprocess>(
+        std::vector<std::string>{kAgent, "--robot-id", "alpha", "--map", kMap}, env);
+    ASSERT_TRUE(server_->WaitForOutput("robot alpha joined", kDeadline)) << server_->Output();
+    participant_ = TestParticipant(domain);
+    ASSERT_NE(participant_, nullptr);
+    status_writer_ = Writer(transport::kRobotStatusTopic, transport::RobotStatusTypeSupport(),
+                            transport::RobotStatusQos().writer);
+    ASSERT_NE(status_writer_, nullptr);
+    gamma_ = StatusOf("gamma");
+    gamma_.map_topic("rt/fleetmap/robot_tiles");  // on the tile wire
+    ASSERT_TRUE(
+        WriteUntilServerSays(status_writer_->writer(), gamma_, *server_, "robot gamma joined"))
+        << server_->Output();
+  }
+
+  std::unique_ptr<transport::WriterEndpoint> Writer(const std::string& topic, dds::TypeSupport type,
+                                                    const dds::DataWriterQos& qos) {
+    auto writer = transport::WriterEndpoint::Create(*participant_, topic, std::move(type), qos);
+    EXPECT_TRUE(writer.ok()) << writer.status();
+    return writer.ok() ? std::move(writer).value() : nullptr;
+  }
+
+  // Writes `sample` with `writer` (renewing gamma's status too) until the server says `text`.
+  template <typename Sample>
+  bool SendUntilServerSays(transport::WriterEndpoint& writer, Sample& sample,
+                           const std::string& text) {
+    return WriteUntilServerSays(writer.writer(), sample, *server_, text,
+                                [this] { status_writer_->writer()->write(&gamma_); });
+  }
+
+  // Stops the server (after the test's own writers are gone) and returns what it printed.
+  std::string StopServer() {
+    status_writer_.reset();
+    server_->Signal(SIGINT);
+    EXPECT_EQ(server_->Wait(kDeadline), 0) << server_->Output();
+    return server_->Output();
+  }
+
+  std::unique_ptr<process::Subprocess> server_;
+  std::unique_ptr<process::Subprocess> alpha_;
+  std::unique_ptr<transport::Participant> participant_;
+  std::unique_ptr<transport::WriterEndpoint> status_writer_;
+  fleetmap_msgs::msg::dds_::RobotStatus_ gamma_;
+};
+
 // A valid-looking tile of `robot` at (0, 0): one 2-vertex polyline.
 fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
@@ -199,29 +255,10 @@ fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   return tile;
 }
 
-TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
-  const int domain = process::RandomDomainId();
-  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
-                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  process::Subprocess server({kServer, "--duration", "60"}, env);
-  process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
-  ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
-
-  auto participant = TestParticipant(domain);
-  ASSERT_NE(participant, nullptr);
-  auto status_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotStatusTopic,
-                                                         transport::RobotStatusTypeSupport(),
-                                                         transport::RobotStatusQos().writer);
-  auto tile_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotTilesTopic,
-                                                       transport::VectorTileTypeSupport(),
-                                                       transport::VectorTileQos().writer);
-  ASSERT_TRUE(status_writer.ok() && tile_writer.ok());
-  auto gamma = StatusOf("gamma");
-  gamma.map_topic("rt/fleetmap/robot_tiles");  // on the tile wire
-  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
-      << server.Output();
-  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
-
+TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
+  auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
+                            transport::VectorTileQos().writer);
+  ASSERT_NE(tile_writer, nullptr);
   struct Case {
     const char* expect;
     std::function<void(fleetmap_msgs::msg::dds_::VectorTile_&)> spoil;
@@ -241,22 +278,19 @@ TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     auto tile = Tile("gamma");
     tile.tile_x(x++);  // one instance each, so no bad sample replaces another
     c.spoil(tile);
-    EXPECT_TRUE(WriteUntilServerSays((*tile_writer)->writer(), tile, server, c.expect, gamma_alive))
-        << c.expect << "\n"
-        << server.Output();
+    EXPECT_TRUE(SendUntilServerSays(*tile_writer, tile, c.expect)) << c.expect << "\n"
+                                                                   << server_->Output();
   }
   // A sound tile from the same peer is fused as usual.
   auto good = Tile("gamma");
   good.tile_y(7);
-  (*tile_writer)->writer()->write(&good);
+  tile_writer->writer()->write(&good);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
 
-  tile_writer->reset();
-  status_writer->reset();
-  server.Signal(SIGINT);
-  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  tile_writer.reset();
+  const std::string output = StopServer();
   // The summary counts gamma's rejected tiles; alpha kept being served.
-  std::istringstream lines(server.Output());
+  std::istringstream lines(output);
   bool saw_gamma = false;
   for (std::string line; std::getline(lines, line);) {
     std::istringstream fields(line);
@@ -271,7 +305,7 @@ TEST(MalformedSamplesTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
       EXPECT_GE(std::stoi(tiles), 1) << line;
     }
   }
-  EXPECT_TRUE(saw_gamma) << server.Output();
+  EXPECT_TRUE(saw_gamma) << output;
 }
 
 // A closed door of `robot`, 0.9 m wide, in its map frame.
@@ -287,29 +321,10 @@ fleetmap_msgs::msg::dds_::Entity_ Door(const std::string& robot, const std::stri
   return door;
 }
 
-TEST(MalformedSamplesTest, ServerRejectsBadEntitiesNamingThemAndKeepsTheGoodOnes) {
-  const int domain = process::RandomDomainId();
-  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
-                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  process::Subprocess server({kServer, "--duration", "60"}, env);
-  process::Subprocess alpha({kAgent, "--robot-id", "alpha", "--map", kMap}, env);
-  ASSERT_TRUE(server.WaitForOutput("robot alpha joined", kDeadline)) << server.Output();
-
-  auto participant = TestParticipant(domain);
-  ASSERT_NE(participant, nullptr);
-  auto status_writer = transport::WriterEndpoint::Create(*participant, transport::kRobotStatusTopic,
-                                                         transport::RobotStatusTypeSupport(),
-                                                         transport::RobotStatusQos().writer);
-  auto entity_writer = transport::WriterEndpoint::Create(*participant, transport::kEntitiesTopic,
-                                                         transport::EntityTypeSupport(),
-                                                         transport::KeyedStateQos().writer);
-  ASSERT_TRUE(status_writer.ok() && entity_writer.ok());
-  auto gamma = StatusOf("gamma");
-  gamma.map_topic("rt/fleetmap/robot_tiles");
-  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server, "robot gamma joined"))
-      << server.Output();
-  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
-
+TEST_F(TileWirePeerTest, ServerRejectsBadEntitiesNamingThemAndKeepsTheGoodOnes) {
+  auto entity_writer = Writer(transport::kEntitiesTopic, transport::EntityTypeSupport(),
+                              transport::KeyedStateQos().writer);
+  ASSERT_NE(entity_writer, nullptr);
   struct Case {
     const char* expect;
     std::function<void(fleetmap_msgs::msg::dds_::Entity_&)> spoil;
@@ -335,24 +350,18 @@ TEST(MalformedSamplesTest, ServerRejectsBadEntitiesNamingThemAndKeepsTheGoodOnes
   for (const Case& c : cases) {
     auto entity = Door("gamma", "door_" + std::to_string(index++));
     c.spoil(entity);
-    EXPECT_TRUE(
-        WriteUntilServerSays((*entity_writer)->writer(), entity, server, c.expect, gamma_alive))
-        << c.expect << "\n"
-        << server.Output();
+    EXPECT_TRUE(SendUntilServerSays(*entity_writer, entity, c.expect)) << c.expect << "\n"
+                                                                       << server_->Output();
   }
   // A sound entity from the same peer is taken.
   auto good = Door("gamma", "door_ok");
-  (*entity_writer)->writer()->write(&good);
-  gamma_alive();
+  entity_writer->writer()->write(&good);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
 
-  entity_writer->reset();
-  status_writer->reset();
-  server.Signal(SIGINT);
-  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
-  EXPECT_NE(server.Output().find("extrapolation: 1 entities (5 rejected)"), std::string::npos)
-      << server.Output();
-  EXPECT_NE(server.Output().find("alpha            active"), std::string::npos) << server.Output();
+  entity_writer.reset();
+  const std::string output = StopServer();
+  EXPECT_NE(output.find("extrapolation: 1 entities (5 rejected)"), std::string::npos) << output;
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "common/process/subprocess.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
+#include "tests/integration/fleet_binaries.hpp"
 
 namespace fleetmap {
 namespace {
@@ -27,8 +28,8 @@ using process::Subprocess;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-const std::string kAgent = std::string(FLEETMAP_BINARY_DIR) + "/robot_agent/fleetmap-agent";
-const std::string kServer = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
+const std::string& kAgent = testing::kAgentBinary;
+const std::string& kServer = testing::kServerBinary;
 // Bounds for a loaded 2-core CI machine, not assertions about speed.
 constexpr seconds kDeadline{40};
 constexpr double kResolution = 0.05;
