@@ -14,6 +14,8 @@
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
 #include "cli/bench_vectorize_command.hpp"
+#include "cli/extrapolate_command.hpp"
+#include "cli/bench_extrapolation_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -30,6 +32,8 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddCompareCommand(app, &exit_code);
   fleetmap::cli::AddRenderCommand(app, &exit_code);
   fleetmap::cli::AddBenchVectorizeCommand(app, &exit_code);
+  fleetmap::cli::AddExtrapolateCommand(app, &exit_code);
+  fleetmap::cli::AddBenchExtrapolationCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -220,8 +220,8 @@ class Extrapolator {
     const Pose2 map_from_submap{origin.x(), origin.y(), NormalizeAngle(yaw)};
     // Kernel frame: origin at the hinge, x along the door line (either sense), y into the room.
     const Vector2 kx(opening.y(), -opening.x());
-    const SkewNormalKernel kernel(options_.door_sigma_per_width * w,
-                                  options_.door_sigma_per_width * w,
+    const SkewNormalKernel kernel(options_.door_sigma_along_per_width * w,
+                                  options_.door_sigma_depth_per_width * w,
                                   Vector2(0.0, options_.door_skew_per_width * w));
     const double reach =
         std::min(options_.door_max_range, kernel.SupportRadius(options_.p_th) + 0.5 * w);
@@ -237,7 +237,7 @@ class Extrapolator {
         const double conf = kernel.Normalized(Vector2(kx.dot(d), opening.dot(d)));
         const size_t i = static_cast<size_t>(y) * window.width + x;
         submap.confidence[i] = static_cast<float>(conf);
-        const bool behind = (c - centre).dot(opening) > 0.5 * map_.resolution();
+        const bool behind = (c - centre).dot(opening) > options_.door_wall_clearance;
         const bool in_range = (c - centre).norm() <= options_.door_max_range;
         const bool blocked = StateAtPoint(map_, c) == grid::CellState::kOccupied;
         candidate[i] = conf > options_.p_th && behind && in_range && !blocked;
@@ -246,7 +246,8 @@ class Extrapolator {
     // Seeds: just behind the doorway.
     std::vector<int> seeds;
     for (double s = 0.0; s <= w; s += 0.5 * map_.resolution()) {
-      const Point2 p = door.hinge + s * along + (0.5 * map_.resolution() + 0.1) * opening;
+      const Point2 p =
+          door.hinge + s * along + (options_.door_wall_clearance + map_.resolution()) * opening;
       const Point2 in_grid = map_.origin().ToTransform().inverse() * p / map_.resolution();
       const int x = static_cast<int>(std::floor(in_grid.x())) - window.x0;
       const int y = static_cast<int>(std::floor(in_grid.y())) - window.y0;
@@ -301,7 +302,7 @@ class Extrapolator {
         const Vector2 d = map_.CellCenter(window.x0 + x, window.y0 + y) - top;
         const double conf = NormalizedGaussian(d, sigma);
         submap.confidence[static_cast<size_t>(y) * window.width + x] = static_cast<float>(conf);
-        if (conf > options_.p_th && d.dot(up) > 0.5 * map_.resolution()) {
+        if (conf > options_.p_th && d.dot(up) > options_.stairs_edge_clearance) {
           submap.navigable.at(x, y) = grid::kFreeValue;
         }
       }
@@ -323,7 +324,8 @@ Status ValidateOptions(const ExtrapolationOptions& o) {
   const std::pair<const char*, double> positive[] = {
       {"stairs_sigma_per_width", o.stairs_sigma_per_width},
       {"stairs_default_pitch", o.stairs_default_pitch},
-      {"door_sigma_per_width", o.door_sigma_per_width},
+      {"door_sigma_along_per_width", o.door_sigma_along_per_width},
+      {"door_sigma_depth_per_width", o.door_sigma_depth_per_width},
       {"door_max_range", o.door_max_range},
       {"person_sigma_forward", o.person_sigma_forward},
       {"person_sigma_side", o.person_sigma_side},
@@ -338,6 +340,8 @@ Status ValidateOptions(const ExtrapolationOptions& o) {
   const std::pair<const char*, double> non_negative[] = {
       {"door_skew_per_width", o.door_skew_per_width},
       {"door_submap_distance", o.door_submap_distance},
+      {"door_wall_clearance", o.door_wall_clearance},
+      {"stairs_edge_clearance", o.stairs_edge_clearance},
       {"person_skew_forward", o.person_skew_forward},
       {"person_skew_side", o.person_skew_side},
       {"track_horizon", o.track_horizon},

@@ -30,14 +30,24 @@ struct ExtrapolationOptions {
   double p_th = 0.5;
 
   // Stairs: f_s = N(0, sigma^2 I) at the top of the flight, sigma = stairs_sigma_per_width * w.
-  double stairs_sigma_per_width = 1.2;
+  double stairs_sigma_per_width = 0.6;
+  // No cell closer than this to the top edge is predicted (metres): the edge's position rests on
+  // the assumed floor height (0.1 m of height moves it 0.16 m at 32 degrees).
+  double stairs_edge_clearance = 0.3;
   // Pitch assumed when a stairs entity gives no run length (radians; 32 deg ~ 17 cm / 28 cm).
   double stairs_default_pitch = 0.5585;
 
-  // Doors: f_d = 2 phi(u) Phi(alpha^T u / sigma) at the hinge, sigma = door_sigma_per_width * w,
-  // alpha = (0, door_skew_per_width * w) (w in metres) pointing into the unseen side.
-  double door_sigma_per_width = 1.3;
+  // Doors: f_d = 2 phi(u) Phi(alpha^T omega^-1 u) at the hinge, u = (along the door, into the
+  // unseen side), Omega = diag(sigma_along^2, sigma_depth^2) with sigma_along =
+  // door_sigma_along_per_width * w and sigma_depth = door_sigma_depth_per_width * w, alpha = (0,
+  // door_skew_per_width * w) (w in metres). The paper's Omega is sigma^2 I; a narrower lateral
+  // sigma keeps the prediction out of the neighbouring rooms (docs/extrapolation.md).
+  double door_sigma_along_per_width = 1.0;
+  double door_sigma_depth_per_width = 1.3;
   double door_skew_per_width = 3.0;
+  // No cell closer than this to the door line is predicted (metres): the rest of the wall the
+  // door sits in, which the robot saw from one side only.
+  double door_wall_clearance = 0.15;
   // The predicted sub-map's frame sits this far behind the door's centre (the paper's d).
   double door_submap_distance = 1.0;
   // No predicted cell further than this from the door's centre (metres).
@@ -52,7 +62,7 @@ struct ExtrapolationOptions {
   double person_skew_side = 1.0;
   // Linear prediction horizon when a person leaves / enters the view (seconds), and the spacing
   // of the poses the kernel is swept over (metres).
-  double track_horizon = 1.5;
+  double track_horizon = 1.0;
   double track_sample_spacing = 0.1;
   // Where the dominant side is inferred, obstacles are searched up to this far sideways (metres).
   double dominant_side_search = 2.0;

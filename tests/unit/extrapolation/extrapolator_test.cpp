@@ -168,7 +168,7 @@ TEST(ExtrapolatorTest, PersonFreeSpaceFollowsTheTrackAndExtendsForwardOnLeaving)
   EXPECT_TRUE(free_at(*stays, Point2(1.5, 1.0)));
   EXPECT_TRUE(free_at(*stays, Point2(2.5, 1.0)));
   EXPECT_FALSE(free_at(*stays, Point2(3.6, 1.0)));
-  entities.people[0].left_view = true;  // 1 m/s for 1.5 s more: up to x = 4
+  entities.people[0].left_view = true;  // 1 m/s for 1 s more: up to x = 3.5
   const auto leaves = Extrapolate(map, entities);
   ASSERT_TRUE(leaves.ok());
   EXPECT_TRUE(free_at(*leaves, Point2(3.6, 1.0)));
@@ -231,9 +231,10 @@ TEST(ExtrapolatorTest, StairsMakeASubmapAtTheTopOnTheNextFloor) {
   EXPECT_NEAR(top.map_from_submap.y, 1.0, 1e-9);
   const std::vector<Point2> free = FreeCellsInMap(top);
   ASSERT_GT(free.size(), 100u);
-  const double radius = options.stairs_sigma_per_width * std::sqrt(2.0 * std::log(2.0));
+  const double radius =
+      options.stairs_sigma_per_width * stairs.step_width * std::sqrt(2.0 * std::log(2.0));
   for (const Point2& p : free) {
-    EXPECT_GT(p.x(), 8.0);  // beyond the top edge
+    EXPECT_GT(p.x(), 8.0 + options.stairs_edge_clearance);  // beyond the top edge
     EXPECT_LE((p - Point2(8.0, 1.0)).norm(), radius + 1e-9);
   }
 }
@@ -267,7 +268,7 @@ TEST(ExtrapolatorTest, BadOptionsAndEmptyMapAreErrors) {
   options.p_th = 1.0;
   EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
   options.p_th = 0.5;
-  options.door_sigma_per_width = std::nan("");
+  options.door_sigma_depth_per_width = std::nan("");
   EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
   EXPECT_FALSE(Extrapolate(grid::OccupancyGrid(), {}).ok());
 }

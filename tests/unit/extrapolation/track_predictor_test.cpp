@@ -36,7 +36,9 @@ TEST(TrackPredictorTest, ExtendsForwardOnLeaving) {
 }
 
 TEST(TrackPredictorTest, ExtendsBackwardOnEntering) {
-  const auto poses = SweepTrack(Walk(false, true), {});
+  TrackPredictorOptions options;
+  options.horizon = 1.5;
+  const auto poses = SweepTrack(Walk(false, true), options);
   EXPECT_TRUE(poses.front().predicted);
   EXPECT_NEAR(poses.front().position.x(), -1.5, 1e-6);
   EXPECT_FALSE(poses.back().predicted);

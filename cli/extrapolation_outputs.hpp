@@ -1,0 +1,30 @@
+#pragma once
+
+// What `fleetmap extrapolate` writes for one threshold (docs/extrapolation.md, "Outputs"): the
+// predicted free space as GeoJSON polygons (cv::findContours on each sub-map's free cells, vertices
+// at cell centres, map frame) and a PNG overlay of the local map with the predictions.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "common/core/status.hpp"
+#include "common/extrapolation/entities.hpp"
+#include "common/extrapolation/extrapolator.hpp"
+#include "common/extrapolation/predicted_free_grid.hpp"
+
+namespace fleetmap::cli {
+
+// One Feature per connected free region of each predicted sub-map and of the people's
+// conditionally free space: Polygons (outer ring, then holes) with the sub-map id, kind, class
+// (static, quasi-static, dynamic), entities, elevation and p_th as properties.
+nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result, double p_th);
+
+// Local map (occupied black, free white, unknown grey), predicted free space behind doors (green),
+// people's conditionally free space (orange), the tracks (blue), the doors (purple, hinge dot) and
+// the stairs' predicted landing on the floor above (red outline). Upright (north up).
+Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,
+                       const extrapolation::FloorGrids& floor,
+                       const extrapolation::Entities& entities, const std::string& path);
+
+}  // namespace fleetmap::cli
