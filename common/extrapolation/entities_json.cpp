@@ -1,6 +1,7 @@
 #include "common/extrapolation/entities_json.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <set>
 
@@ -77,6 +78,12 @@ class EntryReader {
 
 json ToJson(const Point2& p) { return json::array({p.x(), p.y()}); }
 
+std::string Metres(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3g m", value);
+  return buffer;
+}
+
 std::optional<DoorEntity> ParseDoor(const json& entry, EntryReader& reader,
                                     std::vector<std::string>* notes) {
   DoorEntity door;
@@ -88,9 +95,8 @@ std::optional<DoorEntity> ParseDoor(const json& entry, EntryReader& reader,
   if (reader.error()) return std::nullopt;
   const double width = door.width();
   if (!(width >= kMinDoorWidth && width <= kMaxDoorWidth)) {
-    reader.Fail("width " + std::to_string(width) +
-                " m is not a door's (hinge to latch must be in [" + std::to_string(kMinDoorWidth) +
-                ", " + std::to_string(kMaxDoorWidth) + "] m)");
+    reader.Fail("width " + Metres(width) + " is not a door's (hinge to latch must be " +
+                Metres(kMinDoorWidth) + " to " + Metres(kMaxDoorWidth) + ")");
     return std::nullopt;
   }
   const double norm = door.opening_direction.norm();
