@@ -21,8 +21,8 @@ struct AlignmentResult {
 };
 
 // `target` is row-major with the snapshot's size. `scan_rotations`: first try every rotation of
-// the scan (keeping start's shift, and with no shift) and climb from the best; otherwise climb
-// from `start` with steps `fine_factor` times the initial ones.
+// the scan (at start's shift and at the shift that matches the centroids) and climb from the best;
+// otherwise climb from `start` with steps `fine_factor` times the initial ones.
 AlignmentResult AlignSnapshot(const Patch& snapshot, const float* target, const Alignment& start,
                               bool scan_rotations, double fine_factor, const EmOptions& options);
 

@@ -18,23 +18,61 @@ int EmProblem::max_per_map() const {
   return static_cast<int>(most);
 }
 
-Eigen::MatrixXd AlignedMatrix(const EmProblem& problem, const std::vector<Alignment>& alignments) {
+AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments& alignments) {
   const int cells = problem.cells();
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(
-      problem.snapshots.size(), cells);
-  for (size_t s = 0; s < problem.snapshots.size(); ++s) {
-    TransformPatchInto(problem.snapshots[s], alignments[s], rows.row(s).data());
+  const size_t count = problem.snapshots.size();
+  const size_t objects = count == 0 ? 0 : alignments[0].size();
+  AlignedSnapshots aligned;
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(count, cells);
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights(count, cells);
+  for (size_t n = 0; n < objects; ++n) {
+    for (size_t s = 0; s < count; ++s) {
+      TransformPatchInto(problem.snapshots[s], alignments[s][n], rows.row(s).data(),
+                         weights.row(s).data());
+    }
+    aligned.values.push_back(rows.cast<double>());
+    aligned.weights.push_back(weights.cast<double>());
   }
-  return rows.cast<double>();
+  return aligned;
 }
 
-Eigen::MatrixXd SnapshotLogLikelihoods(const Eigen::MatrixXd& aligned,
+Eigen::MatrixXd SnapshotLogLikelihoods(const AlignedSnapshots& aligned,
                                        const Eigen::MatrixXd& objects, double sigma) {
-  // |f - theta|^2 = |f|^2 - 2 f.theta + |theta|^2, all pairs at once.
-  Eigen::MatrixXd d = -2.0 * aligned * objects.transpose();
-  d.colwise() += aligned.rowwise().squaredNorm();
-  d.rowwise() += objects.rowwise().squaredNorm().transpose();
-  return -d.cwiseMax(0.0) / (2.0 * sigma * sigma);
+  const Eigen::Index count = aligned.values.empty() ? 0 : aligned.values[0].rows();
+  Eigen::MatrixXd ll(count, objects.rows());
+  for (Eigen::Index n = 0; n < objects.rows(); ++n) {
+    const Eigen::MatrixXd d = aligned.values[n].rowwise() - objects.row(n);
+    ll.col(n) = -(aligned.weights[n].array() * d.array().square()).rowwise().sum().matrix() /
+                (2.0 * sigma * sigma);
+  }
+  return ll;
+}
+
+Eigen::MatrixXd WeightedSnapshotSums(const AlignedSnapshots& aligned,
+                                     const Eigen::MatrixXd& correspondences,
+                                     const Eigen::MatrixXd& objects) {
+  const Eigen::Index n_count = correspondences.cols();
+  Eigen::MatrixXd sums(n_count, objects.cols());
+  for (Eigen::Index n = 0; n < n_count; ++n) {
+    const Eigen::MatrixXd& w = aligned.weights[n];
+    const Eigen::MatrixXd imputed = (w.array() * aligned.values[n].array() +
+                                     (1.0 - w.array()).rowwise() * objects.row(n).array())
+                                        .matrix();
+    sums.row(n) = correspondences.col(n).transpose() * imputed;
+  }
+  return sums;
+}
+
+double ObservedCells(const EmProblem& problem) {
+  double total = 0.0;
+  for (const Patch& p : problem.snapshots) {
+    if (p.weight.empty()) {
+      total += static_cast<double>(p.occupancy.size());
+    } else {
+      for (float w : p.weight) total += w;
+    }
+  }
+  return total;
 }
 
 CorrespondenceStep CorrespondenceEStep(const EmProblem& problem,
@@ -77,20 +115,24 @@ std::vector<int> MapAssignments(const EmProblem& problem, const Eigen::MatrixXd&
 }
 
 void AlignmentStep(const EmProblem& problem, const Eigen::MatrixXd& correspondences,
-                   const Eigen::MatrixXd& objects, bool scan_rotations, const EmOptions& options,
-                   std::vector<Alignment>* alignments) {
+                   const Eigen::MatrixXd& objects, bool all_pairs, const EmOptions& options,
+                   PairAlignments* alignments) {
+  // Below this weight a pair does not move the M-step; it is re-aligned on all_pairs steps.
+  constexpr double kActive = 1e-3;
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
-      (correspondences * objects).cast<float>();
+      objects.cast<float>();
   for (size_t s = 0; s < problem.snapshots.size(); ++s) {
-    (*alignments)[s] = AlignSnapshot(problem.snapshots[s], targets.row(s).data(), (*alignments)[s],
-                                     scan_rotations, 0.25, options)
-                           .alignment;
+    for (Eigen::Index n = 0; n < objects.rows(); ++n) {
+      if (!all_pairs && correspondences(s, n) < kActive) continue;
+      (*alignments)[s][n] = AlignSnapshot(problem.snapshots[s], targets.row(n).data(),
+                                          (*alignments)[s][n], all_pairs, 0.25, options)
+                                .alignment;
+    }
   }
 }
 
 void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& options,
-                 std::mt19937_64* random, Eigen::MatrixXd* objects,
-                 std::vector<Alignment>* alignments) {
+                 std::mt19937_64* random, Eigen::MatrixXd* objects, PairAlignments* alignments) {
   const int count = static_cast<int>(problem.snapshots.size());
   std::vector<int> order(count);
   std::iota(order.begin(), order.end(), 0);
@@ -108,19 +150,24 @@ void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& opt
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects->cast<float>();
   EmOptions scan = options;
-  scan.min_shift_step = options.initial_shift_step;  // the scan only: one coarse climb round
-  alignments->assign(count, Alignment{});
+  scan.min_shift_step = options.initial_shift_step;  // the scan and one coarse climb round
+  alignments->assign(count, std::vector<Alignment>(num_objects));
   for (int s = 0; s < count; ++s) {
-    double best = std::numeric_limits<double>::infinity();
     for (int n = 0; n < num_objects; ++n) {
-      const AlignmentResult r =
-          AlignSnapshot(problem.snapshots[s], targets.row(n).data(), Alignment{}, true, 1.0, scan);
-      if (r.squared_distance < best) {
-        best = r.squared_distance;
-        (*alignments)[s] = r.alignment;
-      }
+      (*alignments)[s][n] =
+          AlignSnapshot(problem.snapshots[s], targets.row(n).data(), Alignment{}, true, 1.0, scan)
+              .alignment;
     }
   }
+}
+
+std::vector<Alignment> AssignedAlignments(const PairAlignments& alignments,
+                                          const std::vector<int>& snapshot_object) {
+  std::vector<Alignment> out;
+  for (size_t s = 0; s < alignments.size(); ++s) {
+    out.push_back(snapshot_object[s] >= 0 ? alignments[s][snapshot_object[s]] : Alignment{});
+  }
+  return out;
 }
 
 double GaussianLogConstant(double count, double s) {

@@ -1,8 +1,16 @@
 #pragma once
 
-// What hierarchical and flat EM share: the snapshots grouped by map, the aligned-snapshot matrix,
-// the snapshot-object log-likelihoods (eq. 1), the correspondence E-step over all maps (exact or
-// sampled, eq. 19), the alignment M-step over all snapshots (eq. 26), and the random start.
+// What hierarchical and flat EM share: the snapshots grouped by map, the aligned snapshots, the
+// snapshot-object log-likelihoods (eq. 1), the correspondence E-step over all maps (exact or
+// sampled, eq. 19), the alignment M-step (eq. 26), and the random start.
+//
+// Alignments are kept per (snapshot, object) pair, delta_s,n, rather than one per snapshot as in
+// the paper: the E-step then compares each snapshot with each object at its best alignment to
+// that object. With a single delta_s (aligned to the expected object), a snapshot aligned to the
+// wrong object is judged against the right one at the wrong alignment and stays where it is; on
+// partial views (a chair seen from one side) this locked runs into poor local maxima
+// (docs/object-learning.md has the measurements). Q (eq. 18) is unchanged but for delta_s
+// becoming delta_s,n, and each delta_s,n minimises |f(mu_s, delta) - theta_n|^2 by itself.
 //
 // Thread-safety: an EmProblem is immutable once built; the functions are stateless.
 
@@ -28,20 +36,38 @@ struct EmResult {
   Eigen::MatrixXd templates;         // M x cells (0 rows for the flat model)
   Eigen::MatrixXd correspondences;   // snapshots x N, E[c_s = n]
   Eigen::MatrixXd responsibilities;  // N x M, E[z_n = m] (0 columns for the flat model)
-  std::vector<Alignment> alignments;
-  std::vector<int> snapshot_object;  // MAP injective assignment per map
-  std::vector<int> object_template;  // MAP template per object (empty for flat)
-  double log_likelihood = 0.0;       // log p(data, model | delta) at the final sigma, tau
+  std::vector<std::vector<Alignment>> alignments;  // [snapshot][object], delta_s,n
+  std::vector<int> snapshot_object;                // MAP injective assignment per map
+  std::vector<int> object_template;                // MAP template per object (empty for flat)
+  double log_likelihood = 0.0;  // log p(data, model | delta) at the final sigma, tau
   int iterations = 0;
   bool approximate = false;  // the sampled E-step was used for some map
 };
 
-// f(mu_s, delta_s) for every snapshot, one row each.
-Eigen::MatrixXd AlignedMatrix(const EmProblem& problem, const std::vector<Alignment>& alignments);
+using PairAlignments = std::vector<std::vector<Alignment>>;  // [snapshot][object]
 
-// -|f(mu_s, delta_s) - theta_n|^2 / (2 sigma^2), snapshots x N (no normalising constant).
-Eigen::MatrixXd SnapshotLogLikelihoods(const Eigen::MatrixXd& aligned,
+// f(mu_s, delta_s,n) and its observed-cell weights w_s,n: one matrix per object n, a row per
+// snapshot.
+struct AlignedSnapshots {
+  std::vector<Eigen::MatrixXd> values;
+  std::vector<Eigen::MatrixXd> weights;
+};
+AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments& alignments);
+
+// -sum_x w (f(mu_s, delta_s,n) - theta_n)^2 / (2 sigma^2), snapshots x N (no normalising
+// constant): unobserved cells are missing data and drop out.
+Eigen::MatrixXd SnapshotLogLikelihoods(const AlignedSnapshots& aligned,
                                        const Eigen::MatrixXd& objects, double sigma);
+
+// sum_s E[c_s = n] (w f + (1 - w) theta_n), N x cells: the data side of the M-step, unobserved
+// cells imputed with their expectation under the current object (EM for missing data), which
+// keeps the M-step's matrix the same for every cell.
+Eigen::MatrixXd WeightedSnapshotSums(const AlignedSnapshots& aligned,
+                                     const Eigen::MatrixXd& correspondences,
+                                     const Eigen::MatrixXd& objects);
+
+// Observed cells of all snapshots (sum of their weights), for the Gaussian constant.
+double ObservedCells(const EmProblem& problem);
 
 struct CorrespondenceStep {
   Eigen::MatrixXd expectations;  // snapshots x N
@@ -61,16 +87,21 @@ CorrespondenceStep CorrespondenceEStep(const EmProblem& problem,
 std::vector<int> MapAssignments(const EmProblem& problem, const Eigen::MatrixXd& log_likelihoods,
                                 const EmOptions& options);
 
-// The alignment M-step for every snapshot, against theta_bar_s = sum_n E[c_s = n] theta_n.
+// The alignment M-step: every pair with E[c_s = n] above a small threshold climbs from its
+// current alignment; with `all_pairs` every pair is re-aligned from a rotation scan (so pairs
+// that carry no weight now are ready when the E-step next looks at them).
 void AlignmentStep(const EmProblem& problem, const Eigen::MatrixXd& correspondences,
-                   const Eigen::MatrixXd& objects, bool scan_rotations, const EmOptions& options,
-                   std::vector<Alignment>* alignments);
+                   const Eigen::MatrixXd& objects, bool all_pairs, const EmOptions& options,
+                   PairAlignments* alignments);
 
 // A random start: N distinct snapshots (drawn with `random`) become the objects; every snapshot is
-// aligned, by a rotation scan, to the object it then matches best.
+// aligned to every object by a rotation scan and one coarse climb.
 void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& options,
-                 std::mt19937_64* random, Eigen::MatrixXd* objects,
-                 std::vector<Alignment>* alignments);
+                 std::mt19937_64* random, Eigen::MatrixXd* objects, PairAlignments* alignments);
+
+// The MAP object's alignment of every snapshot.
+std::vector<Alignment> AssignedAlignments(const PairAlignments& alignments,
+                                          const std::vector<int>& snapshot_object);
 
 // The Gaussian normalising constant of `count` cells: -count * log(sqrt(2 pi) s).
 double GaussianLogConstant(double count, double s);

@@ -9,7 +9,7 @@ namespace fleetmap::object_learning {
 namespace {
 
 constexpr double kExpectationTolerance = 1e-3;
-constexpr double kModelTolerance = 1e-4;
+constexpr double kModelTolerance = 1e-2;  // occupancy: a percent
 
 }  // namespace
 
@@ -24,13 +24,14 @@ EmResult RunFlatEm(const EmProblem& problem, int num_objects, const EmOptions& o
   Eigen::MatrixXd previous_c;
   for (int j = 0; j < options.iterations; ++j) {
     const double sigma = Annealed(options.sigma, options.sigma_initial, options.annealing, j);
-    const Eigen::MatrixXd aligned = AlignedMatrix(problem, r.alignments);
+    const AlignedSnapshots aligned = AlignedPerObject(problem, r.alignments);
     const CorrespondenceStep c = CorrespondenceEStep(
         problem, SnapshotLogLikelihoods(aligned, r.objects, sigma), options, &random);
     r.approximate = r.approximate || c.approximate;
     r.correspondences = c.expectations;
     const Eigen::MatrixXd previous_objects = r.objects;
-    r.objects = FlatMStep(aligned, r.correspondences, r.objects);
+    r.objects = FlatMStep(WeightedSnapshotSums(aligned, r.correspondences, r.objects),
+                          r.correspondences, r.objects);
     AlignmentStep(problem, r.correspondences, r.objects, j % options.rotation_scan_every == 0,
                   options, &r.alignments);
     r.iterations = j + 1;
@@ -41,16 +42,13 @@ EmResult RunFlatEm(const EmProblem& problem, int num_objects, const EmOptions& o
     }
     previous_c = r.correspondences;
   }
-  const Eigen::MatrixXd aligned = AlignedMatrix(problem, r.alignments);
+  const AlignedSnapshots aligned = AlignedPerObject(problem, r.alignments);
   const Eigen::MatrixXd ll = SnapshotLogLikelihoods(aligned, r.objects, options.sigma);
   const CorrespondenceStep c = CorrespondenceEStep(problem, ll, options, &random);
   r.approximate = r.approximate || c.approximate;
   r.correspondences = c.expectations;
   r.snapshot_object = MapAssignments(problem, ll, options);
-  r.log_likelihood =
-      c.log_likelihood +
-      GaussianLogConstant(static_cast<double>(problem.snapshots.size()) * problem.cells(),
-                          options.sigma);
+  r.log_likelihood = c.log_likelihood + GaussianLogConstant(ObservedCells(problem), options.sigma);
   return r;
 }
 

@@ -19,8 +19,9 @@ namespace fleetmap::object_learning {
 EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_templates,
                            const EmOptions& options, uint64_t seed);
 
-// The object level of the log joint: sum_n log((1 / M) sum_m N(theta_n; alpha_m, tau^2 I)).
-double ObjectLevelLogLikelihood(const Eigen::MatrixXd& objects, const Eigen::MatrixXd& templates,
-                                double tau);
+// The object level of the log joint, sum_n log((1 / M) sum_m N(theta_n; alpha_m, tau^2 I)),
+// from log_weights(n, m) = -|theta_n - alpha_m|^2 / (2 tau^2) (objects aligned to templates)
+// over `cells` cells.
+double ObjectLevelLogLikelihood(const Eigen::MatrixXd& log_weights, Eigen::Index cells, double tau);
 
 }  // namespace fleetmap::object_learning

@@ -35,6 +35,9 @@ Status ValidateSnapshotOptions(const SnapshotOptions& o) {
   if (!(o.filter_threshold >= 0.0 && o.filter_threshold <= 1.0)) {
     return Bad("snapshots.filter_threshold", o.filter_threshold, "in [0, 1]");
   }
+  if (o.link_cells < 1 || o.link_cells > 20) {
+    return Bad("snapshots.link_cells", o.link_cells, "in [1, 20]");
+  }
   if (o.min_region_cells < 1) return Bad("snapshots.min_region_cells", o.min_region_cells, ">= 1");
   if (o.max_region_cells < o.min_region_cells) {
     return Bad("snapshots.max_region_cells", o.max_region_cells, ">= min_region_cells");
@@ -44,6 +47,9 @@ Status ValidateSnapshotOptions(const SnapshotOptions& o) {
   }
   if (o.patch_cells < 0 || o.patch_cells > 1000) {
     return Bad("snapshots.patch_cells", o.patch_cells, "in [0, 1000] (0: automatic)");
+  }
+  if (!(o.blur_cells >= 0.0 && o.blur_cells <= 10.0)) {
+    return Bad("snapshots.blur_cells", o.blur_cells, "in [0, 10]");
   }
   return Status::Ok();
 }

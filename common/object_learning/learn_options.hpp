@@ -15,31 +15,39 @@ namespace fleetmap::object_learning {
 // and free in some other map t' with no occupied cell of t' within `guard_radius` (a wall seen one
 // cell further in t' is not a moved object); the difference mask is low-pass filtered (box mean
 // over (2 filter_radius + 1)^2 cells, kept where >= filter_threshold) against the speckle along
-// occupied/free borders; region growing (8-connected) makes one snapshot per region.
+// occupied/free borders; region growing (cells up to link_cells apart) makes one snapshot per
+// region.
 struct SnapshotOptions {
   grid::StateThresholds thresholds;  // how a map cell reads as occupied / free
   int guard_radius = 1;              // cells, >= 0
   int filter_radius = 1;             // cells, >= 0 (0: no filter)
   double filter_threshold = 0.25;    // in [0, 1]
-  int min_region_cells = 8;          // smaller regions are noise, >= 1
-  int max_region_cells = 4000;       // larger ones are not objects (a wall moved), >= min
-  int margin_cells = 3;              // empty border around the largest snapshot, >= 0
-  int patch_cells = 0;               // side of every patch in cells; 0: from the largest snapshot
+  // Region growing joins difference cells up to this many cells apart (Chebyshev distance), so an
+  // object whose outline is seen with a gap stays one snapshot; objects closer than this merge.
+  int link_cells = 3;           // >= 1 (1: 8-connected)
+  int min_region_cells = 8;     // smaller regions are noise, >= 1
+  int max_region_cells = 4000;  // larger ones are not objects (a wall moved), >= min
+  int margin_cells = 3;         // empty border around the largest snapshot, >= 0
+  int patch_cells = 0;          // side of every patch in cells; 0: from the largest snapshot
+  // Gaussian smoothing of each snapshot patch (standard deviation, cells; 0: none). A laser sees
+  // an object's outline, one or two cells thick: unsmoothed, two outlines one cell apart share no
+  // cell, and alignment has no slope to climb.
+  double blur_cells = 1.0;  // in [0, 10]
 };
 
 // One EM run (HierarchicalEm, FlatEm) for a fixed (N, M).
 struct EmOptions {
   double sigma = 0.25;         // snapshot noise (eq. 1), final value, > 0
   double tau = 0.25;           // object-to-template noise (eq. 4), final value, > 0
-  double sigma_initial = 1.0;  // annealing start (eq. 27), >= sigma
+  double sigma_initial = 2.0;  // annealing start (eq. 27), >= sigma
   double tau_initial = 1.0;    // annealing start (eq. 28), >= tau
-  double annealing = 0.8;      // kappa in (0, 1)
+  double annealing = 0.85;     // kappa in (0, 1)
   int iterations = 30;         // EM iterations per run, >= 1
   // Alignment search (hill climbing over dx, dy, dphi), seeded by a coarse scan over rotations
   // every `rotation_scan_every` iterations (objects are seen in any orientation, and a local
   // climb cannot turn a snapshot by 90 degrees).
   double rotation_scan_step = 0.2617993877991494;  // radians (15 degrees), > 0
-  int rotation_scan_every = 5;                     // iterations, >= 1
+  int rotation_scan_every = 10;                    // iterations, >= 1
   double initial_shift_step = 0.1;                 // metres, > 0
   double initial_turn_step = 0.1308996938995747;   // radians (7.5 degrees), > 0
   double min_shift_step = 0.0125;                  // metres, > 0: the climb stops below
@@ -65,7 +73,7 @@ struct LearnOptions {
   SnapshotOptions snapshots;
   EmOptions em;
   SelectionOptions selection;
-  int restarts = 4;          // random starts per (N, M); the best is kept, >= 1
+  int restarts = 2;          // random starts per (N, M); the best is kept, >= 1
   uint32_t seed = 1;         // every random start derives from it: same seed, same model
   bool hierarchical = true;  // false: the flat model of Biswas et al. 2002 (objects only, M = 0)
 };

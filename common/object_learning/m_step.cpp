@@ -31,28 +31,29 @@ Eigen::MatrixXd NormalMatrix(const Eigen::MatrixXd& correspondences,
   return a;
 }
 
-HierarchicalParameters HierarchicalMStep(const Eigen::MatrixXd& aligned,
+HierarchicalParameters HierarchicalMStep(const Eigen::MatrixXd& snapshot_sums,
                                          const Eigen::MatrixXd& correspondences,
                                          const Eigen::MatrixXd& responsibilities, double sigma,
                                          double tau, const Eigen::MatrixXd& previous_templates) {
   const Eigen::Index n = responsibilities.rows();
   const Eigen::Index m = responsibilities.cols();
-  assert(correspondences.cols() == n && correspondences.rows() == aligned.rows());
-  assert(previous_templates.rows() == m && previous_templates.cols() == aligned.cols());
+  assert(correspondences.cols() == n && snapshot_sums.rows() == n);
+  assert(previous_templates.rows() == m && previous_templates.cols() == snapshot_sums.cols());
   const double ridge = kRidge / (tau * tau);
   const Eigen::MatrixXd a = NormalMatrix(correspondences, responsibilities, sigma, tau, ridge);
   // Right-hand sides, one column per cell.
-  Eigen::MatrixXd b(n + m, aligned.cols());
-  b.topRows(n) = correspondences.transpose() * aligned / (sigma * sigma);
+  Eigen::MatrixXd b(n + m, snapshot_sums.cols());
+  b.topRows(n) = snapshot_sums / (sigma * sigma);
   b.bottomRows(m) = ridge * previous_templates;
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
   const Eigen::MatrixXd v = ldlt.solve(b);
   return {v.topRows(n), v.bottomRows(m)};
 }
 
-Eigen::MatrixXd FlatMStep(const Eigen::MatrixXd& aligned, const Eigen::MatrixXd& correspondences,
+Eigen::MatrixXd FlatMStep(const Eigen::MatrixXd& snapshot_sums,
+                          const Eigen::MatrixXd& correspondences,
                           const Eigen::MatrixXd& previous_objects) {
-  Eigen::MatrixXd objects = correspondences.transpose() * aligned;
+  Eigen::MatrixXd objects = snapshot_sums;
   const Eigen::VectorXd mass = correspondences.colwise().sum().transpose();
   for (Eigen::Index i = 0; i < objects.rows(); ++i) {
     if (mass(i) < 1e-9) {

@@ -25,16 +25,19 @@ Eigen::MatrixXd NormalMatrix(const Eigen::MatrixXd& correspondences,
                              const Eigen::MatrixXd& responsibilities, double sigma, double tau,
                              double ridge);
 
-// `aligned` is snapshots x cells (f(mu_s, delta_s), row per snapshot), `correspondences` is
-// snapshots x N, `responsibilities` is N x M; `previous_templates` (M x cells) anchors the ridge.
-HierarchicalParameters HierarchicalMStep(const Eigen::MatrixXd& aligned,
+// `snapshot_sums` is N x cells, row n = sum_s C[s,n] f(mu_s, delta_s,n) (the right-hand sides
+// before scaling), `correspondences` is snapshots x N, `responsibilities` is N x M;
+// `previous_templates` (M x cells) anchors the ridge.
+HierarchicalParameters HierarchicalMStep(const Eigen::MatrixXd& snapshot_sums,
                                          const Eigen::MatrixXd& correspondences,
                                          const Eigen::MatrixXd& responsibilities, double sigma,
                                          double tau, const Eigen::MatrixXd& previous_templates);
 
-// The flat model's M-step (Biswas et al. 2002): each object is the C-weighted mean of the aligned
-// snapshots; an object with (almost) no weight keeps its previous value.
-Eigen::MatrixXd FlatMStep(const Eigen::MatrixXd& aligned, const Eigen::MatrixXd& correspondences,
+// The flat model's M-step (Biswas et al. 2002): each object is the C-weighted mean of its aligned
+// snapshots (snapshot_sums row / weight); an object with (almost) no weight keeps its previous
+// value.
+Eigen::MatrixXd FlatMStep(const Eigen::MatrixXd& snapshot_sums,
+                          const Eigen::MatrixXd& correspondences,
                           const Eigen::MatrixXd& previous_objects);
 
 }  // namespace fleetmap::object_learning

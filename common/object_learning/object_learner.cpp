@@ -51,7 +51,8 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
   model.object_template = best.object_template;
   for (size_t s = 0; s < set.snapshots.size(); ++s) {
     model.snapshots.push_back({set.snapshots[s].map_index, best.snapshot_object[s],
-                               set.snapshots[s].centre, best.alignments[s]});
+                               set.snapshots[s].centre,
+                               best.alignments[s][best.snapshot_object[s]]});
   }
   for (std::string& w : selection.warnings) model.warnings.push_back(std::move(w));
   if (best.approximate) {

@@ -17,9 +17,16 @@ struct Patch {
   int height = 0;
   double resolution = 0.05;  // metres per cell
   std::vector<float> occupancy;
+  // Which cells were observed (1) or not (0, e.g. the far side of an object the robot never saw);
+  // unobserved cells are missing data, not empty space. Empty: every cell observed (objects,
+  // templates).
+  std::vector<float> weight;
 
   float at(int x, int y) const { return occupancy[static_cast<size_t>(y) * width + x]; }
   float& at(int x, int y) { return occupancy[static_cast<size_t>(y) * width + x]; }
+  float WeightAt(int x, int y) const {
+    return weight.empty() ? 1.0f : weight[static_cast<size_t>(y) * width + x];
+  }
   bool empty() const { return occupancy.empty(); }
 };
 

@@ -68,11 +68,45 @@ Mask LowPass(const Mask& mask, int width, int height, int r, double threshold) {
   return out;
 }
 
+// Separable Gaussian smoothing (standard deviation `sigma` cells, kernel to 3 sigma); outside
+// the patch reads as 0.
+void Blur(double sigma, Patch* patch) {
+  if (sigma <= 0.0) return;
+  const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
+  std::vector<float> kernel(2 * r + 1);
+  float total = 0.0f;
+  for (int i = -r; i <= r; ++i) {
+    kernel[i + r] = static_cast<float>(std::exp(-0.5 * i * i / (sigma * sigma)));
+    total += kernel[i + r];
+  }
+  for (float& k : kernel) k /= total;
+  const int w = patch->width, h = patch->height;
+  std::vector<float> rows(patch->occupancy.size(), 0.0f);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float sum = 0.0f;
+      for (int i = std::max(-r, -x); i <= std::min(r, w - 1 - x); ++i) {
+        sum += kernel[i + r] * patch->at(x + i, y);
+      }
+      rows[static_cast<size_t>(y) * w + x] = sum;
+    }
+  }
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      float sum = 0.0f;
+      for (int j = std::max(-r, -y); j <= std::min(r, h - 1 - y); ++j) {
+        sum += kernel[j + r] * rows[static_cast<size_t>(y + j) * w + x];
+      }
+      patch->at(x, y) = sum;
+    }
+  }
+}
+
 struct Region {
   std::vector<grid::CellIndex> cells;
 };
 
-std::vector<Region> GrowRegions(Mask mask, int width, int height) {
+std::vector<Region> GrowRegions(Mask mask, int width, int height, int link) {
   std::vector<Region> regions;
   std::vector<grid::CellIndex> stack;
   for (int y = 0; y < height; ++y) {
@@ -85,8 +119,8 @@ std::vector<Region> GrowRegions(Mask mask, int width, int height) {
         const grid::CellIndex c = stack.back();
         stack.pop_back();
         region.cells.push_back(c);
-        for (int dy = -1; dy <= 1; ++dy) {
-          for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -link; dy <= link; ++dy) {
+          for (int dx = -link; dx <= link; ++dx) {
             const int nx = c.x + dx, ny = c.y + dy;
             if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
             uint8_t& m = mask[static_cast<size_t>(ny) * width + nx];
@@ -171,7 +205,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
       for (size_t u = 0; u < maps.size() && !diff[i]; ++u) diff[i] = u != t && clear[u][i];
     }
     diff = LowPass(diff, width, height, options.filter_radius, options.filter_threshold);
-    for (Region& region : GrowRegions(std::move(diff), width, height)) {
+    for (Region& region : GrowRegions(std::move(diff), width, height, options.link_cells)) {
       const int n = static_cast<int>(region.cells.size());
       if (n < options.min_region_cells) continue;
       if (n > options.max_region_cells) {
@@ -201,7 +235,9 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
   if (side == 0) {
     double radius = 0.0;
     for (const Found& f : found) radius = std::max(radius, f.radius);
-    side = 2 * (static_cast<int>(std::ceil(radius)) + options.margin_cells) + 1;
+    side = 2 * (static_cast<int>(std::ceil(radius)) + options.margin_cells +
+                static_cast<int>(std::ceil(2.0 * options.blur_cells))) +
+           1;
   }
   const int half = side / 2;
   const double resolution = maps[0].resolution();
@@ -214,13 +250,27 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
     snapshot.patch.height = side;
     snapshot.patch.resolution = resolution;
     snapshot.patch.occupancy.assign(static_cast<size_t>(side) * side, 0.0f);
+    snapshot.patch.weight.assign(static_cast<size_t>(side) * side, 0.0f);
     const grid::OccupancyGrid& map = maps[f.map_index];
+    // Observed: free in this map, or part of the object. Unknown cells (the object's far side,
+    // its inside) and other obstacles (which may hide part of it) are missing data.
+    for (int py = 0; py < side; ++py) {
+      for (int px = 0; px < side; ++px) {
+        const int x = f.centre.x + px - half, y = f.centre.y + py - half;
+        if (!map.Contains(x, y)) continue;
+        if (map.StateAt(x, y, options.thresholds) == grid::CellState::kFree) {
+          snapshot.patch.weight[static_cast<size_t>(py) * side + px] = 1.0f;
+        }
+      }
+    }
     for (const grid::CellIndex& c : f.region.cells) {
       const int px = c.x - f.centre.x + half;
       const int py = c.y - f.centre.y + half;
       if (px < 0 || py < 0 || px >= side || py >= side) continue;  // patch_cells set too small
       snapshot.patch.at(px, py) = std::clamp(map.at(c.x, c.y) / 100.0f, 0.0f, 1.0f);
+      snapshot.patch.weight[static_cast<size_t>(py) * side + px] = 1.0f;
     }
+    Blur(options.blur_cells, &snapshot.patch);
     result.snapshots.push_back(std::move(snapshot));
   }
   return result;

@@ -3,7 +3,8 @@
 // Map differencing (ALGORITHMS.md 2, "Snapshot extraction"): cuts one snapshot per moved object
 // out of every map. A cell of map t is a difference when it is occupied in t and free in some
 // other map t' with no occupied cell of t' within SnapshotOptions::guard_radius; a low-pass filter
-// (box mean) removes the speckle along occupied/free borders; 8-connected region growing makes one
+// (box mean) removes the speckle along occupied/free borders; region growing (cells up to
+// SnapshotOptions::link_cells apart) makes one
 // region per object, which is cropped into a patch centred on the region's centroid cell. Every
 // patch has the same size (the largest region's, plus a margin, unless patch_cells is set).
 //
@@ -26,7 +27,9 @@ struct Snapshot {
   int map_index = 0;
   Point2 centre = Point2::Zero();  // map frame, metres: centre of the patch's centre cell
   int cells = 0;                   // cells in the region
-  Patch patch;                     // 1 on the region's cells, 0 elsewhere
+  // 1 on the region's cells, 0 elsewhere, smoothed (SnapshotOptions::blur_cells); weight 1 where
+  // the map saw the cell free or it is the region's, 0 where it is unknown or another obstacle.
+  Patch patch;
 };
 
 struct SnapshotSet {

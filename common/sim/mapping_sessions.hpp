@@ -30,7 +30,7 @@ struct SessionPlanOptions {
   int min_present = 2;              // objects in each session, in [1, max_present]
   int max_present = 3;              // <= number of objects
   int min_sessions_per_object = 2;  // every object is seen at least this often, >= 1
-  double clearance = 0.6;           // metres of free space between an object and walls or objects
+  double clearance = 1.0;           // metres of free space between an object and walls or objects
   double start_clearance = 1.0;     // metres between an object and the robot's start
   uint32_t seed = 0;
 };
