@@ -107,9 +107,12 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
         ex::DetectDoors(ToCloud(camera.Capture(boxes, pose, &random)), eye);
     bool detected = false;
     for (const ex::DetectedDoor& d : found) {
-      bool matches_any = false;
-      for (const sim::SceneDoor& other : scene.doors) matches_any |= SameDoor(d.entity, other);
-      if (!matches_any) {
+      // A false positive is where no door is; a door found too narrow (partly hidden) is not one.
+      bool at_a_door = false;
+      for (const sim::SceneDoor& other : scene.doors) {
+        at_a_door |= (d.entity.center() - other.center()).norm() < kDoorMatch;
+      }
+      if (!at_a_door) {
         ++result.door_false_positives;
         continue;
       }

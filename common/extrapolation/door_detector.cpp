@@ -120,6 +120,19 @@ std::vector<DetectedDoor> DetectDoors(const PointCloud& cloud,
             !image.Occupied(Point2(s0, z1), r) || !image.Occupied(Point2(s1, z1), r)) {
           continue;
         }
+        // A door sits in a wall: wall points beside both vertical edges, near the leaf's plane
+        // (an open leaf standing in a room, or a cabinet, has none on one side at least).
+        if (options.min_wall_points > 0) {
+          int wall_s0 = 0, wall_s1 = 0;
+          for (const Point3& p : all) {
+            const double d = std::abs(normal.dot(Vector2(p.x(), p.y())) - offset);
+            if (d > options.wall_max_offset || p.z() < 0.3 || p.z() > options.min_height) continue;
+            const double ps = along.dot(Vector2(p.x(), p.y()));
+            wall_s0 += ps < s0 - 0.05 && ps > s0 - options.wall_search;
+            wall_s1 += ps > s1 + 0.05 && ps < s1 + options.wall_search;
+          }
+          if (wall_s0 < options.min_wall_points || wall_s1 < options.min_wall_points) continue;
+        }
         // The handle: points just off the leaf, at handle height, near either vertical edge.
         int near_s0 = 0, near_s1 = 0;
         const double margin = options.voxel_size;

@@ -3,7 +3,8 @@
 // Finds closed doors in a 3D point cloud (ALGORITHMS.md 3, quasi-static entities): voxel filter,
 // RANSAC for vertical planes, and in each plane's 2D image (s along the plane, z up) the connected
 // patches, cut into runs of densely filled columns, whose four corners sit at the floor and at a
-// door's height and whose width matches a door. The rotation axis is on the side opposite the
+// door's height, whose width matches a door and which have a wall beside both
+// edges. The rotation axis is on the side opposite the
 // handle: the points just off the plane near handle height are counted on both sides, and the side
 // with more of them is the latch side.
 //
@@ -30,7 +31,9 @@ struct DoorDetectorOptions {
   double image_cell = 0.05;  // m, the plane's 2D image
   double min_width = 0.6;    // door width range, m
   double max_width = 1.4;
-  double min_height = 1.8;  // door leaf height range, m
+  // Door leaf height range (m). Standard leaves are 1.98-2.1 m; a lower bound near that keeps out
+  // wall strips whose top the camera's field of view cuts.
+  double min_height = 1.95;
   double max_height = 2.3;
   double floor_tolerance = 0.15;  // the leaf's bottom corners within this of the floor, m
   double min_fill = 0.75;         // fraction of the leaf's rectangle the patch covers
@@ -44,6 +47,11 @@ struct DoorDetectorOptions {
   double handle_min_z = 0.8;
   double handle_max_z = 1.25;
   double handle_edge_band = 0.25;
+  // The wall around the door: at least this many points within wall_max_offset of the leaf's
+  // plane, within wall_search beside each vertical edge (0 turns the check off).
+  int min_wall_points = 20;
+  double wall_max_offset = 0.15;
+  double wall_search = 0.4;
   int iterations = 300;
   uint32_t seed = 11;
 };

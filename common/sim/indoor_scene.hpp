@@ -1,6 +1,6 @@
 #pragma once
 
-// An indoor scene for the map-extrapolation benchmark (docs/simulator.md, "Indoor scenes"): one
+// An indoor scene for the map-extrapolation benchmark (docs/extrapolation.md, "Indoor scenes"): one
 // floor of offices along a corridor, doors that are open or closed (with leaves and handles),
 // a flight of stairs at the end of the corridor up to a hall on the floor above, in exact 2D
 // geometry (a Terrain, so the usual rasterizer gives its ground truth) and as upright 3D boxes

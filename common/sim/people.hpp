@@ -1,10 +1,11 @@
 #pragma once
 
-// People walking in an indoor scene, and what a robot sees of them (docs/simulator.md, "Indoor
-// scenes"). A walk follows the corridor, keeping nearer to the wall on the person's dominant side,
-// and may turn into a room through an open door. The robot observes a walk while the person is
-// within range and in line of sight on the ground truth: the first stretch it sees becomes a
-// track, flagged as entering or leaving the view when the walk goes on before or after it.
+// People walking in an indoor scene, and what a robot sees of them (docs/extrapolation.md,
+// "Indoor scenes"). A walk follows the corridor, keeping nearer to the wall on the person's
+// dominant side, and may turn into a room through an open door. The robot observes a walk while the
+// person is within range and in line of sight on the ground truth: the first stretch it sees
+// becomes a track, flagged as entering or leaving the view when the walk goes on before or after
+// it.
 //
 // Thread-safety: stateless; randomness from the caller's Random.
 
