@@ -16,6 +16,8 @@
 #include "cli/bench_vectorize_command.hpp"
 #include "cli/extrapolate_command.hpp"
 #include "cli/bench_extrapolation_command.hpp"
+#include "cli/bench_objects_command.hpp"
+#include "cli/learn_objects_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddBenchVectorizeCommand(app, &exit_code);
   fleetmap::cli::AddExtrapolateCommand(app, &exit_code);
   fleetmap::cli::AddBenchExtrapolationCommand(app, &exit_code);
+  fleetmap::cli::AddLearnObjectsCommand(app, &exit_code);
+  fleetmap::cli::AddBenchObjectsCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

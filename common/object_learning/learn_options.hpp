@@ -37,8 +37,11 @@ struct SnapshotOptions {
 
 // One EM run (HierarchicalEm, FlatEm) for a fixed (N, M).
 struct EmOptions {
-  double sigma = 0.25;         // snapshot noise (eq. 1), final value, > 0
-  double tau = 0.25;           // object-to-template noise (eq. 4), final value, > 0
+  double sigma = 0.25;  // snapshot noise (eq. 1), final value, > 0
+  // Object-to-template noise (eq. 4), final value, > 0. At 1 / sqrt(2 pi) the Gaussian's
+  // normalising constant is 1, so an extra object is not rewarded by the density of its cells
+  // (which would otherwise add -cells * log(sqrt(2 pi) tau) nats per object to the log posterior).
+  double tau = 0.3989422804014327;
   double sigma_initial = 2.0;  // annealing start (eq. 27), >= sigma
   double tau_initial = 1.0;    // annealing start (eq. 28), >= tau
   double annealing = 0.85;     // kappa in (0, 1)
@@ -61,9 +64,9 @@ struct EmOptions {
 // The search over (N objects, M templates) (ModelSelection): max_t K_t <= N <= sum_t K_t,
 // 1 <= M <= N, score log p(data, model) - object_penalty * N - template_penalty * M (eq. 30).
 struct SelectionOptions {
-  double object_penalty = 60.0;    // c_N, nats per object, >= 0
-  double template_penalty = 60.0;  // c_M, nats per template, >= 0
-  int max_objects = 16;            // cap on N (a warning says when it bites), >= 1
+  double object_penalty = 25.0;   // c_N, nats per object, >= 0
+  double template_penalty = 6.0;  // c_M, nats per template, >= 0
+  int max_objects = 16;           // cap on N (a warning says when it bites), >= 1
   // The search along N (and along M for each N) stops after this many candidates in a row
   // without a new best; 0 searches the whole grid.
   int patience = 2;

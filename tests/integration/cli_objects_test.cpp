@@ -1,0 +1,118 @@
+// Runs the real `fleetmap learn-objects` and `fleetmap bench objects` and checks outputs and exit
+// codes.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/grid/map_io.hpp"
+#include "common/process/subprocess.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::RunFleetmap;
+
+std::string TempDir(const std::string& name) {
+  const std::string dir = (std::filesystem::temp_directory_path() /
+                           ("fleetmap_cli_objects_" + name + "_" + std::to_string(getpid())))
+                              .string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return buffer.str();
+}
+
+// A 5 x 5 m room with box outlines (insides unknown) at the given cells.
+std::string SaveRoom(const std::string& dir, const std::string& name,
+                     const std::vector<std::pair<int, int>>& boxes, int width = 100) {
+  grid::OccupancyGrid map(width, 100, 0.05, Pose2{}, grid::kFreeValue);
+  for (int i = 0; i < width; ++i) map.at(i, 0) = map.at(i, 99) = grid::kOccupiedValue;
+  for (int i = 0; i < 100; ++i) map.at(0, i) = map.at(width - 1, i) = grid::kOccupiedValue;
+  for (const auto& [x0, y0] : boxes) {
+    for (int y = y0; y < y0 + 8; ++y) {
+      for (int x = x0; x < x0 + 12; ++x) {
+        const bool edge = x == x0 || y == y0 || x == x0 + 11 || y == y0 + 7;
+        map.at(x, y) = edge ? grid::kOccupiedValue : grid::kUnknownValue;
+      }
+    }
+  }
+  const std::string path = dir + "/" + name + ".yaml";
+  EXPECT_TRUE(grid::SaveMap(map, path).ok());
+  return path;
+}
+
+TEST(CliObjectsTest, LearnsMovedBoxesAndWritesTheModel) {
+  const std::string dir = TempDir("learn");
+  const std::string a = SaveRoom(dir, "a", {{10, 10}, {60, 60}});
+  const std::string b = SaveRoom(dir, "b", {{30, 70}, {70, 20}});
+  const std::string c = SaveRoom(dir, "c", {{15, 50}});
+  const process::CommandResult run =
+      RunFleetmap({"learn-objects", a, b, c, "--out", dir + "/out", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json model = nlohmann::json::parse(run.out);
+  EXPECT_EQ(model, nlohmann::json::parse(ReadFile(dir + "/out/model.json")));
+  EXPECT_GE(model["num_objects"].get<int>(), 2);    // two boxes in one map
+  EXPECT_EQ(model["num_templates"].get<int>(), 1);  // all boxes alike
+  EXPECT_EQ(model["snapshots"].size(), 5u);
+  EXPECT_FALSE(model["searched"].empty());
+  for (const auto& s : model["snapshots"]) {
+    EXPECT_TRUE(s.contains("alignment"));
+    EXPECT_GE(s["object"].get<int>(), 0);
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/object_0.pgm"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/template_0.pgm"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/montage.png"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliObjectsTest, NothingMovedIsAnEmptyResultNotAnError) {
+  const std::string dir = TempDir("empty");
+  const std::string a = SaveRoom(dir, "a", {{10, 10}});
+  const std::string b = SaveRoom(dir, "b", {{10, 10}});
+  const process::CommandResult run = RunFleetmap({"learn-objects", a, b, "--out", dir + "/out"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("No object moved"));
+  const nlohmann::json model = nlohmann::json::parse(ReadFile(dir + "/out/model.json"));
+  EXPECT_EQ(model["num_objects"].get<int>(), 0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliObjectsTest, BadInputNamesTheFileAndExitsTwo) {
+  const std::string dir = TempDir("bad");
+  const std::string a = SaveRoom(dir, "a", {{10, 10}});
+  const std::string wide = SaveRoom(dir, "wide", {{10, 10}}, 120);
+  process::CommandResult run = RunFleetmap({"learn-objects", a, "--out", dir + "/out"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("at least two maps"));
+  run = RunFleetmap({"learn-objects", a, wide, "--out", dir + "/out"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("wide.yaml"));
+  EXPECT_THAT(run.err, HasSubstr("a.yaml"));
+  EXPECT_THAT(run.err, HasSubstr("size"));
+  run = RunFleetmap({"learn-objects", a, dir + "/missing.yaml", "--out", dir + "/out"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("missing.yaml"));
+  run = RunFleetmap({"bench", "objects", "--starts", "0"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("--starts"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace fleetmap::cli
