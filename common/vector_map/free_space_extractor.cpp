@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/vector_map/outline_simplifier.hpp"
+
 namespace fleetmap::vector_map {
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
@@ -13,18 +15,21 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   const double epsilon_cells = options.epsilon_cells;
   std::vector<CellPolygon> polygons;
   if (rect.empty()) return polygons;
-  // kIn: free (must come back free); kOut: unknown and not painted (must not come back free);
-  // kAny: painted by an obstacle anyway, or occupied (wrong as free or as unknown alike).
+  // kIn: free (must come back free); kOut: unknown and not painted (should not come back free;
+  // the outline is simplified, so it may cut a corner into such cells); kSolid: occupied and not
+  // painted (must never come back free: a planner would drive through it; guarded exactly by the
+  // OutlineSimplifier, so it comes back unknown); kAny: painted by an obstacle anyway.
   constexpr uint8_t kOut = 0;
   constexpr uint8_t kIn = 1;
   constexpr uint8_t kAny = 2;
+  constexpr uint8_t kSolid = 3;
   // The class of every (painted, cell value) pair, looked up instead of classified per cell.
   std::array<uint8_t, 512> class_of{};
   for (int v = -128; v < 128; ++v) {
     const uint8_t byte = static_cast<uint8_t>(v);
     const grid::CellState state = grid::StateOf(static_cast<int8_t>(v), thresholds);
     class_of[byte] = state == grid::CellState::kFree       ? kIn
-                     : state == grid::CellState::kOccupied ? kAny
+                     : state == grid::CellState::kOccupied ? kSolid
                                                            : kOut;
     class_of[256 + byte] = state == grid::CellState::kFree ? kIn : kAny;
   }
@@ -50,13 +55,15 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   }
   const bool any = (seen & (1u << kIn)) != 0;
   const bool any_dont_care = (seen & (1u << kAny)) != 0;
+  const bool any_solid = (seen & (1u << kSolid)) != 0;
   if (!any) return polygons;
   cv::Mat mask = cls == kIn;
   if (any_dont_care) {
-    // Don't-care cells join the region only one cell or more away from a must-out cell: outlines
-    // simplified at epsilon then stray into don't-care cells, never into must-out ones.
+    // Don't-care cells join the region only one cell or more away from a must-out or solid cell:
+    // outlines simplified at epsilon then stray into don't-care cells rather than into those.
     cv::Mat near_out;
-    cv::dilate(cls == kOut, near_out, cv::Mat::ones(3, 3, CV_8UC1));
+    cv::dilate(any_solid ? (cls == kOut) | (cls == kSolid) : cls == kOut, near_out,
+               cv::Mat::ones(3, 3, CV_8UC1));
     mask |= (cls == kAny) & ~near_out;
     // Components without a free cell are not free space.
     cv::Mat labels;
@@ -77,9 +84,9 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
+  const OutlineSimplifier simplifier(any_solid ? cv::Mat(cls == kSolid) : cv::Mat(), epsilon_cells);
   auto convert = [&](const std::vector<cv::Point>& contour) {
-    std::vector<cv::Point> simplified;
-    cv::approxPolyDP(contour, simplified, epsilon_cells, /*closed=*/true);
+    const std::vector<cv::Point> simplified = simplifier.Simplify(contour);
     std::vector<Point2> ring;
     ring.reserve(simplified.size());
     for (const cv::Point& p : simplified) ring.emplace_back(rect.x0 + p.x, rect.y0 + p.y);
@@ -91,7 +98,8 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     polygon.outer = convert(contours[i]);
     for (int child = hierarchy[i][2]; child >= 0; child = hierarchy[child][0]) {
       auto hole = convert(contours[child]);
-      // A hole simplified to a point or a line encloses no cell: it would cost bytes for nothing.
+      // A hole simplified to a point or a line encloses no cell (and no solid one,
+      // OutlineSimplifier checked that): it would cost bytes for nothing.
       if (hole.size() < 3) continue;
       polygon.holes.push_back(std::move(hole));
     }

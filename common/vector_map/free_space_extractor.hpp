@@ -6,12 +6,17 @@
 // polygon including its outline, which rebuilds an unsimplified region exactly.
 //
 // The region is not just the free cells. The Rasterizer paints obstacles over free space, so the
-// cells it will paint (`painted`) and the occupied cells (wrong as free or as unknown alike) are
-// "don't care": they join the region wherever they are at least one cell away from a must-stay-
-// unknown cell. Then an obstacle inside free space costs no hole, a wall between free and unknown
-// space pulls the outline to its far side only where that is safe, and Douglas-Peucker errors of up
-// to epsilon land in don't-care cells rather than in unknown ones. Components without a free cell
-// are dropped, and so are holes that simplify to fewer than 3 vertices (they enclose no cell).
+// cells it will paint (`painted`) are "don't care": they join the region wherever they are at least
+// one cell away from a must-stay-unknown cell (unknown, or occupied but not painted). Then an
+// obstacle inside free space costs no hole, a wall between free and unknown space pulls the outline
+// to its far side only where that is safe, and Douglas-Peucker errors of up to epsilon land in
+// don't-care cells rather than in unknown ones. Components without a free cell are dropped, and so
+// are holes that simplify to fewer than 3 vertices (they enclose no cell).
+//
+// Occupied cells that are not painted (the inside of a solid region, bumps beyond a wall's half
+// width) must never come back free: the outlines are simplified by OutlineSimplifier, which
+// guarantees it, so such cells come back unknown (a solid block: its painted outline around an
+// unknown inside, a hole of the free polygon).
 
 #include <cstdint>
 #include <vector>
@@ -30,7 +35,8 @@ struct CellPolygon {
 struct FreeSpaceOptions {
   double epsilon_cells = 1.0;
   // One byte per cell of the rectangle (row-major), non-zero where the rasterizer paints an
-  // obstacle anyway (PaintedCells); such cells may fall inside or outside the polygons. Null: none.
+  // obstacle anyway (PaintedCells); such cells may fall inside or outside the polygons. Null: none
+  // (then no occupied cell of the rectangle comes back free).
   const std::vector<uint8_t>* painted = nullptr;
 };
 

@@ -23,9 +23,12 @@ std::vector<uint8_t> PaintedCells(const grid::CellRect& rect,
   for (size_t k = 0; k < polylines.size(); ++k) {
     const auto& pts = polylines[k].points;
     const double r = std::max(radii.empty() ? 0.0 : radii[k], min_radius);
-    // Strictly inside the rasterizer's tolerated radius, so float noise after decoding (another
-    // frame, quantised half widths) cannot leave a marked cell unpainted.
-    r2 = r * r * (1.0 - 1e-6);
+    // The radius itself (cells at exactly it, e.g. the corner cells of a block, are painted and
+    // must count, or the free-space extractor guards them as solid), with a relative 1e-10 for
+    // rounding: a tenth of the rasterizer's tolerance (ToleratedSquare), which is still far above
+    // the float noise after decoding (about 1e-12 cells, another frame); quantised half widths
+    // only grow. So no marked cell is left unpainted.
+    r2 = r * r * (1.0 + 1e-10);
     if (pts.size() == 1) mark(pts[0], pts[0], r);
     for (size_t i = 0; i + 1 < pts.size(); ++i) mark(pts[i], pts[i + 1], r);
     if (polylines[k].closed && pts.size() >= 3) mark(pts.back(), pts.front(), r);

@@ -15,8 +15,9 @@ namespace fleetmap::vector_map {
 
 // One byte per cell of `rect`, row-major, 1 where painted. `radii[k]` is polyline k's half width
 // in cells (empty: min_radius for every polyline). The test is a hair stricter than the
-// rasterizer's (never marks a cell the rasterizer could leave unpainted after a round trip
-// through the wire's quantised half widths, which only grow).
+// rasterizer's tolerated radius (never marks a cell the rasterizer could leave unpainted after a
+// round trip through the wire's quantised half widths, which only grow) but counts the cells at
+// exactly the radius.
 std::vector<uint8_t> PaintedCells(const grid::CellRect& rect,
                                   const std::vector<CellPolyline>& polylines,
                                   const std::vector<double>& radii, double min_radius);

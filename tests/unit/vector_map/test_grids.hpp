@@ -82,6 +82,21 @@ inline grid::OccupancyGrid FloorPlan() {
   return grid;
 }
 
+// Cells `grid` calls occupied that `back` calls free: each would tell a planner it can drive
+// through an obstacle. A round trip must leave none.
+inline int OccupiedComeBackFree(const grid::OccupancyGrid& grid, const grid::OccupancyGrid& back) {
+  int count = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      count += grid.StateAt(x, y) == grid::CellState::kOccupied &&
+                       back.StateAt(x, y) == grid::CellState::kFree
+                   ? 1
+                   : 0;
+    }
+  }
+  return count;
+}
+
 // The real maps of ../shared/data/maps (SOURCES.md).
 inline const std::vector<std::string>& RealMapNames() {
   static const std::vector<std::string> names = {

@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "common/vector_map/cell_frame.hpp"
+#include "common/vector_map/rasterizer.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
 #include "common/vector_map/validator.hpp"
 #include "tests/unit/vector_map/test_grids.hpp"
 
@@ -413,6 +415,38 @@ TEST(VectorizerTileTest, ChangedTileIsRevectorizedAlone) {
     merged.Append(map);
   }
   ExpectValid(merged, grid);
+}
+
+// Solid blocks cut by tile borders, one ending exactly on a border and one starting on it: each
+// tile outlines its part, and no occupied cell comes back free, also after a tile is re-vectorized.
+TEST(VectorizerTileTest, SolidBlocksAtTileBordersComeBackWithoutFreeCells) {
+  OccupancyGrid grid(80, 64, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 10, 10, 35, 29, grid::kOccupiedValue);  // across x = 16 and x = 32, y = 16
+  FillRect(grid, 40, 36, 47, 55, grid::kOccupiedValue);  // ends on the border x = 48
+  FillRect(grid, 48, 5, 63, 20, grid::kOccupiedValue);   // fills tile (3, 0) from x = 48
+  TiledVectorizeOptions options;
+  options.tile_size = 0.8;  // 16 cells
+  TiledVectorMap tiled = *VectorizeTiled(grid, Transform2::Identity(), options);
+  auto round_trip = [&] { return *Rasterizer().Rasterize(tiled.Merged(), grid); };
+  EXPECT_EQ(testing::OccupiedComeBackFree(grid, round_trip()), 0);
+  ExpectValid(tiled.Merged(), grid);
+
+  // A block against the border x = 32 inside tile (1, 3) and the neighbour it reaches into.
+  FillRect(grid, 24, 50, 31, 60, grid::kOccupiedValue);
+  FillRect(grid, 32, 52, 35, 58, grid::kOccupiedValue);
+  for (const TileId tile : {TileId{1, 3}, TileId{2, 3}}) {
+    ASSERT_TRUE(RevectorizeTile(grid, Transform2::Identity(), tile, options, &tiled).ok());
+  }
+  EXPECT_EQ(testing::OccupiedComeBackFree(grid, round_trip()), 0);
+  ExpectValid(tiled.Merged(), grid);
+  // Re-vectorizing tiles gives what vectorizing the changed grid gives.
+  const TiledVectorMap fresh = *VectorizeTiled(grid, Transform2::Identity(), options);
+  ASSERT_EQ(tiled.tiles.size(), fresh.tiles.size());
+  for (const auto& [id, tile] : fresh.tiles) {
+    ASSERT_TRUE(tiled.tiles.count(id)) << id;
+    EXPECT_EQ(tiled.tiles.at(id).obstacles, tile.obstacles) << id;
+    EXPECT_EQ(tiled.tiles.at(id).free_space, tile.free_space) << id;
+  }
 }
 
 }  // namespace

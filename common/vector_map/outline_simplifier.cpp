@@ -1,0 +1,202 @@
+#include "common/vector_map/outline_simplifier.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include <opencv2/imgproc.hpp>
+
+#include "common/core/types.hpp"
+#include "common/vector_map/segment_geometry.hpp"
+
+namespace fleetmap::vector_map {
+namespace {
+
+Point2 At(const std::vector<cv::Point>& contour, int k) {
+  const cv::Point& p = contour[static_cast<size_t>(k) % contour.size()];
+  return Point2(p.x, p.y);
+}
+
+// Whether the scan conversion of segment [a, b] may reach cell (x, y): within half a cell plus
+// `slack` of it along its minor axis, inside its extent along the major axis. The Rasterizer's
+// fillPoly and polylines both set, per row (column) the segment crosses, only cells within half a
+// cell of the crossing.
+bool InBand(int x, int y, const Point2& a, const Point2& b, double slack) {
+  const double dx = b.x() - a.x();
+  const double dy = b.y() - a.y();
+  const double reach = 0.5 + slack;
+  if (dx == 0.0 && dy == 0.0) return std::abs(x - a.x()) <= reach && std::abs(y - a.y()) <= reach;
+  const bool along_x = std::abs(dx) >= std::abs(dy);
+  const double u = along_x ? x : y;
+  const double v = along_x ? y : x;
+  const double au = along_x ? a.x() : a.y();
+  const double av = along_x ? a.y() : a.x();
+  const double du = along_x ? dx : dy;
+  const double dv = along_x ? dy : dx;
+  if (u < std::min(au, au + du) || u > std::max(au, au + du)) return false;
+  return std::abs(v - (av + (u - au) * dv / du)) <= reach;
+}
+
+// Even-odd test of cell (x, y) against the polygon contour[i..j] closed back to contour[i]. Cells
+// on its boundary are contour cells (never guarded) or lie in the segment's band.
+bool InsideLens(int x, int y, const std::vector<cv::Point>& contour, int i, int j) {
+  bool inside = false;
+  for (int k = i; k <= j; ++k) {
+    const Point2 p = At(contour, k);
+    const Point2 q = At(contour, k < j ? k + 1 : i);
+    if ((p.y() > y) != (q.y() > y)) {
+      const double cross_x = p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y());
+      if (x < cross_x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+// Unrolled contour indices of the simplified vertices, in order (approxPolyDP keeps a subsequence
+// of the contour, possibly starting elsewhere). A point the contour visits twice is matched at its
+// first visit after the previous vertex: any such matching splits the contour into stretches
+// joined end to end, which is all the lens argument needs. False if the vertices do not fit one
+// turn of the contour.
+bool MatchVertices(const std::vector<cv::Point>& contour, const std::vector<cv::Point>& simplified,
+                   std::vector<int>* at) {
+  const int n = static_cast<int>(contour.size());
+  const auto first = std::find(contour.begin(), contour.end(), simplified.front());
+  if (first == contour.end()) return false;
+  const int start = static_cast<int>(first - contour.begin());
+  at->assign(1, start);
+  int pos = start;
+  for (size_t m = 1; m < simplified.size(); ++m) {
+    do {
+      if (++pos >= start + n) return false;
+    } while (contour[static_cast<size_t>(pos % n)] != simplified[m]);
+    at->push_back(pos);
+  }
+  return true;
+}
+
+}  // namespace
+
+OutlineSimplifier::OutlineSimplifier(const cv::Mat& guarded, double epsilon_cells)
+    : guarded_(guarded),
+      epsilon_(epsilon_cells),
+      any_guarded_(!guarded.empty() && cv::countNonZero(guarded) > 0) {
+  if (any_guarded_) cv::integral((guarded_ != 0) & 1, guarded_sum_, CV_32S);
+}
+
+bool OutlineSimplifier::AnyGuardedIn(int x0, int y0, int x1, int y1) const {
+  x0 = std::max(x0, 0);
+  y0 = std::max(y0, 0);
+  x1 = std::min(x1, guarded_.cols - 1);
+  y1 = std::min(y1, guarded_.rows - 1);
+  if (x0 > x1 || y0 > y1) return false;
+  const int sum = guarded_sum_.at<int>(y1 + 1, x1 + 1) - guarded_sum_.at<int>(y0, x1 + 1) -
+                  guarded_sum_.at<int>(y1 + 1, x0) + guarded_sum_.at<int>(y0, x0);
+  return sum > 0;
+}
+
+bool OutlineSimplifier::SegmentSafe(const std::vector<cv::Point>& contour, int i, int j) const {
+  if (j - i < 2) return true;  // one contour step: the lens is empty, the band region cells
+  // The lens lies in the convex hull of its vertices and the band within a cell of the segment:
+  // with no guarded cell in their bounding box (the usual case) there is nothing to visit.
+  const size_t n = contour.size();
+  int x0 = contour[static_cast<size_t>(i) % n].x;
+  int y0 = contour[static_cast<size_t>(i) % n].y;
+  int x1 = x0;
+  int y1 = y0;
+  for (int k = i + 1; k <= j; ++k) {
+    const cv::Point& p = contour[static_cast<size_t>(k) % n];
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  if (!AnyGuardedIn(x0 - 1, y0 - 1, x1 + 1, y1 + 1)) return true;
+  const Point2 a = At(contour, i);
+  const Point2 b = At(contour, j);
+  // The lens lies in the convex hull of its vertices, so within `reach` of the segment.
+  double reach2 = 0.0;
+  for (int k = i + 1; k < j; ++k) {
+    reach2 = std::max(reach2, PointSegmentDistanceSquared(At(contour, k), a, b));
+  }
+  const double reach = std::max(std::sqrt(reach2), 0.5 + kSlack) + kSlack;
+  bool safe = true;
+  ForEachCellNearSegment(a, b, reach, [&](int x, int y) {
+    if (!safe || !Guarded(x, y)) return;
+    if (InBand(x, y, a, b, kSlack) || InsideLens(x, y, contour, i, j)) safe = false;
+  });
+  return safe;
+}
+
+void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int j,
+                               std::vector<int>* kept) const {
+  const size_t first = kept->size();
+  const double epsilon2 = epsilon_ * epsilon_;
+  std::vector<std::pair<int, int>> stack = {{i, j}};
+  while (!stack.empty()) {
+    const auto [lo, hi] = stack.back();
+    stack.pop_back();
+    if (hi - lo < 2) continue;
+    const Point2 a = At(contour, lo);
+    const Point2 b = At(contour, hi);
+    int farthest = lo + 1;
+    double farthest2 = -1.0;
+    for (int k = lo + 1; k < hi; ++k) {
+      const double d2 = PointSegmentDistanceSquared(At(contour, k), a, b);
+      if (d2 > farthest2) {
+        farthest2 = d2;
+        farthest = k;
+      }
+    }
+    if (farthest2 <= epsilon2 && SegmentSafe(contour, lo, hi)) continue;
+    kept->push_back(farthest);
+    stack.emplace_back(lo, farthest);
+    stack.emplace_back(farthest, hi);
+  }
+  std::sort(kept->begin() + static_cast<std::ptrdiff_t>(first), kept->end());
+}
+
+std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour) const {
+  std::vector<cv::Point> simplified;
+  cv::approxPolyDP(contour, simplified, epsilon_, /*closed=*/true);
+  if (!any_guarded_ || contour.size() < 3 || simplified.empty()) return simplified;
+  const int n = static_cast<int>(contour.size());
+  std::vector<int> kept;
+  std::vector<int> at;
+  if (MatchVertices(contour, simplified, &at)) {
+    bool changed = false;
+    for (size_t m = 0; m < at.size(); ++m) {
+      const int i = at[m];
+      const int j = m + 1 < at.size() ? at[m + 1] : at[0] + n;
+      kept.push_back(i);
+      if (!SegmentSafe(contour, i, j)) {
+        Refine(contour, i, j, &kept);
+        changed = true;
+      }
+    }
+    if (!changed) return simplified;
+  } else {
+    // The whole ring, checked: split at its first point and the point farthest from it.
+    int farthest = 0;
+    double farthest2 = 0.0;
+    for (int k = 1; k < n; ++k) {
+      const double d2 = (At(contour, k) - At(contour, 0)).squaredNorm();
+      if (d2 > farthest2) {
+        farthest2 = d2;
+        farthest = k;
+      }
+    }
+    kept.push_back(0);
+    if (farthest > 0) {
+      Refine(contour, 0, farthest, &kept);
+      kept.push_back(farthest);
+      Refine(contour, farthest, n, &kept);
+    }
+  }
+  std::vector<cv::Point> ring;
+  ring.reserve(kept.size());
+  for (const int k : kept) ring.push_back(contour[static_cast<size_t>(k % n)]);
+  return ring;
+}
+
+}  // namespace fleetmap::vector_map
