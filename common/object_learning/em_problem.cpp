@@ -25,10 +25,11 @@ AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments
   AlignedSnapshots aligned;
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(count, cells);
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights(count, cells);
+  std::vector<PatchSampler> samplers;
+  for (const Patch& snapshot : problem.snapshots) samplers.emplace_back(snapshot);
   for (size_t n = 0; n < objects; ++n) {
     for (size_t s = 0; s < count; ++s) {
-      TransformPatchInto(problem.snapshots[s], alignments[s][n], rows.row(s).data(),
-                         weights.row(s).data());
+      samplers[s].Sample(alignments[s][n], rows.row(s).data(), weights.row(s).data());
     }
     aligned.values.push_back(rows.cast<double>());
     aligned.weights.push_back(weights.cast<double>());

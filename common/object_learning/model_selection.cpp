@@ -46,15 +46,13 @@ SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& option
   int highest = total;
   SelectionResult result;
   result.log_posterior = -std::numeric_limits<double>::infinity();
-  if (highest > options.selection.max_objects) {
-    highest = std::max(lowest, options.selection.max_objects);
-    result.warnings.push_back("the number of objects was searched up to " +
-                              std::to_string(highest) + " (selection.max_objects), not " +
-                              std::to_string(total) + " (all snapshots)");
-  }
+  const bool capped = highest > options.selection.max_objects;
+  if (capped) highest = std::max(lowest, options.selection.max_objects);
   const int patience = options.selection.patience;
   int n_since_best = 0;
+  int last_n = lowest;
   for (int n = lowest; n <= highest; ++n) {
+    last_n = n;
     bool improved_n = false;
     const int m_lo = options.hierarchical ? 1 : 0;
     const int m_hi = options.hierarchical ? n : 0;
@@ -83,6 +81,11 @@ SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& option
     } else if (patience > 0 && ++n_since_best >= patience) {
       break;
     }
+  }
+  if (capped && last_n == highest && result.num_objects >= highest - patience) {
+    result.warnings.push_back("the number of objects was searched up to " +
+                              std::to_string(highest) + " (selection.max_objects), not " +
+                              std::to_string(total) + " (all snapshots), and the best was near it");
   }
   return result;
 }

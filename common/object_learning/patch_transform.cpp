@@ -234,4 +234,35 @@ double PatchSampler::SquaredDistance(const Alignment& alignment, const float* ta
   return sum;
 }
 
+void PatchSampler::Sample(const Alignment& alignment, float* out, float* out_weight) const {
+  const double cx = 0.5 * (width_ - 1), cy = 0.5 * (height_ - 1);
+  const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
+  const double sx = alignment.dx / resolution_, sy = alignment.dy / resolution_;
+  const int pw = width_ + 2;
+  const float outside_weight = has_weight_ ? 0.0f : 1.0f;
+  for (int y = 0; y < height_; ++y) {
+    const double px = -cx - sx, py = y - cy - sy;
+    float u = static_cast<float>(c * px + s * py + cx);
+    float v = static_cast<float>(-s * px + c * py + cy);
+    const float du = static_cast<float>(c), dv = static_cast<float>(-s);
+    for (int x = 0; x < width_; ++x, u += du, v += dv) {
+      float f = 0.0f, w = outside_weight;
+      if (u > -1.0f && v > -1.0f && u < width_ && v < height_) {
+        const int iu = static_cast<int>(u + 1.0f);
+        const int iv = static_cast<int>(v + 1.0f);
+        const float fu = u + 1.0f - iu, fv = v + 1.0f - iv;
+        const size_t i = static_cast<size_t>(iv) * pw + iu;
+        const float w00 = (1.0f - fu) * (1.0f - fv), w10 = fu * (1.0f - fv);
+        const float w01 = (1.0f - fu) * fv, w11 = fu * fv;
+        f = w00 * value_[i] + w10 * value_[i + 1] + w01 * value_[i + pw] + w11 * value_[i + pw + 1];
+        w = w00 * weight_[i] + w10 * weight_[i + 1] + w01 * weight_[i + pw] +
+            w11 * weight_[i + pw + 1];
+      }
+      const size_t o = static_cast<size_t>(y) * width_ + x;
+      out[o] = f;
+      if (out_weight) out_weight[o] = w;
+    }
+  }
+}
+
 }  // namespace fleetmap::object_learning

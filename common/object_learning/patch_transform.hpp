@@ -69,6 +69,8 @@ class PatchSampler {
   const CellBox& box() const { return box_; }  // the source's non-negligible cells
   double SquaredDistance(const Alignment& alignment, const float* target, const CellBox& target_box,
                          double bound) const;
+  // f(source, alignment) and its weights over the whole patch (row-major), as TransformPatchInto.
+  void Sample(const Alignment& alignment, float* out, float* out_weight) const;
 
  private:
   int width_;
