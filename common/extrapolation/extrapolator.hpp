@@ -56,13 +56,13 @@ struct ExtrapolationOptions {
   // People: a skew-normal personal-space kernel in the person's frame (x forward, y left):
   // sigma_forward / sigma_side (metres), skew alpha = (person_skew_forward,
   // dominant_side * person_skew_side): more space ahead and away from the dominant side.
-  double person_sigma_forward = 0.45;
+  double person_sigma_forward = 0.35;
   double person_sigma_side = 0.35;
   double person_skew_forward = 2.0;
   double person_skew_side = 1.0;
   // Linear prediction horizon when a person leaves / enters the view (seconds), and the spacing
   // of the poses the kernel is swept over (metres).
-  double track_horizon = 1.0;
+  double track_horizon = 0.8;
   double track_sample_spacing = 0.1;
   // Where the dominant side is inferred, obstacles are searched up to this far sideways (metres).
   double dominant_side_search = 2.0;

@@ -14,7 +14,7 @@
 namespace fleetmap::extrapolation {
 
 struct TrackPredictorOptions {
-  double horizon = 1.0;         // seconds predicted beyond the observed end(s)
+  double horizon = 0.8;         // seconds predicted beyond the observed end(s)
   double fit_window = 1.0;      // seconds of track the velocity is fitted on
   double sample_spacing = 0.1;  // metres between output poses
   double max_speed = 3.0;       // m/s: a faster fit is cut to this (tracking glitches)

@@ -36,7 +36,7 @@ IndoorScene GenerateIndoorScene(const IndoorSceneOptions& options, uint32_t seed
   const double floor_height = options.floor_height + random.Uniform(-0.1, 0.1);
   stairs.risers = static_cast<int>(std::lround(floor_height / 0.17));
   stairs.rise = floor_height / stairs.risers;
-  const double hall_length = random.Uniform(2.5, 4.5);
+  const double hall_length = random.Uniform(1.5, 4.5);
   stairs.block_length = hall_length;
 
   // y: outer wall face at 0.1, rooms below, corridor, rooms above, outer wall.
@@ -152,7 +152,7 @@ IndoorScene GenerateIndoorScene(const IndoorSceneOptions& options, uint32_t seed
 
   // Upper floor: a hall beyond the top of the flight, a little wider than it.
   const double x_top = stairs.top().x();
-  const double half = 0.5 * corridor_width + random.Uniform(0.6, 1.5);
+  const double half = 0.5 * corridor_width + random.Uniform(0.0, 1.5);
   const double yc = stairs.foot.y();
   scene.hall_min = Point2(x_top, std::max(0.5 * boundary, yc - half));
   scene.hall_max = Point2(x_end - 0.5 * boundary, std::min(y_top - 0.5 * boundary, yc + half));

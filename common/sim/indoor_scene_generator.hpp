@@ -4,8 +4,8 @@
 // "Indoor scenes"): a corridor running east with offices on both sides (3-5.5 m wide, 4-5.5 m deep,
 // each with a 0.85-1 m door on the corridor, the hinge on either side, 0-3 pieces of furniture kept
 // 1.3 m from the door), a straight flight of stairs filling the corridor's east end, and on the
-// floor above a hall beyond the top of the flight (a little wider than the flight, 2.5-4.5 m
-// long, 0-2 benches kept 1 m from the top edge). Same options and seed -> the same scene.
+// floor above a hall beyond the top of the flight (0-1.5 m wider than the flight each side, 1.5-4.5
+// m long, 0-2 benches kept 1 m from the top edge). Same options and seed -> the same scene.
 //
 // Thread-safety: stateless.
 

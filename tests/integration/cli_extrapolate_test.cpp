@@ -181,10 +181,10 @@ TEST(CliExtrapolateTest, DetectsStairsAndDoorsInACloud) {
   int doors = 0, stairs = 0;
   for (const nlohmann::json& e : used["entities"]) {
     if (e["class"] == "door") {
-      ++doors;
+      // The view may show other doors too; one detection must be the door looked at.
       const Point2 centre =
           0.5 * (Point2(e["hinge"][0], e["hinge"][1]) + Point2(e["latch"][0], e["latch"][1]));
-      EXPECT_LT((centre - door.center()).norm(), 0.3);
+      doors += (centre - door.center()).norm() < 0.3;
     }
     if (e["class"] == "stairs") {
       ++stairs;

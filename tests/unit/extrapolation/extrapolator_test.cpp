@@ -168,7 +168,7 @@ TEST(ExtrapolatorTest, PersonFreeSpaceFollowsTheTrackAndExtendsForwardOnLeaving)
   EXPECT_TRUE(free_at(*stays, Point2(1.5, 1.0)));
   EXPECT_TRUE(free_at(*stays, Point2(2.5, 1.0)));
   EXPECT_FALSE(free_at(*stays, Point2(3.6, 1.0)));
-  entities.people[0].left_view = true;  // 1 m/s for 1 s more: up to x = 3.5
+  entities.people[0].left_view = true;  // 1 m/s for 0.8 s more: up to x = 3.3
   const auto leaves = Extrapolate(map, entities);
   ASSERT_TRUE(leaves.ok());
   EXPECT_TRUE(free_at(*leaves, Point2(3.6, 1.0)));
