@@ -69,7 +69,7 @@ struct SelectionOptions {
   int max_objects = 16;           // cap on N (a warning says when it bites), >= 1
   // The search along N (and along M for each N) stops after this many candidates in a row
   // without a new best; 0 searches the whole grid.
-  int patience = 2;
+  int patience = 1;
 };
 
 struct LearnOptions {
