@@ -234,6 +234,9 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     ExtrapolationSceneOptions scene;
     scene.seed = options.seed + static_cast<uint32_t>(i);
     scene.p_th = options.p_th;
+    if (i == 0 && !options.out_dir.empty()) {
+      scene.example_dir = options.out_dir + "/scene_" + std::to_string(scene.seed);
+    }
     if (options.progress) {
       err << "\r" << prefix << "scene " << i + 1 << "/" << options.scenes << std::flush;
     }

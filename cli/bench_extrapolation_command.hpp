@@ -5,7 +5,9 @@
 // (seeds S .. S + N - 1). Prints the paper's tables (detection recall of stairs and doors;
 // free-space precision per class and threshold; the surface gained behind closed doors) and,
 // with --out, writes DIR/report.md, DIR/results.csv (one row per scene and threshold) and
-// DIR/results.json (the totals). Bad options exit with code 2 before anything runs.
+// DIR/results.json (the totals), and the first scene's inputs under DIR/scene_<S>/ (local map,
+// entities, ground truths, camera points) to try `fleetmap extrapolate` on. Bad options exit with
+// code 2 before anything runs.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>

@@ -1,14 +1,19 @@
 #include "cli/extrapolation_experiment.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <optional>
 
 #include "common/extrapolation/door_detector.hpp"
+#include "common/extrapolation/entities_json.hpp"
 #include "common/extrapolation/extrapolator.hpp"
 #include "common/extrapolation/map_queries.hpp"
+#include "common/extrapolation/ply_reader.hpp"
 #include "common/extrapolation/predicted_free_grid.hpp"
 #include "common/extrapolation/stairs_detector.hpp"
+#include "common/grid/map_io.hpp"
 #include "common/sim/depth_sensor.hpp"
 #include "common/sim/indoor_scene_generator.hpp"
 #include "common/sim/laser_scanner.hpp"
@@ -76,6 +81,12 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
   FLEETMAP_ASSIGN_OR_RETURN(const sim::DepthSensor camera, sim::DepthSensor::Create({}));
   const std::vector<sim::Box3> boxes = sim::SceneBoxes(scene);
   ex::Entities entities;
+  ex::PointCloud all_views;  // for example_dir
+  auto capture = [&](const sim::CameraPose& pose) {
+    ex::PointCloud cloud = ToCloud(camera.Capture(boxes, pose, &random));
+    if (!options.example_dir.empty()) all_views.insert(all_views.end(), cloud.begin(), cloud.end());
+    return cloud;
+  };
 
   // Doors: one view of each closed door whose leaf the robot mapped.
   auto add_door = [&](const ex::DoorEntity& door) {
@@ -103,8 +114,7 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     sim::CameraPose pose;
     pose.pose =
         Pose2{eye.x(), eye.y(), std::atan2(look.y(), look.x()) + random.Gaussian(0.0, 0.05)};
-    const std::vector<ex::DetectedDoor> found =
-        ex::DetectDoors(ToCloud(camera.Capture(boxes, pose, &random)), eye);
+    const std::vector<ex::DetectedDoor> found = ex::DetectDoors(capture(pose), eye);
     bool detected = false;
     for (const ex::DetectedDoor& d : found) {
       // A false positive is where no door is; a door found too narrow (partly hidden) is not one.
@@ -133,8 +143,7 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     pose.pose = Pose2{stairs.foot.x() - random.Uniform(1.8, 3.0), yc + random.Uniform(-0.2, 0.2),
                       random.Gaussian(0.0, 0.1)};
     bool detected = false;
-    for (const ex::DetectedStairs& s :
-         ex::DetectStairs(ToCloud(camera.Capture(boxes, pose, &random)))) {
+    for (const ex::DetectedStairs& s : ex::DetectStairs(capture(pose))) {
       const bool match = (s.entity.position - stairs.foot).norm() < kStairsMatch &&
                          s.entity.ascending.dot(stairs.ascending) > std::cos(kStairsAngleMatch) &&
                          std::abs(s.entity.step_width - stairs.width) < kStairsWidthMatch;
@@ -172,6 +181,17 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     entities.people.push_back(std::move(track));
   }
 
+  if (!options.example_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.example_dir, ec);
+    if (ec) return InvalidArgumentError(options.example_dir + ": cannot create the directory");
+    const std::string& dir = options.example_dir;
+    FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(local, dir + "/local.yaml"));
+    FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(truth, dir + "/truth.yaml"));
+    FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(upper, dir + "/upper.yaml"));
+    FLEETMAP_RETURN_IF_ERROR(ex::WritePly(all_views, dir + "/views.ply"));
+    std::ofstream(dir + "/entities.json") << ex::EntitiesToJson(entities);
+  }
   for (double p_th : options.p_th) {
     ex::ExtrapolationOptions extrapolation = options.extrapolation;
     extrapolation.p_th = p_th;

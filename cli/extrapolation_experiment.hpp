@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/core/status.hpp"
@@ -31,6 +32,10 @@ struct ExtrapolationSceneOptions {
   int people = 4;
   int stairs_views = 2;
   extrapolation::ExtrapolationOptions extrapolation;  // its p_th is replaced by each of p_th
+  // If set, the scene's inputs are written there for `fleetmap extrapolate`: local.yaml (+ .pgm),
+  // entities.json (detected doors and stairs, observed tracks), truth.yaml (the floor, doors
+  // open), upper.yaml (the floor above) and views.ply (the camera's points, all views).
+  std::string example_dir;
 };
 
 // Scores per threshold: the free-space precision of each class and the surface gained.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "common/extrapolation/door_detector.hpp"
 #include "common/extrapolation/stairs_detector.hpp"
@@ -31,7 +32,8 @@ TEST(StairsDetectorTest, RecoversFootDirectionAndWidthFromSimulatedPoints) {
     ASSERT_EQ(found.size(), 1u) << "seed " << seed;
     const StairsEntity& s = found[0].entity;
     EXPECT_LT((s.position - truth.foot).norm(), 0.25) << "seed " << seed;
-    EXPECT_GT(s.ascending.dot(truth.ascending), std::cos(5.0 * M_PI / 180.0)) << "seed " << seed;
+    EXPECT_GT(s.ascending.dot(truth.ascending), std::cos(5.0 * std::numbers::pi / 180.0))
+        << "seed " << seed;
     EXPECT_NEAR(s.step_width, truth.width, 0.2) << "seed " << seed;
     EXPECT_NEAR(s.position.x() + s.run_length, truth.top().x(), 0.5) << "seed " << seed;
   }
@@ -40,7 +42,8 @@ TEST(StairsDetectorTest, RecoversFootDirectionAndWidthFromSimulatedPoints) {
 TEST(StairsDetectorTest, NoStairsInAFlatCorridor) {
   const sim::IndoorScene scene = sim::GenerateIndoorScene({}, 4);
   sim::CameraPose camera;
-  camera.pose = Pose2{scene.corridor_min.x() + 5.0, scene.stairs.foot.y(), M_PI};  // looking west
+  camera.pose =
+      Pose2{scene.corridor_min.x() + 5.0, scene.stairs.foot.y(), std::numbers::pi};  // looking west
   EXPECT_TRUE(DetectStairs(Capture(scene, camera, 4)).empty());
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "common/extrapolation/voxel_filter.hpp"
@@ -35,7 +36,7 @@ TEST(RansacPlaneTest, FindsAKnownPlaneAmongOutliers) {
   const auto fit = FitPlaneRansac(cloud, options);
   ASSERT_TRUE(fit);
   const Vector3 expected = Vector3(-0.5, 0.0, 1.0).normalized();
-  EXPECT_GT(fit->plane.normal.dot(expected), std::cos(1.0 * M_PI / 180.0));
+  EXPECT_GT(fit->plane.normal.dot(expected), std::cos(1.0 * std::numbers::pi / 180.0));
   EXPECT_NEAR(fit->plane.Distance(Point3(0, 0, 1)), 0.0, 0.01);
   EXPECT_NEAR(fit->plane.Tilt(), std::atan(0.5), 0.02);
   // Nearly all 600 plane points, and few outliers (those that happen to lie in the band).
