@@ -177,7 +177,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
   const size_t cells = static_cast<size_t>(width) * height;
 
   std::vector<Mask> occupied(maps.size(), Mask(cells, 0));
-  std::vector<Mask> clear(maps.size(), Mask(cells, 0));  // free, no occupied cell near
+  std::vector<Mask> clear(maps.size(), Mask(cells, 0));  // free, nothing but free cells near
   for (size_t t = 0; t < maps.size(); ++t) {
     Mask free(cells, 0);
     for (size_t i = 0; i < cells; ++i) {
@@ -185,7 +185,11 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
       occupied[t][i] = state == grid::CellState::kOccupied;
       free[i] = state == grid::CellState::kFree;
     }
-    const Mask near = Dilate(occupied[t], width, height, options.guard_radius);
+    // A free cell next to an occupied or unknown one is not trusted: a ray grazing a wall clears
+    // cells of its face, and a wall seen one cell further on is not a moved object.
+    Mask not_free(cells, 0);
+    for (size_t i = 0; i < cells; ++i) not_free[i] = !free[i];
+    const Mask near = Dilate(not_free, width, height, options.guard_radius);
     for (size_t i = 0; i < cells; ++i) clear[t][i] = free[i] && !near[i];
   }
 
