@@ -63,6 +63,7 @@ std::optional<PlaneFit> FitPlaneRansac(const PointCloud& points, const RansacOpt
   SplitMix random(options.seed);
   std::optional<Plane> best;
   size_t best_count = 0;
+  const int stride = std::max(1, n / std::max(1, options.max_scored_points));
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const int a = random.Below(n), b = random.Below(n), c = random.Below(n);
     if (a == b || b == c || a == c) continue;
@@ -71,15 +72,17 @@ std::optional<PlaneFit> FitPlaneRansac(const PointCloud& points, const RansacOpt
     const Plane plane = Oriented(normal, points[a]);
     if (!TiltAllowed(plane, options)) continue;
     size_t count = 0;
-    for (const Point3& p : points)
-      count += std::abs(plane.Distance(p)) <= options.distance_threshold;
+    for (int i = 0; i < n; i += stride) {
+      count += std::abs(plane.Distance(points[i])) <= options.distance_threshold;
+    }
     if (count > best_count) {
       best_count = count;
       best = plane;
     }
   }
-  if (!best || best_count < static_cast<size_t>(options.min_inliers)) return std::nullopt;
+  if (!best) return std::nullopt;
   PlaneFit fit{*best, Inliers(points, *best, options.distance_threshold)};
+  if (fit.inliers.size() < static_cast<size_t>(options.min_inliers)) return std::nullopt;
   // Refit on the inliers (twice: the band moves with the plane), keeping the tilt constraint.
   for (int round = 0; round < 2; ++round) {
     PointCloud inlier_points;

@@ -31,6 +31,10 @@ struct RansacOptions {
   double min_tilt = 0.0;
   double max_tilt = 1.5707963267948966;
   uint32_t seed = 1;
+  // Hypotheses are scored on at most this many points (an even stride through the input), so a
+  // large cloud costs iterations x this, not iterations x its size; the winner's inliers are then
+  // taken from every point. min_inliers is compared with the full count.
+  int max_scored_points = 40000;
 };
 
 struct PlaneFit {

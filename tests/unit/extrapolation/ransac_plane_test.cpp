@@ -55,6 +55,21 @@ TEST(RansacPlaneTest, TiltConstraintRejectsThePlane) {
   }
 }
 
+TEST(RansacPlaneTest, ScoresOnASubsampleButCountsEveryInlier) {
+  PointCloud cloud;
+  for (int k = 0; k < 50; ++k) {
+    const PointCloud part = PlaneWithOutliers();
+    cloud.insert(cloud.end(), part.begin(), part.end());
+  }
+  RansacOptions options;
+  options.min_inliers = 100;
+  options.max_scored_points = 2000;  // 25 x fewer than the cloud
+  const auto fit = FitPlaneRansac(cloud, options);
+  ASSERT_TRUE(fit);
+  EXPECT_NEAR(fit->plane.Tilt(), std::atan(0.5), 0.02);
+  EXPECT_GE(fit->inliers.size(), 50u * 590u);
+}
+
 TEST(RansacPlaneTest, TooFewPointsGiveNothing) {
   EXPECT_FALSE(FitPlaneRansac({Point3(0, 0, 0), Point3(1, 0, 0)}, {}));
   EXPECT_FALSE(FitPlaneRansac({}, {}));
