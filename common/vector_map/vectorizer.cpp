@@ -8,6 +8,7 @@
 #include "common/vector_map/cell_polyline.hpp"
 #include "common/vector_map/cell_raster.hpp"
 #include "common/vector_map/default_vectorizer.hpp"
+#include "common/vector_map/end_extender.hpp"
 #include "common/vector_map/free_space_extractor.hpp"
 #include "common/vector_map/half_width.hpp"
 #include "common/vector_map/lattice.hpp"
@@ -76,6 +77,15 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
       }
     }
     half_widths = CoveredHalfWidths(raster, polylines, epsilon / resolution, 0.5);
+    // Line ends that thinning shortened are lengthened to paint their end cells (checked against
+    // the full epsilon on the snapped result), so the free space needs no hole for them.
+    EndExtensionOptions ends;
+    ends.epsilon = epsilon / resolution;
+    ends.min_radius = 0.5;
+    if (lattice.enabled()) {
+      ends.snap = [&](const Point2& p) { return frame.ToCell(lattice.Snap(frame.ToMap(p))); };
+    }
+    ExtendLineEnds(raster, half_widths, ends, polylines);
   }
   map.obstacles.reserve(polylines.size());
   for (size_t k = 0; k < polylines.size(); ++k) {

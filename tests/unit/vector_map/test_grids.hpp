@@ -97,6 +97,22 @@ inline int OccupiedComeBackFree(const grid::OccupancyGrid& grid, const grid::Occ
   return count;
 }
 
+// Cells `grid` calls occupied that `back` does not: with `back` rasterized from obstacles only,
+// the occupied cells the obstacles leave unpainted (each costs the free space a hole or a notch
+// and comes back unknown).
+inline int OccupiedLeftUnpainted(const grid::OccupancyGrid& grid, const grid::OccupancyGrid& back) {
+  int count = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      count += grid.StateAt(x, y) == grid::CellState::kOccupied &&
+                       back.StateAt(x, y) != grid::CellState::kOccupied
+                   ? 1
+                   : 0;
+    }
+  }
+  return count;
+}
+
 // The real maps of ../shared/data/maps (SOURCES.md).
 inline const std::vector<std::string>& RealMapNames() {
   static const std::vector<std::string> names = {

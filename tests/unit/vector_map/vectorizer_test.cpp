@@ -221,6 +221,46 @@ void ExpectOnLattice(const VectorMap& map, double quantum, const Point2& origin)
   }
 }
 
+// Line ends that thinning shortens: the polylines must paint them themselves, so they need no
+// free-space hole. Before end_extender every thin wall left both end cells unpainted: 18 cells
+// and 9 holes on this fixture (16 and 7 on the lattice); now 11 and 2.
+TEST(VectorizerTest, LineEndsArePaintedByTheirPolylines) {
+  OccupancyGrid grid(80, 60, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 5, 30, 5, grid::kOccupiedValue);    // 1 cell thick, horizontal
+  FillRect(grid, 40, 5, 40, 30, grid::kOccupiedValue);  // 1 cell thick, vertical
+  FillRect(grid, 5, 15, 30, 17, grid::kOccupiedValue);  // 3 cells thick
+  for (int k = 0; k < 15; ++k) grid.at(10 + k, 30 + k) = grid::kOccupiedValue;  // diagonal
+  FillRect(grid, 50, 10, 70, 10, grid::kOccupiedValue);  // an L: two free ends and a corner
+  FillRect(grid, 70, 10, 70, 40, grid::kOccupiedValue);
+  for (const bool tiled : {false, true}) {
+    SCOPED_TRACE(tiled ? "on the tile lattice" : "whole map");
+    VectorizerOptions options;
+    if (tiled) options.quantum = TileQuantum(1.0);
+    const VectorMap map = VectorizeOrDie(grid, options);
+    ExpectValid(map, grid);
+    VectorMap obstacles = map;
+    obstacles.free_space.clear();
+    const OccupancyGrid back = *Rasterizer().Rasterize(obstacles, grid);
+    // Every cell of the straight walls and the diagonal is painted, ends included.
+    int outside_l = 0;
+    for (int y = 0; y < grid.height(); ++y) {
+      for (int x = 0; x < 50; ++x) {
+        outside_l += grid.StateAt(x, y) == grid::CellState::kOccupied &&
+                     back.StateAt(x, y) != grid::CellState::kOccupied;
+      }
+    }
+    EXPECT_EQ(outside_l, 0);
+    // Known shortfall: the L's corner is simplified to a shortcut within epsilon whose thin band
+    // misses ten cells of the horizontal arm (and one end cell that cannot be reached without
+    // unpainting others); they come back unknown, in at most two small holes.
+    EXPECT_LE(testing::OccupiedLeftUnpainted(grid, back), 11);
+    size_t holes = 0;
+    for (const FreePolygon& polygon : map.free_space) holes += polygon.holes.size();
+    EXPECT_LE(holes, 2u);
+    EXPECT_EQ(testing::OccupiedComeBackFree(grid, *Rasterizer().Rasterize(map, grid)), 0);
+  }
+}
+
 TEST(VectorizerTest, QuantisedOutputLiesOnTheLatticeAndHoldsBothConstraints) {
   const OccupancyGrid grid = testing::FloorPlan();
   for (const double quantum : {0.001, 0.0123, 0.02}) {
