@@ -5,6 +5,9 @@
 // responsibilities), closed-form model M-step, alignment M-step, with sigma and tau annealed
 // from their initial to their final values. Ends with the log joint p(data, theta, alpha | delta)
 // at the final sigma and tau (c and z summed out under uniform priors), for model selection.
+// Beyond the paper (docs/object-learning.md, "Design choices"): objects are aligned to templates
+// and re-framed onto their most likely one each iteration, and at rotation-scan iterations the
+// templates are regrouped by k-medoids over the objects when that explains them clearly better.
 //
 // Thread-safety: stateless; runs may go concurrently.
 

@@ -12,8 +12,9 @@
 namespace fleetmap::object_learning {
 
 // Map differencing (SnapshotExtractor). A cell of map t is a difference when it is occupied in t
-// and free in some other map t' with no occupied cell of t' within `guard_radius` (a wall seen one
-// cell further in t' is not a moved object); the difference mask is low-pass filtered (box mean
+// and free in some other map t' with only free cells of t' within `guard_radius` (a wall seen one
+// cell further in t', or a wall face a grazing ray cleared, is not a moved object); the difference
+// mask is low-pass filtered (box mean
 // over (2 filter_radius + 1)^2 cells, kept where >= filter_threshold) against the speckle along
 // occupied/free borders; region growing (cells up to link_cells apart) makes one snapshot per
 // region.

@@ -2,7 +2,7 @@
 
 // Map differencing (ALGORITHMS.md 2, "Snapshot extraction"): cuts one snapshot per moved object
 // out of every map. A cell of map t is a difference when it is occupied in t and free in some
-// other map t' with no occupied cell of t' within SnapshotOptions::guard_radius; a low-pass filter
+// other map t' with only free cells of t' within SnapshotOptions::guard_radius; a low-pass filter
 // (box mean) removes the speckle along occupied/free borders; region growing (cells up to
 // SnapshotOptions::link_cells apart) makes one
 // region per object, which is cropped into a patch centred on the region's centroid cell. Every
