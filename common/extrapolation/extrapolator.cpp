@@ -52,7 +52,14 @@ Submap MakePredictedSubmap(const grid::OccupancyGrid& map, const LatticeWindow& 
   return submap;
 }
 
-bool Finite(const Point2& p) { return p.allFinite(); }
+// Coordinates beyond this (metres) are taken as garbage, not as a place: no map is that large, and
+// casting them to cell indices would overflow.
+constexpr double kMaxCoordinate = 1e6;
+// A track point further from the previous one than this speed allows (plus 1 m) is a tracking
+// error (m/s).
+constexpr double kMaxPersonSpeed = 10.0;
+
+bool Finite(const Point2& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
 
 // Keeps the cells of `mask` (row-major, window-sized) 4-connected to a seed.
 std::vector<uint8_t> ConnectedToSeeds(const std::vector<uint8_t>& mask, int width, int height,
@@ -129,7 +136,13 @@ class Extrapolator {
       if (!Finite(p.position) || !std::isfinite(p.stamp) || !std::isfinite(p.heading) ||
           (i > 0 && !(p.stamp > person.points[i - 1].stamp))) {
         Warn(name + " skipped: point " + std::to_string(i) +
-             " is not finite or its stamp does not increase");
+             " is not finite (or beyond 1e6 m) or its stamp does not increase");
+        return;
+      }
+      if (i > 0 && (p.position - person.points[i - 1].position).norm() >
+                       kMaxPersonSpeed * (p.stamp - person.points[i - 1].stamp) + 1.0) {
+        Warn(name + " skipped: point " + std::to_string(i) + " jumps faster than " +
+             std::to_string(static_cast<int>(kMaxPersonSpeed)) + " m/s (a tracking error)");
         return;
       }
     }
@@ -183,7 +196,7 @@ class Extrapolator {
     const std::string name = "door '" + door.id + "'";
     const double w = door.width();
     if (!Finite(door.hinge) || !Finite(door.latch) || !door.opening_direction.allFinite()) {
-      Warn(name + " skipped: a coordinate is not finite");
+      Warn(name + " skipped: a coordinate is not finite (or beyond 1e6 m)");
       return;
     }
     if (!(w >= 0.2)) {
@@ -274,8 +287,9 @@ class Extrapolator {
     const std::string name = "stairs '" + stairs.id + "'";
     if (!Finite(stairs.position) || !stairs.ascending.allFinite() ||
         !std::isfinite(stairs.step_width) || !std::isfinite(stairs.next_floor_height) ||
-        !std::isfinite(stairs.run_length)) {
-      Warn(name + " skipped: a value is not finite");
+        !std::isfinite(stairs.run_length) || stairs.run_length > kMaxCoordinate ||
+        stairs.step_width > kMaxCoordinate) {
+      Warn(name + " skipped: a value is not finite (or beyond 1e6 m)");
       return;
     }
     if (stairs.ascending.norm() < 1e-6 || !(stairs.step_width > 0.0) ||

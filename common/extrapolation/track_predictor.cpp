@@ -36,7 +36,8 @@ Vector2 FitVelocity(const std::vector<TrackPoint>& points, bool at_end, double w
 void AppendSegment(const Point2& a, const Point2& b, double heading, bool predicted, double spacing,
                    std::vector<SweptPose>* out) {
   const double length = (b - a).norm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+  // Bounded: a segment never has more than 100 000 poses (a 10 km segment at 0.1 m).
+  const int steps = static_cast<int>(std::clamp(std::ceil(length / spacing), 1.0, 100000.0));
   for (int i = 0; i < steps; ++i) {
     const double f = static_cast<double>(i) / steps;
     out->push_back({a + f * (b - a), heading, predicted});

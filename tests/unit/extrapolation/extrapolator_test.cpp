@@ -263,6 +263,25 @@ TEST(ExtrapolatorTest, UnusableEntitiesAreSkippedWithWarnings) {
   EXPECT_THAT(result->warnings[2], HasSubstr("stairs 'nan'"));
 }
 
+TEST(ExtrapolatorTest, GarbageCoordinatesAndTrackingJumpsAreSkipped) {
+  Entities entities;
+  StairsEntity far;
+  far.id = "far";
+  far.position = Point2(1e300, 0.0);
+  entities.stairs.push_back(far);
+  PersonTrack jumpy;
+  jumpy.id = "jumpy";
+  jumpy.points = {{0.0, Point2(1, 1), 0.0}, {0.1, Point2(1e5, 1), 0.0}};
+  entities.people.push_back(jumpy);
+  const auto result = Extrapolate(Corridor(), entities);
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(result->graph.submaps.size(), 1u);
+  ASSERT_EQ(result->warnings.size(), 2u);
+  EXPECT_THAT(result->warnings[0], HasSubstr("person 'jumpy'"));
+  EXPECT_THAT(result->warnings[0], HasSubstr("tracking error"));
+  EXPECT_THAT(result->warnings[1], HasSubstr("stairs 'far'"));
+}
+
 TEST(ExtrapolatorTest, BadOptionsAndEmptyMapAreErrors) {
   ExtrapolationOptions options;
   options.p_th = 1.0;
