@@ -1,0 +1,78 @@
+#include "common/object_learning/object_learner.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace fleetmap::object_learning {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A 5 x 5 m room with box outlines (insides unknown) at the given cells.
+grid::OccupancyGrid Room(const std::vector<std::pair<int, int>>& boxes) {
+  grid::OccupancyGrid map(100, 100, 0.05, Pose2{}, grid::kFreeValue);
+  for (int i = 0; i < 100; ++i) {
+    map.at(i, 0) = map.at(i, 99) = map.at(0, i) = map.at(99, i) = grid::kOccupiedValue;
+  }
+  for (const auto& [x0, y0] : boxes) {
+    for (int y = y0; y < y0 + 8; ++y) {
+      for (int x = x0; x < x0 + 12; ++x) {
+        const bool edge = x == x0 || y == y0 || x == x0 + 11 || y == y0 + 7;
+        map.at(x, y) = edge ? grid::kOccupiedValue : grid::kUnknownValue;
+      }
+    }
+  }
+  return map;
+}
+
+TEST(ObjectLearnerTest, LearnsBoxesWithAssignmentsForEverySnapshot) {
+  const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
+                                                 Room({{30, 70}, {70, 20}}), Room({{15, 50}})};
+  const StatusOr<LearnedModel> model = LearnObjects(maps);
+  ASSERT_TRUE(model.ok()) << model.status();
+  EXPECT_GE(model->num_objects, 2);
+  EXPECT_EQ(model->num_templates, 1);  // every box alike
+  ASSERT_EQ(model->snapshots.size(), 5u);
+  EXPECT_EQ(model->objects.size(), static_cast<size_t>(model->num_objects));
+  EXPECT_EQ(model->object_template.size(), model->objects.size());
+  // Mutual exclusion: the two boxes of map 0 are two objects.
+  EXPECT_NE(model->snapshots[0].object, model->snapshots[1].object);
+  for (const Patch& p : model->objects) {
+    for (float v : p.occupancy) {
+      EXPECT_GE(v, 0.0f);
+      EXPECT_LE(v, 1.0f);
+    }
+  }
+  EXPECT_FALSE(model->searched.empty());
+  EXPECT_TRUE(model->warnings.empty());
+}
+
+TEST(ObjectLearnerTest, ApproximateEStepAboveTheBoundIsSaid) {
+  const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
+                                                 Room({{30, 70}, {70, 20}})};
+  LearnOptions options;
+  options.em.max_exact_snapshots = 1;  // two snapshots per map: sampled
+  const StatusOr<LearnedModel> model = LearnObjects(maps, options);
+  ASSERT_TRUE(model.ok()) << model.status();
+  ASSERT_FALSE(model->warnings.empty());
+  EXPECT_THAT(model->warnings.back(), HasSubstr("Gibbs"));
+  EXPECT_NE(model->snapshots[0].object, model->snapshots[1].object);
+}
+
+TEST(ObjectLearnerTest, BadInputsAreErrors) {
+  const grid::OccupancyGrid a = Room({{10, 10}});
+  const Status one = LearnObjects({a}).status();
+  EXPECT_EQ(one.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(one.message(), HasSubstr("at least two maps"));
+  LearnOptions options;
+  options.em.annealing = 1.5;
+  EXPECT_THAT(LearnObjects({a, a}, options).status().message(), HasSubstr("em.annealing"));
+  options = LearnOptions{};
+  options.restarts = 0;
+  EXPECT_THAT(LearnObjects({a, a}, options).status().message(), HasSubstr("restarts"));
+}
+
+}  // namespace
+}  // namespace fleetmap::object_learning
