@@ -31,6 +31,10 @@ std::string Fixed(double value, int digits) {
 
 std::string Kb(size_t bytes) { return Fixed(bytes / kKilo, 1); }
 
+std::string Ratio(size_t a, size_t b) {
+  return Fixed(static_cast<double>(a) / std::max<size_t>(1, b), 1);
+}
+
 std::string Pct(const std::optional<double>& value) {
   return value ? Fixed(*value, 2) : std::string("n/a");
 }
@@ -82,10 +86,16 @@ class ProgressBar {
 void WriteCsv(const std::vector<PaperTerrainResult>& results, const std::string& path) {
   std::ofstream csv(path);
   csv << "kind,size_m,seed,width,height,scans,distance_m,explored,observed_free,"
-         "P,PZ,P_zstd,P_png,V,VZ,V_zstd,V_truth,vertices,segments";
+         "P,PZ,P_zstd,P_png,V,VZ,V_zstd,V_obst,VZ_obst,V_obst_zstd,V_truth,vertices,segments";
   for (const char* map : {"grid", "vgrid", "vtruth"}) {
     for (const char* metric : {"ms", "cc", "pc", "opdf", "updf"}) {
       csv << "," << metric << "_" << map;
+    }
+  }
+  csv << ",ms_gained";
+  for (const char* from : {"free", "occ", "unk"}) {
+    for (const char* to : {"free", "occ", "unk"}) {
+      if (std::string(from) != to) csv << ",ms_lost_" << from << "_to_" << to;
     }
   }
   csv << ",seconds_explore,seconds_vectorize,seconds_total\n";
@@ -95,12 +105,19 @@ void WriteCsv(const std::vector<PaperTerrainResult>& results, const std::string&
         << r.width << "," << r.height << "," << r.scans << "," << Fixed(r.distance, 1) << ","
         << (r.explored ? 1 : 0) << "," << Fixed(r.observed_free, 4) << "," << r.grid.raw << ","
         << r.grid.gzip << "," << r.grid.zstd << "," << r.grid_png << "," << r.vmap.raw << ","
-        << r.vmap.gzip << "," << r.vmap.zstd << "," << r.truth_vmap << "," << r.vertices << ","
-        << r.segments;
+        << r.vmap.gzip << "," << r.vmap.zstd << "," << r.vmap_obstacles.raw << ","
+        << r.vmap_obstacles.gzip << "," << r.vmap_obstacles.zstd << "," << r.truth_vmap << ","
+        << r.vertices << "," << r.segments;
     for (const metrics::QualityScores* q : {&r.robot, &r.robot_vector, &r.truth_vector}) {
       csv << "," << opt(q->map_score) << "," << opt(q->cross_correlation) << ","
           << opt(q->pearson_occupied) << "," << opt(q->occupied_picture_distance) << ","
           << opt(q->unoccupied_picture_distance);
+    }
+    csv << "," << r.gained;
+    for (int from = 0; from < 3; ++from) {
+      for (int to = 0; to < 3; ++to) {
+        if (from != to) csv << "," << r.lost[from][to];
+      }
     }
     csv << "," << Fixed(r.seconds_explore, 2) << "," << Fixed(r.seconds_vectorize, 3) << ","
         << Fixed(r.seconds_total, 2) << "\n";
@@ -147,29 +164,37 @@ void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrai
      << options.laser_step_deg << " deg steps, " << options.laser_range << " m; SLAM error model "
      << (options.slam_error ? "on" : "off") << ". KB = 1024 bytes.\n\n"
      << "P: robot grid, one byte per cell; PZ: gzip -9 of P; V: .vmap bytes "
-        "(EncodeVmap(VectorizeTiled(robot grid))); VZ: gzip -9 of V; zstd: level 19. Quality "
+        "(EncodeVmap(VectorizeTiled(robot grid)), obstacles and free space); VZ: gzip -9 of V; V "
+        "obst, "
+        "VZ obst: the same tiles without their free-space polygons (obstacles only, like the "
+        "paper's vector map); zstd: level 19. Quality "
         "metrics (ALGORITHMS.md 1.1, %) against the ground truth of (a) the robot grid, (b) the "
         "vector map of the robot grid rasterized back, (c) the vector map of the ground truth "
         "rasterized back.\n\n";
 
   md << "## Sizes\n\n| terrain | cells | scans | driven m | explored | observed free | P KB | PZ "
         "KB "
-        "| P zstd KB | V KB | VZ KB | V zstd KB | P / V | PZ / VZ | vertices | time s |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "| P zstd KB | V KB | VZ KB | V zstd KB | V obst KB | VZ obst KB | P / V | P / V obst | PZ "
+        "/ VZ "
+        "| PZ / VZ obst | vertices | time s |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const PaperTerrainResult& r : results) {
     md << "| " << Name(r) << " | " << r.width << " x " << r.height << " | " << r.scans << " | "
        << Fixed(r.distance, 0) << " | " << (r.explored ? "yes" : "budget") << " | "
        << Fixed(100.0 * r.observed_free, 1) << " % | " << Kb(r.grid.raw) << " | " << Kb(r.grid.gzip)
        << " | " << Kb(r.grid.zstd) << " | " << Kb(r.vmap.raw) << " | " << Kb(r.vmap.gzip) << " | "
-       << Kb(r.vmap.zstd) << " | "
-       << Fixed(static_cast<double>(r.grid.raw) / std::max<size_t>(1, r.vmap.raw), 1) << " | "
-       << Fixed(static_cast<double>(r.grid.gzip) / std::max<size_t>(1, r.vmap.gzip), 1) << " | "
-       << r.vertices << " | " << Fixed(r.seconds_total, 1) << " |\n";
+       << Kb(r.vmap.zstd) << " | " << Kb(r.vmap_obstacles.raw) << " | " << Kb(r.vmap_obstacles.gzip)
+       << " | " << Ratio(r.grid.raw, r.vmap.raw) << " | " << Ratio(r.grid.raw, r.vmap_obstacles.raw)
+       << " | " << Ratio(r.grid.gzip, r.vmap.gzip) << " | "
+       << Ratio(r.grid.gzip, r.vmap_obstacles.gzip) << " | " << r.vertices << " | "
+       << Fixed(r.seconds_total, 1) << " |\n";
   }
-  md << "\nAverages per size (the paper's Fig. 4a; paper at 80 m: P 2532.4 KB, V 39.2 KB, 65x):\n\n"
-     << "| size | P KB | PZ KB | V KB | VZ KB | P / V |\n|---|---|---|---|---|---|\n";
+  md << "\nAverages per size (the paper's Fig. 4a; paper at 80 m: P 2532.4 KB, V 39.2 KB, 65x, "
+        "obstacles only: compare P / V obst):\n\n"
+     << "| size | P KB | PZ KB | V KB | VZ KB | V obst KB | VZ obst KB | P / V | P / V obst | "
+        "PZ / VZ | PZ / VZ obst |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (double size : options.sizes) {
-    double p = 0, pz = 0, v = 0, vz = 0;
+    double p = 0, pz = 0, v = 0, vz = 0, vo = 0, vzo = 0;
     int n = 0;
     for (const PaperTerrainResult& r : results) {
       if (r.size != size) continue;
@@ -177,12 +202,17 @@ void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrai
       pz += r.grid.gzip;
       v += r.vmap.raw;
       vz += r.vmap.gzip;
+      vo += r.vmap_obstacles.raw;
+      vzo += r.vmap_obstacles.gzip;
       ++n;
     }
     if (n == 0) continue;
+    auto ratio = [](double a, double b) { return Fixed(b > 0 ? a / b : 0.0, 1); };
     md << "| " << Fixed(size, 0) << " m | " << Fixed(p / n / kKilo, 1) << " | "
        << Fixed(pz / n / kKilo, 1) << " | " << Fixed(v / n / kKilo, 1) << " | "
-       << Fixed(vz / n / kKilo, 1) << " | " << Fixed(v > 0 ? p / v : 0.0, 1) << " |\n";
+       << Fixed(vz / n / kKilo, 1) << " | " << Fixed(vo / n / kKilo, 1) << " | "
+       << Fixed(vzo / n / kKilo, 1) << " | " << ratio(p, v) << " | " << ratio(p, vo) << " | "
+       << ratio(pz, vz) << " | " << ratio(pz, vzo) << " |\n";
   }
 
   md << "\n## Quality (%): (a) grid / (b) vector of grid / (c) vector of truth\n\n"
@@ -203,7 +233,25 @@ void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrai
      << Fixed(WorstDrop(results, 0), 2) << ", CC " << Fixed(WorstDrop(results, 1), 2) << ", PC "
      << Fixed(WorstDrop(results, 2), 2) << ", OPDF " << Fixed(WorstDrop(results, 3), 2) << ", UPDF "
      << Fixed(WorstDrop(results, 4), 2) << ".\n\n"
-     << "Charts: sizes.png, quality_<kind>_<size>.png. Maps: maps/<kind>_<size>_{truth,robot,"
+     << "MS by vectorizing, in cells: lost = the robot grid equals the truth and its vector map "
+        "does not, by (grid state -> rasterized state); gained = the reverse. MS(a) - MS(b) = "
+        "100 * (lost - gained) / cells.\n\n"
+     << "| terrain | MS a - b | gained | lost | occ -> free | occ -> unk | free -> occ | "
+        "free -> unk | unk -> occ | unk -> free |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  // grid::CellState order: kFree, kOccupied, kUnknown.
+  constexpr int kF = 0, kO = 1, kU = 2;
+  for (const PaperTerrainResult& r : results) {
+    int64_t lost = 0;
+    for (const auto& row : r.lost) {
+      for (const int64_t count : row) lost += count;
+    }
+    const auto ms_a = r.robot.map_score, ms_b = r.robot_vector.map_score;
+    md << "| " << Name(r) << " | " << (ms_a && ms_b ? Fixed(*ms_a - *ms_b, 2) : "n/a") << " | "
+       << r.gained << " | " << lost << " | " << r.lost[kO][kF] << " | " << r.lost[kO][kU] << " | "
+       << r.lost[kF][kO] << " | " << r.lost[kF][kU] << " | " << r.lost[kU][kO] << " | "
+       << r.lost[kU][kF] << " |\n";
+  }
+  md << "\nCharts: sizes.png, quality_<kind>_<size>.png. Maps: maps/<kind>_<size>_{truth,robot,"
         "robot_vector,truth_vector}.png and the robot map as maps/<kind>_<size>_robot.yaml.\n";
 }
 

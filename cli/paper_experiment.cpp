@@ -110,6 +110,11 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
   result.grid = grid_sizes.cells;
   result.grid_png = grid_sizes.png;
   FLEETMAP_ASSIGN_OR_RETURN(result.vmap, metrics::MeasureBytes(Bytes(robot_vector.vmap)));
+  vector_map::TiledVectorMap obstacles_only = robot_vector.tiled;
+  for (auto& [tile, map] : obstacles_only.tiles) map.free_space.clear();
+  FLEETMAP_ASSIGN_OR_RETURN(const std::string obstacles_vmap,
+                            transport::EncodeVmap(obstacles_only));
+  FLEETMAP_ASSIGN_OR_RETURN(result.vmap_obstacles, metrics::MeasureBytes(Bytes(obstacles_vmap)));
 
   const vector_map::VectorMap robot_merged = robot_vector.tiled.Merged();
   const vector_map::VectorMap truth_merged = truth_vector.tiled.Merged();
@@ -121,6 +126,13 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
   FLEETMAP_ASSIGN_OR_RETURN(result.robot, metrics::CompareMaps(robot, truth));
   FLEETMAP_ASSIGN_OR_RETURN(result.robot_vector, metrics::CompareMaps(robot_back, truth));
   FLEETMAP_ASSIGN_OR_RETURN(result.truth_vector, metrics::CompareMaps(truth_back, truth));
+  for (size_t i = 0; i < truth.data().size(); ++i) {
+    const grid::CellState t = grid::StateOf(truth.data()[i]);
+    const grid::CellState a = grid::StateOf(robot.data()[i]);
+    const grid::CellState b = grid::StateOf(robot_back.data()[i]);
+    if (a == t && b != t) ++result.lost[static_cast<int>(a)][static_cast<int>(b)];
+    if (a != t && b == t) ++result.gained;
+  }
 
   if (!options.image_dir.empty()) {
     report("writing images");

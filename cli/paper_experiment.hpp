@@ -42,12 +42,20 @@ struct PaperTerrainResult {
   metrics::CompressedSizes grid;  // P (raw), PZ (gzip -9), zstd -19
   size_t grid_png = 0;
   metrics::CompressedSizes vmap;  // V (.vmap bytes), VZ (gzip -9), zstd -19
+  // The same tiles without their free-space polygons: obstacles only, as the paper's vector map.
+  metrics::CompressedSizes vmap_obstacles;
   size_t vertices = 0;
   size_t segments = 0;
   size_t truth_vmap = 0;                // .vmap bytes of the ground truth's vector map
   metrics::QualityScores robot;         // (a)
   metrics::QualityScores robot_vector;  // (b)
   metrics::QualityScores truth_vector;  // (c)
+  // Where MS changes by vectorizing: cells the robot grid has right (equal to the truth) and its
+  // vector map gets wrong, by (robot grid state, rasterized state), indexed by grid::CellState;
+  // and cells the robot grid has wrong and its vector map right. MS(a) - MS(b) =
+  // 100 * (sum(lost) - gained) / cells.
+  int64_t lost[3][3] = {};
+  int64_t gained = 0;
   double seconds_explore = 0.0;
   double seconds_vectorize = 0.0;
   double seconds_total = 0.0;
