@@ -12,6 +12,16 @@
 
 namespace fleetmap::object_learning {
 
+EmProblem MakeEmProblem(const SnapshotSet& set) {
+  EmProblem problem;
+  problem.maps.resize(set.per_map.size());
+  for (size_t s = 0; s < set.snapshots.size(); ++s) {
+    problem.snapshots.push_back(set.snapshots[s].patch);
+    problem.maps[set.snapshots[s].map_index].push_back(static_cast<int>(s));
+  }
+  return problem;
+}
+
 int EmProblem::max_per_map() const {
   size_t most = 0;
   for (const std::vector<int>& m : maps) most = std::max(most, m.size());
@@ -177,20 +187,6 @@ double GaussianLogConstant(double count, double s) {
 
 double Annealed(double final_value, double initial_value, double kappa, int j) {
   return std::max(final_value, initial_value * std::pow(kappa, j));
-}
-
-}  // namespace fleetmap::object_learning
-
-namespace fleetmap::object_learning {
-
-EmProblem MakeEmProblem(const SnapshotSet& set) {
-  EmProblem problem;
-  problem.maps.resize(set.per_map.size());
-  for (size_t s = 0; s < set.snapshots.size(); ++s) {
-    problem.snapshots.push_back(set.snapshots[s].patch);
-    problem.maps[set.snapshots[s].map_index].push_back(static_cast<int>(s));
-  }
-  return problem;
 }
 
 }  // namespace fleetmap::object_learning

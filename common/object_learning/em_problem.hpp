@@ -20,6 +20,7 @@
 
 #include "common/object_learning/learn_options.hpp"
 #include "common/object_learning/patch.hpp"
+#include "common/object_learning/snapshot_extractor.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -45,6 +46,9 @@ struct EmResult {
 };
 
 using PairAlignments = std::vector<std::vector<Alignment>>;  // [snapshot][object]
+
+// The EM's view of extracted snapshots: their patches, grouped by map.
+EmProblem MakeEmProblem(const SnapshotSet& set);
 
 // f(mu_s, delta_s,n) and its observed-cell weights w_s,n: one matrix per object n, a row per
 // snapshot.
@@ -108,14 +112,5 @@ double GaussianLogConstant(double count, double s);
 
 // The annealed noise of iteration j (eqs. 27, 28): max(final, initial * kappa^j).
 double Annealed(double final_value, double initial_value, double kappa, int j);
-
-}  // namespace fleetmap::object_learning
-
-#include "common/object_learning/snapshot_extractor.hpp"
-
-namespace fleetmap::object_learning {
-
-// The EM's view of extracted snapshots: their patches, grouped by map.
-EmProblem MakeEmProblem(const SnapshotSet& set);
 
 }  // namespace fleetmap::object_learning
