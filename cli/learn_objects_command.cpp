@@ -68,11 +68,13 @@ nlohmann::json ModelJson(const ol::LearnedModel& model, const std::vector<std::s
   }
   nlohmann::json snapshots = nlohmann::json::array();
   for (const ol::SnapshotAssignment& s : model.snapshots) {
+    const Pose2 pose = ol::ObjectPoseInMap(s);
     snapshots.push_back(
         {{"map", maps[s.map_index]},
          {"map_index", s.map_index},
          {"object", s.object},
          {"centre", {s.centre.x(), s.centre.y()}},
+         {"object_pose", {{"x", pose.x}, {"y", pose.y}, {"yaw", pose.yaw}}},
          {"alignment",
           {{"dx", s.alignment.dx}, {"dy", s.alignment.dy}, {"dphi", s.alignment.dphi}}}});
   }

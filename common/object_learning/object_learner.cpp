@@ -1,5 +1,6 @@
 #include "common/object_learning/object_learner.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "common/object_learning/em_problem.hpp"
@@ -22,6 +23,12 @@ Patch RowToPatch(const Eigen::MatrixXd& rows, Eigen::Index row, const Patch& sha
 }
 
 }  // namespace
+
+Pose2 ObjectPoseInMap(const SnapshotAssignment& assignment) {
+  const Alignment& a = assignment.alignment;
+  const Point2 origin = assignment.centre - Eigen::Rotation2Dd(-a.dphi) * Point2(a.dx, a.dy);
+  return {origin.x(), origin.y(), NormalizeAngle(-a.dphi)};
+}
 
 StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps,
                                     const LearnOptions& options) {

@@ -31,6 +31,12 @@ struct SnapshotAssignment {
   Alignment alignment;
 };
 
+// Where object `assignment.object` stood when this snapshot was taken: the map-frame pose of the
+// object patch's centre and axes (yaw counter-clockwise from the map's x axis). The alignment
+// moves the snapshot onto the object, theta(p) = mu(R(-dphi) (p - d)), so the object's frame sits
+// at centre - R(-dphi) d, turned by -dphi.
+Pose2 ObjectPoseInMap(const SnapshotAssignment& assignment);
+
 // One point of the (N, M) grid that model selection searched.
 struct ModelScore {
   int num_objects = 0;

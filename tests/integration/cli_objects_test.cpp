@@ -73,6 +73,7 @@ TEST(CliObjectsTest, LearnsMovedBoxesAndWritesTheModel) {
   EXPECT_FALSE(model["searched"].empty());
   for (const auto& s : model["snapshots"]) {
     EXPECT_TRUE(s.contains("alignment"));
+    EXPECT_TRUE(s["object_pose"].contains("yaw"));
     EXPECT_GE(s["object"].get<int>(), 0);
   }
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/object_0.pgm"));

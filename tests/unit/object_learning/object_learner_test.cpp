@@ -61,6 +61,22 @@ TEST(ObjectLearnerTest, ApproximateEStepAboveTheBoundIsSaid) {
   EXPECT_NE(model->snapshots[0].object, model->snapshots[1].object);
 }
 
+TEST(ObjectLearnerTest, ObjectPoseUndoesTheAlignment) {
+  SnapshotAssignment s;
+  s.centre = Point2(2.0, 3.0);
+  s.alignment = {0.1, 0.0, 0.0};  // the snapshot is moved +0.1 m in x onto the object
+  Pose2 pose = ObjectPoseInMap(s);
+  EXPECT_NEAR(pose.x, 1.9, 1e-12);
+  EXPECT_NEAR(pose.y, 3.0, 1e-12);
+  EXPECT_NEAR(pose.yaw, 0.0, 1e-12);
+  // Turned a quarter onto the object, then shifted: the object's x axis is the snapshot's -y.
+  s.alignment = {0.0, 0.2, 1.5707963267948966};
+  pose = ObjectPoseInMap(s);
+  EXPECT_NEAR(pose.yaw, -1.5707963267948966, 1e-12);
+  EXPECT_NEAR(pose.x, 2.0 - 0.2, 1e-12);  // R(-90 deg) (0, 0.2) = (0.2, 0)
+  EXPECT_NEAR(pose.y, 3.0, 1e-12);
+}
+
 TEST(ObjectLearnerTest, BadInputsAreErrors) {
   const grid::OccupancyGrid a = Room({{10, 10}});
   const Status one = LearnObjects({a}).status();
