@@ -65,8 +65,8 @@ struct EmOptions {
 // The search over (N objects, M templates) (ModelSelection): max_t K_t <= N <= sum_t K_t,
 // 1 <= M <= N, score log p(data, model) - object_penalty * N - template_penalty * M (eq. 30).
 struct SelectionOptions {
-  double object_penalty = 25.0;   // c_N, nats per object, >= 0
-  double template_penalty = 6.0;  // c_M, nats per template, >= 0
+  double object_penalty = 12.0;   // c_N, nats per object, >= 0
+  double template_penalty = 5.0;  // c_M, nats per template, >= 0
   int max_objects = 16;           // cap on N (a warning says when it bites), >= 1
   // The search along N (and along M for each N) stops after this many candidates in a row
   // without a new best; 0 searches the whole grid.
