@@ -47,6 +47,7 @@ void ObjectLearningWorker::Stop() {
     std::lock_guard lock(mutex_);
     stop_ = true;
   }
+  cancel_.store(true);
   wake_.notify_one();
   if (thread_.joinable()) thread_.join();
 }
@@ -80,6 +81,7 @@ void ObjectLearningWorker::Loop() {
       pending_.reset();
     }
     const Status learned = Learn(sessions);
+    if (cancel_.load()) return;  // stopping: the cancelled run is not a failure
     std::lock_guard lock(mutex_);
     if (!learned.ok()) {
       ++stats_.failures;
@@ -92,8 +94,10 @@ void ObjectLearningWorker::Loop() {
 Status ObjectLearningWorker::Learn(const std::vector<MappingSession>& sessions) {
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<grid::OccupancyGrid> grids,
                             SessionGrids(sessions, fusion_));
+  object_learning::LearnOptions learn = options_.learn;
+  learn.cancel = &cancel_;
   FLEETMAP_ASSIGN_OR_RETURN(const object_learning::LearnedModel model,
-                            object_learning::LearnObjects(grids, options_.learn));
+                            object_learning::LearnObjects(grids, learn));
   for (const std::string& warning : model.warnings) {
     spdlog::info("server: object learning: {}", warning);
   }
@@ -136,14 +140,9 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
     message.stamp = now;
     for (const object_learning::SnapshotAssignment& snapshot : model.snapshots) {
       if (snapshot.object != static_cast<int>(n)) continue;
-      // The alignment maps the snapshot onto the object: the object sits at the snapshot's
-      // centre, moved back by the shift and turned back by the rotation.
-      const object_learning::Alignment& a = snapshot.alignment;
-      const Vector2 shift = Eigen::Rotation2Dd(-a.dphi) * Vector2(a.dx, a.dy);
       transport::ObjectSighting sighting;
       sighting.session = static_cast<uint32_t>(sessions.at(snapshot.map_index).id);
-      sighting.fleet_from_object = {snapshot.centre.x() - shift.x(),
-                                    snapshot.centre.y() - shift.y(), NormalizeAngle(-a.dphi)};
+      sighting.fleet_from_object = object_learning::ObjectPoseInMap(snapshot);  // fleet = map
       message.sightings.push_back(sighting);
     }
     FLEETMAP_RETURN_IF_ERROR(object_writer_->Write(message).status());

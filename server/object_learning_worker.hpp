@@ -42,7 +42,8 @@ struct ObjectLearningStats {
 // sessions, docs/object-learning.md) in the background whenever a session finishes, and
 // publishes the learned templates on rt/fleetmap/object_templates and objects on
 // rt/fleetmap/objects, replacing the previous run's (instances the new run no longer has are
-// disposed). Learning takes seconds: a newer submission replaces one that has not started yet.
+// disposed). Learning takes seconds: a newer submission replaces one that has not started yet,
+// and Stop() cancels a run in progress.
 // Submit() and stats() from any thread; Start() and Stop() from the owner's.
 class ObjectLearningWorker {
  public:
@@ -79,6 +80,7 @@ class ObjectLearningWorker {
   std::condition_variable wake_;
   std::optional<std::vector<MappingSession>> pending_;  // guarded by mutex_
   bool stop_ = false;                                   // guarded by mutex_
+  std::atomic<bool> cancel_{false};                     // stops a learning run in progress (Stop())
   ObjectLearningStats stats_;                           // guarded by mutex_
   std::thread thread_;
 };

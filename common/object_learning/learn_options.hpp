@@ -4,6 +4,7 @@
 // the reasons). One struct per component, gathered in LearnOptions; ValidateLearnOptions checks
 // them once, where they are made.
 
+#include <atomic>
 #include <cstdint>
 
 #include "common/core/status.hpp"
@@ -80,6 +81,10 @@ struct LearnOptions {
   int restarts = 2;          // random starts per (N, M); the best is kept, >= 1
   uint32_t seed = 1;         // every random start derives from it: same seed, same model
   bool hierarchical = true;  // false: the flat model of Biswas et al. 2002 (objects only, M = 0)
+  // When set (by another thread), learning stops before its next EM run and LearnObjects fails
+  // with kUnavailable: a server shutting down need not wait for a run of several seconds.
+  // Null: never cancelled. Must outlive the call.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // kInvalidArgument naming the first bad snapshot option ("snapshots.guard_radius ...").

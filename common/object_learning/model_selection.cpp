@@ -59,6 +59,10 @@ SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& option
     double best_for_n = -std::numeric_limits<double>::infinity();
     int m_since_best = 0;
     for (int m = m_lo; m <= m_hi; ++m) {
+      if (options.cancel != nullptr && options.cancel->load()) {
+        result.cancelled = true;
+        return result;
+      }
       EmResult run = BestOfRestarts(problem, n, m, options);
       const double score = LogPosterior(run, n, m, options.selection);
       result.searched.push_back({n, m, score});

@@ -25,6 +25,7 @@ struct SelectionResult {
   EmResult model;
   std::vector<ModelScore> searched;
   std::vector<std::string> warnings;
+  bool cancelled = false;  // options.cancel was set: the result is incomplete
 };
 
 // The seed of one random start, derived from the user's seed and the candidate.

@@ -43,6 +43,7 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
   }
   const EmProblem problem = MakeEmProblem(set);
   SelectionResult selection = SelectModel(problem, options);
+  if (selection.cancelled) return UnavailableError("object learning was cancelled");
   const EmResult& best = selection.model;
   model.num_objects = selection.num_objects;
   model.num_templates = selection.num_templates;

@@ -49,6 +49,18 @@ TEST(ObjectLearnerTest, LearnsBoxesWithAssignmentsForEverySnapshot) {
   EXPECT_TRUE(model->warnings.empty());
 }
 
+TEST(ObjectLearnerTest, ACancelledRunStopsWithUnavailable) {
+  const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
+                                                 Room({{30, 70}, {70, 20}})};
+  const std::atomic<bool> cancel{true};
+  LearnOptions options;
+  options.cancel = &cancel;
+  const StatusOr<LearnedModel> model = LearnObjects(maps, options);
+  ASSERT_FALSE(model.ok());
+  EXPECT_EQ(model.status().code(), StatusCode::kUnavailable);
+  EXPECT_THAT(model.status().message(), HasSubstr("cancelled"));
+}
+
 TEST(ObjectLearnerTest, ApproximateEStepAboveTheBoundIsSaid) {
   const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
                                                  Room({{30, 70}, {70, 20}})};
