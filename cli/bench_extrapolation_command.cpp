@@ -14,17 +14,12 @@
 #include "cli/bench_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/extrapolation_experiment.hpp"
+#include "cli/report_format.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using extrapolation::PredictionCheck;
-
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
 
 std::string Ratio(int64_t a, int64_t b) {
   return b > 0 ? Fixed(static_cast<double>(a) / b, 3) : "n/a";
@@ -32,19 +27,6 @@ std::string Ratio(int64_t a, int64_t b) {
 
 std::string Precision(const PredictionCheck& c) {
   return c.true_free + c.false_free > 0 ? Fixed(c.precision, 3) : "n/a";
-}
-
-std::string MachineDescription() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
-         " hardware threads (shared), one thread used";
 }
 
 struct Totals {

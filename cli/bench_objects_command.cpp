@@ -12,29 +12,11 @@
 #include "cli/bench_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/object_experiment.hpp"
+#include "cli/report_format.hpp"
 #include "common/grid/map_io.hpp"
 
 namespace fleetmap::cli {
 namespace {
-
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
-
-std::string Machine() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
-         " hardware threads (shared), one thread used";
-}
 
 std::string Searched(const ModelComparison& c) {
   std::string text;
@@ -144,7 +126,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
                            {"true_objects", r.true_objects},
                            {"true_templates", r.true_templates},
                            {"restarts", learn.restarts},
-                           {"machine", Machine()},
+                           {"machine", MachineDescription()},
                            {"seconds_simulation", seconds_sim},
                            {"models", {ToJson(r.hierarchical), ToJson(r.flat)}}};
     std::ofstream(options.out_dir + "/results.json") << json.dump(2) << "\n";

@@ -16,18 +16,13 @@
 #include "cli/bench_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/paper_experiment.hpp"
+#include "cli/report_format.hpp"
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 constexpr double kKilo = 1024.0;  // KB in the report are KiB
-
-std::string Fixed(double value, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
-  return buffer;
-}
 
 std::string Kb(size_t bytes) { return Fixed(bytes / kKilo, 1); }
 
@@ -41,19 +36,6 @@ std::string Pct(const std::optional<double>& value) {
 
 std::string Name(const PaperTerrainResult& r) {
   return std::string(sim::TerrainKindName(r.kind)) + " " + Fixed(r.size, 0) + " m";
-}
-
-std::string MachineDescription() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return model + ", " + std::to_string(std::thread::hardware_concurrency()) +
-         " hardware threads (shared), one thread used";
 }
 
 // A one-line progress bar, rewritten in place.
