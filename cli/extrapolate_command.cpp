@@ -53,8 +53,13 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::E
   if (ec) return InvalidArgumentError(dir + ": cannot create the directory: " + ec.message());
 
   std::vector<std::string> grid_files(result.graph.submaps.size());
-  for (size_t i = 1; i < result.graph.submaps.size(); ++i) {
+  size_t observed_submaps = 0;
+  for (size_t i = 0; i < result.graph.submaps.size(); ++i) {
     const ex::Submap& s = result.graph.submaps[i];
+    if (s.kind == ex::SubmapKind::kObserved) {
+      ++observed_submaps;  // a part of the local map: not written again
+      continue;
+    }
     grid_files[i] = "submap_" + std::to_string(s.id) + ".yaml";
     FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(ex::SubmapGridInMapFrame(s), dir + "/" + grid_files[i]));
   }
@@ -76,12 +81,13 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::E
   std::ostringstream line;
   const double observed = floor.observed_free_cells * cell_area;
   const double predicted = floor.predicted_free_cells * cell_area;
-  char buffer[160];
+  char buffer[200];
   std::snprintf(buffer, sizeof(buffer),
-                "p_th %.2f: %zu sub-maps (%zu predicted), observed free %.1f m2, predicted free "
-                "on this floor %.1f m2 (%+.1f %%)",
-                p_th, result.graph.submaps.size(), result.graph.submaps.size() - 1, observed,
-                predicted, observed > 0 ? 100.0 * predicted / observed : 0.0);
+                "p_th %.2f: %zu sub-maps (%zu places observed, %zu predicted), observed free "
+                "%.1f m2, predicted free on this floor %.1f m2 (%+.1f %%)",
+                p_th, result.graph.submaps.size(), observed_submaps,
+                result.graph.submaps.size() - observed_submaps, observed, predicted,
+                observed > 0 ? 100.0 * predicted / observed : 0.0);
   line << buffer << " -> " << dir;
   return line.str();
 }

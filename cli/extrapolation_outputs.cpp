@@ -70,20 +70,37 @@ nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& re
     }
   };
   for (const Submap& s : result.graph.submaps) {
-    if (s.kind == SubmapKind::kObserved) continue;
-    add(FreePolygons(s.navigable, s.map_from_submap.ToTransform()),
-        {{"submap", s.id},
-         {"kind", extrapolation::SubmapKindName(s.kind)},
-         {"class", ClassOf(s.kind)},
-         {"entities", s.entity_ids},
-         {"elevation", s.elevation}});
+    if (s.kind != SubmapKind::kObserved) {
+      add(FreePolygons(s.navigable, s.map_from_submap.ToTransform()),
+          {{"submap", s.id},
+           {"kind", extrapolation::SubmapKindName(s.kind)},
+           {"class", ClassOf(s.kind)},
+           {"entities", s.entity_ids},
+           {"elevation", s.elevation}});
+      continue;
+    }
+    // The people's conditionally free cells in this observed sub-map's place.
+    grid::OccupancyGrid people = s.navigable;
+    const Transform2 map_from_submap = s.map_from_submap.ToTransform();
+    bool any = false;
+    for (int y = 0; y < people.height(); ++y) {
+      for (int x = 0; x < people.width(); ++x) {
+        const auto cell =
+            result.conditionally_free.CellAt(map_from_submap * people.CellCenter(x, y));
+        const bool free =
+            people.StateAt(x, y) == grid::CellState::kFree && cell &&
+            result.conditionally_free.StateAt(cell->x, cell->y) == grid::CellState::kFree;
+        people.at(x, y) = free ? grid::kFreeValue : grid::kUnknownValue;
+        any |= free;
+      }
+    }
+    if (!any) continue;
+    add(FreePolygons(people, map_from_submap), {{"submap", s.id},
+                                                {"kind", "conditionally_free"},
+                                                {"class", "dynamic"},
+                                                {"entities", s.entity_ids},
+                                                {"elevation", 0.0}});
   }
-  add(FreePolygons(result.conditionally_free, Transform2::Identity()),
-      {{"submap", 0},
-       {"kind", "conditionally_free"},
-       {"class", "dynamic"},
-       {"entities", result.graph.submaps.front().entity_ids},
-       {"elevation", 0.0}});
   return {{"type", "FeatureCollection"}, {"features", features}};
 }
 

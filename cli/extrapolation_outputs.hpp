@@ -16,8 +16,9 @@
 namespace fleetmap::cli {
 
 // One Feature per connected free region of each predicted sub-map and of the people's
-// conditionally free space: Polygons (outer ring, then holes) with the sub-map id, kind, class
-// (static, quasi-static, dynamic), entities, elevation and p_th as properties.
+// conditionally free space (per observed sub-map, i.e. per place): Polygons (outer ring, then
+// holes) with the sub-map id, kind, class (static, quasi-static, dynamic), entities, elevation and
+// p_th as properties.
 nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result, double p_th);
 
 // Local map (occupied black, free white, unknown grey), predicted free space behind doors (green),

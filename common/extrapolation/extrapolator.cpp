@@ -5,9 +5,11 @@
 #include <deque>
 #include <numbers>
 #include <optional>
+#include <set>
 
 #include "common/extrapolation/kernels.hpp"
 #include "common/extrapolation/map_queries.hpp"
+#include "common/extrapolation/place_partition.hpp"
 #include "common/extrapolation/track_predictor.hpp"
 
 namespace fleetmap::extrapolation {
@@ -95,34 +97,151 @@ class Extrapolator {
       : map_(map), options_(options) {}
 
   ExtrapolationResult Run(const Entities& entities) {
-    Submap observed;
-    observed.id = 0;
-    observed.kind = SubmapKind::kObserved;
-    observed.place = 0;
-    observed.navigable = map_;
-    result_.graph.submaps.push_back(std::move(observed));
     result_.conditionally_free =
         grid::OccupancyGrid(map_.width(), map_.height(), map_.resolution(), map_.origin());
     for (const PersonTrack& person : entities.people) AddPerson(person);
     for (const DoorEntity& door : entities.doors) AddDoor(door);
     for (const StairsEntity& stairs : entities.stairs) AddStairs(stairs);
+    AddObservedSubmaps();
+    for (Separator& separator : separators_) Connect(separator);
     return std::move(result_);
   }
 
  private:
+  // A door (open or closed) or the foot of a flight of stairs: it cuts the observed map into
+  // places, and may open onto a predicted sub-map.
+  struct Separator {
+    std::string id;
+    PlaceCut cut;
+    Vector2 from_side = Vector2::Zero();  // towards the side it opens from (the robot's)
+    std::optional<Submap> predicted;
+  };
+
+  // A person who passed the checks: who they are and where they were last seen.
+  struct Person {
+    std::string id;
+    Point2 last_position = Point2::Zero();
+  };
+
   void Warn(const std::string& message) { result_.warnings.push_back(message); }
 
-  uint32_t AddPredicted(Submap submap, const std::string& entity_id) {
-    const uint32_t id = static_cast<uint32_t>(result_.graph.submaps.size());
+  // The observed sub-maps, one per place of the local map's free cells plus the people's
+  // conditionally free cells (the paper's U'), cut at the separators.
+  void AddObservedSubmaps() {
+    const size_t n = static_cast<size_t>(map_.cell_count());
+    std::vector<uint8_t> free(n, 0);
+    for (int y = 0; y < map_.height(); ++y) {
+      for (int x = 0; x < map_.width(); ++x) {
+        free[static_cast<size_t>(y) * map_.width() + x] =
+            map_.StateAt(x, y) == grid::CellState::kFree ||
+            result_.conditionally_free.at(x, y) == grid::kFreeValue;
+      }
+    }
+    std::vector<PlaceCut> cuts;
+    for (const Separator& s : separators_) cuts.push_back(s.cut);
+    const double cell_area = map_.resolution() * map_.resolution();
+    const auto min_cells =
+        static_cast<int64_t>(std::ceil(options_.min_place_area / cell_area - 1e-9));
+    places_ = PartitionPlaces(map_, free, cuts, min_cells);
+
+    // Each place's bounding box (inclusive), grown by one cell for the walls around it.
+    struct Box {
+      int x0, y0, x1, y1;
+    };
+    const int count = std::max(1, places_.place_count);
+    std::vector<Box> boxes(count, {map_.width(), map_.height(), -1, -1});
+    for (int y = 0; y < map_.height(); ++y) {
+      for (int x = 0; x < map_.width(); ++x) {
+        const int32_t label = places_.Label(x, y);
+        if (label < 0) continue;
+        Box& b = boxes[label];
+        b.x0 = std::min(b.x0, x);
+        b.y0 = std::min(b.y0, y);
+        b.x1 = std::max(b.x1, x);
+        b.y1 = std::max(b.y1, y);
+      }
+    }
+    for (int k = 0; k < count; ++k) {
+      LatticeWindow window{0, 0, map_.width(), map_.height()};  // no place: the whole map
+      if (places_.place_count > 0) {
+        const Box& b = boxes[k];
+        window.x0 = std::max(0, b.x0 - 1);
+        window.y0 = std::max(0, b.y0 - 1);
+        window.width = std::min(map_.width() - 1, b.x1 + 1) - window.x0 + 1;
+        window.height = std::min(map_.height() - 1, b.y1 + 1) - window.y0 + 1;
+      }
+      Submap submap;
+      submap.id = static_cast<uint32_t>(k);
+      submap.kind = SubmapKind::kObserved;
+      submap.place = submap.id;
+      Transform2 map_from_window = map_.origin().ToTransform();
+      map_from_window.translate(
+          Vector2(window.x0 * map_.resolution(), window.y0 * map_.resolution()));
+      submap.navigable =
+          grid::OccupancyGrid(window.width, window.height, map_.resolution(),
+                              Pose2::FromTransform(map_from_window), grid::kUnknownValue);
+      for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+          const int mx = window.x0 + x, my = window.y0 + y;
+          if (places_.place_count > 0 && places_.Label(mx, my) == k) {
+            submap.navigable.at(x, y) = grid::kFreeValue;
+          } else if (map_.StateAt(mx, my) == grid::CellState::kOccupied) {
+            submap.navigable.at(x, y) = grid::kOccupiedValue;
+          }
+        }
+      }
+      result_.graph.submaps.push_back(std::move(submap));
+    }
+
+    // People: listed in the places their conditionally free cells fall in (or, if they claimed
+    // none, the place nearest to where they were last seen).
+    std::vector<std::set<int32_t>> places_of_person(people_.size());
+    for (size_t i = 0; i < person_of_cell_.size(); ++i) {
+      const int32_t label = places_.labels[i];
+      if (person_of_cell_[i] >= 0 && label >= 0) places_of_person[person_of_cell_[i]].insert(label);
+    }
+    for (size_t p = 0; p < people_.size(); ++p) {
+      if (places_of_person[p].empty()) {
+        places_of_person[p].insert(
+            NearestPlace(map_, places_, people_[p].last_position).value_or(0));
+      }
+      for (int32_t label : places_of_person[p]) ListEntity(label, people_[p].id);
+    }
+  }
+
+  void ListEntity(int32_t observed_id, const std::string& entity_id) {
+    std::vector<std::string>& ids = result_.graph.submaps[observed_id].entity_ids;
+    if (std::find(ids.begin(), ids.end(), entity_id) == ids.end()) ids.push_back(entity_id);
+  }
+
+  // The edges of one separator: between the observed sub-maps on its two sides (if they differ),
+  // and from the observed sub-map it opens from to its predicted sub-map.
+  void Connect(Separator& separator) {
+    const double depth = std::max(kSideDepth, 4.0 * map_.resolution());
+    const std::optional<int32_t> from =
+        PlaceBeside(map_, places_, separator.cut.a, separator.cut.b, separator.from_side, depth);
+    const std::optional<int32_t> to =
+        PlaceBeside(map_, places_, separator.cut.a, separator.cut.b, -separator.from_side, depth);
+    if (from) ListEntity(*from, separator.id);
+    if (to) ListEntity(*to, separator.id);
+    if (from && to && *from != *to) {
+      result_.graph.edges.push_back({static_cast<uint32_t>(std::min(*from, *to)),
+                                     static_cast<uint32_t>(std::max(*from, *to)), Pose2{},
+                                     separator.id});
+    }
+    if (!separator.predicted) return;
+    const Point2 centre = 0.5 * (separator.cut.a + separator.cut.b);
+    const int32_t joined = from ? *from : NearestPlace(map_, places_, centre).value_or(0);
+    Submap submap = std::move(*separator.predicted);
+    const auto id = static_cast<uint32_t>(result_.graph.submaps.size());
     submap.id = id;
     submap.place = id;  // a predicted sub-map is a place of its own
-    submap.entity_ids.push_back(entity_id);
-    const Submap& observed = result_.graph.submaps.front();
+    submap.entity_ids.push_back(separator.id);
+    const Submap& observed = result_.graph.submaps[joined];
     result_.graph.edges.push_back({observed.id, id,
                                    RelativePose(observed.map_from_submap, submap.map_from_submap),
-                                   entity_id});
+                                   separator.id});
     result_.graph.submaps.push_back(std::move(submap));
-    return id;
   }
 
   void AddPerson(const PersonTrack& person) {
@@ -169,7 +288,7 @@ class Extrapolator {
         Vector2(options_.person_skew_forward, side * options_.person_skew_side));
     const double radius = kernel.SupportRadius(options_.p_th);
     grid::OccupancyGrid& out = result_.conditionally_free;
-    grid::OccupancyGrid& observed = result_.graph.submaps.front().navigable;
+    const auto person_index = static_cast<int32_t>(people_.size());
     int64_t claimed = 0;
     for (const SweptPose& pose : poses) {
       const LatticeWindow w = WindowAround(map_, pose.position, radius, 4096);
@@ -182,13 +301,15 @@ class Extrapolator {
           if (kernel.Normalized(person_from_map * (c - pose.position)) <= options_.p_th) continue;
           if (!LineOfSight(map_, pose.position, c)) continue;
           out.at(x, y) = grid::kFreeValue;
-          if (observed.StateAt(x, y) != grid::CellState::kFree)
-            observed.at(x, y) = grid::kFreeValue;
+          if (person_of_cell_.empty()) {
+            person_of_cell_.assign(static_cast<size_t>(map_.cell_count()), -1);
+          }
+          person_of_cell_[static_cast<size_t>(y) * map_.width() + x] = person_index;
           ++claimed;
         }
       }
     }
-    result_.graph.submaps.front().entity_ids.push_back(person.id);
+    people_.push_back({person.id, person.points.back().position});
     if (claimed == 0) Warn(name + ": no cell of the local map could be claimed free");
   }
 
@@ -203,29 +324,34 @@ class Extrapolator {
       Warn(name + " skipped: width " + std::to_string(w) + " m (hinge and latch coincide)");
       return;
     }
-    if (door.open) {
-      // The doorway is seen through: the space behind it is observed, not predicted.
-      result_.graph.submaps.front().entity_ids.push_back(door.id);
-      return;
-    }
     const Vector2 along = (door.latch - door.hinge) / w;
-    Vector2 opening = door.opening_direction;
+    // Open or closed, a door separates two places.
+    Separator& separator = separators_.emplace_back();
+    separator.id = door.id;
+    separator.cut = {door.hinge, door.latch};
+    separator.from_side = Vector2(along.y(), -along.x());
+    Vector2 opening = door.opening_direction - door.opening_direction.dot(along) * along;
+    if (opening.norm() >= 1e-6) separator.from_side = -opening.normalized();
+    // An open doorway is seen through: the space behind it is observed, not predicted.
+    if (door.open) return;
+    opening = door.opening_direction;
     if (opening.norm() < 1e-6) {
       const std::optional<Vector2> inferred = InferOpeningDirection(map_, door);
       if (!inferred) {
         Warn(name +
-             " skipped: no opening direction given and the map does not tell which side "
-             "is unseen");
+             " predicts nothing: no opening direction given and the map does not tell which "
+             "side is unseen");
         return;
       }
       opening = *inferred;
     }
     opening -= opening.dot(along) * along;
     if (opening.norm() < 1e-6) {
-      Warn(name + " skipped: its opening direction runs along the door");
+      Warn(name + " predicts nothing: its opening direction runs along the door");
       return;
     }
     opening.normalize();
+    separator.from_side = -opening;
 
     const Point2 centre = door.center();
     const Point2 origin = centre + options_.door_submap_distance * opening;
@@ -280,7 +406,7 @@ class Extrapolator {
       }
     }
     if (free == 0) Warn(name + ": no free space predicted behind it (blocked or below p_th)");
-    AddPredicted(std::move(submap), door.id);
+    separator.predicted = std::move(submap);
   }
 
   void AddStairs(const StairsEntity& stairs) {
@@ -298,6 +424,13 @@ class Extrapolator {
       return;
     }
     const Vector2 up = stairs.ascending.normalized();
+    // The foot of the flight separates this floor's place from the stairs.
+    const Vector2 across(-up.y(), up.x());
+    Separator& separator = separators_.emplace_back();
+    separator.id = stairs.id;
+    separator.cut = {stairs.position - 0.5 * stairs.step_width * across,
+                     stairs.position + 0.5 * stairs.step_width * across};
+    separator.from_side = -up;
     const double run = stairs.run_length > 0.0
                            ? stairs.run_length
                            : stairs.next_floor_height / std::tan(options_.stairs_default_pitch);
@@ -321,12 +454,20 @@ class Extrapolator {
         }
       }
     }
-    AddPredicted(std::move(submap), stairs.id);
+    separator.predicted = std::move(submap);
   }
+
+  // How far from a separator its sides are looked at (metres; at least four cells).
+  static constexpr double kSideDepth = 0.3;
 
   const grid::OccupancyGrid& map_;
   const ExtrapolationOptions& options_;
   ExtrapolationResult result_;
+  std::vector<Person> people_;
+  // The person who claimed each conditionally free cell (-1: none; empty until one does).
+  std::vector<int32_t> person_of_cell_;
+  std::vector<Separator> separators_;  // in entity order: doors, then stairs
+  PlacePartition places_;
 };
 
 }  // namespace
@@ -359,6 +500,7 @@ Status ValidateOptions(const ExtrapolationOptions& o) {
       {"person_skew_forward", o.person_skew_forward},
       {"person_skew_side", o.person_skew_side},
       {"track_horizon", o.track_horizon},
+      {"min_place_area", o.min_place_area},
   };
   for (const auto& [name, value] : non_negative) {
     if (!(value >= 0.0) || !std::isfinite(value)) {

@@ -1,9 +1,15 @@
 #pragma once
 
 // Map extrapolation (ALGORITHMS.md 3, eq. 1-5): from a robot's local occupancy grid and the
-// entities it recognised, builds the sub-map graph: the observed sub-map (augmented with the free
-// space people's tracks imply), one predicted sub-map behind each closed door and one at the top
-// of each flight of stairs.
+// entities it recognised, builds the sub-map graph: one observed sub-map per topological place
+// (the local map's free space, augmented with the free space people's tracks imply, cut at doors
+// and at the foot of stairs: PartitionPlaces), one predicted sub-map behind each closed door and
+// one at the top of each flight of stairs, each joined to the observed sub-map it opens from.
+//
+// Sub-map ids: the observed sub-maps first (0 .. K-1, K >= 1, in PartitionPlaces' order), then
+// the predicted ones in entity order (doors, then stairs). Edges, per door then per stairs in
+// entity order: observed-to-observed through it (if its two sides are different places; lower id
+// first, identity transform), then observed-to-predicted.
 //
 // Kernels are thresholded after normalising each to a peak of 1 (a confidence in [0, 1]), so
 // p_th means the same thing whatever sigma is (docs/extrapolation.md). Predicted free space never
@@ -67,6 +73,11 @@ struct ExtrapolationOptions {
   // Where the dominant side is inferred, obstacles are searched up to this far sideways (metres).
   double dominant_side_search = 2.0;
 
+  // Places (docs/extrapolation.md): a part of the observed map cut off by doors and stairs is a
+  // place of its own only if it has at least this area (m2, about a desk's footprint); smaller
+  // parts (speckle, a corner cut off by a jamb) join the nearest place.
+  double min_place_area = 0.5;
+
   // Cells of the grid a predicted sub-map may have at most (a bad entity must not allocate the
   // world): larger kernels are cut to this size.
   int max_submap_cells_side = 2000;
@@ -78,7 +89,8 @@ Status ValidateOptions(const ExtrapolationOptions& options);
 struct ExtrapolationResult {
   SubmapGraph graph;
   // The free space people's tracks imply (0 where conditionally free, -1 elsewhere), with the
-  // local map's geometry. These cells are also free in the observed sub-map (U' = U + U_i).
+  // local map's geometry. These cells are also free in the observed sub-maps of the places they
+  // fall in (U' = U + U_i).
   grid::OccupancyGrid conditionally_free;
   // Entities skipped or adjusted (an unusable door or track, an inferred dominant side...),
   // each naming the entity.

@@ -3,7 +3,8 @@
 // The sub-map graph G = {V, E} of ALGORITHMS.md 3: observed sub-maps (what the robot mapped) and
 // predicted ones (behind closed doors, at the top of stairs), joined by edges that hold the
 // relative transform between two sub-maps. Sub-maps not separated by a door or stairs share a
-// topological place; a predicted sub-map is always in a place of its own.
+// topological place: the observed map is cut into places at doors and at the foot of stairs, one
+// observed sub-map per place; a predicted sub-map is always in a place of its own.
 
 #include <cstdint>
 #include <string>
@@ -25,6 +26,9 @@ std::string_view SubmapKindName(SubmapKind kind);
 // cells are navigable, 100 occupied, -1 unknown. For a predicted sub-map, `confidence` holds the
 // peak-normalised kernel value in [0, 1] per cell (row-major, same layout as `navigable`; empty
 // for observed sub-maps); a cell is free where confidence > p_th and nothing known contradicts it.
+// An observed sub-map's frame is the local map's (map_from_submap = identity); its grid is the
+// local map's lattice cut to its place's bounding box plus one cell: free on the place's cells,
+// occupied where the local map is, unknown elsewhere (including other places' free cells).
 struct Submap {
   uint32_t id = 0;
   SubmapKind kind = SubmapKind::kObserved;

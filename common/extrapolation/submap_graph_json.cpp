@@ -1,5 +1,7 @@
 #include "common/extrapolation/submap_graph_json.hpp"
 
+#include <map>
+
 namespace fleetmap::extrapolation {
 namespace {
 
@@ -42,7 +44,20 @@ nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
                      {"from_T_to", PoseJson(e.from_T_to)},
                      {"entity", e.entity_id}});
   }
-  return {{"submaps", submaps}, {"edges", edges}};
+  // Places: the sub-maps in each (an observed place holds one observed sub-map today, a
+  // predicted place one predicted sub-map), in the order of their first sub-map.
+  nlohmann::json places = nlohmann::json::array();
+  std::map<uint32_t, size_t> place_index;
+  for (const Submap& s : graph.submaps) {
+    const auto [it, inserted] = place_index.try_emplace(s.place, places.size());
+    if (inserted) {
+      places.push_back({{"place", s.place},
+                        {"observed", s.kind == SubmapKind::kObserved},
+                        {"submaps", nlohmann::json::array()}});
+    }
+    places[it->second]["submaps"].push_back(s.id);
+  }
+  return {{"submaps", submaps}, {"edges", edges}, {"places", places}};
 }
 
 }  // namespace fleetmap::extrapolation

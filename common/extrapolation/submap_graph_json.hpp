@@ -1,8 +1,9 @@
 #pragma once
 
 // The sub-map graph as JSON (the `extrapolate` output, docs/extrapolation.md): sub-maps with
-// their kind, place, pose, elevation, entities, grid geometry and free-cell counts, and edges with
-// their relative transforms. Grids themselves are written as map_server files beside it.
+// their kind, place, pose, elevation, entities, grid geometry and free-cell counts, edges with
+// their relative transforms, and the places with their sub-maps. Grids themselves are written as
+// map_server files beside it.
 
 #include <string>
 

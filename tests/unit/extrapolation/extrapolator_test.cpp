@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "common/extrapolation/prediction_check.hpp"
+#include "common/extrapolation/submap_graph_json.hpp"
 
 namespace fleetmap::extrapolation {
 namespace {
@@ -53,6 +54,236 @@ std::vector<Point2> FreeCellsInMap(const Submap& submap) {
     }
   }
   return out;
+}
+
+// Whether the sub-map's grid is free at a map-frame point.
+bool FreeAt(const Submap& submap, const Point2& map_point) {
+  const auto cell =
+      submap.navigable.CellAt(submap.map_from_submap.ToTransform().inverse() * map_point);
+  return cell && submap.navigable.StateAt(cell->x, cell->y) == grid::CellState::kFree;
+}
+
+int64_t FreeCount(const grid::OccupancyGrid& grid) { return grid.CountStates().free; }
+
+// Corridor() with two rooms above it, y in [2.15, 6], split at x = 4.9 by a wall, each seen
+// through a doorway in the corridor's wall: x in [2, 3] and [6, 7].
+grid::OccupancyGrid CorridorWithRooms() {
+  grid::OccupancyGrid map = Corridor();
+  Fill(&map, 0, 2.15, 10, 6.0, grid::kFreeValue);
+  Fill(&map, 4.9, 2.15, 5.05, 6.0, grid::kOccupiedValue);
+  Fill(&map, 0, 6.0, 10, 6.15, grid::kOccupiedValue);
+  Fill(&map, 2.0, 2.0, 3.0, 2.15, grid::kFreeValue);
+  Fill(&map, 6.0, 2.0, 7.0, 2.15, grid::kFreeValue);
+  return map;
+}
+
+DoorEntity DoorAt(const std::string& id, double x0, double x1, double y, bool open) {
+  DoorEntity door;
+  door.id = id;
+  door.hinge = Point2(x0, y);
+  door.latch = Point2(x1, y);
+  door.opening_direction = Vector2(0, 1);
+  door.open = open;
+  return door;
+}
+
+TEST(ExtrapolatorTest, NoDoorGivesOnePlace) {
+  const grid::OccupancyGrid map = CorridorWithRooms();
+  const auto result = Extrapolate(map, {});
+  ASSERT_TRUE(result.ok());
+  ASSERT_EQ(result->graph.submaps.size(), 1u);
+  EXPECT_TRUE(result->graph.edges.empty());
+  const Submap& observed = result->graph.submaps[0];
+  EXPECT_EQ(observed.kind, SubmapKind::kObserved);
+  EXPECT_EQ(observed.place, 0u);
+  EXPECT_EQ(FreeCount(observed.navigable), FreeCount(map));
+  // A map without free cells still has its observed sub-map.
+  const auto unknown = Extrapolate(grid::OccupancyGrid(20, 10, kRes), {});
+  ASSERT_TRUE(unknown.ok());
+  ASSERT_EQ(unknown->graph.submaps.size(), 1u);
+  EXPECT_EQ(unknown->graph.submaps[0].kind, SubmapKind::kObserved);
+  EXPECT_EQ(FreeCount(unknown->graph.submaps[0].navigable), 0);
+}
+
+TEST(ExtrapolatorTest, OpenDoorsSplitTheObservedMapIntoPlaces) {
+  const grid::OccupancyGrid map = CorridorWithRooms();
+  Entities entities;
+  entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_b", 7.0, 6.0, 2.075, true));
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const SubmapGraph& graph = result->graph;
+  ASSERT_EQ(graph.submaps.size(), 3u);
+  int64_t free = 0;
+  for (uint32_t id = 0; id < 3; ++id) {
+    const Submap& s = graph.submaps[id];
+    EXPECT_EQ(s.id, id);
+    EXPECT_EQ(s.place, id);
+    EXPECT_EQ(s.kind, SubmapKind::kObserved);
+    EXPECT_TRUE(s.map_from_submap.ToTransform().isApprox(Transform2::Identity()));
+    free += FreeCount(s.navigable);
+  }
+  EXPECT_EQ(free, FreeCount(map));  // every free cell in exactly one place
+  // Numbered by their first cell, row-major from the origin: the corridor, then the rooms.
+  EXPECT_TRUE(FreeAt(graph.submaps[0], Point2(5.0, 1.0)));
+  EXPECT_TRUE(FreeAt(graph.submaps[1], Point2(1.0, 4.0)));
+  EXPECT_TRUE(FreeAt(graph.submaps[2], Point2(8.0, 4.0)));
+  EXPECT_FALSE(FreeAt(graph.submaps[0], Point2(1.0, 4.0)));
+  EXPECT_FALSE(FreeAt(graph.submaps[1], Point2(5.0, 1.0)));
+  for (const Point2& p : FreeCellsInMap(graph.submaps[1])) {
+    EXPECT_GT(p.y(), 2.0);
+    EXPECT_LT(p.x(), 4.9);
+  }
+  ASSERT_EQ(graph.edges.size(), 2u);
+  EXPECT_EQ(graph.edges[0].from, 0u);
+  EXPECT_EQ(graph.edges[0].to, 1u);
+  EXPECT_EQ(graph.edges[0].entity_id, "door_a");
+  EXPECT_TRUE(graph.edges[0].from_T_to.ToTransform().isApprox(Transform2::Identity()));
+  EXPECT_EQ(graph.edges[1].from, 0u);
+  EXPECT_EQ(graph.edges[1].to, 2u);
+  EXPECT_EQ(graph.edges[1].entity_id, "door_b");
+  EXPECT_THAT(graph.submaps[0].entity_ids, ::testing::ElementsAre("door_a", "door_b"));
+  EXPECT_THAT(graph.submaps[2].entity_ids, ::testing::ElementsAre("door_b"));
+}
+
+TEST(ExtrapolatorTest, ClosedDoorSeparatesPlacesToo) {
+  const grid::OccupancyGrid map = CorridorWithRooms();  // room b mapped before the door shut
+  Entities entities;
+  entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, false));
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const SubmapGraph& graph = result->graph;
+  ASSERT_EQ(graph.submaps.size(), 4u);
+  EXPECT_EQ(graph.submaps[2].kind, SubmapKind::kObserved);
+  EXPECT_EQ(graph.submaps[3].kind, SubmapKind::kPredictedDoor);
+  EXPECT_EQ(graph.submaps[3].place, 3u);
+  ASSERT_EQ(graph.edges.size(), 3u);
+  EXPECT_EQ(graph.edges[1].from, 0u);  // corridor - room b, through the closed door
+  EXPECT_EQ(graph.edges[1].to, 2u);
+  EXPECT_EQ(graph.edges[1].entity_id, "door_b");
+  EXPECT_EQ(graph.edges[2].from, 0u);  // the prediction opens from the corridor
+  EXPECT_EQ(graph.edges[2].to, 3u);
+  EXPECT_EQ(graph.edges[2].entity_id, "door_b");
+}
+
+TEST(ExtrapolatorTest, PredictedSubmapJoinsThePlaceItsDoorOpensFrom) {
+  // A closed door in room b's far wall, opening north into the unseen.
+  const grid::OccupancyGrid map = CorridorWithRooms();
+  Entities entities;
+  entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_c", 7.0, 8.0, 6.075, false));
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const SubmapGraph& graph = result->graph;
+  ASSERT_EQ(graph.submaps.size(), 4u);
+  const Submap& predicted = graph.submaps[3];
+  EXPECT_EQ(predicted.kind, SubmapKind::kPredictedDoor);
+  EXPECT_NE(predicted.place, graph.submaps[2].place);
+  ASSERT_EQ(graph.edges.size(), 3u);
+  EXPECT_EQ(graph.edges[2].from, 2u);  // room b
+  EXPECT_EQ(graph.edges[2].to, 3u);
+  EXPECT_EQ(graph.edges[2].entity_id, "door_c");
+  EXPECT_THAT(graph.submaps[2].entity_ids, ::testing::ElementsAre("door_b", "door_c"));
+}
+
+TEST(ExtrapolatorTest, GraphJsonListsPlacesAndObservedEdges) {
+  Entities entities;
+  entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, false));
+  const auto result = Extrapolate(CorridorWithRooms(), entities);
+  ASSERT_TRUE(result.ok());
+  const nlohmann::json json = SubmapGraphToJson(result->graph);
+  ASSERT_EQ(json["places"].size(), 4u);
+  EXPECT_EQ(json["places"][1]["place"], 1);
+  EXPECT_EQ(json["places"][1]["observed"], true);
+  EXPECT_EQ(json["places"][1]["submaps"], nlohmann::json::array({1}));
+  EXPECT_EQ(json["places"][3]["observed"], false);
+  EXPECT_EQ(json["submaps"][1]["kind"], "observed");
+  EXPECT_EQ(json["edges"][0]["entity"], "door_a");
+  EXPECT_EQ(json["edges"][0]["to"], 1);
+}
+
+TEST(ExtrapolatorTest, FootOfStairsSeparatesPlaces) {
+  // The corridor's free cells run on past the foot of a flight at x = 6 (the steps).
+  StairsEntity stairs;
+  stairs.id = "stairs_1";
+  stairs.position = Point2(6.0, 1.075);
+  stairs.ascending = Vector2(1, 0);
+  stairs.step_width = 1.85;
+  stairs.run_length = 3.0;
+  Entities entities;
+  entities.stairs.push_back(stairs);
+  const auto result = Extrapolate(Corridor(), entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const SubmapGraph& graph = result->graph;
+  ASSERT_EQ(graph.submaps.size(), 3u);
+  EXPECT_TRUE(FreeAt(graph.submaps[0], Point2(2.0, 1.0)));
+  EXPECT_TRUE(FreeAt(graph.submaps[1], Point2(8.0, 1.0)));
+  EXPECT_EQ(graph.submaps[2].kind, SubmapKind::kPredictedStairs);
+  ASSERT_EQ(graph.edges.size(), 2u);
+  EXPECT_EQ(graph.edges[0].from, 0u);
+  EXPECT_EQ(graph.edges[0].to, 1u);
+  EXPECT_EQ(graph.edges[1].from, 0u);  // the flight goes up from the floor before its foot
+  EXPECT_EQ(graph.edges[1].to, 2u);
+  EXPECT_EQ(graph.edges[1].entity_id, "stairs_1");
+}
+
+TEST(ExtrapolatorTest, SpeckleDoesNotMakePlaces) {
+  grid::OccupancyGrid map = CorridorWithRooms();
+  Fill(&map, 4.9, 2.15, 5.05, 6.0, grid::kUnknownValue);
+  // Isolated free cells in the unknown beyond the rooms, a free cell in a wall, and a small
+  // nook (0.2 x 0.2 m) behind a third doorway.
+  Fill(&map, 0, 6.15, 10, 8.0, grid::kUnknownValue);
+  for (int i = 0; i < 40; ++i) {
+    const double x = 0.3 + 0.24 * i, y = 6.5 + 0.03 * (i % 40);
+    Fill(&map, x, y, x + 0.05, y + 0.05, grid::kFreeValue);
+  }
+  Fill(&map, 4.95, 3.0, 5.0, 3.05, grid::kFreeValue);
+  Entities entities;
+  for (double x : {1.0, 3.5, 6.5}) {
+    const std::string id = "door_" + std::to_string(static_cast<int>(x * 10));
+    entities.doors.push_back(DoorAt(id, x, x + 0.3, 6.075, true));
+  }
+  Fill(&map, 6.5, 6.0, 6.8, 6.15, grid::kFreeValue);
+  Fill(&map, 6.55, 6.15, 6.75, 6.35, grid::kFreeValue);  // 16 cells, well under 0.5 m2
+  ExtrapolationOptions no_minimum;
+  no_minimum.min_place_area = 1e-4;
+  const auto speckled = Extrapolate(map, entities, no_minimum);
+  ASSERT_TRUE(speckled.ok());
+  ASSERT_GT(speckled->graph.submaps.size(), 40u);  // the test can fail
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  ASSERT_EQ(result->graph.submaps.size(), 1u);
+  EXPECT_TRUE(FreeAt(result->graph.submaps[0], Point2(6.6, 6.3)));     // the nook joins
+  EXPECT_FALSE(FreeAt(result->graph.submaps[0], Point2(0.32, 6.52)));  // speckle is dropped
+}
+
+TEST(ExtrapolatorTest, PeoplesCellsJoinThePlaceTheyFallIn) {
+  const grid::OccupancyGrid map = CorridorWithRooms();
+  Entities entities;
+  entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
+  entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, true));
+  PersonTrack person;
+  person.id = "p1";
+  for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(6.0 + 0.2 * i, 4.0), 0});
+  entities.people.push_back(person);
+  const auto result = Extrapolate(map, entities);
+  ASSERT_TRUE(result.ok()) << result.status();
+  ASSERT_EQ(result->graph.submaps.size(), 3u);
+  EXPECT_THAT(result->graph.submaps[2].entity_ids, ::testing::Contains("p1"));
+  EXPECT_THAT(result->graph.submaps[0].entity_ids, ::testing::Not(::testing::Contains("p1")));
+  const grid::OccupancyGrid& cf = result->conditionally_free;
+  int64_t claimed = 0;
+  for (int y = 0; y < cf.height(); ++y) {
+    for (int x = 0; x < cf.width(); ++x) {
+      if (cf.StateAt(x, y) != grid::CellState::kFree) continue;
+      ++claimed;
+      EXPECT_TRUE(FreeAt(result->graph.submaps[2], cf.CellCenter(x, y)));
+    }
+  }
+  EXPECT_GT(claimed, 50);
 }
 
 TEST(ExtrapolatorTest, ClosedDoorMakesAPredictedSubmapBehindIt) {
@@ -182,7 +413,7 @@ TEST(ExtrapolatorTest, PersonFreeSpaceFollowsTheTrackAndExtendsForwardOnLeaving)
       ++claimed;
       EXPECT_NE(map.StateAt(x, y), grid::CellState::kOccupied);
       EXPECT_LT(std::abs(cf.CellCenter(x, y).y() - 1.0), 1.0);
-      EXPECT_EQ(leaves->graph.submaps[0].navigable.StateAt(x, y), grid::CellState::kFree);
+      EXPECT_TRUE(FreeAt(leaves->graph.submaps[0], cf.CellCenter(x, y)));
     }
   }
   EXPECT_GT(claimed, 100);
@@ -288,6 +519,9 @@ TEST(ExtrapolatorTest, BadOptionsAndEmptyMapAreErrors) {
   EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
   options.p_th = 0.5;
   options.door_sigma_depth_per_width = std::nan("");
+  EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
+  options.door_sigma_depth_per_width = 1.3;
+  options.min_place_area = -1.0;
   EXPECT_FALSE(Extrapolate(Corridor(), {}, options).ok());
   EXPECT_FALSE(Extrapolate(grid::OccupancyGrid(), {}).ok());
 }
