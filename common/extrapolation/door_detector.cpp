@@ -161,13 +161,7 @@ std::vector<DetectedDoor> DetectDoors(const PointCloud& cloud,
         found.push_back(door);
       }
     }
-    std::vector<uint8_t> drop(remaining.size(), 0);
-    for (int i : fit->inliers) drop[i] = 1;
-    PointCloud next;
-    for (size_t i = 0; i < remaining.size(); ++i) {
-      if (!drop[i]) next.push_back(remaining[i]);
-    }
-    remaining.swap(next);
+    remaining = WithoutInliers(remaining, fit->inliers);
   }
   return found;
 }

@@ -96,4 +96,14 @@ std::optional<PlaneFit> FitPlaneRansac(const PointCloud& points, const RansacOpt
   return fit;
 }
 
+PointCloud WithoutInliers(const PointCloud& points, const std::vector<int>& inliers) {
+  std::vector<uint8_t> drop(points.size(), 0);
+  for (const int i : inliers) drop[static_cast<size_t>(i)] = 1;
+  PointCloud rest;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!drop[i]) rest.push_back(points[i]);
+  }
+  return rest;
+}
+
 }  // namespace fleetmap::extrapolation

@@ -46,6 +46,10 @@ struct PlaneFit {
 // hypothesis meets the constraints with min_inliers.
 std::optional<PlaneFit> FitPlaneRansac(const PointCloud& points, const RansacOptions& options);
 
+// The points that are not among `inliers` (indices into `points`, as PlaneFit gives them), in
+// their order: what a detector searches next after taking one plane out.
+PointCloud WithoutInliers(const PointCloud& points, const std::vector<int>& inliers);
+
 // The least-squares plane through `points` (>= 3): the normal is the eigenvector of the smallest
 // eigenvalue of their covariance.
 Plane FitPlaneLeastSquares(const PointCloud& points);

@@ -94,13 +94,7 @@ std::vector<DetectedStairs> DetectStairs(const PointCloud& cloud,
       }
     }
     // Drop the plane's inliers (accepted or not) and look for the next plane.
-    std::vector<uint8_t> drop(remaining.size(), 0);
-    for (int i : fit->inliers) drop[i] = 1;
-    PointCloud next;
-    for (size_t i = 0; i < remaining.size(); ++i) {
-      if (!drop[i]) next.push_back(remaining[i]);
-    }
-    remaining.swap(next);
+    remaining = WithoutInliers(remaining, fit->inliers);
   }
   return found;
 }
