@@ -20,22 +20,11 @@ namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::ReadFile;
 using testing::RunFleetmap;
 
 std::string TempDir(const std::string& name) {
-  const std::string dir = (std::filesystem::temp_directory_path() /
-                           ("fleetmap_cli_objects_" + name + "_" + std::to_string(getpid())))
-                              .string();
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return buffer.str();
+  return testing::FreshTempDir("fleetmap_cli_objects_" + name);
 }
 
 // A 5 x 5 m room with box outlines (insides unknown) at the given cells.

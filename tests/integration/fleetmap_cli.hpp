@@ -2,7 +2,12 @@
 
 // Runs the real `fleetmap` binary of this build, for the CLI integration tests.
 
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +21,23 @@ inline process::CommandResult RunFleetmap(
   std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap"};
   argv.insert(argv.end(), args.begin(), args.end());
   return process::RunCommand(std::move(argv), timeout);
+}
+
+// A fresh, empty directory for one test's outputs, unique to this process: <tmp>/<prefix>_<pid>.
+inline std::string FreshTempDir(const std::string& prefix) {
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(getpid()))).string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The whole file, or "" if it cannot be read.
+inline std::string ReadFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return buffer.str();
 }
 
 }  // namespace fleetmap::testing
