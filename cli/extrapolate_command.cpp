@@ -82,12 +82,13 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::E
   const double observed = floor.observed_free_cells * cell_area;
   const double predicted = floor.predicted_free_cells * cell_area;
   char buffer[200];
-  std::snprintf(buffer, sizeof(buffer),
-                "p_th %.2f: %zu sub-maps (%zu places observed, %zu predicted), observed free "
-                "%.1f m2, predicted free on this floor %.1f m2 (%+.1f %%)",
-                p_th, result.graph.submaps.size(), observed_submaps,
-                result.graph.submaps.size() - observed_submaps, observed, predicted,
-                observed > 0 ? 100.0 * predicted / observed : 0.0);
+  std::snprintf(
+      buffer, sizeof(buffer),
+      "p_th %.2f: %zu sub-maps (%zu observed, one per place; %zu predicted), observed free "
+      "%.1f m2, predicted free on this floor %.1f m2 (%+.1f %%)",
+      p_th, result.graph.submaps.size(), observed_submaps,
+      result.graph.submaps.size() - observed_submaps, observed, predicted,
+      observed > 0 ? 100.0 * predicted / observed : 0.0);
   line << buffer << " -> " << dir;
   return line.str();
 }
