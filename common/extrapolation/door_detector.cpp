@@ -12,13 +12,6 @@
 namespace fleetmap::extrapolation {
 namespace {
 
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const size_t k = static_cast<size_t>(fraction * (values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[k];
-}
-
 // Splits a plane patch into runs of dense columns (cells of image_cell along s): a door leaf
 // fills its columns from the floor to its top, while the sparse band where a neighbouring wall
 // face grazes the plane does not. Each run's points, in index order.

@@ -8,17 +8,6 @@
 #include "common/extrapolation/voxel_filter.hpp"
 
 namespace fleetmap::extrapolation {
-namespace {
-
-double Percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  const size_t k = static_cast<size_t>(fraction * (values.size() - 1));
-  std::nth_element(values.begin(), values.begin() + k, values.end());
-  return values[k];
-}
-
-}  // namespace
-
 std::vector<DetectedStairs> DetectStairs(const PointCloud& cloud,
                                          const StairsDetectorOptions& options) {
   std::vector<DetectedStairs> found;

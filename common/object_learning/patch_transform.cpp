@@ -98,6 +98,38 @@ void TransformPatch(const Patch& source, const Alignment& alignment, Patch* out)
                      source.weight.empty() ? nullptr : out->weight.data());
 }
 
+namespace {
+
+// The cells a distance between a moved source and a target visits: the union of the target's
+// non-zero box and the moved source's (its corners moved, plus a cell for the bilinear spread),
+// clipped to the patch.
+CellBox VisitedBox(const CellBox& target_box, const CellBox& source_box, int width, int height,
+                   double resolution, const Alignment& alignment) {
+  CellBox box = target_box;
+  if (!source_box.empty()) {
+    const double cx = 0.5 * (width - 1), cy = 0.5 * (height - 1);
+    const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
+    const double sx = alignment.dx / resolution, sy = alignment.dy / resolution;
+    for (const double x : {source_box.x0 - 1.0, source_box.x1 + 1.0}) {
+      for (const double y : {source_box.y0 - 1.0, source_box.y1 + 1.0}) {
+        const double u = c * (x - cx) - s * (y - cy) + cx + sx;
+        const double v = s * (x - cx) + c * (y - cy) + cy + sy;
+        box.x0 = std::min(box.x0, static_cast<int>(std::floor(u)));
+        box.y0 = std::min(box.y0, static_cast<int>(std::floor(v)));
+        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(u)));
+        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(v)));
+      }
+    }
+  }
+  box.x0 = std::max(box.x0, 0);
+  box.y0 = std::max(box.y0, 0);
+  box.x1 = std::min(box.x1, width - 1);
+  box.y1 = std::min(box.y1, height - 1);
+  return box;
+}
+
+}  // namespace
+
 CellBox NonZeroBox(const float* values, int width, int height) {
   CellBox box{width, height, -1, -1};
   for (int y = 0; y < height; ++y) {
@@ -125,26 +157,8 @@ double AlignedSquaredDistance(const Patch& source, const CellBox& source_box,
   // Cells where both the moved source and the target are 0 add nothing: visit only the union of
   // the target's non-zero box and the moved source's (its corners moved, plus a cell for the
   // bilinear spread).
-  CellBox box = target_box;
-  if (!source_box.empty()) {
-    const double cx = 0.5 * (source.width - 1), cy = 0.5 * (source.height - 1);
-    const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
-    const double sx = alignment.dx / source.resolution, sy = alignment.dy / source.resolution;
-    for (const double x : {source_box.x0 - 1.0, source_box.x1 + 1.0}) {
-      for (const double y : {source_box.y0 - 1.0, source_box.y1 + 1.0}) {
-        const double u = c * (x - cx) - s * (y - cy) + cx + sx;
-        const double v = s * (x - cx) + c * (y - cy) + cy + sy;
-        box.x0 = std::min(box.x0, static_cast<int>(std::floor(u)));
-        box.y0 = std::min(box.y0, static_cast<int>(std::floor(v)));
-        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(u)));
-        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(v)));
-      }
-    }
-  }
-  box.x0 = std::max(box.x0, 0);
-  box.y0 = std::max(box.y0, 0);
-  box.x1 = std::min(box.x1, source.width - 1);
-  box.y1 = std::min(box.y1, source.height - 1);
+  const CellBox box =
+      VisitedBox(target_box, source_box, source.width, source.height, source.resolution, alignment);
   if (box.empty()) return 0.0;
   double sum = 0.0;
   // Checking the bound once per cell costs more than it saves; once per 64 cells is enough.
@@ -177,28 +191,12 @@ PatchSampler::PatchSampler(const Patch& source)
 
 double PatchSampler::SquaredDistance(const Alignment& alignment, const float* target,
                                      const CellBox& target_box, double bound) const {
+  // The union of the target's box and the moved source box (see AlignedSquaredDistance).
+  const CellBox box = VisitedBox(target_box, box_, width_, height_, resolution_, alignment);
+  if (box.empty()) return 0.0;
   const double cx = 0.5 * (width_ - 1), cy = 0.5 * (height_ - 1);
   const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
   const double sx = alignment.dx / resolution_, sy = alignment.dy / resolution_;
-  // The union of the target's box and the moved source box (see AlignedSquaredDistance).
-  CellBox box = target_box;
-  if (!box_.empty()) {
-    for (const double x : {box_.x0 - 1.0, box_.x1 + 1.0}) {
-      for (const double y : {box_.y0 - 1.0, box_.y1 + 1.0}) {
-        const double u = c * (x - cx) - s * (y - cy) + cx + sx;
-        const double v = s * (x - cx) + c * (y - cy) + cy + sy;
-        box.x0 = std::min(box.x0, static_cast<int>(std::floor(u)));
-        box.y0 = std::min(box.y0, static_cast<int>(std::floor(v)));
-        box.x1 = std::max(box.x1, static_cast<int>(std::ceil(u)));
-        box.y1 = std::max(box.y1, static_cast<int>(std::ceil(v)));
-      }
-    }
-  }
-  box.x0 = std::max(box.x0, 0);
-  box.y0 = std::max(box.y0, 0);
-  box.x1 = std::min(box.x1, width_ - 1);
-  box.y1 = std::min(box.y1, height_ - 1);
-  if (box.empty()) return 0.0;
   const int pw = width_ + 2;
   const float outside_weight = has_weight_ ? 0.0f : 1.0f;
   const float* value = value_.data();
