@@ -125,7 +125,10 @@ void FusionWorker::Loop() {
 void FusionWorker::HandleRobotRecords() {
   std::vector<store::RobotRecord> records = robot_records_.Drain();
   for (const store::RobotRecord& robot : records) {
-    if (robot.state == "active") continue;
+    if (robot.state == "active") {
+      sessions_->Rejoin(robot.robot);
+      continue;
+    }
     const Timestamp ended{
         std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(robot.last_seen_ns))};
     StatusOr<std::optional<MappingSession>> finished = sessions_->EndSession(robot.robot, ended);

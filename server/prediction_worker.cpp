@@ -132,6 +132,7 @@ void PredictionWorker::HandleInputs() {
   if (inputs.empty()) return;
   bool map_changed = false;
   bool people_changed = false;
+  bool removed = false;
   // Only the newest map matters; entities in arrival order.
   for (Input& input : inputs) {
     if (input.kind == Input::Kind::kMap) {
@@ -143,7 +144,7 @@ void PredictionWorker::HandleInputs() {
     if (input.kind == Input::Kind::kRemoved) {
       const auto it = entities_.find(key);
       if (it == entities_.end()) continue;
-      people_changed |= !PredictsASubmap(it->second);
+      removed = true;
       entities_.erase(it);
       std::erase(unpredicted_, key);
       Withdraw(key);
@@ -163,9 +164,10 @@ void PredictionWorker::HandleInputs() {
     entities_[key] = std::move(input.entity);
   }
   if (map_) {
+    const bool entities_changed = people_changed || !unpredicted_.empty() || removed;
     for (const std::string& key : unpredicted_) Predict(key, entities_.at(key));
     unpredicted_.clear();
-    if (people_changed || map_changed) UpdatePeople();
+    if (entities_changed || map_changed) UpdatePlaces();
     if (map_changed) CheckPredictions();
   }
   std::lock_guard lock(stats_mutex_);
@@ -204,16 +206,9 @@ void PredictionWorker::Predict(const std::string& key, const transport::EntityMe
   message.source_robot = entity.robot.value;
   message.source_entity = entity.entity_id();
   message.stamp = Clock::now();
-  extrapolation::SubmapEdge to_observed;
-  to_observed.from = message.submap.id;
-  to_observed.to = 0;
-  to_observed.from_T_to = extrapolation::RelativePose(message.submap.map_from_submap, Pose2{});
-  to_observed.entity_id = entity.entity_id();
-  message.edges = {to_observed};
   prediction.added = AddedCells(message.submap, *map_);
   predictions_[key] = std::move(prediction);
-  Publish(predictions_[key].message);
-  PublishObserved();  // its edges changed
+  // Its edge to the place it opens from is set, and it is published, by UpdatePlaces().
 }
 
 void PredictionWorker::Withdraw(const std::string& key) {
@@ -225,30 +220,81 @@ void PredictionWorker::Withdraw(const std::string& key) {
     spdlog::warn("server: {}", disposed.message());
   }
   predictions_.erase(it);
-  PublishObserved();
 }
 
-void PredictionWorker::UpdatePeople() {
-  extrapolation::Entities people;
-  for (const auto& [key, entity] : entities_) {
-    if (const auto* track = std::get_if<extrapolation::PersonTrack>(&entity.entity)) {
-      people.people.push_back(*track);
+void PredictionWorker::UpdatePlaces() {
+  // Every entity at once, under its server key (two robots may both have a "door_1").
+  extrapolation::Entities all;
+  for (const auto& [key, message] : entities_) {
+    std::visit(
+        [&all, &key](auto entity) {
+          entity.id = key;
+          using T = std::decay_t<decltype(entity)>;
+          if constexpr (std::is_same_v<T, extrapolation::DoorEntity>) {
+            all.doors.push_back(std::move(entity));
+          } else if constexpr (std::is_same_v<T, extrapolation::StairsEntity>) {
+            all.stairs.push_back(std::move(entity));
+          } else {
+            all.people.push_back(std::move(entity));
+          }
+        },
+        message.entity);
+  }
+  StatusOr<extrapolation::ExtrapolationResult> result =
+      extrapolation::Extrapolate(*map_, all, options_.extrapolation);
+  if (!result.ok()) {
+    spdlog::warn("server: cannot split the fused map into places: {}", result.status().message());
+    return;
+  }
+  places_ = extrapolation::SubmapGraph();
+  place_of_.clear();
+  const extrapolation::SubmapGraph& graph = result->graph;
+  for (const extrapolation::Submap& submap : graph.submaps) {
+    if (submap.kind != extrapolation::SubmapKind::kObserved) continue;
+    extrapolation::Submap place = submap;
+    // Cells free only because people walk there are marked, not plain free.
+    grid::OccupancyGrid& cells = place.navigable;
+    for (int y = 0; y < cells.height(); ++y) {
+      for (int x = 0; x < cells.width(); ++x) {
+        if (cells.at(x, y) != grid::kFreeValue) continue;
+        const auto index = result->conditionally_free.CellAt(cells.CellCenter(x, y));
+        if (index && result->conditionally_free.at(index->x, index->y) == grid::kFreeValue &&
+            map_->StateAt(index->x, index->y) != grid::CellState::kFree) {
+          cells.at(x, y) = kConditionallyFree;
+        }
+      }
+    }
+    places_.submaps.push_back(std::move(place));
+  }
+  for (const extrapolation::SubmapEdge& edge : graph.edges) {
+    const extrapolation::Submap* from = graph.Find(edge.from);
+    const extrapolation::Submap* to = graph.Find(edge.to);
+    if (from == nullptr || to == nullptr) continue;
+    if (to->kind == extrapolation::SubmapKind::kObserved &&
+        from->kind == extrapolation::SubmapKind::kObserved) {
+      places_.edges.push_back(edge);
+    } else if (from->kind == extrapolation::SubmapKind::kObserved) {
+      place_of_[edge.entity_id] = edge.from;  // the place this door or stairs opens from
     }
   }
-  if (people.people.empty()) {
-    if (conditionally_free_.empty()) return;
-    conditionally_free_ = grid::OccupancyGrid();
-  } else {
-    StatusOr<extrapolation::ExtrapolationResult> result =
-        extrapolation::Extrapolate(*map_, people, options_.extrapolation);
-    if (!result.ok()) {
-      spdlog::warn("server: cannot extrapolate people's tracks: {}", result.status().message());
-      return;
+  // Each prediction joins the place its entity opens from now (the map may have grown).
+  for (auto& [key, prediction] : predictions_) {
+    const auto place = place_of_.find(key);
+    extrapolation::SubmapEdge to_place;
+    to_place.from = prediction.message.submap.id;
+    to_place.to = place != place_of_.end() ? place->second : 0;
+    const extrapolation::Submap* observed = places_.Find(to_place.to);
+    to_place.from_T_to =
+        extrapolation::RelativePose(prediction.message.submap.map_from_submap,
+                                    observed != nullptr ? observed->map_from_submap : Pose2{});
+    to_place.entity_id = prediction.message.source_entity;
+    if (prediction.message.edges.size() == 1 && prediction.message.edges[0].to == to_place.to) {
+      continue;
     }
-    if (result->conditionally_free == conditionally_free_) return;
-    conditionally_free_ = std::move(result->conditionally_free);
+    prediction.message.edges = {to_place};
+    Publish(prediction.message);
   }
-  PublishObserved();
+  PublishPlaces();
 }
 
 void PredictionWorker::CheckPredictions() {
@@ -287,22 +333,57 @@ void PredictionWorker::CheckPredictions() {
   }
 }
 
-void PredictionWorker::PublishObserved() {
-  transport::SubmapMessage observed;
-  observed.submap.id = 0;
-  observed.submap.kind = extrapolation::SubmapKind::kObserved;
-  observed.submap.navigable = conditionally_free_;
-  observed.state = transport::SubmapState::kObserved;
-  observed.stamp = Clock::now();
-  for (const auto& [key, prediction] : predictions_) {
-    extrapolation::SubmapEdge edge;
-    edge.from = 0;
-    edge.to = prediction.message.submap.id;
-    edge.from_T_to = prediction.message.submap.map_from_submap;
-    edge.entity_id = prediction.message.source_entity;
-    observed.edges.push_back(edge);
+void PredictionWorker::PublishPlaces() {
+  std::vector<transport::SubmapMessage> places;
+  for (const extrapolation::Submap& place : places_.submaps) {
+    transport::SubmapMessage message;
+    message.submap = place;
+    message.submap.confidence.clear();
+    message.state = transport::SubmapState::kObserved;
+    message.stamp = Clock::now();
+    for (const extrapolation::SubmapEdge& edge : places_.edges) {
+      if (edge.from == place.id || edge.to == place.id) {
+        extrapolation::SubmapEdge out = edge;
+        if (edge.to == place.id) std::swap(out.from, out.to);  // edges start at this node
+        out.from_T_to = Pose2{};                               // places share the fleet frame
+        message.edges.push_back(out);
+      }
+    }
+    for (const auto& [key, prediction] : predictions_) {
+      const transport::SubmapMessage& predicted = prediction.message;
+      if (predicted.edges.empty() || predicted.edges[0].to != place.id) continue;
+      extrapolation::SubmapEdge edge;
+      edge.from = place.id;
+      edge.to = predicted.submap.id;
+      edge.from_T_to =
+          extrapolation::RelativePose(place.map_from_submap, predicted.submap.map_from_submap);
+      edge.entity_id = predicted.source_entity;
+      message.edges.push_back(edge);
+    }
+    places.push_back(std::move(message));
   }
-  Publish(observed);
+  // Only what changed goes out again; places the map no longer has are withdrawn.
+  for (size_t k = 0; k < places.size(); ++k) {
+    const bool same =
+        k < published_places_.size() &&
+        published_places_[k].submap.navigable == places[k].submap.navigable &&
+        published_places_[k].submap.entity_ids == places[k].submap.entity_ids &&
+        published_places_[k].edges.size() == places[k].edges.size() &&
+        std::equal(places[k].edges.begin(), places[k].edges.end(),
+                   published_places_[k].edges.begin(),
+                   [](const extrapolation::SubmapEdge& a, const extrapolation::SubmapEdge& b) {
+                     return a.to == b.to && a.entity_id == b.entity_id;
+                   });
+    if (!same) Publish(places[k]);
+  }
+  for (size_t k = places.size(); k < published_places_.size(); ++k) {
+    if (Status disposed = writer_->Dispose(published_places_[k]); !disposed.ok()) {
+      spdlog::warn("server: {}", disposed.message());
+    }
+  }
+  published_places_ = std::move(places);
+  std::lock_guard lock(stats_mutex_);
+  stats_.places = published_places_.size();
 }
 
 void PredictionWorker::Publish(const transport::SubmapMessage& message) {

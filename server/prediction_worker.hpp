@@ -18,6 +18,11 @@
 
 namespace fleetmap::server {
 
+// Predicted sub-maps are numbered from here; observed places from 0.
+inline constexpr uint32_t kFirstPredictedSubmap = 1u << 20;
+// The value of a cell of an observed place that only people's tracks make free.
+inline constexpr int8_t kConditionallyFree = 1;
+
 struct PredictionOptions {
   bool enabled = true;
   extrapolation::ExtrapolationOptions extrapolation;
@@ -34,6 +39,7 @@ struct PredictionOptions {
 // What the predictions have done. A snapshot; thread-safe to take.
 struct PredictionStats {
   uint64_t entities = 0;  // known now
+  uint64_t places = 0;    // observed places of the fused map
   uint64_t predictions = 0;
   uint64_t confirmed = 0;
   uint64_t retracted = 0;
@@ -43,8 +49,11 @@ struct PredictionStats {
 // The server's map extrapolation (docs/extrapolation.md): from the entities the robots recognise
 // (doors, stairs, people; already in the fleet frame) and the fused grid, predicts sub-maps behind
 // closed doors and at the top of stairs, and the conditionally free space along people's tracks,
-// and publishes the sub-map graph on rt/fleetmap/submap_graph: sub-map 0 is the observed fleet
-// map (carrying the conditionally free cells), each prediction is a node joined to it.
+// and publishes the sub-map graph on rt/fleetmap/submap_graph. The observed fleet map is split
+// into topological places at doors and stairs: sub-maps 0..K-1, one per place, carrying the
+// place's free cells (kConditionallyFree where only people's tracks make them free) and edges
+// through the doors between them. Each prediction (ids from kFirstPredictedSubmap) is a node
+// joined to the place its door or stairs opens from.
 //
 // A prediction is made once per entity (again only when the entity changes) against the fused
 // map of that moment, and then checked against every later fused map: only the cells it added
@@ -91,9 +100,12 @@ class PredictionWorker {
   // entity no longer gives one (an open door).
   void Predict(const std::string& key, const transport::EntityMessage& entity);
   void Withdraw(const std::string& key);
-  void UpdatePeople();
+  // Splits the fused map into places (with every door and stairs) and marks the conditionally
+  // free cells of people's tracks; publishes the places that changed.
+  void UpdatePlaces();
   void CheckPredictions();
-  void PublishObserved();
+  // The observed places with their edges: between places, and to the predictions.
+  void PublishPlaces();
   void Publish(const transport::SubmapMessage& message);
 
   const PredictionOptions options_;
@@ -106,8 +118,10 @@ class PredictionWorker {
   std::map<std::string, transport::EntityMessage> entities_;  // by "robot/entity"
   std::map<std::string, Prediction> predictions_;             // by "robot/entity"
   std::vector<std::string> unpredicted_;                      // doors and stairs waiting for a map
-  grid::OccupancyGrid conditionally_free_;
-  uint32_t next_submap_id_ = 1;                 // 0 is the observed map
+  extrapolation::SubmapGraph places_;         // observed places and their edges, fleet frame
+  std::map<std::string, uint32_t> place_of_;  // the place each door or stairs opens from
+  std::vector<transport::SubmapMessage> published_places_;
+  uint32_t next_submap_id_ = kFirstPredictedSubmap;
   std::map<std::string, uint32_t> submap_ids_;  // stable per entity across re-predictions
 
   std::atomic<bool> stop_{false};

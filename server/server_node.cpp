@@ -277,10 +277,10 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
   if (prediction_worker_) {
     const PredictionStats prediction = prediction_worker_->stats();
     fmt::print(
-        "extrapolation: {} entities ({} rejected), {} predicted sub-maps ({} confirmed, {} "
-        "retracted), {} sub-map samples published\n",
-        prediction.entities, rejected_entities_, prediction.predictions, prediction.confirmed,
-        prediction.retracted, prediction.submaps_published);
+        "extrapolation: {} entities ({} rejected), {} places, {} predicted sub-maps ({} "
+        "confirmed, {} retracted), {} sub-map samples published\n",
+        prediction.entities, rejected_entities_, prediction.places, prediction.predictions,
+        prediction.confirmed, prediction.retracted, prediction.submaps_published);
   }
   std::fflush(stdout);
 }

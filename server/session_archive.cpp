@@ -35,7 +35,8 @@ StatusOr<std::vector<std::string>> SessionArchive::Restore() {
 
 void SessionArchive::RecordTile(const std::string& robot, const TileId& tile,
                                 const vector_map::VectorMap& map, Timestamp stamp) {
-  auto [it, inserted] = open_.try_emplace(robot);
+  auto& sessions = closed_.count(robot) > 0 ? held_ : open_;
+  auto [it, inserted] = sessions.try_emplace(robot);
   MappingSession& session = it->second;
   if (inserted) {
     session.robot = robot;
@@ -46,12 +47,24 @@ void SessionArchive::RecordTile(const std::string& robot, const TileId& tile,
 }
 
 void SessionArchive::RemoveTile(const std::string& robot, const TileId& tile) {
-  const auto it = open_.find(robot);
-  if (it != open_.end()) it->second.map.tiles.erase(tile);
+  for (auto* sessions : {&open_, &held_}) {
+    const auto it = sessions->find(robot);
+    if (it != sessions->end()) it->second.map.tiles.erase(tile);
+  }
+}
+
+void SessionArchive::Rejoin(const std::string& robot) {
+  closed_.erase(robot);
+  const auto held = held_.find(robot);
+  if (held == held_.end()) return;
+  open_.emplace(robot, std::move(held->second));
+  held_.erase(held);
 }
 
 StatusOr<std::optional<MappingSession>> SessionArchive::EndSession(const std::string& robot,
                                                                    Timestamp ended) {
+  held_.erase(robot);  // late samples of a session that already ended
+  closed_.insert(robot);
   const auto it = open_.find(robot);
   if (it == open_.end()) return std::optional<MappingSession>();
   MappingSession session = std::move(it->second);

@@ -2,6 +2,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,14 @@ class SessionArchive {
   // skipped and named in the returned warnings.
   StatusOr<std::vector<std::string>> Restore();
 
+  // A tile of the robot's open session (the first tile opens one). Tiles of a robot whose
+  // session ended are held back: late samples of the session that ended are dropped by the next
+  // EndSession(), and a robot that comes back (Rejoin) starts its new session with them.
   void RecordTile(const std::string& robot, const TileId& tile, const vector_map::VectorMap& map,
                   Timestamp stamp);
   void RemoveTile(const std::string& robot, const TileId& tile);
+  // The robot is active again after its session ended.
+  void Rejoin(const std::string& robot);
 
   // Ends the robot's open session. Returns the finished session, or nullopt when the robot had no
   // open session with tiles. Fails only when the store refused it; it is kept in memory then.
@@ -51,7 +57,9 @@ class SessionArchive {
   double tile_size_;
   store::MapStore* store_;
   std::map<std::string, MappingSession> open_;  // by robot
-  std::vector<MappingSession> finished_;        // oldest first
+  std::map<std::string, MappingSession> held_;  // by robot: tiles after its session ended
+  std::set<std::string> closed_;          // robots whose session ended and that have not rejoined
+  std::vector<MappingSession> finished_;  // oldest first
   int64_t next_memory_id_ = 1;
 };
 

@@ -12,6 +12,11 @@ CdrField String(const char* name) { return {name, Kind::kString, 1, nullptr}; }
 CdrField Sequence(const char* name, size_t size) {
   return {name, Kind::kPrimitiveSequence, size, nullptr};
 }
+// A sequence<string> has the bytes of a sequence of structs holding one string each.
+CdrField StringSequence(const char* name) {
+  static const CdrShape one_string = {String("value")};
+  return {name, Kind::kStructSequence, 0, &one_string};
+}
 CdrField Struct(const char* name, const CdrShape& shape) {
   return {name, Kind::kStruct, 0, &shape};
 }
@@ -132,7 +137,7 @@ const CdrShape& SubmapShape() {
       Primitive("height", 4),     Struct("origin", Pose2DShape()),
       Sequence("data", 1),        Sequence("edge_to", 4),
       Sequence("edge_x", 8),      Sequence("edge_y", 8),
-      Sequence("edge_theta", 8)};
+      Sequence("edge_theta", 8),  StringSequence("edge_entity")};
   return shape;
 }
 

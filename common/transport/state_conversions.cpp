@@ -275,16 +275,19 @@ StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
   std::vector<double> x;
   std::vector<double> y;
   std::vector<double> theta;
+  std::vector<std::string> entity;
   for (const extrapolation::SubmapEdge& edge : message.edges) {
     to.push_back(edge.to);
     x.push_back(edge.from_T_to.x);
     y.push_back(edge.from_T_to.y);
     theta.push_back(edge.from_T_to.yaw);
+    entity.push_back(edge.entity_id);
   }
   sample.edge_to(std::move(to));
   sample.edge_x(std::move(x));
   sample.edge_y(std::move(y));
   sample.edge_theta(std::move(theta));
+  sample.edge_entity(std::move(entity));
   return sample;
 }
 
@@ -303,7 +306,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   }
   const size_t edges = sample.edge_to().size();
   if (sample.edge_x().size() != edges || sample.edge_y().size() != edges ||
-      sample.edge_theta().size() != edges) {
+      sample.edge_theta().size() != edges || sample.edge_entity().size() != edges) {
     return InvalidArgumentError(name + ": edge arrays of different lengths");
   }
   const Pose2 fleet_from_submap = FromIdl(sample.fleet_from_submap());
@@ -336,6 +339,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
     edge.from = submap.id;
     edge.to = sample.edge_to()[k];
     edge.from_T_to = Pose2{sample.edge_x()[k], sample.edge_y()[k], sample.edge_theta()[k]};
+    edge.entity_id = sample.edge_entity()[k].substr(0, kMaxIdLength * 2 + 1);
     message.edges.push_back(std::move(edge));
   }
   message.stamp = FromIdl(sample.stamp());

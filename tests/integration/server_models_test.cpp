@@ -10,7 +10,9 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "common/extrapolation/entities_json.hpp"
@@ -113,9 +115,13 @@ class ServerModelsTest : public ::testing::Test {
       wake_up.WaitFor(milliseconds(100));
       for (auto& event : reader.Drain()) {
         EXPECT_NE(event.kind, decltype(event.kind)::kRejected) << event.error;
-        if (event.kind == decltype(event.kind)::kSample && done(event.message)) {
-          return event.message;
+        if (event.kind != decltype(event.kind)::kSample) continue;
+        if constexpr (std::is_same_v<Message, transport::SubmapMessage>) {
+          if (event.message.state == transport::SubmapState::kObserved) {
+            observed_[event.message.submap.id] = event.message;
+          }
         }
+        if (done(event.message)) return event.message;
       }
     }
     return std::nullopt;
@@ -166,6 +172,7 @@ class ServerModelsTest : public ::testing::Test {
   int domain_ = 0;
   std::map<std::string, std::string> env_;
   std::unique_ptr<transport::Participant> participant_;
+  std::map<uint32_t, transport::SubmapMessage> observed_;  // the latest observed places seen
 };
 
 TEST_F(ServerModelsTest, DoorPredictionIsConfirmedWhenTheRoomBehindIsSeenFree) {
@@ -174,6 +181,24 @@ TEST_F(ServerModelsTest, DoorPredictionIsConfirmedWhenTheRoomBehindIsSeenFree) {
   EXPECT_EQ(judged->state, transport::SubmapState::kConfirmed);
   EXPECT_GE(judged->precision, 0.9F);
   EXPECT_GE(judged->observed_fraction, 0.5F);
+  // Once both rooms are mapped, the door splits the fleet map into two places joined through it.
+  ASSERT_EQ(judged->edges.size(), 1u);
+  const uint32_t first_room = judged->edges[0].to;
+  bool rooms_joined = false;
+  for (const auto& [id, place] : observed_) {
+    for (const extrapolation::SubmapEdge& edge : place.edges) {
+      rooms_joined |= id == first_room && edge.to != id && edge.to < judged->submap.id &&
+                      edge.entity_id == "alpha/door_east";
+    }
+  }
+  std::ostringstream seen;
+  for (const auto& [id, place] : observed_) {
+    for (const extrapolation::SubmapEdge& edge : place.edges) {
+      seen << " " << id << "->" << edge.to << " (" << edge.entity_id << ")";
+    }
+  }
+  EXPECT_TRUE(rooms_joined) << observed_.size() << " observed places, first room " << first_room
+                            << ", edges:" << seen.str();
 }
 
 TEST_F(ServerModelsTest, DoorPredictionIsRetractedWhenShelvesFillTheRoomBehind) {

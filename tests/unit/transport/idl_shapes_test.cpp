@@ -128,6 +128,7 @@ TEST(IdlShapesTest, SubmapShapeMatchesGeneratedCode) {
   submap.edge_x({1.5});
   submap.edge_y({-2.0});
   submap.edge_theta({0.25});
+  submap.edge_entity({"alpha/door_1"});
   ExpectShapeMatches(submap, SubmapShape());
 }
 

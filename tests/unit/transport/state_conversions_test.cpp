@@ -147,6 +147,7 @@ TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   ASSERT_EQ(back->edges.size(), 1u);
   EXPECT_EQ(back->edges[0].to, 0u);
   EXPECT_DOUBLE_EQ(back->edges[0].from_T_to.y, 2.0);
+  EXPECT_EQ(back->edges[0].entity_id, "door_3");
   EXPECT_FLOAT_EQ(back->precision, 0.97F);
 }
 

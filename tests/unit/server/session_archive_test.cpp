@@ -1,0 +1,55 @@
+#include "server/session_archive.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fleetmap::server {
+namespace {
+
+vector_map::VectorMap SomeTile() {
+  vector_map::VectorMap map;
+  vector_map::Polyline wall;
+  wall.points = {Point2(0.1, 0.1), Point2(1.0, 0.1)};
+  map.obstacles.push_back(wall);
+  return map;
+}
+
+TEST(SessionArchiveTest, LateTilesAfterASessionEndedDoNotMakeANewSession) {
+  SessionArchive archive(10.0, nullptr);
+  archive.RecordTile("alpha", {0, 0}, SomeTile(), Timestamp{});
+  auto first = archive.EndSession("alpha", Timestamp{});
+  ASSERT_TRUE(first.ok());
+  ASSERT_TRUE(first->has_value());
+  // A sample still in flight when alpha left, then the writer vanishes (alpha "lost").
+  archive.RecordTile("alpha", {1, 0}, SomeTile(), Timestamp{});
+  auto late = archive.EndSession("alpha", Timestamp{});
+  ASSERT_TRUE(late.ok());
+  EXPECT_FALSE(late->has_value());
+  EXPECT_EQ(archive.finished().size(), 1u);
+}
+
+TEST(SessionArchiveTest, ARobotThatComesBackStartsANewSessionWithItsFirstTiles) {
+  SessionArchive archive(10.0, nullptr);
+  archive.RecordTile("alpha", {0, 0}, SomeTile(), Timestamp{});
+  ASSERT_TRUE(archive.EndSession("alpha", Timestamp{}).ok());
+  // Its first tiles may arrive before the server has seen it rejoin, or after.
+  archive.RecordTile("alpha", {2, 0}, SomeTile(), Timestamp{});
+  archive.Rejoin("alpha");
+  archive.RecordTile("alpha", {3, 0}, SomeTile(), Timestamp{});
+  auto second = archive.EndSession("alpha", Timestamp{});
+  ASSERT_TRUE(second.ok());
+  ASSERT_TRUE(second->has_value());
+  EXPECT_EQ((*second)->map.tiles.size(), 2u);
+  EXPECT_GT((*second)->id, archive.finished().front().id);
+  EXPECT_EQ(archive.finished().size(), 2u);
+}
+
+TEST(SessionArchiveTest, ASessionWithoutTilesIsNotArchived) {
+  SessionArchive archive(10.0, nullptr);
+  auto none = archive.EndSession("beta", Timestamp{});
+  ASSERT_TRUE(none.ok());
+  EXPECT_FALSE(none->has_value());
+  EXPECT_TRUE(archive.finished().empty());
+}
+
+}  // namespace
+}  // namespace fleetmap::server
