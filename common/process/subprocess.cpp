@@ -2,11 +2,13 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -132,8 +134,23 @@ CommandResult RunCommand(std::vector<std::string> argv, std::chrono::millisecond
 }
 
 int RandomDomainId() {
+  constexpr int kDomains = 200;
   std::random_device random;
-  return 1 + static_cast<int>(random() % 200);
+  const int start = static_cast<int>(random() % kDomains);
+  // Chance alone let two tests of a parallel ctest run meet (seen in CI): each candidate is
+  // claimed with an exclusive lock on a file named after it, held (the descriptor stays open)
+  // until this process exits. A second claim of the same id, even by this process, fails.
+  for (int i = 0; i < kDomains; ++i) {
+    const int domain = 1 + (start + i) % kDomains;
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("fleetmap-dds-domain-" + std::to_string(domain) + ".lock"))
+                                 .string();
+    const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0) continue;
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0) return domain;
+    close(fd);
+  }
+  return 1 + start;  // every id is claimed: fall back to chance
 }
 
 std::optional<ProcessUsage> ReadUsage(pid_t pid) {

@@ -56,7 +56,9 @@ struct CommandResult {
 CommandResult RunCommand(std::vector<std::string> argv,
                          std::chrono::milliseconds timeout = std::chrono::seconds(60));
 
-// A DDS domain id for one run or test, random so that runs in parallel never meet.
+// A DDS domain id for one run or test that no other process on this machine holds (claimed with a
+// lock file in the temp directory until this process exits), starting from a random id, so that
+// runs in parallel never meet.
 int RandomDomainId();
 
 // Resource use of a running process, from /proc: CPU seconds (user + system) and peak resident
