@@ -223,6 +223,14 @@ void PredictionWorker::Withdraw(const std::string& key) {
 }
 
 void PredictionWorker::UpdatePlaces() {
+  if (entities_.empty()) {
+    // Nothing splits the map and nobody walks in it: the one place would be rt/fleetmap/map
+    // again, so none is published (and those published before are withdrawn).
+    places_ = extrapolation::SubmapGraph();
+    place_of_.clear();
+    PublishPlaces();
+    return;
+  }
   // Every entity at once, under its server key (two robots may both have a "door_1").
   extrapolation::Entities all;
   for (const auto& [key, message] : entities_) {
