@@ -189,6 +189,25 @@ PatchSampler::PatchSampler(const Patch& source)
   }
 }
 
+inline void PatchSampler::Bilinear(float u, float v, float* value, float* weight) const {
+  if (!(u > -1.0f && v > -1.0f && u < width_ && v < height_)) {
+    *value = 0.0f;
+    *weight = has_weight_ ? 0.0f : 1.0f;
+    return;
+  }
+  // u + 1 > 0: truncation is floor. Padded index of cell (iu, iv) is (iu + 1, iv + 1).
+  const int pw = width_ + 2;
+  const int iu = static_cast<int>(u + 1.0f);
+  const int iv = static_cast<int>(v + 1.0f);
+  const float fu = u + 1.0f - iu, fv = v + 1.0f - iv;
+  const size_t i = static_cast<size_t>(iv) * pw + iu;
+  const float w00 = (1.0f - fu) * (1.0f - fv), w10 = fu * (1.0f - fv);
+  const float w01 = (1.0f - fu) * fv, w11 = fu * fv;
+  *value = w00 * value_[i] + w10 * value_[i + 1] + w01 * value_[i + pw] + w11 * value_[i + pw + 1];
+  *weight =
+      w00 * weight_[i] + w10 * weight_[i + 1] + w01 * weight_[i + pw] + w11 * weight_[i + pw + 1];
+}
+
 double PatchSampler::SquaredDistance(const Alignment& alignment, const float* target,
                                      const CellBox& target_box, double bound) const {
   // The union of the target's box and the moved source box (see AlignedSquaredDistance).
@@ -197,10 +216,6 @@ double PatchSampler::SquaredDistance(const Alignment& alignment, const float* ta
   const double cx = 0.5 * (width_ - 1), cy = 0.5 * (height_ - 1);
   const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
   const double sx = alignment.dx / resolution_, sy = alignment.dy / resolution_;
-  const int pw = width_ + 2;
-  const float outside_weight = has_weight_ ? 0.0f : 1.0f;
-  const float* value = value_.data();
-  const float* weight = weight_.data();
   double sum = 0.0;
   for (int y = box.y0; y <= box.y1; ++y) {
     // Source coordinates of destination (x, y): R(-phi) ((x, y) - centre - d) + centre.
@@ -211,18 +226,8 @@ double PatchSampler::SquaredDistance(const Alignment& alignment, const float* ta
     const float* t = target + static_cast<size_t>(y) * width_;
     float row = 0.0f;
     for (int x = box.x0; x <= box.x1; ++x, u += du, v += dv) {
-      float f = 0.0f, w = outside_weight;
-      if (u > -1.0f && v > -1.0f && u < width_ && v < height_) {
-        // u + 1 > 0: truncation is floor. Padded index of cell (iu, iv) is (iu + 1, iv + 1).
-        const int iu = static_cast<int>(u + 1.0f);
-        const int iv = static_cast<int>(v + 1.0f);
-        const float fu = u + 1.0f - iu, fv = v + 1.0f - iv;
-        const size_t i = static_cast<size_t>(iv) * pw + iu;
-        const float w00 = (1.0f - fu) * (1.0f - fv), w10 = fu * (1.0f - fv);
-        const float w01 = (1.0f - fu) * fv, w11 = fu * fv;
-        f = w00 * value[i] + w10 * value[i + 1] + w01 * value[i + pw] + w11 * value[i + pw + 1];
-        w = w00 * weight[i] + w10 * weight[i + 1] + w01 * weight[i + pw] + w11 * weight[i + pw + 1];
-      }
+      float f, w;
+      Bilinear(u, v, &f, &w);
       const float d = f - t[x];
       row += w * d * d;
     }
@@ -236,26 +241,14 @@ void PatchSampler::Sample(const Alignment& alignment, float* out, float* out_wei
   const double cx = 0.5 * (width_ - 1), cy = 0.5 * (height_ - 1);
   const double c = std::cos(alignment.dphi), s = std::sin(alignment.dphi);
   const double sx = alignment.dx / resolution_, sy = alignment.dy / resolution_;
-  const int pw = width_ + 2;
-  const float outside_weight = has_weight_ ? 0.0f : 1.0f;
   for (int y = 0; y < height_; ++y) {
     const double px = -cx - sx, py = y - cy - sy;
     float u = static_cast<float>(c * px + s * py + cx);
     float v = static_cast<float>(-s * px + c * py + cy);
     const float du = static_cast<float>(c), dv = static_cast<float>(-s);
     for (int x = 0; x < width_; ++x, u += du, v += dv) {
-      float f = 0.0f, w = outside_weight;
-      if (u > -1.0f && v > -1.0f && u < width_ && v < height_) {
-        const int iu = static_cast<int>(u + 1.0f);
-        const int iv = static_cast<int>(v + 1.0f);
-        const float fu = u + 1.0f - iu, fv = v + 1.0f - iv;
-        const size_t i = static_cast<size_t>(iv) * pw + iu;
-        const float w00 = (1.0f - fu) * (1.0f - fv), w10 = fu * (1.0f - fv);
-        const float w01 = (1.0f - fu) * fv, w11 = fu * fv;
-        f = w00 * value_[i] + w10 * value_[i + 1] + w01 * value_[i + pw] + w11 * value_[i + pw + 1];
-        w = w00 * weight_[i] + w10 * weight_[i + 1] + w01 * weight_[i + pw] +
-            w11 * weight_[i + pw + 1];
-      }
+      float f, w;
+      Bilinear(u, v, &f, &w);
       const size_t o = static_cast<size_t>(y) * width_ + x;
       out[o] = f;
       if (out_weight) out_weight[o] = w;

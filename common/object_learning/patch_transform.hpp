@@ -73,6 +73,10 @@ class PatchSampler {
   void Sample(const Alignment& alignment, float* out, float* out_weight) const;
 
  private:
+  // The bilinear value and weight at source cell coordinates (u, v); outside the patch, 0 and
+  // the weight of an unobserved (or, without weights, observed) cell.
+  void Bilinear(float u, float v, float* value, float* weight) const;
+
   int width_;
   int height_;
   double resolution_;
