@@ -16,22 +16,25 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   std::vector<CellPolygon> polygons;
   if (rect.empty()) return polygons;
   // kIn: free (must come back free); kOut: unknown and not painted (should not come back free;
-  // the outline is simplified, so it may cut a corner into such cells); kSolid: occupied and not
-  // painted (must never come back free: a planner would drive through it; guarded exactly by the
-  // OutlineSimplifier, so it comes back unknown); kAny: painted by an obstacle anyway.
+  // the outline is simplified, so it may cut a corner into such cells); kSolid: occupied, not
+  // painted and farther than epsilon from every obstacle edge (must never come back free: a
+  // planner would drive through it; guarded exactly by the OutlineSimplifier, so it comes back
+  // unknown); kAny: painted by an obstacle anyway, or occupied within epsilon of one.
   constexpr uint8_t kOut = 0;
   constexpr uint8_t kIn = 1;
   constexpr uint8_t kAny = 2;
   constexpr uint8_t kSolid = 3;
-  // The class of every (painted, cell value) pair, looked up instead of classified per cell.
-  std::array<uint8_t, 512> class_of{};
+  // The class of every (painted, near an edge, cell value) triple, looked up instead of
+  // classified per cell: index (painted ? 512 : 0) + (near ? 256 : 0) + value byte.
+  std::array<uint8_t, 1024> class_of{};
   for (int v = -128; v < 128; ++v) {
     const uint8_t byte = static_cast<uint8_t>(v);
     const grid::CellState state = grid::StateOf(static_cast<int8_t>(v), thresholds);
     class_of[byte] = state == grid::CellState::kFree       ? kIn
                      : state == grid::CellState::kOccupied ? kSolid
                                                            : kOut;
-    class_of[256 + byte] = state == grid::CellState::kFree ? kIn : kAny;
+    class_of[256 + byte] = state == grid::CellState::kOccupied ? kAny : class_of[byte];
+    class_of[512 + byte] = class_of[768 + byte] = state == grid::CellState::kFree ? kIn : kAny;
   }
   cv::Mat cls(rect.height, rect.width, CV_8UC1);
   unsigned seen = 0;  // bit c: some cell has class c
@@ -40,9 +43,13 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     const int8_t* cells =
         grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
     if (options.painted != nullptr) {
-      const uint8_t* painted = options.painted->data() + static_cast<size_t>(y) * rect.width;
+      const size_t offset = static_cast<size_t>(y) * rect.width;
+      const uint8_t* painted = options.painted->data() + offset;
+      const uint8_t* near =
+          options.near_obstacles != nullptr ? options.near_obstacles->data() + offset : nullptr;
       for (int x = 0; x < rect.width; ++x) {
-        const int key = (painted[x] != 0 ? 256 : 0) + static_cast<uint8_t>(cells[x]);
+        const int key = (painted[x] != 0 ? 512 : 0) + (near != nullptr && near[x] != 0 ? 256 : 0) +
+                        static_cast<uint8_t>(cells[x]);
         row[x] = class_of[key];
         seen |= 1u << row[x];
       }

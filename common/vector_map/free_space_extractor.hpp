@@ -13,10 +13,14 @@
 // don't-care cells rather than in unknown ones. Components without a free cell are dropped, and so
 // are holes that simplify to fewer than 3 vertices (they enclose no cell).
 //
-// Occupied cells that are not painted (the inside of a solid region, bumps beyond a wall's half
-// width) must never come back free: the outlines are simplified by OutlineSimplifier, which
-// guarantees it, so such cells come back unknown (a solid block: its painted outline around an
-// unknown inside, a hole of the free polygon).
+// Occupied cells that are not painted split in two. Those within epsilon of an obstacle edge
+// (`near_obstacles`: bumps of a ragged wall just beyond its half width, a corner cell a segment
+// cuts across) are already stood for by the obstacles within the map's error bound, the very bound
+// the epsilon-error constraint grants them; they are don't care too, so they cost no hole of their
+// own. The others (the inside of a solid region, an obstacle the vector map lost) must never come
+// back free: the outlines are simplified by OutlineSimplifier, which guarantees it, so such cells
+// come back unknown (a solid block: its painted outline around an unknown inside, a hole of the
+// free polygon).
 
 #include <cstdint>
 #include <vector>
@@ -38,6 +42,10 @@ struct FreeSpaceOptions {
   // obstacle anyway (PaintedCells); such cells may fall inside or outside the polygons. Null: none
   // (then no occupied cell of the rectangle comes back free).
   const std::vector<uint8_t>* painted = nullptr;
+  // Same layout, non-zero where a cell's centre lies within epsilon of an obstacle edge: occupied
+  // cells there that are not painted are don't care as well. Null: every unpainted occupied cell
+  // is guarded.
+  const std::vector<uint8_t>* near_obstacles = nullptr;
 };
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,

@@ -117,6 +117,11 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     }
     const std::vector<uint8_t> painted = PaintedCells(rect, emitted, radii, 0.5);
     free_options.painted = &painted;
+    // Occupied cells within epsilon of an edge are stood for by the obstacles (the epsilon-error
+    // constraint's own bound), so they may join the free space; only farther ones are guarded.
+    const std::vector<uint8_t> near_obstacles =
+        PaintedCells(rect, emitted, {}, epsilon / resolution);
+    free_options.near_obstacles = &near_obstacles;
     for (const auto& polygon : ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
       FreePolygon out;
       for (const Point2& p : polygon.outer) out.outer.push_back(lattice.Snap(frame.ToMap(p)));

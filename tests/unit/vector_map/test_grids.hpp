@@ -10,6 +10,8 @@
 
 #include "common/grid/map_io.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/vector_map/rasterizer.hpp"
+#include "common/vector_map/vector_map.hpp"
 
 namespace fleetmap::vector_map::testing {
 
@@ -90,6 +92,33 @@ inline int OccupiedComeBackFree(const grid::OccupancyGrid& grid, const grid::Occ
     for (int x = 0; x < grid.width(); ++x) {
       count += grid.StateAt(x, y) == grid::CellState::kOccupied &&
                        back.StateAt(x, y) == grid::CellState::kFree
+                   ? 1
+                   : 0;
+    }
+  }
+  return count;
+}
+
+// Cells `grid` calls occupied that `back` calls free although no obstacle edge of `map` passes
+// within epsilon of them: obstacles the vector map lost. A round trip must leave none; occupied
+// cells within epsilon of an edge are stood for by it (the epsilon-error constraint's bound) and
+// may come back free. `back` gives the geometry (it may be in another frame than `grid`).
+inline int OccupiedFarFromObstaclesComeBackFree(const grid::OccupancyGrid& grid,
+                                                const vector_map::VectorMap& map,
+                                                const grid::OccupancyGrid& back) {
+  vector_map::VectorMap obstacles = map;
+  obstacles.free_space.clear();
+  vector_map::RasterizerOptions within_epsilon;
+  within_epsilon.use_half_width = false;
+  within_epsilon.occupied_radius = map.epsilon;
+  const grid::OccupancyGrid near =
+      *vector_map::Rasterizer(within_epsilon).Rasterize(obstacles, back);
+  int count = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      count += grid.StateAt(x, y) == grid::CellState::kOccupied &&
+                       back.StateAt(x, y) == grid::CellState::kFree &&
+                       near.StateAt(x, y) != grid::CellState::kOccupied
                    ? 1
                    : 0;
     }
