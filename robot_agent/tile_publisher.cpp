@@ -46,8 +46,17 @@ uint64_t TileHash(const grid::OccupancyGrid& grid, const grid::CellRect& rect,
 }
 
 size_t EstimatedBytes(const vector_map::VectorMap& map) {
-  // int16 x and y per vertex, plus per-polyline and per-ring counts and the fixed header.
-  return 96 + 4 * (map.ObstacleVertexCount() + map.FreeVertexCount()) + 7 * map.obstacles.size();
+  // The fixed header, int16 x and y per vertex (a closed polyline repeats its first), a uint16
+  // size and half width per polyline, a uint16 half width per point obstacle and a uint16 count
+  // per ring and polygon (docs/file-formats.md).
+  size_t bytes = 104 + 4 * (map.ObstacleVertexCount() + map.FreeVertexCount());
+  for (const vector_map::Polyline& polyline : map.obstacles) {
+    bytes += polyline.points.size() == 1 ? 2 : (polyline.closed ? 8 : 4);
+  }
+  for (const vector_map::FreePolygon& polygon : map.free_space) {
+    bytes += 2 * (2 + polygon.holes.size());
+  }
+  return bytes;
 }
 
 }  // namespace

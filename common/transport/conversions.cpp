@@ -1,5 +1,6 @@
 #include "common/transport/conversions.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -201,8 +202,13 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
 namespace fleetmap::transport {
 namespace {
 
+using fleetmap_msgs::msg::dds_::VectorTile_;
 using vector_map::FreePolygon;
 using vector_map::Polyline;
+
+// obstacle_sizes, free_polygon_rings and free_ring_sizes are uint16: the most vertices one wire
+// polyline or ring, and the most rings one polygon, can have.
+constexpr size_t kMaxWireCount = UINT16_MAX;
 
 // Quantises coordinates relative to one tile's corner.
 class TileQuantiser {
@@ -223,6 +229,18 @@ class TileQuantiser {
 
   Point2 Decode(int16_t x, int16_t y) const {
     return {corner_.x() + x * quantum_, corner_.y() + y * quantum_};
+  }
+
+  // Whole quanta, rounded up so that a reader never paints an obstacle thinner than it was
+  // measured; the slack keeps a half width that already is whole quanta (as the vectorizer makes
+  // them on the tile lattice) exact through the division.
+  StatusOr<uint16_t> HalfWidth(double half_width) const {
+    const double quanta = std::ceil(half_width / quantum_ - 1e-9);
+    if (!(quanta >= 0.0 && quanta <= UINT16_MAX)) {
+      return InvalidArgumentError("an obstacle half width of " + std::to_string(half_width) +
+                                  " m does not fit");
+    }
+    return static_cast<uint16_t>(quanta);
   }
 
  private:
@@ -261,43 +279,78 @@ Status CheckInsideTile(const std::vector<int16_t>& coordinates, const char* name
   return Status::Ok();
 }
 
-Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
-  const size_t polylines = tile.obstacle_sizes().size();
-  if (tile.obstacle_x().size() != tile.obstacle_y().size()) {
-    return InvalidArgumentError("obstacle_x has " + std::to_string(tile.obstacle_x().size()) +
-                                " values but obstacle_y " +
-                                std::to_string(tile.obstacle_y().size()));
+Status CheckSameLength(size_t a, const char* a_name, size_t b, const char* b_name) {
+  if (a == b) return Status::Ok();
+  return InvalidArgumentError(std::string(a_name) + " has " + std::to_string(a) + " values but " +
+                              b_name + " " + std::to_string(b));
+}
+
+// A per-element array that may be left empty (meaning 0 for every element).
+Status CheckOptionalLength(size_t values, const char* name, size_t elements, const char* what) {
+  if (values == 0 || values == elements) return Status::Ok();
+  return InvalidArgumentError(std::string(name) + " has " + std::to_string(values) +
+                              " values for " + std::to_string(elements) + " " + what);
+}
+
+// Half widths are at most epsilon (docs/file-formats.md), plus the quantum the rounding up may
+// add: a larger one is a broken or hostile tile that would make a rasterizer paint huge discs.
+Status CheckHalfWidths(const std::vector<uint16_t>& half_widths, const char* name,
+                       const VectorTile_& tile) {
+  const double limit = std::ceil(tile.epsilon() / tile.quantum()) + 1.0;
+  for (size_t k = 0; k < half_widths.size(); ++k) {
+    if (half_widths[k] > limit) {
+      return InvalidArgumentError(std::string(name) + "[" + std::to_string(k) + "] is " +
+                                  std::to_string(half_widths[k]) + " quanta, more than epsilon (" +
+                                  std::to_string(tile.epsilon()) + " m)");
+    }
   }
+  return Status::Ok();
+}
+
+Status CheckObstacleCounts(const VectorTile_& tile) {
+  const size_t polylines = tile.obstacle_sizes().size();
+  FLEETMAP_RETURN_IF_ERROR(CheckSameLength(tile.obstacle_x().size(), "obstacle_x",
+                                           tile.obstacle_y().size(), "obstacle_y"));
   if (Sum(tile.obstacle_sizes()) != tile.obstacle_x().size()) {
     return InvalidArgumentError("obstacle_sizes add up to " +
                                 std::to_string(Sum(tile.obstacle_sizes())) + " vertices but " +
                                 std::to_string(tile.obstacle_x().size()) + " are given");
   }
-  for (const uint32_t size : tile.obstacle_sizes()) {
-    if (size == 0) return InvalidArgumentError("an obstacle polyline has no vertex");
+  for (size_t k = 0; k < polylines; ++k) {
+    if (tile.obstacle_sizes()[k] < 2) {
+      return InvalidArgumentError("obstacle_sizes[" + std::to_string(k) + "] is " +
+                                  std::to_string(tile.obstacle_sizes()[k]) +
+                                  ": a polyline has at least two vertices (point obstacles go in "
+                                  "point_x / point_y)");
+    }
   }
-  if (!tile.obstacle_closed().empty() && tile.obstacle_closed().size() != polylines) {
-    return InvalidArgumentError("obstacle_closed has " +
-                                std::to_string(tile.obstacle_closed().size()) + " flags for " +
-                                std::to_string(polylines) + " polylines");
-  }
-  if (!tile.obstacle_half_widths().empty() && tile.obstacle_half_widths().size() != polylines) {
-    return InvalidArgumentError("obstacle_half_widths has " +
-                                std::to_string(tile.obstacle_half_widths().size()) +
-                                " values for " + std::to_string(polylines) + " polylines");
-  }
-  if (tile.free_x().size() != tile.free_y().size()) {
-    return InvalidArgumentError("free_x and free_y differ in length");
-  }
+  FLEETMAP_RETURN_IF_ERROR(CheckOptionalLength(tile.obstacle_half_widths().size(),
+                                               "obstacle_half_widths", polylines, "polylines"));
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckSameLength(tile.point_x().size(), "point_x", tile.point_y().size(), "point_y"));
+  FLEETMAP_RETURN_IF_ERROR(CheckOptionalLength(tile.point_half_widths().size(), "point_half_widths",
+                                               tile.point_x().size(), "points"));
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckHalfWidths(tile.obstacle_half_widths(), "obstacle_half_widths", tile));
+  FLEETMAP_RETURN_IF_ERROR(CheckHalfWidths(tile.point_half_widths(), "point_half_widths", tile));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_x(), "obstacle_x"));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_y(), "obstacle_y"));
+  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.point_x(), "point_x"));
+  return CheckInsideTile(tile.point_y(), "point_y");
+}
+
+Status CheckFreeCounts(const VectorTile_& tile) {
+  FLEETMAP_RETURN_IF_ERROR(
+      CheckSameLength(tile.free_x().size(), "free_x", tile.free_y().size(), "free_y"));
   if (Sum(tile.free_polygon_rings()) != tile.free_ring_sizes().size()) {
     return InvalidArgumentError("free_polygon_rings add up to " +
                                 std::to_string(Sum(tile.free_polygon_rings())) + " rings but " +
                                 std::to_string(tile.free_ring_sizes().size()) + " are given");
   }
-  for (const uint32_t rings : tile.free_polygon_rings()) {
+  for (const uint16_t rings : tile.free_polygon_rings()) {
     if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
   }
-  for (const uint32_t size : tile.free_ring_sizes()) {
+  for (const uint16_t size : tile.free_ring_sizes()) {
     if (size == 0) return InvalidArgumentError("a free ring has no vertex");
   }
   if (Sum(tile.free_ring_sizes()) != tile.free_x().size()) {
@@ -305,15 +358,12 @@ Status CheckTileCounts(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
                                 std::to_string(Sum(tile.free_ring_sizes())) + " vertices but " +
                                 std::to_string(tile.free_x().size()) + " are given");
   }
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_x(), "obstacle_x"));
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_y(), "obstacle_y"));
   FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.free_x(), "free_x"));
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.free_y(), "free_y"));
-  return Status::Ok();
+  return CheckInsideTile(tile.free_y(), "free_y");
 }
 
 // Everything a tile must satisfy, on the way out and on the way in.
-Status CheckTile(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+Status CheckTile(const VectorTile_& tile) {
   if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
     return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
                                 " is not a positive number");
@@ -332,18 +382,72 @@ Status CheckTile(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
     return InvalidArgumentError("resolution " + std::to_string(tile.resolution()) +
                                 " is not a positive distance");
   }
-  return CheckTileCounts(tile);
+  FLEETMAP_RETURN_IF_ERROR(CheckObstacleCounts(tile));
+  return CheckFreeCounts(tile);
+}
+
+// One polyline of two or more vertices. A closed one is written with its first vertex repeated at
+// its end (its closing segment; fewer than three vertices have none). More than kMaxWireCount
+// vertices are written as open pieces of at most kMaxWireCount, each starting at the last vertex
+// of the one before, so the pieces have exactly the polyline's segments.
+Status AppendPolyline(const Polyline& polyline, uint16_t half_width, const TileQuantiser& quantiser,
+                      VectorTile_* out) {
+  const std::vector<Point2>& points = polyline.points;
+  const size_t n = points.size();
+  const size_t total = polyline.closed && n >= 3 ? n + 1 : n;
+  size_t start = 0;
+  while (true) {
+    const size_t end = std::min(total, start + kMaxWireCount);
+    out->obstacle_sizes().push_back(static_cast<uint16_t>(end - start));
+    out->obstacle_half_widths().push_back(half_width);
+    for (size_t i = start; i < end; ++i) {
+      FLEETMAP_RETURN_IF_ERROR(
+          quantiser.Append(points[i % n], &out->obstacle_x(), &out->obstacle_y()));
+    }
+    if (end == total) return Status::Ok();
+    start = end - 1;
+  }
+}
+
+Status AppendFreePolygon(const FreePolygon& polygon, const TileQuantiser& quantiser,
+                         VectorTile_* out) {
+  if (polygon.holes.size() + 1 > kMaxWireCount) {
+    return InvalidArgumentError("a free polygon has " + std::to_string(polygon.holes.size()) +
+                                " holes, more than the " + std::to_string(kMaxWireCount - 1) +
+                                " a tile can carry");
+  }
+  out->free_polygon_rings().push_back(static_cast<uint16_t>(1 + polygon.holes.size()));
+  const auto append_ring = [&](const std::vector<Point2>& ring) -> Status {
+    // A ring cannot be cut into pieces without changing the area it bounds.
+    if (ring.size() > kMaxWireCount) {
+      return InvalidArgumentError("a free ring has " + std::to_string(ring.size()) +
+                                  " vertices, more than the " + std::to_string(kMaxWireCount) +
+                                  " a tile can carry");
+    }
+    out->free_ring_sizes().push_back(static_cast<uint16_t>(ring.size()));
+    for (const Point2& point : ring) {
+      FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out->free_x(), &out->free_y()));
+    }
+    return Status::Ok();
+  };
+  FLEETMAP_RETURN_IF_ERROR(append_ring(polygon.outer));
+  for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
+  return Status::Ok();
+}
+
+bool AllZero(const std::vector<uint16_t>& values) {
+  return std::all_of(values.begin(), values.end(), [](uint16_t value) { return value == 0; });
 }
 
 }  // namespace
 
-StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& message) {
+StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   if (!std::isfinite(message.tile_size) || message.tile_size <= 0.0) {
     return InvalidArgumentError("tile_size " + std::to_string(message.tile_size) +
                                 " is not a positive number");
   }
   const TileQuantiser quantiser(message.tile, message.tile_size);
-  fleetmap_msgs::msg::dds_::VectorTile_ out;
+  VectorTile_ out;
   out.robot_id(message.robot_id);
   out.tile_x(message.tile.x);
   out.tile_y(message.tile.y);
@@ -356,36 +460,27 @@ StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& m
   out.resolution(static_cast<float>(message.map.resolution));
   for (const Polyline& polyline : message.map.obstacles) {
     if (polyline.points.empty()) continue;
-    out.obstacle_sizes().push_back(static_cast<uint32_t>(polyline.points.size()));
-    out.obstacle_closed().push_back(polyline.closed ? 1 : 0);
-    const double half_width = std::ceil(polyline.half_width / quantiser.quantum());
-    if (!(half_width >= 0.0 && half_width <= UINT16_MAX)) {
-      return InvalidArgumentError("an obstacle half width of " +
-                                  std::to_string(polyline.half_width) + " m does not fit");
-    }
-    out.obstacle_half_widths().push_back(static_cast<uint16_t>(half_width));
-    for (const Point2& point : polyline.points) {
-      FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out.obstacle_x(), &out.obstacle_y()));
+    FLEETMAP_ASSIGN_OR_RETURN(const uint16_t half_width, quantiser.HalfWidth(polyline.half_width));
+    if (polyline.points.size() == 1) {
+      FLEETMAP_RETURN_IF_ERROR(
+          quantiser.Append(polyline.points[0], &out.point_x(), &out.point_y()));
+      out.point_half_widths().push_back(half_width);
+    } else {
+      FLEETMAP_RETURN_IF_ERROR(AppendPolyline(polyline, half_width, quantiser, &out));
     }
   }
+  // All zero (the paper's method, or no half widths measured) is said with an empty array.
+  if (AllZero(out.obstacle_half_widths())) out.obstacle_half_widths().clear();
+  if (AllZero(out.point_half_widths())) out.point_half_widths().clear();
   for (const FreePolygon& polygon : message.map.free_space) {
-    out.free_polygon_rings().push_back(static_cast<uint32_t>(1 + polygon.holes.size()));
-    const auto append_ring = [&](const std::vector<Point2>& ring) -> Status {
-      out.free_ring_sizes().push_back(static_cast<uint32_t>(ring.size()));
-      for (const Point2& point : ring) {
-        FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out.free_x(), &out.free_y()));
-      }
-      return Status::Ok();
-    };
-    FLEETMAP_RETURN_IF_ERROR(append_ring(polygon.outer));
-    for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
+    FLEETMAP_RETURN_IF_ERROR(AppendFreePolygon(polygon, quantiser, &out));
   }
   // Refuse here whatever FromIdl would refuse on the other side.
   FLEETMAP_RETURN_IF_ERROR(CheckTile(out));
   return out;
 }
 
-StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   FLEETMAP_RETURN_IF_ERROR(CheckTile(tile));
 
   VectorTileMessage out;
@@ -398,32 +493,48 @@ StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_&
   out.map.epsilon = tile.epsilon();
   out.map.resolution = tile.resolution();
   const TileQuantiser quantiser(out.tile, out.tile_size);
+  const auto& xs = tile.obstacle_x();
+  const auto& ys = tile.obstacle_y();
+  out.map.obstacles.reserve(tile.obstacle_sizes().size() + tile.point_x().size());
   size_t vertex = 0;
   for (size_t k = 0; k < tile.obstacle_sizes().size(); ++k) {
+    const size_t n = tile.obstacle_sizes()[k];
+    const size_t last = vertex + n - 1;
     Polyline polyline;
-    polyline.closed = !tile.obstacle_closed().empty() && tile.obstacle_closed()[k] != 0;
+    // The LinearRing convention: a repeated first vertex closes the polyline.
+    polyline.closed = n >= 4 && xs[vertex] == xs[last] && ys[vertex] == ys[last];
     polyline.half_width =
         tile.obstacle_half_widths().empty() ? 0.0 : tile.obstacle_half_widths()[k] * tile.quantum();
-    for (uint32_t i = 0; i < tile.obstacle_sizes()[k]; ++i, ++vertex) {
-      polyline.points.push_back(
-          quantiser.Decode(tile.obstacle_x()[vertex], tile.obstacle_y()[vertex]));
+    const size_t kept = polyline.closed ? n - 1 : n;
+    polyline.points.reserve(kept);
+    for (size_t i = 0; i < kept; ++i) {
+      polyline.points.push_back(quantiser.Decode(xs[vertex + i], ys[vertex + i]));
     }
+    vertex += n;
     out.map.obstacles.push_back(std::move(polyline));
+  }
+  for (size_t i = 0; i < tile.point_x().size(); ++i) {
+    Polyline point;
+    point.points.push_back(quantiser.Decode(tile.point_x()[i], tile.point_y()[i]));
+    point.half_width =
+        tile.point_half_widths().empty() ? 0.0 : tile.point_half_widths()[i] * tile.quantum();
+    out.map.obstacles.push_back(std::move(point));
   }
   size_t ring = 0;
   vertex = 0;
   const auto read_ring = [&]() {
     std::vector<Point2> points;
-    for (uint32_t i = 0; i < tile.free_ring_sizes()[ring]; ++i, ++vertex) {
+    points.reserve(tile.free_ring_sizes()[ring]);
+    for (uint16_t i = 0; i < tile.free_ring_sizes()[ring]; ++i, ++vertex) {
       points.push_back(quantiser.Decode(tile.free_x()[vertex], tile.free_y()[vertex]));
     }
     ++ring;
     return points;
   };
-  for (const uint32_t rings : tile.free_polygon_rings()) {
+  for (const uint16_t rings : tile.free_polygon_rings()) {
     FreePolygon polygon;
     polygon.outer = read_ring();
-    for (uint32_t h = 1; h < rings; ++h) polygon.holes.push_back(read_ring());
+    for (uint16_t h = 1; h < rings; ++h) polygon.holes.push_back(read_ring());
     out.map.free_space.push_back(std::move(polygon));
   }
   return out;

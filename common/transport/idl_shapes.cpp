@@ -91,13 +91,15 @@ const CdrShape& VectorTileShape() {
                                  Primitive("quantum", 8),
                                  Primitive("epsilon", 4),
                                  Primitive("resolution", 4),
-                                 Sequence("obstacle_sizes", 4),
-                                 Sequence("obstacle_closed", 1),
+                                 Sequence("obstacle_sizes", 2),
                                  Sequence("obstacle_half_widths", 2),
                                  Sequence("obstacle_x", 2),
                                  Sequence("obstacle_y", 2),
-                                 Sequence("free_polygon_rings", 4),
-                                 Sequence("free_ring_sizes", 4),
+                                 Sequence("point_x", 2),
+                                 Sequence("point_y", 2),
+                                 Sequence("point_half_widths", 2),
+                                 Sequence("free_polygon_rings", 2),
+                                 Sequence("free_ring_sizes", 2),
                                  Sequence("free_x", 2),
                                  Sequence("free_y", 2)};
   return shape;
@@ -111,6 +113,11 @@ const CdrShape& VectorMapShape() {
       Primitive("epsilon", 4),
       Primitive("resolution", 4),
       CdrField{"tiles", CdrField::Kind::kStructSequence, 0, &VectorTileShape()}};
+  return shape;
+}
+
+const CdrShape& VmapFormatShape() {
+  static const CdrShape shape = {String("format")};
   return shape;
 }
 

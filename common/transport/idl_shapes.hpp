@@ -14,6 +14,9 @@ const CdrShape& OccupancyGridUpdateShape();
 const CdrShape& RobotStatusShape();
 const CdrShape& VectorTileShape();
 const CdrShape& VectorMapShape();
+// The first field of a VectorMap alone: the format string every .vmap version starts with, read
+// before the rest so that a file of another version is named as such.
+const CdrShape& VmapFormatShape();
 const CdrShape& EntityShape();
 const CdrShape& SubmapShape();
 const CdrShape& ObjectTemplateShape();

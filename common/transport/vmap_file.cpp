@@ -18,6 +18,37 @@ std::string TileName(const TileId& id) {
   return "tile (" + std::to_string(id.x) + ", " + std::to_string(id.y) + ")";
 }
 
+// The leading format string of a VectorMap, decoded on its own.
+struct VmapFormatOnly {
+  std::string format;
+  void deserialize(eprosima::fastcdr::Cdr& cdr) { cdr >> format; }
+};
+
+// The format string is read from the first bytes only (decoding copies what it reads); a longer
+// one is no version's.
+constexpr size_t kFormatBytes = 4 + 4 + 1024;
+
+// Every version starts with its format string: check it before the layout, so that a file of
+// another version says so instead of failing somewhere in its tiles.
+Status CheckFormat(std::string_view bytes, const std::string& name) {
+  VmapFormatOnly header;
+  const Status read = DeserializeCdr(bytes.substr(0, kFormatBytes), VmapFormatShape(),
+                                     name + ": not a valid .vmap", &header);
+  if (!read.ok() && bytes.size() > kFormatBytes) {
+    return DataLossError(name + ": not a valid .vmap: no format string in its first " +
+                         std::to_string(kFormatBytes) + " bytes");
+  }
+  FLEETMAP_RETURN_IF_ERROR(read);
+  if (header.format == kVmapFormat) return Status::Ok();
+  const std::string format = header.format.substr(0, 40);
+  if (format.starts_with(kVmapFormatPrefix)) {
+    return InvalidArgumentError(name + ": format " + format +
+                                " is another version of the .vmap format; this fleetmap reads " +
+                                kVmapFormat + " only (vectorize the map again to convert it)");
+  }
+  return InvalidArgumentError(name + ": format \"" + format + "\" is not " + kVmapFormat);
+}
+
 }  // namespace
 
 StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map) {
@@ -40,13 +71,10 @@ StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map) {
 }
 
 StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const std::string& name) {
+  FLEETMAP_RETURN_IF_ERROR(CheckFormat(bytes, name));
   VectorMap_ message;
   FLEETMAP_RETURN_IF_ERROR(
       DeserializeCdr(bytes, VectorMapShape(), name + ": not a valid .vmap", &message));
-  if (message.format() != kVmapFormat) {
-    return InvalidArgumentError(name + ": format \"" + message.format().substr(0, 40) +
-                                "\" is not " + kVmapFormat);
-  }
   vector_map::TiledVectorMap map;
   map.frame_id = message.frame_id();
   map.tile_size = message.tile_size();

@@ -13,7 +13,10 @@
 
 namespace fleetmap::transport {
 
-inline constexpr char kVmapFormat[] = "fleetmap-vmap/1";
+// Version 2 (uint16 counts, point obstacles in their own arrays, closed polylines as rings)
+// replaced version 1; a file of another version is refused with a message naming both.
+inline constexpr char kVmapFormatPrefix[] = "fleetmap-vmap/";
+inline constexpr char kVmapFormat[] = "fleetmap-vmap/2";
 
 struct VmapReadOptions {
   size_t max_bytes = size_t{1} << 30;  // a larger file is refused before it is read

@@ -238,7 +238,7 @@ class TileWirePeerTest : public ::testing::Test {
   fleetmap_msgs::msg::dds_::RobotStatus_ gamma_;
 };
 
-// A valid-looking tile of `robot` at (0, 0): one 2-vertex polyline.
+// A valid-looking tile of `robot` at (0, 0): one 2-vertex polyline and one point obstacle.
 fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
   tile.robot_id(robot);
@@ -248,10 +248,11 @@ fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   tile.epsilon(0.07f);
   tile.resolution(0.05f);
   tile.obstacle_sizes({2});
-  tile.obstacle_closed({0});
   tile.obstacle_half_widths({0});
   tile.obstacle_x({100, 900});
   tile.obstacle_y({100, 100});
+  tile.point_x({500});
+  tile.point_y({700});
   return tile;
 }
 
@@ -272,6 +273,17 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
        }},
       {"tile_size nan is not a positive number",
        [](auto& t) { t.tile_size(std::numeric_limits<double>::quiet_NaN()); }},
+      {"point_x has 1 values but point_y 2",
+       [](auto& t) {
+         t.point_y({700, 701});
+       }},
+      {"free_polygon_rings add up to 2 rings but 1 are given",
+       [](auto& t) {
+         t.free_polygon_rings({2});
+         t.free_ring_sizes({1});
+         t.free_x({5});
+         t.free_y({5});
+       }},
   };
   int32_t x = 0;
   for (const Case& c : cases) {
@@ -298,7 +310,7 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     fields >> robot >> state >> tiles >> maps >> bytes >> rejected;
     if (robot == "gamma") {
       saw_gamma = true;
-      EXPECT_GE(std::stoi(rejected), 4) << line;
+      EXPECT_GE(std::stoi(rejected), 6) << line;
       EXPECT_GE(std::stoi(tiles), 1) << line;
     }
     if (robot == "alpha") {

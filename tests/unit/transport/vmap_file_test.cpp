@@ -1,9 +1,12 @@
 #include "common/transport/vmap_file.hpp"
 
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -25,6 +28,11 @@ Point2 At(const TileId& tile, double tile_size, int i, int j) {
   return {tile.x * tile_size + i * q, tile.y * tile_size + j * q};
 }
 
+// Half widths of whole quanta, as the vectorizer makes them on the tile lattice.
+double Quanta(double tile_size, int n) { return n * TileQuantum(tile_size); }
+
+// Every kind of geometry the layout has: open and closed polylines, point obstacles with and
+// without a half width, polygons with and without holes, and a tile with obstacles only.
 TiledVectorMap SampleMap() {
   TiledVectorMap map;
   map.tile_size = 10.0;
@@ -36,20 +44,29 @@ TiledVectorMap SampleMap() {
   first.frame_id = "fleet";
   first.resolution = 0.05;
   first.epsilon = 0.0707;
-  first.obstacles.push_back(
-      Polyline{{At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16384, 9000)}, false, 0.05});
+  first.obstacles.push_back(Polyline{
+      {At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16384, 9000)}, false, Quanta(10, 82)});
   first.obstacles.push_back(Polyline{{At(a, 10, 7, 7)}, false, 0.0});  // a point obstacle
   first.obstacles.push_back(
-      Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, 0.025});
+      Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, Quanta(10, 41)});
+  first.obstacles.push_back(Polyline{{At(a, 10, 300, 40)}, false, Quanta(10, 41)});
   first.free_space.push_back(
       FreePolygon{{At(a, 10, 0, 0), At(a, 10, 1000, 0), At(a, 10, 1000, 1000), At(a, 10, 0, 1000)},
                   {{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}}});
+  first.free_space.push_back(FreePolygon{{At(a, 10, 2000, 2000)}, {}});  // a free speck
   vector_map::VectorMap& second = map.tiles[b];
   second.frame_id = "fleet";
   second.resolution = 0.05;
   second.epsilon = 0.0707;
   second.obstacles.push_back(Polyline{{At(b, 10, -5, 0), At(b, 10, 16390, 16384)}, false, 0.0});
   return map;
+}
+
+// The order the decoder gives obstacles back in: polylines, then point obstacles.
+std::vector<Polyline> WireOrder(std::vector<Polyline> obstacles) {
+  std::stable_partition(obstacles.begin(), obstacles.end(),
+                        [](const Polyline& p) { return p.points.size() != 1; });
+  return obstacles;
 }
 
 std::string Encoded(const TiledVectorMap& map) {
@@ -67,15 +84,26 @@ TEST(VmapFileTest, RoundTripIsExactOnTheLattice) {
   ASSERT_EQ(decoded->tiles.size(), 2u);
   for (const auto& [id, tile] : map.tiles) {
     const auto& back = decoded->tiles.at(id);
-    ASSERT_EQ(back.obstacles.size(), tile.obstacles.size()) << id;
-    for (size_t k = 0; k < tile.obstacles.size(); ++k) {
-      EXPECT_EQ(back.obstacles[k].points, tile.obstacles[k].points) << id << " polyline " << k;
-      EXPECT_EQ(back.obstacles[k].closed, tile.obstacles[k].closed);
-      // Half widths round up to the next quantum: never thinner than what was sent.
-      EXPECT_GE(back.obstacles[k].half_width, tile.obstacles[k].half_width);
-      EXPECT_LT(back.obstacles[k].half_width, tile.obstacles[k].half_width + TileQuantum(10.0));
-    }
+    EXPECT_EQ(back.obstacles, WireOrder(tile.obstacles)) << id;
     EXPECT_EQ(back.free_space, tile.free_space) << id;
+  }
+}
+
+TEST(VmapFileTest, HalfWidthsOffTheQuantumRoundUp) {
+  TiledVectorMap map = SampleMap();
+  auto& obstacles = map.tiles.at({0, 0}).obstacles;
+  obstacles[0].half_width = 0.05;   // 81.92 quanta
+  obstacles[1].half_width = 0.025;  // a point: 40.96 quanta
+  const auto decoded = DecodeVmap(Encoded(map), "sample.vmap");
+  ASSERT_TRUE(decoded.ok()) << decoded.status();
+  const auto& back = decoded->tiles.at({0, 0}).obstacles;
+  const std::vector<Polyline> sent = WireOrder(obstacles);
+  ASSERT_EQ(back.size(), sent.size());
+  for (size_t k = 0; k < sent.size(); ++k) {
+    EXPECT_EQ(back[k].points, sent[k].points);
+    // Never thinner than what was sent, and less than a quantum thicker.
+    EXPECT_GE(back[k].half_width, sent[k].half_width);
+    EXPECT_LT(back[k].half_width, sent[k].half_width + TileQuantum(10.0));
   }
 }
 
@@ -140,9 +168,21 @@ TEST(VmapFileTest, RefusesOtherFormatsAndBadHeaders) {
   other[1] = 7;  // encapsulation: not plain CDR
   EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("not a plain CDR"));
   other = bytes;
-  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/1"
-  EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("is not fleetmap-vmap/1"));
+  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/2"
+  EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(),
+              HasSubstr("x.vmap: format \"gleetmap-vmap/2\" is not fleetmap-vmap/2"));
   EXPECT_FALSE(DecodeVmap("hello world, not a map", "x.vmap").ok());
+  // A format string longer than any version's, in a file larger than the bytes read for it.
+  TiledVectorMap large = SampleMap();
+  for (int i = 0; i < 300; ++i) {
+    large.tiles.at({0, 0}).obstacles.push_back(Polyline{{At({0, 0}, 10, i, 3 * i)}});
+  }
+  other = Encoded(large);
+  ASSERT_GT(other.size(), 2000u);
+  other[4] = '\xd0';  // the format's length: 2000
+  other[5] = '\x07';
+  EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(),
+              HasSubstr("x.vmap: not a valid .vmap: no format string in its first"));
 }
 
 TEST(VmapFileTest, RefusesLengthsThatClaimMoreThanTheFileHolds) {
@@ -164,16 +204,59 @@ TEST(VmapFileTest, RefusesLengthsThatClaimMoreThanTheFileHolds) {
 }
 
 TEST(VmapFileTest, RefusesCountsThatDoNotAddUp) {
-  // Build the wire struct by hand, as a foreign client might, with inconsistent counts.
-  TiledVectorMap map = SampleMap();
-  std::string bytes = Encoded(map);
-  // Shrink the first tile's obstacle_sizes[0] from 3 to 2: the sum no longer matches.
-  const std::string needle("\x03\x00\x00\x00\x01\x00\x00\x00\x03\x00\x00\x00", 12);
+  std::string bytes = Encoded(SampleMap());
+  // The first tile's obstacle_sizes: 2 polylines of 3 and 3 + 1 (closed) vertices, as uint16.
+  const std::string needle("\x02\x00\x00\x00\x03\x00\x04\x00", 8);
   const size_t at = bytes.find(needle);
   ASSERT_NE(at, std::string::npos);
-  bytes[at] = 2;
+  bytes[at + 4] = 2;  // the sum no longer matches
   EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
-              HasSubstr("obstacle_sizes add up to"));
+              HasSubstr("counts.vmap: tile (0, 0): obstacle_sizes add up to 6 vertices but 7"));
+  bytes[at + 4] = 1;  // a one-vertex polyline outside the point arrays
+  bytes[at + 6] = 6;
+  EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
+              HasSubstr("obstacle_sizes[0] is 1"));
+}
+
+// A version 1 file, written as fleetmap-vmap/1 laid it out (uint32 counts, obstacle_closed flags,
+// no point arrays): refused by name, before its layout is checked against version 2.
+std::string VersionOneFile() {
+  std::string bytes(512, '\0');
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  cdr << std::string("fleetmap-vmap/1") << std::string("fleet") << 10.0 << 0.0707f << 0.05f;
+  cdr << uint32_t{1};                                  // one tile
+  cdr << std::string("") << int32_t{0} << int32_t{0};  // robot_id, tile_x, tile_y
+  cdr << int32_t{0} << uint32_t{0};                    // stamp
+  cdr << std::string("fleet") << uint32_t{0} << 10.0 << 10.0 / 16384 << 0.0707f << 0.05f;
+  cdr << std::vector<uint32_t>{2} << std::vector<uint8_t>{0} << std::vector<uint16_t>{0};
+  cdr << std::vector<int16_t>{0, 100} << std::vector<int16_t>{0, 0};
+  cdr << std::vector<uint32_t>{} << std::vector<uint32_t>{} << std::vector<int16_t>{}
+      << std::vector<int16_t>{};
+  bytes.resize(cdr.getSerializedDataLength());
+  return bytes;
+}
+
+TEST(VmapFileTest, AVersionOneFileIsRefusedNamingBothVersions) {
+  const auto decoded = DecodeVmap(VersionOneFile(), "old.vmap");
+  ASSERT_FALSE(decoded.ok());
+  EXPECT_EQ(decoded.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(decoded.status().message(),
+              HasSubstr("old.vmap: format fleetmap-vmap/1 is another version of the .vmap format; "
+                        "this fleetmap reads fleetmap-vmap/2 only"));
+  // From a file as well.
+  const std::string path =
+      ::testing::TempDir() + "/vmap_v1_test_" + std::to_string(getpid()) + ".vmap";
+  {
+    std::ofstream out(path, std::ios::binary);
+    const std::string bytes = VersionOneFile();
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  EXPECT_THAT(ReadVmapFile(path).status().message(),
+              HasSubstr(path + ": format fleetmap-vmap/1 is another version"));
+  std::remove(path.c_str());
 }
 
 TEST(VmapFileTest, SeededMutationsNeverCrash) {
@@ -196,6 +279,34 @@ TEST(VmapFileTest, SeededMutationsNeverCrash) {
     }
   }
   // Most mutations of a small file hit coordinates and still decode: both paths were exercised.
+  EXPECT_GT(decoded_ok, 0);
+  EXPECT_LT(decoded_ok, 5000);
+}
+
+TEST(VmapFileTest, SeededMutationsOfTheArraysNeverCrash) {
+  // Byte edits only from tile (0, 0)'s obstacle_sizes on, where counts, point arrays, half widths
+  // and coordinates sit side by side; a quarter are random bytes, the rest flip one bit.
+  const std::string bytes = Encoded(SampleMap());
+  const size_t arrays = bytes.find(std::string("\x02\x00\x00\x00\x03\x00\x04\x00", 8));
+  ASSERT_NE(arrays, std::string::npos);
+  std::mt19937 random(4321);
+  int decoded_ok = 0;
+  for (int round = 0; round < 5000; ++round) {
+    std::string mutated = bytes;
+    const int edits = 1 + static_cast<int>(random() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const size_t at = arrays + random() % (mutated.size() - arrays);
+      mutated[at] = static_cast<char>(random() % 4 == 0 ? random() & 0xff : mutated[at] ^ 1);
+    }
+    const auto decoded = DecodeVmap(mutated, "arrays.vmap");
+    if (decoded.ok()) {
+      ++decoded_ok;
+      // Each vertex takes at least four bytes (int16 x and y).
+      EXPECT_LE(decoded->ObstacleVertexCount() + decoded->FreeVertexCount(), bytes.size() / 4);
+    } else {
+      EXPECT_THAT(decoded.status().message(), HasSubstr("arrays.vmap"));
+    }
+  }
   EXPECT_GT(decoded_ok, 0);
   EXPECT_LT(decoded_ok, 5000);
 }
