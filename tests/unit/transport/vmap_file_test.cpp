@@ -107,6 +107,77 @@ TEST(VmapFileTest, HalfWidthsOffTheQuantumRoundUp) {
   }
 }
 
+// The example of docs/file-formats.md (VectorTile, field by field), after the encapsulation.
+std::string DocumentedExample() {
+  const char* const fields[] = {
+      "10 00 00 00 66 6c 65 65 74 6d 61 70 2d 76 6d 61 70 2f 32 00",  // format
+      "06 00 00 00 66 6c 65 65 74 00",                                // frame_id
+      "00 00",                                                        // padding
+      "00 00 00 00 00 00 24 40",                                      // tile_size 10
+      "29 cb 90 3d",                                                  // epsilon
+      "cd cc 4c 3d",                                                  // resolution
+      "01 00 00 00",                                                  // tiles: 1
+      "01 00 00 00 00",                                               // robot_id ""
+      "00 00 00",                                                     // padding
+      "00 00 00 00",                                                  // tile_x 0
+      "00 00 00 00",                                                  // tile_y 0
+      "00 00 00 00",                                                  // stamp.sec
+      "00 00 00 00",                                                  // stamp.nanosec
+      "06 00 00 00 66 6c 65 65 74 00",                                // frame_id
+      "00 00",                                                        // padding
+      "00 00 00 00",                                                  // revision
+      "00 00 00 00",                                                  // padding
+      "00 00 00 00 00 00 24 40",                                      // tile_size
+      "00 00 00 00 00 00 44 3f",                                      // quantum
+      "29 cb 90 3d",                                                  // epsilon
+      "cd cc 4c 3d",                                                  // resolution
+      "02 00 00 00 02 00 04 00",                                      // obstacle_sizes [2, 4]
+      "02 00 00 00 52 00 00 00",                          // obstacle_half_widths [82, 0]
+      "06 00 00 00 00 00 66 06 64 00 c8 00 c8 00 64 00",  // obstacle_x
+      "06 00 00 00 00 00 00 00 64 00 64 00 c8 00 64 00",  // obstacle_y
+      "01 00 00 00 f4 01",                                // point_x [500]
+      "00 00",                                            // padding
+      "01 00 00 00 bc 02",                                // point_y [700]
+      "00 00",                                            // padding
+      "00 00 00 00",                                      // point_half_widths []
+      "01 00 00 00 01 00",                                // free_polygon_rings [1]
+      "00 00",                                            // padding
+      "01 00 00 00 03 00",                                // free_ring_sizes [3]
+      "00 00",                                            // padding
+      "03 00 00 00 00 00 66 06 00 00",                    // free_x
+      "00 00",                                            // padding
+      "03 00 00 00 00 00 00 00 66 06",                    // free_y
+  };
+  std::string bytes("\x00\x01\x00\x00", 4);
+  for (const char* field : fields) {
+    for (const char* hex = field; *hex != '\0'; hex += hex[2] == ' ' ? 3 : 2) {
+      bytes.push_back(static_cast<char>(std::stoi(std::string(hex, 2), nullptr, 16)));
+    }
+  }
+  return bytes;
+}
+
+TEST(VmapFileTest, TheDocumentedExampleIsWhatTheCodecWrites) {
+  const TileId id{0, 0};
+  TiledVectorMap map;
+  map.epsilon = 0.0707;
+  vector_map::VectorMap& tile = map.tiles[id];
+  tile.frame_id = "fleet";
+  tile.epsilon = 0.0707;
+  tile.obstacles = {
+      Polyline{{At(id, 10, 0, 0), At(id, 10, 1638, 0)}, false, Quanta(10, 82)},
+      Polyline{{At(id, 10, 100, 100), At(id, 10, 200, 100), At(id, 10, 200, 200)}, true, 0.0},
+      Polyline{{At(id, 10, 500, 700)}, false, 0.0}};
+  tile.free_space = {FreePolygon{{At(id, 10, 0, 0), At(id, 10, 1638, 0), At(id, 10, 0, 1638)}, {}}};
+  const std::string documented = DocumentedExample();
+  ASSERT_EQ(documented.size(), 230u);
+  EXPECT_EQ(Encoded(map), documented);
+  const auto decoded = DecodeVmap(documented, "example.vmap");
+  ASSERT_TRUE(decoded.ok()) << decoded.status();
+  EXPECT_EQ(decoded->tiles.at(id).obstacles, tile.obstacles);
+  EXPECT_EQ(decoded->tiles.at(id).free_space, tile.free_space);
+}
+
 TEST(VmapFileTest, BorderVertexIsTheSamePointFromBothTiles) {
   // x = 10 m is the right border of tile 0 and the left border of tile 1.
   const Point2 from_left = At(TileId{0, 0}, 10.0, 16384, 123);
