@@ -8,6 +8,20 @@
 #include "common/vector_map/outline_simplifier.hpp"
 
 namespace fleetmap::vector_map {
+namespace {
+
+// A hole around an unknown speck: its contour (through the free cells around it) fits a 3 x 3
+// cell box, so the one cell it can enclose is within a cell of it, and dropping the hole is a
+// simplification within any tolerance of a cell or more (Douglas-Peucker at the default sqrt(2)
+// collapses such rings to a point or a line, which the extractor drops anyway). SLAM maps have
+// thousands (intel_lab 4 100), so they are recognised before simplifying.
+bool IsSpeckHole(const std::vector<cv::Point>& contour, double epsilon_cells) {
+  if (epsilon_cells < 1.0) return false;
+  const cv::Rect box = cv::boundingRect(contour);
+  return box.width <= 3 && box.height <= 3;
+}
+
+}  // namespace
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
                                           const grid::StateThresholds& thresholds,
@@ -104,6 +118,10 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     CellPolygon polygon;
     polygon.outer = convert(contours[i]);
     for (int child = hierarchy[i][2]; child >= 0; child = hierarchy[child][0]) {
+      if (IsSpeckHole(contours[child], epsilon_cells) &&
+          !simplifier.AnyGuardedNear(contours[child])) {
+        continue;  // what simplifying it would give: a hole too small to keep (below)
+      }
       auto hole = convert(contours[child]);
       // A hole simplified to a point or a line encloses no cell (and no solid one,
       // OutlineSimplifier checked that): it would cost bytes for nothing.

@@ -95,6 +95,12 @@ bool OutlineSimplifier::AnyGuardedIn(int x0, int y0, int x1, int y1) const {
   return sum > 0;
 }
 
+bool OutlineSimplifier::AnyGuardedNear(const std::vector<cv::Point>& contour) const {
+  if (!any_guarded_ || contour.empty()) return false;
+  const cv::Rect box = cv::boundingRect(contour);
+  return AnyGuardedIn(box.x - 1, box.y - 1, box.x + box.width, box.y + box.height);
+}
+
 bool OutlineSimplifier::SegmentSafe(const std::vector<cv::Point>& contour, int i, int j) const {
   if (j - i < 2) return true;  // one contour step: the lens is empty, the band region cells
   // The lens lies in the convex hull of its vertices and the band within a cell of the segment:

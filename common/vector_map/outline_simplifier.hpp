@@ -35,6 +35,12 @@ class OutlineSimplifier {
   // caller may drop such a hole.
   std::vector<cv::Point> Simplify(const std::vector<cv::Point>& contour) const;
 
+  // Whether a guarded cell lies in the contour's bounding box grown by a cell (O(1) after the
+  // box): false means nothing it encloses or passes is guarded.
+  bool AnyGuardedNear(const std::vector<cv::Point>& contour) const;
+
+  double epsilon_cells() const { return epsilon_; }
+
   // Sub-cell slack of the segment band (cells): covers snapping to the tile lattice (at most
   // 0.012 cells for 10 m tiles of 5 cm cells) and float noise after decoding.
   static constexpr double kSlack = 0.05;
