@@ -12,6 +12,7 @@
 #include "common/vector_map/free_space_extractor.hpp"
 #include "common/vector_map/half_width.hpp"
 #include "common/vector_map/lattice.hpp"
+#include "common/vector_map/line_refit.hpp"
 #include "common/vector_map/painted_cells.hpp"
 #include "common/vector_map/paper_vectorizer.hpp"
 
@@ -61,6 +62,14 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   if (rect.empty()) return map;
 
   const CellFrame frame(grid);
+  // A half width in cells as emitted, metres: on a lattice rounded up to whole quanta (a codec
+  // storing quanta then loses nothing).
+  auto emitted_half_width = [&](double half_width_cells) {
+    const double h = half_width_cells * resolution;
+    return lattice.enabled()
+               ? std::min(epsilon, std::ceil(h / lattice.quantum()) * lattice.quantum())
+               : h;
+  };
   std::vector<CellPolyline> polylines;
   std::vector<double> half_widths;
   if (options_.method == VectorizeMethod::kPaper) {
@@ -77,6 +86,18 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
       }
     }
     half_widths = CoveredHalfWidths(raster, polylines, epsilon / resolution, 0.5);
+    if (options_.refit_lines) {
+      // Centre lines off the cell centres where the band then matches the wall's cells better
+      // (walls an even number of cells thick), checked on the snapped result.
+      LineRefitOptions refit;
+      refit.epsilon = epsilon / resolution;
+      refit.min_radius = 0.5;
+      if (lattice.enabled()) {
+        refit.snap = [&](const Point2& p) { return frame.ToCell(lattice.Snap(frame.ToMap(p))); };
+        refit.emitted_half_width = [&](double h) { return emitted_half_width(h) / resolution; };
+      }
+      RefitLines(raster, refit, polylines, half_widths);
+    }
     // Line ends that thinning shortened are lengthened to paint their end cells (checked against
     // the full epsilon on the snapped result), so the free space needs no hole for them.
     EndExtensionOptions ends;
@@ -93,13 +114,7 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     out.closed = polylines[k].closed;
     out.points.reserve(polylines[k].points.size());
     for (const Point2& p : polylines[k].points) out.points.push_back(lattice.Snap(frame.ToMap(p)));
-    if (!half_widths.empty()) {
-      double h = half_widths[k] * resolution;
-      // On a lattice, rounded up to whole quanta (a codec storing quanta then loses nothing).
-      if (lattice.enabled())
-        h = std::min(epsilon, std::ceil(h / lattice.quantum()) * lattice.quantum());
-      out.half_width = h;
-    }
+    if (!half_widths.empty()) out.half_width = emitted_half_width(half_widths[k]);
     map.obstacles.push_back(std::move(out));
   }
   if (options_.extract_free_space) {

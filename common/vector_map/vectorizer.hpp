@@ -9,7 +9,9 @@
 // the skeleton into chains, and simplifies each chain greedily, accepting a shortcut only if every
 // delimitation point attached to the chain stays within epsilon and the shortcut passes the exact
 // continuity test. Delimitation points still uncovered afterwards (thick blobs, odd corners) are
-// chained and simplified on their own, so the guarantee never depends on the skeleton.
+// chained and simplified on their own, so the guarantee never depends on the skeleton. Centre
+// lines are then moved off the cell centres where their painted band matches the cells better (a
+// wall two cells thick: line_refit.hpp), each move checked against both constraints.
 //
 // kPaper is the paper's greedy shortcut removal, kept for comparison: it checks only the removed
 // vertex and can break the epsilon-error constraint.
@@ -47,6 +49,9 @@ struct VectorizerOptions {
   // map frame) and keeps both constraints after that snapping. The tile codec needs it.
   double quantum = 0.0;
   Point2 lattice_origin = Point2::Zero();
+  // kDefault: move centre lines off the cell centres where the painted band then matches the
+  // cells better (line_refit.hpp; both constraints still hold). Off only to measure its effect.
+  bool refit_lines = true;
 };
 
 class Vectorizer {

@@ -71,11 +71,10 @@ TEST(RasterizerTest, VectorizedWallsComeBackAtTheirThickness) {
                  (grid.StateAt(x, y) == CellState::kOccupied);
       }
     }
-    // 3: exact (a centre line on the middle row, half width 1). 1: exact but for the two end
-    // cells (thinning shortens a line end by a cell; the half-cell radius does not reach back).
-    // 2: one row too many or too few (a centre line on cell centres is symmetric about it).
-    const int allowed[] = {0, 2, 52, 0};
-    EXPECT_LE(wrong, allowed[thickness]) << "thickness " << thickness;
+    // All exact. 3: a centre line on the middle row, half width 1. 1: the line ends thinning
+    // shortened are moved back onto their end cells (end_extender). 2: the centre line is moved
+    // between the two rows (line_refit; on cell centres it painted one row too many or too few).
+    EXPECT_EQ(wrong, 0) << "thickness " << thickness;
   }
 }
 
