@@ -37,7 +37,8 @@ const grid::OccupancyGrid* LoadCached(const std::string& name) {
   return &it->second;
 }
 
-void BM_Vectorize(benchmark::State& state, const std::string& name, VectorizeMethod method) {
+void BM_Vectorize(benchmark::State& state, const std::string& name, VectorizeMethod method,
+                  bool refit_lines) {
   const grid::OccupancyGrid* grid = LoadCached(name);
   if (grid == nullptr) {
     state.SkipWithError("cannot load map");
@@ -46,6 +47,7 @@ void BM_Vectorize(benchmark::State& state, const std::string& name, VectorizeMet
   VectorizerOptions options;
   options.method = method;
   options.extract_free_space = false;
+  options.refit_lines = refit_lines;
   const Vectorizer vectorizer(options);
   size_t vertices = 0;
   size_t segments = 0;
@@ -91,10 +93,14 @@ void BM_OpenCv(benchmark::State& state, const std::string& name) {
 const bool kRegistered = [] {
   for (const std::string& name : MapNames()) {
     benchmark::RegisterBenchmark(("default/" + name).c_str(), BM_Vectorize, name,
-                                 VectorizeMethod::kDefault)
+                                 VectorizeMethod::kDefault, true)
+        ->Unit(benchmark::kMillisecond);
+    // Without line_refit: its time is the difference.
+    benchmark::RegisterBenchmark(("default_no_refit/" + name).c_str(), BM_Vectorize, name,
+                                 VectorizeMethod::kDefault, false)
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("paper/" + name).c_str(), BM_Vectorize, name,
-                                 VectorizeMethod::kPaper)
+                                 VectorizeMethod::kPaper, false)
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("opencv/" + name).c_str(), BM_OpenCv, name)
         ->Unit(benchmark::kMillisecond);

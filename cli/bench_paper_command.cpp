@@ -144,7 +144,8 @@ void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrai
      << "Wall time: " << Fixed(seconds, 1) << " s for " << results.size() << " terrains.  \n"
      << "Resolution " << options.resolution << " m; laser " << options.laser_fov_deg << " deg, "
      << options.laser_step_deg << " deg steps, " << options.laser_range << " m; SLAM error model "
-     << (options.slam_error ? "on" : "off") << ". KB = 1024 bytes.\n\n"
+     << (options.slam_error ? "on" : "off") << (options.line_refit ? "" : "; line refit off")
+     << ". KB = 1024 bytes.\n\n"
      << "P: robot grid, one byte per cell; PZ: gzip -9 of P; V: .vmap bytes "
         "(EncodeVmap(VectorizeTiled(robot grid)), obstacles and free space); VZ: gzip -9 of V; V "
         "obst, "
@@ -316,6 +317,7 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
   base.exploration.laser.angular_step = options.laser_step_deg * std::numbers::pi / 180.0;
   base.exploration.laser.max_range = options.laser_range;
   base.exploration.error.enabled = options.slam_error;
+  base.line_refit = options.line_refit;
   if (const auto check = sim::ExplorationSimulator::Create(base.exploration); !check.ok()) {
     err << prefix << "--laser-range / --laser-step: " << check.status().message() << "\n";
     return kExitBadInput;
@@ -388,6 +390,8 @@ void AddBenchPaperCommand(CLI::App& app, int* exit_code) {
   command->add_option("--laser-range", options->laser_range, "laser range (m)")
       ->capture_default_str();
   command->add_flag("!--no-slam-error", options->slam_error, "map with the true poses");
+  command->add_flag("!--no-line-refit", options->line_refit,
+                    "vectorize without moving centre lines off the cell centres");
   command->add_flag("!--no-progress", options->progress, "no progress bar on stderr");
   command->callback(
       [options, exit_code] { *exit_code = RunBenchPaper(*options, std::cout, std::cerr); });

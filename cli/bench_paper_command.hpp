@@ -24,6 +24,7 @@ struct BenchPaperOptions {
   double laser_step_deg = 1.0;
   double laser_range = 30.0;
   bool slam_error = true;
+  bool line_refit = true;  // VectorizerOptions::refit_lines (off only to measure it)
   bool progress = true;
 };
 

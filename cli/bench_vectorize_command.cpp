@@ -97,6 +97,8 @@ void AddBenchVectorizeCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-cells", options->bench.max_cells, "Refuse grids with more cells")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("!--no-line-refit", options->bench.line_refit,
+                "Vectorize without moving centre lines off the cell centres");
   cmd->callback(
       [options, exit_code]() { *exit_code = RunBenchVectorize(*options, std::cout, std::cerr); });
 }

@@ -32,10 +32,12 @@ struct Vectorized {
   std::string vmap;
 };
 
-StatusOr<Vectorized> Vectorize(const grid::OccupancyGrid& grid) {
+StatusOr<Vectorized> Vectorize(const grid::OccupancyGrid& grid, bool line_refit) {
   Vectorized out;
+  vector_map::TiledVectorizeOptions options;
+  options.vectorizer.refit_lines = line_refit;
   FLEETMAP_ASSIGN_OR_RETURN(out.tiled,
-                            vector_map::VectorizeTiled(grid, Transform2::Identity(), {}));
+                            vector_map::VectorizeTiled(grid, Transform2::Identity(), options));
   FLEETMAP_ASSIGN_OR_RETURN(out.vmap, transport::EncodeVmap(out.tiled));
   return out;
 }
@@ -98,9 +100,9 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
 
   report("vectorizing");
   const Clock::time_point vectorize_start = Clock::now();
-  FLEETMAP_ASSIGN_OR_RETURN(const Vectorized robot_vector, Vectorize(robot));
+  FLEETMAP_ASSIGN_OR_RETURN(const Vectorized robot_vector, Vectorize(robot, options.line_refit));
   result.seconds_vectorize = SecondsSince(vectorize_start);
-  FLEETMAP_ASSIGN_OR_RETURN(const Vectorized truth_vector, Vectorize(truth));
+  FLEETMAP_ASSIGN_OR_RETURN(const Vectorized truth_vector, Vectorize(truth, options.line_refit));
   result.vertices = robot_vector.tiled.ObstacleVertexCount();
   result.segments = robot_vector.tiled.ObstacleSegmentCount();
   result.truth_vmap = truth_vector.vmap.size();

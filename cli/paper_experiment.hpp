@@ -25,6 +25,7 @@ struct PaperTerrainOptions {
   uint32_t seed = 0;
   double resolution = 0.05;
   sim::ExplorationOptions exploration;  // its seed is derived from `seed`
+  bool line_refit = true;               // VectorizerOptions::refit_lines
   // Where the maps' PNGs (and the robot map as YAML + PGM) go; empty writes nothing.
   std::string image_dir;
 };

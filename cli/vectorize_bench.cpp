@@ -78,10 +78,13 @@ StatusOr<ConstraintCheck> Check(const vector_map::VectorMap& map, const grid::Oc
 
 // Whole-map vectorization with one method, timed.
 StatusOr<MethodFigures> MeasureOurs(const grid::OccupancyGrid& grid,
-                                    vector_map::VectorizeMethod method, bool free_space, int runs) {
+                                    vector_map::VectorizeMethod method, bool free_space,
+                                    const VectorizeBenchOptions& bench) {
+  const int runs = bench.runs;
   vector_map::VectorizerOptions options;
   options.method = method;
   options.extract_free_space = free_space;
+  options.refit_lines = bench.line_refit;
   const vector_map::Vectorizer vectorizer(options);
   StatusOr<vector_map::VectorMap> map = vectorizer.Vectorize(grid);
   if (!map.ok()) return map.status();
@@ -149,6 +152,7 @@ vector_map::TiledVectorizeOptions TiledOptions(const VectorizeBenchOptions& opti
   vector_map::TiledVectorizeOptions tiled;
   tiled.tile_size = options.tile_size;
   tiled.vectorizer.extract_free_space = free_space;
+  tiled.vectorizer.refit_lines = options.line_refit;
   return tiled;
 }
 
@@ -252,12 +256,10 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
   row.epsilon = vector_map::DefaultEpsilon(grid.resolution());
 
   using vector_map::VectorizeMethod;
-  FLEETMAP_ASSIGN_OR_RETURN(row.ours,
-                            MeasureOurs(grid, VectorizeMethod::kDefault, false, options.runs));
+  FLEETMAP_ASSIGN_OR_RETURN(row.ours, MeasureOurs(grid, VectorizeMethod::kDefault, false, options));
   FLEETMAP_ASSIGN_OR_RETURN(row.ours_full,
-                            MeasureOurs(grid, VectorizeMethod::kDefault, true, options.runs));
-  FLEETMAP_ASSIGN_OR_RETURN(row.paper,
-                            MeasureOurs(grid, VectorizeMethod::kPaper, false, options.runs));
+                            MeasureOurs(grid, VectorizeMethod::kDefault, true, options));
+  FLEETMAP_ASSIGN_OR_RETURN(row.paper, MeasureOurs(grid, VectorizeMethod::kPaper, false, options));
   FLEETMAP_RETURN_IF_ERROR(MeasureOpenCv(grid, options.runs, &row));
 
   FLEETMAP_ASSIGN_OR_RETURN(const metrics::GridSizes grid_sizes, metrics::MeasureGridSizes(grid));

@@ -20,6 +20,7 @@ struct VectorizeBenchOptions {
   int runs = 5;             // timings are medians of this many runs
   double tile_size = 10.0;  // metres, for the .vmap and the re-vectorized tile
   int64_t max_cells = 400'000'000;
+  bool line_refit = true;  // VectorizerOptions::refit_lines of kDefault (off only to measure it)
 };
 
 // What the Validator found on one output.
