@@ -19,6 +19,7 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
+#include "common/transport/vector_tile_reader.hpp"
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTile.h"
@@ -293,11 +294,24 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     EXPECT_TRUE(SendUntilServerSays(*tile_writer, tile, c.expect)) << c.expect << "\n"
                                                                    << server_->Output();
   }
-  // A sound tile from the same peer is fused as usual.
+  // A sound tile from the same peer is fused as usual: it comes back on the fused tiles.
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto fused =
+      transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
+  ASSERT_TRUE(fused.ok()) << fused.status();
   auto good = Tile("gamma");
   good.tile_y(7);
-  tile_writer->writer()->write(&good);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  bool good_fused = false;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (!good_fused && std::chrono::steady_clock::now() < deadline) {
+    tile_writer->writer()->write(&good);
+    wake_up->WaitFor(std::chrono::milliseconds(200));
+    for (const transport::TileEvent& event : (*fused)->Drain()) {
+      good_fused |= event.kind == transport::TileEvent::Kind::kTile &&
+                    event.tile.tile == TileId{0, 7} && !event.tile.map.obstacles.empty();
+    }
+  }
+  EXPECT_TRUE(good_fused) << server_->Output();
 
   tile_writer.reset();
   const std::string output = StopServer();
