@@ -61,6 +61,11 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
       return fail(options.map_yaml + ": " + s.message());
     }
   }
+  if (options.free_epsilon_given) {
+    if (Status s = CheckPositiveFinite("--free-epsilon", options.free_epsilon); !s.ok()) {
+      return fail(options.map_yaml + ": " + s.message());
+    }
+  }
   if (Status s = CheckPositiveFinite("--tile-size", options.tile_size); !s.ok()) {
     return fail(options.map_yaml + ": " + s.message());
   }
@@ -73,6 +78,7 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
   tiled.tile_size = options.tile_size;
   tiled.vectorizer.method = *method;
   tiled.vectorizer.epsilon = options.epsilon_given ? options.epsilon : 0.0;
+  tiled.vectorizer.free_epsilon = options.free_epsilon_given ? options.free_epsilon : 0.0;
   const auto start = std::chrono::steady_clock::now();
   StatusOr<vector_map::TiledVectorMap> map =
       vector_map::VectorizeTiled(grid, Transform2::Identity(), tiled);
@@ -98,6 +104,7 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
     json["output"] = options.output_vmap;
     json["method"] = options.method;
     json["epsilon"] = map->epsilon;
+    json["free_epsilon"] = options.free_epsilon_given ? options.free_epsilon : map->epsilon;
     json["tile_size"] = map->tile_size;
     json["vertices"] = map->ObstacleVertexCount();
     json["segments"] = map->ObstacleSegmentCount();
@@ -132,6 +139,10 @@ void AddVectorizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("-o,--output", options->output_vmap, ".vmap file to write")->required();
   CLI::Option* epsilon = cmd->add_option("--epsilon", options->epsilon,
                                          "Error bound in metres (default sqrt(2) * resolution)");
+  CLI::Option* free_epsilon = cmd->add_option(
+      "--free-epsilon", options->free_epsilon,
+      "Tolerance of the free-space outlines in metres (default epsilon; smaller: more faithful "
+      "free / unknown borders, more bytes)");
   cmd->add_option("--method", options->method, "default (both constraints hold) or paper");
   cmd->add_option("--tile-size", options->tile_size, "Tile side in metres")->capture_default_str();
   cmd->add_option("--geojson", options->geojson_path, "Also write GeoJSON here");
@@ -140,8 +151,9 @@ void AddVectorizeCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--json", options->json, "Print one JSON line instead of text");
   cmd->add_option("--max-cells", options->max_cells, "Refuse grids with more cells than this")
       ->check(CLI::PositiveNumber);
-  cmd->callback([options, epsilon, exit_code]() {
+  cmd->callback([options, epsilon, free_epsilon, exit_code]() {
     options->epsilon_given = epsilon->count() > 0;
+    options->free_epsilon_given = free_epsilon->count() > 0;
     *exit_code = RunVectorize(*options, std::cout, std::cerr);
   });
 }

@@ -1,8 +1,9 @@
 #pragma once
 
-// `fleetmap vectorize MAP.yaml -o OUT.vmap [--epsilon E] [--method default|paper]
-// [--tile-size T] [--geojson F] [--svg F] [--png F] [--json]`: vectorizes a grid tile by tile
-// (fleet frame = map frame) and writes the .vmap, optionally GeoJSON / SVG / PNG pictures of it.
+// `fleetmap vectorize MAP.yaml -o OUT.vmap [--epsilon E] [--free-epsilon F]
+// [--method default|paper] [--tile-size T] [--geojson F] [--svg F] [--png F] [--json]`: vectorizes
+// a grid tile by tile (fleet frame = map frame) and writes the .vmap, optionally GeoJSON / SVG /
+// PNG pictures of it.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -18,6 +19,10 @@ struct VectorizeCommandOptions {
   std::string output_vmap;
   double epsilon = 0.0;  // metres; 0 (not given) picks sqrt(2) * resolution
   bool epsilon_given = false;
+  // Metres; the tolerance of the free-space outlines, 0 (not given) = epsilon. Smaller keeps the
+  // free / unknown border and one-cell unknown specks more faithfully, at more bytes.
+  double free_epsilon = 0.0;
+  bool free_epsilon_given = false;
   std::string method = "default";
   double tile_size = 10.0;  // metres
   std::string geojson_path;

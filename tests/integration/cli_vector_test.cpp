@@ -127,6 +127,41 @@ TEST(CliVectorTest, VectorizeValidateRasterizeCompareRoundTrip) {
   EXPECT_THAT(run.out, HasSubstr("MS   100.00 %"));
 }
 
+// --free-epsilon trades bytes for fidelity: below a cell it keeps one-cell unknown specks inside
+// free space (the default drops their holes, so they come back free) and the free / unknown
+// border cell for cell.
+TEST(CliVectorTest, FreeEpsilonKeepsUnknownSpecksAtMoreBytes) {
+  const std::string dir = TestDir();
+  grid::OccupancyGrid room = Room();
+  for (int k = 0; k < 20; ++k) room.at(30 + 11 * k, 40 + 7 * (k % 5)) = grid::kUnknownValue;
+  const std::string map = Save(room, dir, "specks");
+  auto round_trip_ms = [&](const std::vector<std::string>& extra, nlohmann::json* summary) {
+    const std::string vmap = dir + "/specks" + std::to_string(extra.size()) + ".vmap";
+    std::vector<std::string> args = {"vectorize", map, "-o", vmap, "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    process::CommandResult run = RunFleetmap(args);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    *summary = nlohmann::json::parse(run.out);
+    const std::string back = dir + "/back" + std::to_string(extra.size()) + ".yaml";
+    EXPECT_EQ(RunFleetmap({"rasterize", vmap, "-o", back, "--like", map}).exit_code, 0);
+    run = RunFleetmap({"compare", back, map, "--json"});
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out)["MS"].get<double>();
+  };
+  nlohmann::json coarse;
+  nlohmann::json fine;
+  const double coarse_ms = round_trip_ms({}, &coarse);
+  const double fine_ms = round_trip_ms({"--free-epsilon", "0.0375"}, &fine);
+  EXPECT_NEAR(coarse["free_epsilon"].get<double>(), 0.05 * std::sqrt(2.0), 1e-12);
+  EXPECT_DOUBLE_EQ(fine["free_epsilon"].get<double>(), 0.0375);
+  // Each speck is a hole of its own now: more free vertices and bytes, 20 more cells right.
+  EXPECT_GE(fine["free_vertices"].get<int>(), coarse["free_vertices"].get<int>() + 20 * 3);
+  EXPECT_GT(fine["bytes"]["raw"].get<int>(), coarse["bytes"]["raw"].get<int>());
+  EXPECT_GE(fine_ms - coarse_ms, 100.0 * 20 / (300 * 250) - 1e-9);
+  // The obstacles do not depend on it.
+  EXPECT_EQ(fine["vertices"], coarse["vertices"]);
+}
+
 TEST(CliVectorTest, ValidateExitsOneOnABrokenVmap) {
   const std::string dir = TestDir();
   const grid::OccupancyGrid room = Room();
@@ -314,6 +349,8 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       {{"vectorize", map, "-o", vmap, "--epsilon", "0"}, {map, "--epsilon must be"}},
       {{"vectorize", map, "-o", vmap, "--epsilon", "-0.1"}, {map, "--epsilon must be"}},
       {{"vectorize", map, "-o", vmap, "--epsilon", "0.001"}, {map, "epsilon"}},
+      {{"vectorize", map, "-o", vmap, "--free-epsilon", "0"}, {map, "--free-epsilon must be"}},
+      {{"vectorize", map, "-o", vmap, "--free-epsilon", "inf"}, {map, "--free-epsilon must be"}},
       {{"vectorize", map, "-o", vmap, "--tile-size", "nan"}, {map, "--tile-size must be"}},
       {{"vectorize", map, "-o", vmap, "--method", "fancy"}, {map, "unknown --method 'fancy'"}},
       {{"vectorize", map, "-o", vmap, "--max-cells", "1000"}, {"room.pgm", "limit of 1000"}},
