@@ -1,6 +1,8 @@
 #include "common/vector_map/free_space_extractor.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include <opencv2/imgproc.hpp>
@@ -15,10 +17,25 @@ namespace {
 // simplification within any tolerance of a cell or more (Douglas-Peucker at the default sqrt(2)
 // collapses such rings to a point or a line, which the extractor drops anyway). SLAM maps have
 // thousands (intel_lab 4 100), so they are recognised before simplifying.
-bool IsSpeckHole(const std::vector<cv::Point>& contour, double epsilon_cells) {
+bool IsSpeckHole(const cv::Rect& box, double epsilon_cells) {
   if (epsilon_cells < 1.0) return false;
-  const cv::Rect box = cv::boundingRect(contour);
   return box.width <= 3 && box.height <= 3;
+}
+
+// cv::boundingRect of a non-empty contour, without its InputArray dispatch (which cost more than
+// the loop for the thousands of small holes of a SLAM map).
+cv::Rect BoundingBox(const std::vector<cv::Point>& contour) {
+  int x0 = contour.front().x;
+  int y0 = contour.front().y;
+  int x1 = x0;
+  int y1 = y0;
+  for (const cv::Point& p : contour) {
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+  }
+  return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
 }
 
 }  // namespace
@@ -38,68 +55,108 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   constexpr uint8_t kIn = 1;
   constexpr uint8_t kAny = 2;
   constexpr uint8_t kSolid = 3;
-  // The class of every (painted, near an edge, cell value) triple, looked up instead of
-  // classified per cell: index (painted ? 512 : 0) + (near ? 256 : 0) + value byte.
-  std::array<uint8_t, 1024> class_of{};
-  for (int v = -128; v < 128; ++v) {
-    const uint8_t byte = static_cast<uint8_t>(v);
+  // StateOf compares v / 100 with the thresholds, so the free values are a prefix [0, free_count)
+  // of [0, 100] and the occupied ones a suffix [first_occupied, first_occupied + occupied_count);
+  // a cell's class is then a few byte comparisons (vectorized) instead of a table look-up.
+  int free_count = 0;
+  int first_occupied = 101;
+  for (int v = 0; v <= 100; ++v) {
     const grid::CellState state = grid::StateOf(static_cast<int8_t>(v), thresholds);
-    class_of[byte] = state == grid::CellState::kFree       ? kIn
-                     : state == grid::CellState::kOccupied ? kSolid
-                                                           : kOut;
-    class_of[256 + byte] = state == grid::CellState::kOccupied ? kAny : class_of[byte];
-    class_of[512 + byte] = class_of[768 + byte] = state == grid::CellState::kFree ? kIn : kAny;
+    if (state == grid::CellState::kFree) free_count = v + 1;
+    if (state == grid::CellState::kOccupied) first_occupied = std::min(first_occupied, v);
   }
-  cv::Mat cls(rect.height, rect.width, CV_8UC1);
-  unsigned seen = 0;  // bit c: some cell has class c
+  const uint8_t free_below = static_cast<uint8_t>(free_count);
+  const uint8_t occupied_from = static_cast<uint8_t>(first_occupied);
+  const uint8_t occupied_count = static_cast<uint8_t>(101 - first_occupied);
+  // The classes, framed by a ring of kEdge cells so that a cell's 8 neighbours are read without
+  // bounds checks. Don't-care cells that join the region become kJoined, then kReached once a
+  // free cell is found in their component. `mask` (the region, 255 inside) has the same frame, so
+  // a cell's offset is the same in both.
+  constexpr uint8_t kEdge = 4;
+  constexpr uint8_t kJoined = 5;
+  constexpr uint8_t kReached = 6;
+  cv::Mat framed(rect.height + 2, rect.width + 2, CV_8UC1, cv::Scalar(kEdge));
+  cv::Mat framed_mask(rect.height + 2, rect.width + 2, CV_8UC1, cv::Scalar(0));
+  const cv::Rect inside(1, 1, rect.width, rect.height);
+  cv::Mat cls = framed(inside);
+  cv::Mat mask = framed_mask(inside);
+  // Without painted cells no cell is don't care (near_obstacles is not read).
+  thread_local std::vector<uint8_t> zeros;
+  zeros.assign(static_cast<size_t>(rect.width), 0);
+  uint8_t any_in = 0;
+  uint8_t any_dont_care_cell = 0;
+  uint8_t any_solid_cell = 0;
   for (int y = 0; y < rect.height; ++y) {
     uint8_t* row = cls.ptr<uint8_t>(y);
-    const int8_t* cells =
-        grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
-    if (options.painted != nullptr) {
-      const size_t offset = static_cast<size_t>(y) * rect.width;
-      const uint8_t* painted = options.painted->data() + offset;
-      const uint8_t* near =
-          options.near_obstacles != nullptr ? options.near_obstacles->data() + offset : nullptr;
-      for (int x = 0; x < rect.width; ++x) {
-        const int key = (painted[x] != 0 ? 512 : 0) + (near != nullptr && near[x] != 0 ? 256 : 0) +
-                        static_cast<uint8_t>(cells[x]);
-        row[x] = class_of[key];
-        seen |= 1u << row[x];
-      }
-    } else {
-      for (int x = 0; x < rect.width; ++x) {
-        row[x] = class_of[static_cast<uint8_t>(cells[x])];
-        seen |= 1u << row[x];
-      }
+    uint8_t* region = mask.ptr<uint8_t>(y);
+    const uint8_t* cells = reinterpret_cast<const uint8_t*>(grid.data().data()) +
+                           static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
+    const size_t offset = static_cast<size_t>(y) * rect.width;
+    const bool has_painted = options.painted != nullptr;
+    const uint8_t* painted = has_painted ? options.painted->data() + offset : zeros.data();
+    const uint8_t* near = has_painted && options.near_obstacles != nullptr
+                              ? options.near_obstacles->data() + offset
+                              : zeros.data();
+    for (int x = 0; x < rect.width; ++x) {
+      const uint8_t v = cells[x];
+      const bool is_free = v < free_below;
+      const bool is_occupied = static_cast<uint8_t>(v - occupied_from) < occupied_count;
+      const bool dont_care = painted[x] != 0 || (near[x] != 0 && is_occupied);
+      const uint8_t c = is_free ? kIn : dont_care ? kAny : is_occupied ? kSolid : kOut;
+      row[x] = c;
+      region[x] = is_free ? 255 : 0;
+      any_in |= is_free ? 1 : 0;
+      any_dont_care_cell |= c == kAny ? 1 : 0;
+      any_solid_cell |= c == kSolid ? 1 : 0;
     }
   }
-  const bool any = (seen & (1u << kIn)) != 0;
-  const bool any_dont_care = (seen & (1u << kAny)) != 0;
-  const bool any_solid = (seen & (1u << kSolid)) != 0;
+  const bool any = any_in != 0;
+  const bool any_dont_care = any_dont_care_cell != 0;
+  const bool any_solid = any_solid_cell != 0;
   if (!any) return polygons;
-  cv::Mat mask = cls == kIn;
   if (any_dont_care) {
-    // Don't-care cells join the region only one cell or more away from a must-out or solid cell:
-    // outlines simplified at epsilon then stray into don't-care cells rather than into those.
-    cv::Mat near_out;
-    cv::dilate(any_solid ? (cls == kOut) | (cls == kSolid) : cls == kOut, near_out,
-               cv::Mat::ones(3, 3, CV_8UC1));
-    mask |= (cls == kAny) & ~near_out;
-    // Components without a free cell are not free space.
-    cv::Mat labels;
-    const int count = cv::connectedComponents(mask, labels, 8, CV_32S);
-    std::vector<uint8_t> keep(static_cast<size_t>(count), 0);
+    // Don't-care cells join the region only one cell or more away from a must-out or solid cell
+    // (none among their 8 neighbours in the rectangle): outlines simplified at epsilon then stray
+    // into don't-care cells rather than into those.
+    const ptrdiff_t step = static_cast<ptrdiff_t>(framed.step);
+    const std::array<ptrdiff_t, 8> around = {-step - 1, -step,    -step + 1, -1,
+                                             1,         step - 1, step,      step + 1};
+    thread_local std::vector<uint8_t*> joined;
+    thread_local std::vector<uint8_t*> reached;
+    joined.clear();
+    reached.clear();
     for (int y = 0; y < rect.height; ++y) {
-      const uint8_t* row = cls.ptr<uint8_t>(y);
-      const int* label = labels.ptr<int>(y);
-      for (int x = 0; x < rect.width; ++x) keep[label[x]] |= row[x] == kIn ? 1 : 0;
+      uint8_t* row = cls.ptr<uint8_t>(y);
+      for (int x = 0; x < rect.width; ++x) {
+        if (row[x] != kAny) continue;
+        uint8_t* cell = row + x;
+        bool near_out = false;
+        for (const ptrdiff_t d : around) near_out |= cell[d] == kOut || cell[d] == kSolid;
+        if (near_out) continue;
+        *cell = kJoined;
+        joined.push_back(cell);
+      }
     }
-    for (int y = 0; y < rect.height; ++y) {
-      uint8_t* row = mask.ptr<uint8_t>(y);
-      const int* label = labels.ptr<int>(y);
-      // keep[] is 0 or 1 (and 0 for the background label, whose cells are 0 already).
-      for (int x = 0; x < rect.width; ++x) row[x] &= static_cast<uint8_t>(-keep[label[x]]);
+    // Components (8-connected) without a free cell are not free space: the joined cells are
+    // flooded from the free ones, and those not reached stay out.
+    for (uint8_t* cell : joined) {
+      bool next_to_free = false;
+      for (const ptrdiff_t d : around) next_to_free |= cell[d] == kIn;
+      if (next_to_free) {
+        *cell = kReached;
+        reached.push_back(cell);
+        framed_mask.data[cell - framed.data] = 255;
+      }
+    }
+    while (!reached.empty()) {
+      uint8_t* cell = reached.back();
+      reached.pop_back();
+      for (const ptrdiff_t d : around) {
+        if (cell[d] != kJoined) continue;
+        cell[d] = kReached;
+        reached.push_back(cell + d);
+        framed_mask.data[cell + d - framed.data] = 255;
+      }
     }
   }
   std::vector<std::vector<cv::Point>> contours;
@@ -118,8 +175,8 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     CellPolygon polygon;
     polygon.outer = convert(contours[i]);
     for (int child = hierarchy[i][2]; child >= 0; child = hierarchy[child][0]) {
-      if (IsSpeckHole(contours[child], epsilon_cells) &&
-          !simplifier.AnyGuardedNear(contours[child])) {
+      const cv::Rect box = BoundingBox(contours[child]);
+      if (IsSpeckHole(box, epsilon_cells) && !simplifier.AnyGuardedNear(box)) {
         continue;  // what simplifying it would give: a hole too small to keep (below)
       }
       auto hole = convert(contours[child]);

@@ -95,9 +95,8 @@ bool OutlineSimplifier::AnyGuardedIn(int x0, int y0, int x1, int y1) const {
   return sum > 0;
 }
 
-bool OutlineSimplifier::AnyGuardedNear(const std::vector<cv::Point>& contour) const {
-  if (!any_guarded_ || contour.empty()) return false;
-  const cv::Rect box = cv::boundingRect(contour);
+bool OutlineSimplifier::AnyGuardedNear(const cv::Rect& box) const {
+  if (!any_guarded_ || box.empty()) return false;
   return AnyGuardedIn(box.x - 1, box.y - 1, box.x + box.width, box.y + box.height);
 }
 

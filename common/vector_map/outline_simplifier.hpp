@@ -35,9 +35,9 @@ class OutlineSimplifier {
   // caller may drop such a hole.
   std::vector<cv::Point> Simplify(const std::vector<cv::Point>& contour) const;
 
-  // Whether a guarded cell lies in the contour's bounding box grown by a cell (O(1) after the
-  // box): false means nothing it encloses or passes is guarded.
-  bool AnyGuardedNear(const std::vector<cv::Point>& contour) const;
+  // Whether a guarded cell lies in the contour's bounding box (`box`, as cv::boundingRect gives
+  // it) grown by a cell (O(1)): false means nothing the contour encloses or passes is guarded.
+  bool AnyGuardedNear(const cv::Rect& box) const;
 
   double epsilon_cells() const { return epsilon_; }
 

@@ -5,6 +5,25 @@
 #include "common/vector_map/segment_geometry.hpp"
 
 namespace fleetmap::vector_map {
+namespace {
+
+// The radius itself (cells at exactly it, e.g. the corner cells of a block, are painted and must
+// count, or the free-space extractor guards them as solid), with a relative 1e-10 for rounding: a
+// tenth of the rasterizer's tolerance (ToleratedSquare), which is still far above the float noise
+// after decoding (about 1e-12 cells, another frame); quantised half widths only grow. So no marked
+// cell is left unpainted.
+double MarkedSquare(double radius) { return radius * radius * (1.0 + 1e-10); }
+
+// Calls visit(a, b, r) for every segment (or point) of polyline k, r its radius.
+template <typename Visit>
+void ForEachSegment(const CellPolyline& polyline, double r, Visit&& visit) {
+  const auto& pts = polyline.points;
+  if (pts.size() == 1) visit(pts[0], pts[0], r);
+  for (size_t i = 0; i + 1 < pts.size(); ++i) visit(pts[i], pts[i + 1], r);
+  if (polyline.closed && pts.size() >= 3) visit(pts.back(), pts.front(), r);
+}
+
+}  // namespace
 
 std::vector<uint8_t> PaintedCells(const grid::CellRect& rect,
                                   const std::vector<CellPolyline>& polylines,
@@ -21,19 +40,40 @@ std::vector<uint8_t> PaintedCells(const grid::CellRect& rect,
     });
   };
   for (size_t k = 0; k < polylines.size(); ++k) {
-    const auto& pts = polylines[k].points;
     const double r = std::max(radii.empty() ? 0.0 : radii[k], min_radius);
-    // The radius itself (cells at exactly it, e.g. the corner cells of a block, are painted and
-    // must count, or the free-space extractor guards them as solid), with a relative 1e-10 for
-    // rounding: a tenth of the rasterizer's tolerance (ToleratedSquare), which is still far above
-    // the float noise after decoding (about 1e-12 cells, another frame); quantised half widths
-    // only grow. So no marked cell is left unpainted.
-    r2 = r * r * (1.0 + 1e-10);
-    if (pts.size() == 1) mark(pts[0], pts[0], r);
-    for (size_t i = 0; i + 1 < pts.size(); ++i) mark(pts[i], pts[i + 1], r);
-    if (polylines[k].closed && pts.size() >= 3) mark(pts.back(), pts.front(), r);
+    r2 = MarkedSquare(r);
+    ForEachSegment(polylines[k], r, mark);
   }
   return painted;
+}
+
+void PaintedAndNearCells(const grid::CellRect& rect, const std::vector<CellPolyline>& polylines,
+                         const std::vector<double>& radii, double min_radius, double near_radius,
+                         std::vector<uint8_t>* painted, std::vector<uint8_t>* near) {
+  const size_t size = static_cast<size_t>(rect.width) * rect.height;
+  painted->assign(size, 0);
+  near->assign(size, 0);
+  if (rect.empty()) return;
+  // The near test is PaintedCells' with radius max(0, near_radius) for every polyline.
+  const double near_r = std::max(0.0, near_radius);
+  const double near2 = MarkedSquare(near_r);
+  double r2 = 0.0;
+  // One visit of the larger band: ForEachCellNearSegment's candidates only grow with the radius,
+  // so it lists every cell either call would have tested, and each test is the same exact one.
+  auto mark = [&](const Point2& a, const Point2& b, double r) {
+    ForEachCellNearSegment(a, b, std::max(r, near_r), [&](int x, int y) {
+      if (!rect.Contains(x, y)) return;
+      const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
+      const size_t i = static_cast<size_t>(y - rect.y0) * rect.width + (x - rect.x0);
+      if (d2 <= r2) (*painted)[i] = 1;
+      if (d2 <= near2) (*near)[i] = 1;
+    });
+  };
+  for (size_t k = 0; k < polylines.size(); ++k) {
+    const double r = std::max(radii.empty() ? 0.0 : radii[k], min_radius);
+    r2 = MarkedSquare(r);
+    ForEachSegment(polylines[k], r, mark);
+  }
 }
 
 }  // namespace fleetmap::vector_map

@@ -22,4 +22,11 @@ std::vector<uint8_t> PaintedCells(const grid::CellRect& rect,
                                   const std::vector<CellPolyline>& polylines,
                                   const std::vector<double>& radii, double min_radius);
 
+// PaintedCells(rect, polylines, radii, min_radius) into `painted` and, from the same visit of each
+// segment's band, PaintedCells(rect, polylines, {}, near_radius) into `near` (the free-space
+// extractor's two masks), bit for bit. Both are resized to the rectangle; their storage is reused.
+void PaintedAndNearCells(const grid::CellRect& rect, const std::vector<CellPolyline>& polylines,
+                         const std::vector<double>& radii, double min_radius, double near_radius,
+                         std::vector<uint8_t>* painted, std::vector<uint8_t>* near);
+
 }  // namespace fleetmap::vector_map

@@ -130,12 +130,13 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
       emitted[k].closed = map.obstacles[k].closed;
       radii[k] = map.obstacles[k].half_width / resolution;
     }
-    const std::vector<uint8_t> painted = PaintedCells(rect, emitted, radii, 0.5);
-    free_options.painted = &painted;
     // Occupied cells within epsilon of an edge are stood for by the obstacles (the epsilon-error
     // constraint's own bound), so they may join the free space; only farther ones are guarded.
-    const std::vector<uint8_t> near_obstacles =
-        PaintedCells(rect, emitted, {}, epsilon / resolution);
+    // Both masks come from one visit of the bands, into per-thread storage (no allocation).
+    thread_local std::vector<uint8_t> painted;
+    thread_local std::vector<uint8_t> near_obstacles;
+    PaintedAndNearCells(rect, emitted, radii, 0.5, epsilon / resolution, &painted, &near_obstacles);
+    free_options.painted = &painted;
     free_options.near_obstacles = &near_obstacles;
     for (const auto& polygon : ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
       FreePolygon out;
