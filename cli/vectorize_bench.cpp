@@ -76,10 +76,11 @@ StatusOr<ConstraintCheck> Check(const vector_map::VectorMap& map, const grid::Oc
   return ConstraintCheck{report.uncovered_points, report.discontinuous_segments};
 }
 
-// Whole-map vectorization with one method, timed.
+// Whole-map vectorization with one method, timed. `output` (optional) receives the map.
 StatusOr<MethodFigures> MeasureOurs(const grid::OccupancyGrid& grid,
                                     vector_map::VectorizeMethod method, bool free_space,
-                                    const VectorizeBenchOptions& bench) {
+                                    const VectorizeBenchOptions& bench,
+                                    vector_map::VectorMap* output = nullptr) {
   const int runs = bench.runs;
   vector_map::VectorizerOptions options;
   options.method = method;
@@ -93,6 +94,7 @@ StatusOr<MethodFigures> MeasureOurs(const grid::OccupancyGrid& grid,
   figures.vertices = map->ObstacleVertexCount() + map->FreeVertexCount();
   figures.segments = map->ObstacleSegmentCount();
   FLEETMAP_ASSIGN_OR_RETURN(figures.check, Check(*map, grid, map->epsilon));
+  if (output != nullptr) *output = std::move(*map);
   return figures;
 }
 
@@ -222,14 +224,17 @@ Status MeasureTileUpdate(const grid::OccupancyGrid& grid, const VectorizeBenchOp
   return Status::Ok();
 }
 
-Status MeasureOpenCv(const grid::OccupancyGrid& grid, int runs, VectorizeBenchRow* row) {
+// Fills row->opencv; `ours` (obstacles) is broken down beside OpenCV's output.
+Status MeasureOpenCv(const grid::OccupancyGrid& grid, int runs, const vector_map::VectorMap& ours,
+                     VectorizeBenchRow* row) {
   const double epsilon_cells = row->epsilon / grid.resolution();
   Contours contours;
+  cv::Mat mask;
   std::vector<double> totals;
   std::vector<double> masks;
   for (int i = 0; i < runs; ++i) {
     const Clock::time_point start = Clock::now();
-    const cv::Mat mask = OccupiedMask(grid);
+    mask = OccupiedMask(grid);
     masks.push_back(MillisecondsSince(start));
     contours = OpenCvVectorize(mask, epsilon_cells);
     totals.push_back(MillisecondsSince(start));
@@ -240,6 +245,7 @@ Status MeasureOpenCv(const grid::OccupancyGrid& grid, int runs, VectorizeBenchRo
   row->opencv.vertices = map.ObstacleVertexCount();
   row->opencv.segments = map.ObstacleSegmentCount();
   FLEETMAP_ASSIGN_OR_RETURN(row->opencv.check, Check(map, grid, row->epsilon));
+  row->vertices_by_component = BreakDownVertices(grid, mask, ours, contours, row->epsilon);
   return Status::Ok();
 }
 
@@ -256,11 +262,13 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
   row.epsilon = vector_map::DefaultEpsilon(grid.resolution());
 
   using vector_map::VectorizeMethod;
-  FLEETMAP_ASSIGN_OR_RETURN(row.ours, MeasureOurs(grid, VectorizeMethod::kDefault, false, options));
+  vector_map::VectorMap ours;
+  FLEETMAP_ASSIGN_OR_RETURN(row.ours,
+                            MeasureOurs(grid, VectorizeMethod::kDefault, false, options, &ours));
   FLEETMAP_ASSIGN_OR_RETURN(row.ours_full,
                             MeasureOurs(grid, VectorizeMethod::kDefault, true, options));
   FLEETMAP_ASSIGN_OR_RETURN(row.paper, MeasureOurs(grid, VectorizeMethod::kPaper, false, options));
-  FLEETMAP_RETURN_IF_ERROR(MeasureOpenCv(grid, options.runs, &row));
+  FLEETMAP_RETURN_IF_ERROR(MeasureOpenCv(grid, options.runs, ours, &row));
 
   FLEETMAP_ASSIGN_OR_RETURN(const metrics::GridSizes grid_sizes, metrics::MeasureGridSizes(grid));
   row.grid_raw = grid_sizes.cells.raw;

@@ -4,13 +4,15 @@
 // and with free space), the paper's method and the OpenCV baseline on the whole map in one
 // thread (median of N runs), their vertex counts and whether both constraints hold, the bytes of
 // the tiled .vmap against the 3-state grid, the round trip rasterize(vectorize(G)) against G, and
-// the time to re-vectorize one changed tile. Not a test: it asserts nothing.
+// the time to re-vectorize one changed tile, and where the vertices go (vertex_breakdown.hpp).
+// Not a test: it asserts nothing.
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
 
+#include "cli/vertex_breakdown.hpp"
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 
@@ -48,6 +50,8 @@ struct VectorizeBenchRow {
   MethodFigures paper;          // obstacles only
   MethodFigures opencv;         // mask + findContours + approxPolyDP
   double opencv_mask_ms = 0.0;  // of opencv.ms: building the occupied mask from the grid
+  // ours (obstacles) and OpenCV's vertices by the size of the occupied component they stand for.
+  VertexBreakdown vertices_by_component;
 
   // The tiled .vmap (with free space) as `fleetmap vectorize` writes it.
   ConstraintCheck vmap_check;

@@ -103,6 +103,37 @@ nlohmann::ordered_json MethodJson(const MethodFigures& figures) {
           {"valid", figures.check.ok()}};
 }
 
+void PrintVertexBreakdown(const std::vector<VectorizeBenchRow>& rows, std::ostream& out) {
+  VertexBreakdown total;
+  for (const VectorizeBenchRow& row : rows) total += row.vertices_by_component;
+  int64_t opencv_sum = 0;
+  for (int64_t v : total.opencv_vertices) opencv_sum += v;
+  out << "\nWhere the vertices go, all maps (occupied cells' 8-connected components by size; a "
+         "vertex of ours counts for the component of its nearest occupied cell):\n\n"
+      << "| component cells | components | OpenCV V | ours V | ours / CV | share of OpenCV's V |\n"
+      << "|---|---|---|---|---|---|\n";
+  for (size_t c = 0; c < kComponentClasses; ++c) {
+    out << "| " << ComponentClassName(c) << " | " << total.components[c] << " | "
+        << total.opencv_vertices[c] << " | " << total.ours_vertices[c] << " | "
+        << Ratio(SafeRatio(total.ours_vertices[c], total.opencv_vertices[c])) << " | "
+        << Format("%.1f %%", 100.0 * SafeRatio(total.opencv_vertices[c], opencv_sum)) << " |\n";
+  }
+  if (total.ours_unattributed > 0) {
+    out << "| (no occupied cell within epsilon) | | | " << total.ours_unattributed << " | | |\n";
+  }
+}
+
+nlohmann::ordered_json VertexBreakdownJson(const VertexBreakdown& breakdown) {
+  nlohmann::ordered_json classes = nlohmann::ordered_json::array();
+  for (size_t c = 0; c < kComponentClasses; ++c) {
+    classes.push_back({{"component_cells", ComponentClassName(c)},
+                       {"components", breakdown.components[c]},
+                       {"opencv_vertices", breakdown.opencv_vertices[c]},
+                       {"ours_vertices", breakdown.ours_vertices[c]}});
+  }
+  return {{"classes", classes}, {"ours_unattributed", breakdown.ours_unattributed}};
+}
+
 }  // namespace
 
 std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBenchRow>& rows) {
@@ -214,6 +245,7 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << Percent(MedianDefined(rows, &Row::round_trip_updf)) << " | med "
       << Ms(Median(Collect<double>(rows, [](const Row& r) { return r.revectorize_tile_ms; })))
       << " |\n";
+  PrintVertexBreakdown(rows, out);
 }
 
 void PrintVectorizeTargets(const std::vector<BenchTarget>& targets, std::ostream& out) {
@@ -256,6 +288,7 @@ nlohmann::ordered_json VectorizeBenchJson(const std::vector<VectorizeBenchRow>& 
     map["round_trip"] = {{"MS", Optional(r.round_trip_ms)},
                          {"OPDF", Optional(r.round_trip_opdf)},
                          {"UPDF", Optional(r.round_trip_updf)}};
+    map["vertices_by_component"] = VertexBreakdownJson(r.vertices_by_component);
     map["revectorize_tile"] = {{"tile", {r.changed_tile.x, r.changed_tile.y}},
                                {"changed_cells", r.changed_cells},
                                {"ms", r.revectorize_tile_ms}};

@@ -411,6 +411,28 @@ TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
   EXPECT_TRUE(room["round_trip"]["MS"].is_number());
   EXPECT_EQ(room["revectorize_tile"]["changed_cells"], 5);
   EXPECT_FALSE(json["targets"].empty());
+
+  // Where the vertices go: the room's components are the walls (with the attached shelf line,
+  // over 50 cells), the 6 x 6 block (11-50) and the speck (1); every vertex is counted once.
+  EXPECT_THAT(run.out, HasSubstr("Where the vertices go"));
+  const nlohmann::json& classes = room["vertices_by_component"]["classes"];
+  ASSERT_EQ(classes.size(), 5u);
+  const std::vector<int> components = {1, 0, 0, 1, 1};
+  int ours_sum = 0;
+  int opencv_sum = 0;
+  for (size_t c = 0; c < classes.size(); ++c) {
+    EXPECT_EQ(classes[c]["components"].get<int>(), components[c]) << classes[c];
+    ours_sum += classes[c]["ours_vertices"].get<int>();
+    opencv_sum += classes[c]["opencv_vertices"].get<int>();
+  }
+  EXPECT_EQ(classes[0]["component_cells"], "1");
+  EXPECT_EQ(classes[4]["component_cells"], ">50");
+  EXPECT_EQ(classes[0]["ours_vertices"].get<int>(), 1);  // the speck is a point obstacle
+  EXPECT_EQ(classes[0]["opencv_vertices"].get<int>(), 1);
+  EXPECT_EQ(room["vertices_by_component"]["ours_unattributed"].get<int>(), 0);
+  EXPECT_EQ(ours_sum, room["ours_obstacles"]["vertices"].get<int>());
+  EXPECT_EQ(opencv_sum, room["opencv"]["vertices"].get<int>());
+
   const std::string csv = ReadText(csv_path);
   EXPECT_EQ(csv.rfind("map,cells,", 0), 0u);
   EXPECT_THAT(csv, HasSubstr("\nroom,"));
