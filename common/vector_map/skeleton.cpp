@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "common/vector_map/segment_geometry.hpp"
+#include "common/vector_map/wall_pockets.hpp"
 
 namespace fleetmap::vector_map {
 namespace {
@@ -104,6 +105,19 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
       list.push_back(i);
     }
   }
+  // Wall pockets count as occupied (wall_pockets.hpp), so that a wall full of them thins to one
+  // centre line instead of a ladder of rings.
+  bool pockets_added = false;
+  for (const int i : WallPocketCells(raster)) {
+    if (rect.Contains(raster.X(i), raster.Y(i))) {
+      raster.at(i) |= CellRaster::kSkeleton;
+      list.push_back(i);
+      pockets_added = true;
+    } else {
+      raster.at(i) |= CellRaster::kAnchor;
+    }
+  }
+  if (pockets_added) std::sort(list.begin(), list.end());
   const std::vector<int> window = DiscOffsets(raster, epsilon);
   // The default epsilon (sqrt(2) cells) gives the 3 x 3 block; a fixed-size copy lets the
   // compiler unroll the window loops, which run for every pixel.

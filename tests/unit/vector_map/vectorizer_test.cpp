@@ -102,6 +102,21 @@ TEST_P(ThinWallTest, WallUpToThreeCellsIsOneCentreLine) {
 
 INSTANTIATE_TEST_SUITE_P(Thickness, ThinWallTest, ::testing::Values(1, 2, 3));
 
+TEST(VectorizerTest, WallWithPocketsIsOneCentreLine) {
+  // A wall three cells thick whose unseen middle row leaves a pocket of one or two cells every
+  // few cells (SLAM maps of walls seen from both sides): one centre line, not a ladder of rings.
+  OccupancyGrid grid(60, 20, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 8, 54, 10, grid::kOccupiedValue);
+  for (int x = 8; x < 52; x += 5) {
+    grid.at(x, 9) = grid::kUnknownValue;
+    if (x % 10 == 3) grid.at(x + 1, 9) = grid::kUnknownValue;  // two-cell pockets at 13, 23, ...
+  }
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  EXPECT_EQ(map.obstacles[0].points.size(), 2u);
+}
+
 TEST(VectorizerTest, VerticalAndDiagonalWallsAreCentreLines) {
   OccupancyGrid grid(80, 80, 0.05, {}, grid::kFreeValue);
   FillRect(grid, 10, 5, 11, 70, grid::kOccupiedValue);
