@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include <opencv2/imgproc.hpp>
 
@@ -97,17 +98,23 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     const uint8_t* near = has_painted && options.near_obstacles != nullptr
                               ? options.near_obstacles->data() + offset
                               : zeros.data();
-    for (int x = 0; x < rect.width; ++x) {
+    // Byte masks (0 or 0xFF), no short-circuit and a local width (a byte store may alias
+    // `rect`), so that the loop vectorizes.
+    const int width = rect.width;
+    for (int x = 0; x < width; ++x) {
       const uint8_t v = cells[x];
-      const bool is_free = v < free_below;
-      const bool is_occupied = static_cast<uint8_t>(v - occupied_from) < occupied_count;
-      const bool dont_care = painted[x] != 0 || (near[x] != 0 && is_occupied);
-      const uint8_t c = is_free ? kIn : dont_care ? kAny : is_occupied ? kSolid : kOut;
-      row[x] = c;
-      region[x] = is_free ? 255 : 0;
-      any_in |= is_free ? 1 : 0;
-      any_dont_care_cell |= c == kAny ? 1 : 0;
-      any_solid_cell |= c == kSolid ? 1 : 0;
+      const uint8_t is_free = v < free_below ? 0xFF : 0;
+      const uint8_t is_occupied =
+          static_cast<uint8_t>(v - occupied_from) < occupied_count ? 0xFF : 0;
+      const uint8_t dont_care =
+          (painted[x] != 0 ? 0xFF : 0) | ((near[x] != 0 ? 0xFF : 0) & is_occupied);
+      const uint8_t any_cell = static_cast<uint8_t>(~is_free & dont_care);
+      const uint8_t solid_cell = static_cast<uint8_t>(~is_free & ~dont_care & is_occupied);
+      row[x] = static_cast<uint8_t>((is_free & kIn) | (any_cell & kAny) | (solid_cell & kSolid));
+      region[x] = is_free;
+      any_in |= is_free;
+      any_dont_care_cell |= any_cell;
+      any_solid_cell |= solid_cell;
     }
   }
   const bool any = any_in != 0;
@@ -127,9 +134,11 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     reached.clear();
     for (int y = 0; y < rect.height; ++y) {
       uint8_t* row = cls.ptr<uint8_t>(y);
-      for (int x = 0; x < rect.width; ++x) {
-        if (row[x] != kAny) continue;
-        uint8_t* cell = row + x;
+      uint8_t* const row_end = row + rect.width;
+      // Don't-care cells are sparse: memchr skips to the next one.
+      for (uint8_t* cell = row; cell < row_end; ++cell) {
+        cell = static_cast<uint8_t*>(std::memchr(cell, kAny, static_cast<size_t>(row_end - cell)));
+        if (cell == nullptr) break;
         bool near_out = false;
         for (const ptrdiff_t d : around) near_out |= cell[d] == kOut || cell[d] == kSolid;
         if (near_out) continue;
