@@ -39,6 +39,42 @@ cv::Rect BoundingBox(const std::vector<cv::Point>& contour) {
   return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
 }
 
+// Fills, in the region mask, the speck holes the extractor would drop anyway, so that
+// findContours neither traces nor returns them (most holes of a SLAM map's tiles are such specks).
+// A speck here is a cell outside the region whose four neighbours are inside it (so not on the
+// mask's border): a hole of one cell, whose contour runs through its 8 neighbours, so its bounding
+// box fits 3 x 3 (IsSpeckHole) and that box grown by a cell fits the 5 x 5 cells around it. If no
+// guarded (solid) cell lies there either, the hole is one the extraction below skips
+// (IsSpeckHole && !AnyGuardedNear). Filling it changes no other contour: a border trace only ever
+// steps over background pixels 4-connected to the background it follows, which never include a
+// speck of another hole, and the speck's neighbours stay in the same foreground component; so the
+// other contours, their order and their hierarchy are the same.
+void FillSpeckHoles(const cv::Mat& cls, uint8_t solid, bool any_solid, cv::Mat& mask) {
+  const int width = mask.cols;
+  const int height = mask.rows;
+  auto solid_near = [&](int x, int y) {
+    for (int yy = std::max(y - 2, 0); yy <= std::min(y + 2, height - 1); ++yy) {
+      const uint8_t* row = cls.ptr<uint8_t>(yy);
+      for (int xx = std::max(x - 2, 0); xx <= std::min(x + 2, width - 1); ++xx) {
+        if (row[xx] == solid) return true;
+      }
+    }
+    return false;
+  };
+  for (int y = 1; y + 1 < height; ++y) {
+    uint8_t* row = mask.ptr<uint8_t>(y);
+    const uint8_t* above = mask.ptr<uint8_t>(y - 1);
+    const uint8_t* below = mask.ptr<uint8_t>(y + 1);
+    for (int x = 1; x + 1 < width; ++x) {
+      if (row[x] != 0 || row[x - 1] == 0 || row[x + 1] == 0 || above[x] == 0 || below[x] == 0) {
+        continue;
+      }
+      if (any_solid && solid_near(x, y)) continue;
+      row[x] = 255;
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
@@ -168,6 +204,7 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
       }
     }
   }
+  if (epsilon_cells >= 1.0) FillSpeckHoles(cls, kSolid, any_solid, mask);
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
