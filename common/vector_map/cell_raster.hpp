@@ -27,11 +27,11 @@ class CellRaster {
  public:
   static constexpr uint8_t kOccupied = 1;
   static constexpr uint8_t kDelimitation = 2;
-  static constexpr uint8_t kOwned = 4;      // a P point inside the rectangle (must be covered)
-  static constexpr uint8_t kSkeleton = 8;   // set by thinning
-  static constexpr uint8_t kAnchor = 16;    // occupied cell just outside the rectangle
-  static constexpr uint8_t kCovered = 32;   // P point within epsilon of an emitted segment
-  static constexpr uint8_t kVisited = 64;   // scratch bit for walks
+  static constexpr uint8_t kOwned = 4;     // a P point inside the rectangle (must be covered)
+  static constexpr uint8_t kSkeleton = 8;  // set by thinning
+  static constexpr uint8_t kAnchor = 16;   // occupied cell just outside the rectangle
+  static constexpr uint8_t kCovered = 32;  // P point within epsilon of an emitted segment
+  static constexpr uint8_t kVisited = 64;  // scratch bit for walks
 
   CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, int margin,
              const grid::StateThresholds& thresholds);
@@ -46,6 +46,9 @@ class CellRaster {
     return x >= x0_ && y >= y0_ && x < x0_ + stride_ && y < y0_ + rows_;
   }
   int stride() const { return stride_; }
+  // The cells the image covers (Index(x, y) = (y - y0) * width + (x - x0)); a copy in a local lets
+  // a loop that stores bytes keep the bounds in registers.
+  CellRect window() const { return CellRect{x0_, y0_, stride_, rows_}; }
   size_t size() const { return flags_.size(); }
   const CellRect& rect() const { return rect_; }
 

@@ -128,24 +128,26 @@ std::vector<PixelChain> MergeThroughJunctions(const std::vector<PixelChain>& cha
   const int n = static_cast<int>(chains.size());
   std::vector<PixelChain> merged;
   std::vector<bool> used(n, false);
+  // A merged chain is built in a reused buffer, then stored with one allocation.
+  thread_local std::vector<int> buffer;
   auto walk = [&](int start_end) {
-    PixelChain out;
+    buffer.clear();
     int end = start_end;
     while (true) {
       const int c = end / 2;
       used[c] = true;
       const auto& pixels = chains[c].pixels;
       const bool forward = end % 2 == 0;
-      const size_t skip = out.pixels.empty() ? 0 : 1;
+      const size_t skip = buffer.empty() ? 0 : 1;
       for (size_t k = skip; k < pixels.size(); ++k) {
-        out.pixels.push_back(forward ? pixels[k] : pixels[pixels.size() - 1 - k]);
+        buffer.push_back(forward ? pixels[k] : pixels[pixels.size() - 1 - k]);
       }
       const int exit_end = forward ? 2 * c + 1 : 2 * c;
       const int next = partner[exit_end];
       if (next < 0 || used[next / 2]) break;
       end = next;
     }
-    merged.push_back(std::move(out));
+    merged.push_back({std::vector<int>(buffer.begin(), buffer.end())});
   };
   for (int c = 0; c < n; ++c) {
     if (used[c]) continue;
@@ -173,6 +175,8 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
   auto terminal = [&](int index) { return nb.Degree(index) != 2; };
   auto visited = [&](int index) { return raster.Has(index, CellRaster::kVisited); };
   auto visit = [&](int index) { raster.at(index) |= CellRaster::kVisited; };
+  // Each chain is traced into a reused buffer, then stored with one allocation.
+  thread_local std::vector<int> chain;
   for (const int p : skeleton) {
     if (!terminal(p)) continue;
     if (nb.Degree(p) == 0) {
@@ -188,12 +192,12 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
         continue;
       }
       if (visited(q)) continue;
-      PixelChain chain{{p}};
+      chain.assign(1, p);
       int previous = p;
       int current = q;
       while (!terminal(current) && !visited(current)) {
         visit(current);
-        chain.pixels.push_back(current);
+        chain.push_back(current);
         int next = -1;
         const unsigned links = nb.Links(current);
         for (int j = 0; j < 8; ++j) {
@@ -208,13 +212,13 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
         previous = current;
         current = next;
       }
-      if (terminal(current)) chain.pixels.push_back(current);
-      chains.push_back(std::move(chain));
+      if (terminal(current)) chain.push_back(current);
+      chains.push_back({std::vector<int>(chain.begin(), chain.end())});
     }
   }
   for (const int p : skeleton) {  // rings of degree-2 pixels
     if (terminal(p) || visited(p)) continue;
-    PixelChain chain{{p}};
+    chain.assign(1, p);
     visit(p);
     int previous = -1;
     int current = p;
@@ -225,7 +229,7 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
         if (!((links >> j) & 1u)) continue;
         const int r = current + nb.offset[j];
         if (r == previous) continue;
-        if (r == p && chain.pixels.size() > 2) {
+        if (r == p && chain.size() > 2) {
           next = r;
           break;
         }
@@ -235,13 +239,13 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
         }
       }
       if (next < 0) break;
-      chain.pixels.push_back(next);
+      chain.push_back(next);
       if (next == p) break;
       visit(next);
       previous = current;
       current = next;
     }
-    chains.push_back(std::move(chain));
+    chains.push_back({std::vector<int>(chain.begin(), chain.end())});
   }
   raster.Clear(skeleton, CellRaster::kVisited);
   return MergeThroughJunctions(chains, PairEndsAtJunctions(raster, nb, chains));

@@ -55,7 +55,8 @@ class TileRun {
  private:
   Point2 CellPoint(int index) const { return Point2(raster_.X(index), raster_.Y(index)); }
   bool Continuous(const Point2& a, const Point2& b) const {
-    return SegmentContinuousIf(a, b, eps_, [&](int x, int y) { return raster_.IsDelimitation(x, y); });
+    return SegmentContinuousIf(a, b, eps_,
+                               [&](int x, int y) { return raster_.IsDelimitation(x, y); });
   }
 
   // Points of each chain; an end pixel of degree <= 1 next to an anchor across the tile border is
@@ -68,6 +69,7 @@ class TileRun {
       const auto& pixels = pixel_chain.pixels;
       Chain chain;
       chain.ring = pixel_chain.ring();
+      chain.points.reserve(pixels.size() + 2);  // and the border nodes
       for (const int index : pixels) chain.points.push_back(CellPoint(index));
       if (!chain.ring) {
         for (int side = 0; side < 2; ++side) {
@@ -151,9 +153,7 @@ class TileRun {
     // Vertex m of the chain being simplified is vertex (m + shift) mod period of the chain.
     int shift = 0;
     int period = n;
-    auto point = [&](int m) -> const Point2& {
-      return shift == 0 ? points[m] : rotated_[m];
-    };
+    auto point = [&](int m) -> const Point2& { return shift == 0 ? points[m] : rotated_[m]; };
     auto valid = [&](int i, int j) {
       const Point2& a = point(i);
       const Point2& b = point(j);

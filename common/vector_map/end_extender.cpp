@@ -84,13 +84,18 @@ class EndRun {
     // before), farthest along first, so that one move paints as many of them as it can.
     candidates_.clear();
     const double reach = 2.0 * options_.epsilon;
-    const int x_lo = static_cast<int>(std::floor(end.x() - reach));
-    const int x_hi = static_cast<int>(std::ceil(end.x() + reach));
-    const int y_lo = static_cast<int>(std::floor(end.y() - reach));
-    const int y_hi = static_cast<int>(std::ceil(end.y() + reach));
+    // Cells of the tile only (the raster holds the tile, so no bounds check per cell).
+    const CellRect& rect = raster_.rect();
+    const int x_lo = std::max(static_cast<int>(std::floor(end.x() - reach)), rect.x0);
+    const int x_hi =
+        std::min(static_cast<int>(std::ceil(end.x() + reach)), rect.x0 + rect.width - 1);
+    const int y_lo = std::max(static_cast<int>(std::floor(end.y() - reach)), rect.y0);
+    const int y_hi =
+        std::min(static_cast<int>(std::ceil(end.y() + reach)), rect.y0 + rect.height - 1);
     for (int y = y_lo; y <= y_hi; ++y) {
       for (int x = x_lo; x <= x_hi; ++x) {
-        if (!InTile(x, y) || !Occupied(x, y) || Painted(x, y)) continue;
+        const int i = raster_.Index(x, y);
+        if (!raster_.Has(i, CellRaster::kOccupied) || painted_[i] != 0) continue;
         const Point2 w = Point2(x, y) - end;
         const double along = w.dot(dir);
         if (along <= 0.0 || w.squaredNorm() > reach * reach) continue;

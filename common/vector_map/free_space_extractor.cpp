@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include <opencv2/imgproc.hpp>
 
@@ -36,6 +37,42 @@ cv::Rect BoundingBox(const std::vector<cv::Point>& contour) {
     y1 = std::max(y1, p.y);
   }
   return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+}
+
+// Fills, in the region mask, the speck holes the extractor would drop anyway, so that
+// findContours neither traces nor returns them (most holes of a SLAM map's tiles are such specks).
+// A speck here is a cell outside the region whose four neighbours are inside it (so not on the
+// mask's border): a hole of one cell, whose contour runs through its 8 neighbours, so its bounding
+// box fits 3 x 3 (IsSpeckHole) and that box grown by a cell fits the 5 x 5 cells around it. If no
+// guarded (solid) cell lies there either, the hole is one the extraction below skips
+// (IsSpeckHole && !AnyGuardedNear). Filling it changes no other contour: a border trace only ever
+// steps over background pixels 4-connected to the background it follows, which never include a
+// speck of another hole, and the speck's neighbours stay in the same foreground component; so the
+// other contours, their order and their hierarchy are the same.
+void FillSpeckHoles(const cv::Mat& cls, uint8_t solid, bool any_solid, cv::Mat& mask) {
+  const int width = mask.cols;
+  const int height = mask.rows;
+  auto solid_near = [&](int x, int y) {
+    for (int yy = std::max(y - 2, 0); yy <= std::min(y + 2, height - 1); ++yy) {
+      const uint8_t* row = cls.ptr<uint8_t>(yy);
+      for (int xx = std::max(x - 2, 0); xx <= std::min(x + 2, width - 1); ++xx) {
+        if (row[xx] == solid) return true;
+      }
+    }
+    return false;
+  };
+  for (int y = 1; y + 1 < height; ++y) {
+    uint8_t* row = mask.ptr<uint8_t>(y);
+    const uint8_t* above = mask.ptr<uint8_t>(y - 1);
+    const uint8_t* below = mask.ptr<uint8_t>(y + 1);
+    for (int x = 1; x + 1 < width; ++x) {
+      if (row[x] != 0 || row[x - 1] == 0 || row[x + 1] == 0 || above[x] == 0 || below[x] == 0) {
+        continue;
+      }
+      if (any_solid && solid_near(x, y)) continue;
+      row[x] = 255;
+    }
+  }
 }
 
 }  // namespace
@@ -97,17 +134,23 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     const uint8_t* near = has_painted && options.near_obstacles != nullptr
                               ? options.near_obstacles->data() + offset
                               : zeros.data();
-    for (int x = 0; x < rect.width; ++x) {
+    // Byte masks (0 or 0xFF), no short-circuit and a local width (a byte store may alias
+    // `rect`), so that the loop vectorizes.
+    const int width = rect.width;
+    for (int x = 0; x < width; ++x) {
       const uint8_t v = cells[x];
-      const bool is_free = v < free_below;
-      const bool is_occupied = static_cast<uint8_t>(v - occupied_from) < occupied_count;
-      const bool dont_care = painted[x] != 0 || (near[x] != 0 && is_occupied);
-      const uint8_t c = is_free ? kIn : dont_care ? kAny : is_occupied ? kSolid : kOut;
-      row[x] = c;
-      region[x] = is_free ? 255 : 0;
-      any_in |= is_free ? 1 : 0;
-      any_dont_care_cell |= c == kAny ? 1 : 0;
-      any_solid_cell |= c == kSolid ? 1 : 0;
+      const uint8_t is_free = v < free_below ? 0xFF : 0;
+      const uint8_t is_occupied =
+          static_cast<uint8_t>(v - occupied_from) < occupied_count ? 0xFF : 0;
+      const uint8_t dont_care =
+          (painted[x] != 0 ? 0xFF : 0) | ((near[x] != 0 ? 0xFF : 0) & is_occupied);
+      const uint8_t any_cell = static_cast<uint8_t>(~is_free & dont_care);
+      const uint8_t solid_cell = static_cast<uint8_t>(~is_free & ~dont_care & is_occupied);
+      row[x] = static_cast<uint8_t>((is_free & kIn) | (any_cell & kAny) | (solid_cell & kSolid));
+      region[x] = is_free;
+      any_in |= is_free;
+      any_dont_care_cell |= any_cell;
+      any_solid_cell |= solid_cell;
     }
   }
   const bool any = any_in != 0;
@@ -127,9 +170,11 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     reached.clear();
     for (int y = 0; y < rect.height; ++y) {
       uint8_t* row = cls.ptr<uint8_t>(y);
-      for (int x = 0; x < rect.width; ++x) {
-        if (row[x] != kAny) continue;
-        uint8_t* cell = row + x;
+      uint8_t* const row_end = row + rect.width;
+      // Don't-care cells are sparse: memchr skips to the next one.
+      for (uint8_t* cell = row; cell < row_end; ++cell) {
+        cell = static_cast<uint8_t*>(std::memchr(cell, kAny, static_cast<size_t>(row_end - cell)));
+        if (cell == nullptr) break;
         bool near_out = false;
         for (const ptrdiff_t d : around) near_out |= cell[d] == kOut || cell[d] == kSolid;
         if (near_out) continue;
@@ -159,6 +204,7 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
       }
     }
   }
+  if (epsilon_cells >= 1.0) FillSpeckHoles(cls, kSolid, any_solid, mask);
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "common/vector_map/segment_geometry.hpp"
@@ -32,19 +32,27 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
   if (owner.size() < raster.size()) owner.resize(raster.size());
   thread_local std::vector<int> touched;
   touched.clear();
-  auto visit = [&](int polyline, const Point2& a, const Point2& b) {
+  // The cell loop reads only locals: the stores into best and owner may alias what is read
+  // through a reference, which would then be reloaded for every cell.
+  const CellRect bounds = rect;
+  const CellRect window = raster.window();
+  float* const best_d2 = best.data();
+  int* const owners = owner.data();
+  auto visit = [&, best_d2, owners](int polyline, const Point2& from, const Point2& to) {
+    const Point2 a = from;
+    const Point2 b = to;
     ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
-      if (!rect.Contains(x, y)) return;
-      const int i = raster.Index(x, y);
+      if (!bounds.Contains(x, y)) return;
+      const int i = (y - window.y0) * window.width + (x - window.x0);  // raster.Index(x, y)
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
       if (d2 > eps2) return;
-      if (best[i] < 0.0f) {
+      if (best_d2[i] < 0.0f) {
         touched.push_back(i);
-      } else if (static_cast<double>(best[i]) <= d2) {
+      } else if (static_cast<double>(best_d2[i]) <= d2) {
         return;
       }
-      best[i] = static_cast<float>(d2);
-      owner[i] = polyline;
+      best_d2[i] = static_cast<float>(d2);
+      owners[i] = polyline;
     });
   };
   for (size_t p = 0; p < polylines.size(); ++p) {

@@ -60,13 +60,21 @@ void PaintedAndNearCells(const grid::CellRect& rect, const std::vector<CellPolyl
   double r2 = 0.0;
   // One visit of the larger band: ForEachCellNearSegment's candidates only grow with the radius,
   // so it lists every cell either call would have tested, and each test is the same exact one.
-  auto mark = [&](const Point2& a, const Point2& b, double r) {
+  // Locals only in the cell loop: a byte store may alias anything read through a reference or a
+  // member, which would be reloaded for every cell.
+  const grid::CellRect bounds = rect;
+  uint8_t* const painted_cells = painted->data();
+  uint8_t* const near_cells = near->data();
+  auto mark = [&, painted_cells, near_cells](const Point2& from, const Point2& to, double r) {
+    const Point2 a = from;
+    const Point2 b = to;
+    const double paint2 = r2;
     ForEachCellNearSegment(a, b, std::max(r, near_r), [&](int x, int y) {
-      if (!rect.Contains(x, y)) return;
+      if (!bounds.Contains(x, y)) return;
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
-      const size_t i = static_cast<size_t>(y - rect.y0) * rect.width + (x - rect.x0);
-      if (d2 <= r2) (*painted)[i] = 1;
-      if (d2 <= near2) (*near)[i] = 1;
+      const size_t i = static_cast<size_t>(y - bounds.y0) * bounds.width + (x - bounds.x0);
+      if (d2 <= paint2) painted_cells[i] = 1;
+      if (d2 <= near2) near_cells[i] = 1;
     });
   };
   for (size_t k = 0; k < polylines.size(); ++k) {
