@@ -210,25 +210,28 @@ using vector_map::Polyline;
 // polyline or ring, and the most rings one polygon, can have.
 constexpr size_t kMaxWireCount = UINT16_MAX;
 
-// Quantises coordinates relative to one tile's corner.
+// Quantises coordinates relative to one tile's corner. Decoding computes the point as
+// (tile index * kTileQuantaPerSide + local) * quantum, an integer times the quantum, so a point on
+// a border shared by two tiles decodes to the same double from either tile.
 class TileQuantiser {
  public:
   TileQuantiser(const TileId& tile, double tile_size)
-      : corner_(tile.x * tile_size, tile.y * tile_size),
+      : corner_units_(static_cast<double>(tile.x) * vector_map::kTileQuantaPerSide,
+                      static_cast<double>(tile.y) * vector_map::kTileQuantaPerSide),
         quantum_(vector_map::TileQuantum(tile_size)) {}
 
   double quantum() const { return quantum_; }
 
   Status Append(const Point2& point, std::vector<int16_t>* xs, std::vector<int16_t>* ys) const {
-    FLEETMAP_ASSIGN_OR_RETURN(const int16_t x, Quantise(point.x() - corner_.x()));
-    FLEETMAP_ASSIGN_OR_RETURN(const int16_t y, Quantise(point.y() - corner_.y()));
+    FLEETMAP_ASSIGN_OR_RETURN(const int16_t x, Quantise(point.x(), corner_units_.x()));
+    FLEETMAP_ASSIGN_OR_RETURN(const int16_t y, Quantise(point.y(), corner_units_.y()));
     xs->push_back(x);
     ys->push_back(y);
     return Status::Ok();
   }
 
   Point2 Decode(int16_t x, int16_t y) const {
-    return {corner_.x() + x * quantum_, corner_.y() + y * quantum_};
+    return {(corner_units_.x() + x) * quantum_, (corner_units_.y() + y) * quantum_};
   }
 
   // Whole quanta, rounded up so that a reader never paints an obstacle thinner than it was
@@ -244,16 +247,17 @@ class TileQuantiser {
   }
 
  private:
-  StatusOr<int16_t> Quantise(double offset) const {
-    const double units = std::round(offset / quantum_);
+  StatusOr<int16_t> Quantise(double coordinate, double corner_units) const {
+    const double units = std::round(coordinate / quantum_ - corner_units);
     if (!std::isfinite(units) || units < INT16_MIN || units > INT16_MAX) {
-      return InvalidArgumentError("a vertex " + std::to_string(offset) +
+      return InvalidArgumentError("a vertex " +
+                                  std::to_string(coordinate - corner_units * quantum_) +
                                   " m from its tile's corner does not fit the tile encoding");
     }
     return static_cast<int16_t>(units);
   }
 
-  Point2 corner_;
+  Point2 corner_units_;  // the tile's corner in quanta
   double quantum_;
 };
 

@@ -13,10 +13,11 @@
 
 namespace fleetmap::transport {
 
-// Version 2 (uint16 counts, point obstacles in their own arrays, closed polylines as rings)
-// replaced version 1; a file of another version is refused with a message naming both.
+// Version 3 (quantum tile_size / 16000, tiled_vector_map.hpp) replaced version 2 (the same layout
+// with tile_size / 16384), which replaced version 1 (uint32 counts, no point arrays, closed flags);
+// a file of another version is refused with a message naming both.
 inline constexpr char kVmapFormatPrefix[] = "fleetmap-vmap/";
-inline constexpr char kVmapFormat[] = "fleetmap-vmap/2";
+inline constexpr char kVmapFormat[] = "fleetmap-vmap/3";
 
 struct VmapReadOptions {
   size_t max_bytes = size_t{1} << 30;  // a larger file is refused before it is read

@@ -1,9 +1,10 @@
 #pragma once
 
 // Coordinate quantisation (VectorizerOptions::quantum): a vertex snapped to the lattice
-// origin + k * quantum (k integer per axis, map frame) moves by at most quantum * sqrt(2) / 2. The
-// vectorizer builds with epsilon reduced by that much, so both constraints still hold after
-// snapping (a snapped segment is within that distance of the unsnapped one, point by point).
+// origin + k * quantum (k integer per axis, map frame) moves by at most quantum * sqrt(2) / 2.
+// Unless the lattice holds every half-cell point of the grid, the vectorizer builds with epsilon
+// reduced by that much, so both constraints still hold after snapping (a snapped segment is within
+// that distance of the unsnapped one, point by point).
 // Snapping is a deterministic function of the point, so tiles that compute the same border node
 // snap it to the same lattice point.
 
@@ -21,6 +22,9 @@ class Lattice {
   // The largest distance Snap() moves a point.
   double MaxDisplacement() const;
   Point2 Snap(const Point2& p) const;
+  // Whether `p` lies on the lattice (within a millionth of a quantum; Snap then moves it by far
+  // less than the vectorizer's distance tolerance).
+  bool Contains(const Point2& p) const;
 
  private:
   double quantum_;

@@ -18,9 +18,14 @@
 
 namespace fleetmap::vector_map {
 
-// Coordinates on the wire are int16 multiples of tile_size / kTileQuantaPerSide from the tile's
-// corner: 0.6 mm for 10 m tiles. A power of two, so tile corners and borders are exact.
-inline constexpr int kTileQuantaPerSide = 16384;
+// Coordinates on the wire are int16 multiples of the quantum tile_size / kTileQuantaPerSide:
+// 0.625 mm for 10 m tiles. 16000 rather than a power of two so that, with 10 m tiles, the quantum
+// divides half a cell of every common resolution (1, 2, 2.5, 3, 4, 5 and 10 cm): the vectorizer's
+// vertices, cell centres and half-cell points, then lie on the lattice exactly and it can build
+// with the full epsilon (vectorizer.hpp, VectorizerOptions::quantum). A point is decoded as
+// (tile_x * kTileQuantaPerSide + local_x) * quantum, so a vertex on a border shared by two tiles
+// decodes to the same point from either tile.
+inline constexpr int kTileQuantaPerSide = 16000;
 inline double TileQuantum(double tile_size) { return tile_size / kTileQuantaPerSide; }
 
 struct TiledVectorMap {

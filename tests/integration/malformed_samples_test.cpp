@@ -20,6 +20,7 @@
 #include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
+#include "common/vector_map/tiled_vector_map.hpp"
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTile.h"
@@ -245,7 +246,7 @@ fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   tile.robot_id(robot);
   tile.frame_id("fleet");
   tile.tile_size(10.0);
-  tile.quantum(10.0 / 16384);
+  tile.quantum(vector_map::TileQuantum(10.0));
   tile.epsilon(0.07f);
   tile.resolution(0.05f);
   tile.obstacle_sizes({2});

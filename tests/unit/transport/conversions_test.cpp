@@ -153,10 +153,12 @@ using VectorTileIdl = fleetmap_msgs::msg::dds_::VectorTile_;
 constexpr double kTileSize = 10.0;
 const TileId kTile{1, -2};
 
-// The point (i, j) quanta from kTile's corner: on the lattice, as the vectorizer makes them.
+// The point (i, j) quanta from kTile's corner, computed as the decoder does: on the lattice, as
+// the vectorizer makes them.
 Point2 At(int i, int j) {
   const double q = TileQuantum(kTileSize);
-  return {kTile.x * kTileSize + i * q, kTile.y * kTileSize + j * q};
+  constexpr double n = vector_map::kTileQuantaPerSide;
+  return {(kTile.x * n + i) * q, (kTile.y * n + j) * q};
 }
 
 // Whole quanta, as the vectorizer makes half widths on the lattice.

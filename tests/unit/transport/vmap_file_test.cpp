@@ -21,11 +21,12 @@ using vector_map::Polyline;
 using vector_map::TiledVectorMap;
 using vector_map::TileQuantum;
 
-// A point of tile `tile` at (i, j) quanta from its corner: on the lattice, as vectorizers make
-// them.
+// A point of tile `tile` at (i, j) quanta from its corner, computed as the decoder does: on the
+// lattice, as vectorizers make them.
 Point2 At(const TileId& tile, double tile_size, int i, int j) {
   const double q = TileQuantum(tile_size);
-  return {tile.x * tile_size + i * q, tile.y * tile_size + j * q};
+  constexpr double n = vector_map::kTileQuantaPerSide;
+  return {(tile.x * n + i) * q, (tile.y * n + j) * q};
 }
 
 // Half widths of whole quanta, as the vectorizer makes them on the tile lattice.
@@ -45,7 +46,7 @@ TiledVectorMap SampleMap() {
   first.resolution = 0.05;
   first.epsilon = 0.0707;
   first.obstacles.push_back(Polyline{
-      {At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16384, 9000)}, false, Quanta(10, 82)});
+      {At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16000, 9000)}, false, Quanta(10, 82)});
   first.obstacles.push_back(Polyline{{At(a, 10, 7, 7)}, false, 0.0});  // a point obstacle
   first.obstacles.push_back(
       Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, Quanta(10, 41)});
@@ -58,7 +59,7 @@ TiledVectorMap SampleMap() {
   second.frame_id = "fleet";
   second.resolution = 0.05;
   second.epsilon = 0.0707;
-  second.obstacles.push_back(Polyline{{At(b, 10, -5, 0), At(b, 10, 16390, 16384)}, false, 0.0});
+  second.obstacles.push_back(Polyline{{At(b, 10, -5, 0), At(b, 10, 16006, 16000)}, false, 0.0});
   return map;
 }
 
@@ -110,7 +111,7 @@ TEST(VmapFileTest, HalfWidthsOffTheQuantumRoundUp) {
 // The example of docs/file-formats.md (VectorTile, field by field), after the encapsulation.
 std::string DocumentedExample() {
   const char* const fields[] = {
-      "10 00 00 00 66 6c 65 65 74 6d 61 70 2d 76 6d 61 70 2f 32 00",  // format
+      "10 00 00 00 66 6c 65 65 74 6d 61 70 2d 76 6d 61 70 2f 33 00",  // format
       "06 00 00 00 66 6c 65 65 74 00",                                // frame_id
       "00 00",                                                        // padding
       "00 00 00 00 00 00 24 40",                                      // tile_size 10
@@ -128,7 +129,7 @@ std::string DocumentedExample() {
       "00 00 00 00",                                                  // revision
       "00 00 00 00",                                                  // padding
       "00 00 00 00 00 00 24 40",                                      // tile_size
-      "00 00 00 00 00 00 44 3f",                                      // quantum
+      "7b 14 ae 47 e1 7a 44 3f",                                      // quantum
       "29 cb 90 3d",                                                  // epsilon
       "cd cc 4c 3d",                                                  // resolution
       "02 00 00 00 02 00 04 00",                                      // obstacle_sizes [2, 4]
@@ -180,7 +181,7 @@ TEST(VmapFileTest, TheDocumentedExampleIsWhatTheCodecWrites) {
 
 TEST(VmapFileTest, BorderVertexIsTheSamePointFromBothTiles) {
   // x = 10 m is the right border of tile 0 and the left border of tile 1.
-  const Point2 from_left = At(TileId{0, 0}, 10.0, 16384, 123);
+  const Point2 from_left = At(TileId{0, 0}, 10.0, 16000, 123);
   const Point2 from_right = At(TileId{1, 0}, 10.0, 0, 123);
   EXPECT_EQ(from_left, from_right);
   TiledVectorMap map;
@@ -239,9 +240,9 @@ TEST(VmapFileTest, RefusesOtherFormatsAndBadHeaders) {
   other[1] = 7;  // encapsulation: not plain CDR
   EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("not a plain CDR"));
   other = bytes;
-  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/2"
+  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/3"
   EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(),
-              HasSubstr("x.vmap: format \"gleetmap-vmap/2\" is not fleetmap-vmap/2"));
+              HasSubstr("x.vmap: format \"gleetmap-vmap/3\" is not fleetmap-vmap/3"));
   EXPECT_FALSE(DecodeVmap("hello world, not a map", "x.vmap").ok());
   // A format string longer than any version's, in a file larger than the bytes read for it.
   TiledVectorMap large = SampleMap();
@@ -290,7 +291,7 @@ TEST(VmapFileTest, RefusesCountsThatDoNotAddUp) {
 }
 
 // A version 1 file, written as fleetmap-vmap/1 laid it out (uint32 counts, obstacle_closed flags,
-// no point arrays): refused by name, before its layout is checked against version 2.
+// no point arrays): refused by name, before its layout is checked against the current version.
 std::string VersionOneFile() {
   std::string bytes(512, '\0');
   eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
@@ -316,7 +317,7 @@ TEST(VmapFileTest, AVersionOneFileIsRefusedNamingBothVersions) {
   EXPECT_EQ(decoded.status().code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(decoded.status().message(),
               HasSubstr("old.vmap: format fleetmap-vmap/1 is another version of the .vmap format; "
-                        "this fleetmap reads fleetmap-vmap/2 only"));
+                        "this fleetmap reads fleetmap-vmap/3 only"));
   // From a file as well.
   const std::string path =
       ::testing::TempDir() + "/vmap_v1_test_" + std::to_string(getpid()) + ".vmap";

@@ -299,6 +299,33 @@ TEST(VectorizerTest, QuantisedOutputLiesOnTheLatticeAndHoldsBothConstraints) {
   }
 }
 
+TEST(VectorizerTest, CellLatticeKeepsTheFullEpsilon) {
+  // A quantum dividing half a cell, with the origin on the cell lattice: every vertex is already a
+  // lattice point, so the polylines are the unquantised ones (built with the full epsilon), not
+  // the ones built with epsilon shrunk by the snapping move. (Line refit may still choose other
+  // half-cell positions: on a lattice, half widths are rounded up to whole quanta.)
+  std::vector<OccupancyGrid> grids = {testing::FloorPlan()};
+  for (uint32_t seed = 1; seed <= 3; ++seed) grids.push_back(testing::NoiseGrid(64, 48, 0.3, seed));
+  for (const OccupancyGrid& grid : grids) {
+    const VectorMap plain = VectorizeOrDie(grid);
+    VectorizerOptions on_cells;
+    on_cells.quantum = grid.resolution() / 80;  // the codec's 10 m / 16000 on 5 cm cells
+    const VectorMap aligned = VectorizeOrDie(grid, on_cells);
+    ExpectValid(aligned, grid);
+    ExpectOnLattice(aligned, on_cells.quantum, on_cells.lattice_origin);
+    ASSERT_EQ(aligned.obstacles.size(), plain.obstacles.size());
+    for (size_t k = 0; k < plain.obstacles.size(); ++k) {
+      EXPECT_EQ(aligned.obstacles[k].points.size(), plain.obstacles[k].points.size()) << k;
+    }
+    // The same quantum a third of a quantum off the cells: still valid, built with less epsilon.
+    VectorizerOptions off_cells = on_cells;
+    off_cells.lattice_origin = Point2(on_cells.quantum / 3, 0.0);
+    const VectorMap shifted = VectorizeOrDie(grid, off_cells);
+    ExpectValid(shifted, grid);
+    ExpectOnLattice(shifted, off_cells.quantum, off_cells.lattice_origin);
+  }
+}
+
 TEST(VectorizerTest, RejectsAQuantumThatLeavesNoEpsilon) {
   const OccupancyGrid grid(10, 10, 0.05);
   VectorizerOptions options;
@@ -427,7 +454,7 @@ TEST(VectorizerTileTest, QuantisedTilesStitchExactly) {
   const OccupancyGrid grid = SeamGrid();
   const int tile = 16;
   VectorizerOptions options;
-  options.quantum = 0.8 / 16384;  // the codec's quantum for 0.8 m tiles
+  options.quantum = 0.8 / 16384;  // a quantum that does not divide half a cell (off the cells)
   options.lattice_origin = Point2(-0.4, 0.2);
   const TileRun run = VectorizeInTiles(grid, tile, options);
   ExpectValid(run.whole, grid);
