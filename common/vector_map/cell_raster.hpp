@@ -55,6 +55,8 @@ class CellRaster {
   uint8_t& at(int index) { return flags_[index]; }
   uint8_t at(int index) const { return flags_[index]; }
   bool Has(int index, uint8_t bits) const { return (flags_[index] & bits) != 0; }
+  // The flags by raster index, for cell loops that keep the pointer in a local.
+  const uint8_t* data() const { return flags_.data(); }
   // Bounds-checked (false outside the image), for geometric queries that may stray.
   bool IsDelimitation(int x, int y) const {
     return Contains(x, y) && (flags_[Index(x, y)] & kDelimitation) != 0;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "common/vector_map/segment_geometry.hpp"
 
@@ -12,6 +14,14 @@ namespace {
 
 // The painting test of PaintedCells (a relative 1e-10 above the radius).
 double PaintSquare(double radius) { return radius * radius * (1.0 + 1e-10); }
+
+// A zeroed per-thread flag image, reused across calls (the run restores the zeros), so large
+// grids do not pay for allocating and clearing a full image on every call.
+std::vector<uint8_t>& ZeroedFlags(size_t size) {
+  thread_local std::vector<uint8_t> flags;
+  if (flags.size() < size) flags.resize(size, 0);
+  return flags;
+}
 
 class EndRun {
  public:
@@ -22,7 +32,12 @@ class EndRun {
         options_(options),
         polylines_(polylines),
         eps2_(ToleratedSquare(options.epsilon)),
-        painted_(raster.size(), 0) {}
+        painted_(ZeroedFlags(raster.size())) {}
+  ~EndRun() {
+    for (const int i : painted_cells_) painted_[i] = 0;
+  }
+  EndRun(const EndRun&) = delete;
+  EndRun& operator=(const EndRun&) = delete;
 
   int Run() {
     for (size_t k = 0; k < polylines_.size(); ++k) {
@@ -59,9 +74,13 @@ class EndRun {
     return x >= rect.x0 && y >= rect.y0 && x < rect.x0 + rect.width && y < rect.y0 + rect.height;
   }
   void Paint(const Point2& a, const Point2& b, double r, double r2) {
-    ForEachCellNearSegment(a, b, r, [&](int x, int y) {
-      if (raster_.Contains(x, y) && PointSegmentDistanceSquared(Point2(x, y), a, b) <= r2) {
-        painted_[raster_.Index(x, y)] = 1;
+    ForEachCellNearSegmentIn(raster_.window(), a, b, r, [&](int x, int y) {
+      if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= r2) {
+        uint8_t& painted = painted_[raster_.Index(x, y)];
+        if (painted == 0) {
+          painted = 1;
+          painted_cells_.push_back(raster_.Index(x, y));
+        }
       }
     });
   }
@@ -122,8 +141,9 @@ class EndRun {
   bool Accept(const Point2& inner, const Point2& end, const Point2& moved, double r, double r2) {
     // (b) P points near the old segment stay within epsilon; (c) its painted cells stay painted.
     bool ok = true;
-    ForEachCellNearSegment(inner, end, std::max(options_.epsilon, r), [&](int x, int y) {
-      if (!ok || !raster_.Contains(x, y)) return;
+    const CellRect window = raster_.window();
+    ForEachCellNearSegmentIn(window, inner, end, std::max(options_.epsilon, r), [&](int x, int y) {
+      if (!ok) return;
       const Point2 c(x, y);
       const double before = PointSegmentDistanceSquared(c, inner, end);
       const double after = PointSegmentDistanceSquared(c, inner, moved);
@@ -134,8 +154,8 @@ class EndRun {
     // (d) newly painted cells: occupied ones of the tile against cells that are not occupied.
     int gain = 0;
     int loss = 0;
-    ForEachCellNearSegment(inner, moved, r, [&](int x, int y) {
-      if (!raster_.Contains(x, y) || Painted(x, y)) return;
+    ForEachCellNearSegmentIn(window, inner, moved, r, [&](int x, int y) {
+      if (Painted(x, y)) return;
       if (PointSegmentDistanceSquared(Point2(x, y), inner, moved) > r2) return;
       if (!Occupied(x, y)) {
         ++loss;
@@ -154,7 +174,8 @@ class EndRun {
   const EndExtensionOptions& options_;
   std::vector<CellPolyline>& polylines_;
   double eps2_;
-  std::vector<uint8_t> painted_;
+  std::vector<uint8_t>& painted_;  // per thread, zero outside painted_cells_
+  std::vector<int> painted_cells_;
   std::vector<std::pair<double, Point2>> candidates_;  // (-along, cell)
 };
 

@@ -41,8 +41,7 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
   auto visit = [&, best_d2, owners](int polyline, const Point2& from, const Point2& to) {
     const Point2 a = from;
     const Point2 b = to;
-    ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
-      if (!bounds.Contains(x, y)) return;
+    ForEachCellNearSegmentIn(bounds, a, b, epsilon, [&](int x, int y) {
       const int i = (y - window.y0) * window.width + (x - window.x0);  // raster.Index(x, y)
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
       if (d2 > eps2) return;

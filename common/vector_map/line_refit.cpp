@@ -181,8 +181,7 @@ class RefitRun {
   template <typename F>
   void Visit(const Point2& a, const Point2& b, double radius, F&& f) const {
     const double r2 = ToleratedSquare(radius);
-    ForEachCellNearSegment(a, b, radius, [&](int x, int y) {
-      if (!raster_.Contains(x, y)) return;
+    ForEachCellNearSegmentIn(raster_.window(), a, b, radius, [&](int x, int y) {
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
       if (d2 <= r2) f(raster_.Index(x, y), x, y, d2);
     });
@@ -234,31 +233,48 @@ class RefitRun {
     painted_.clear();
     near_begin_.assign(static_cast<size_t>(segment_begin_.back()) + 1, 0);
     near_.clear();
+    // The cell loop reads only locals: its byte stores may alias anything read through a
+    // reference or a member, which would then be reloaded for every cell.
+    const CellRect window = raster_.window();
+    const CellRect rect = raster_.rect();
+    const uint8_t* const flags = raster_.data();
+    ScratchCell* const cells = s_.cells.data();
+    const double eps2 = eps2_;
     for (size_t k = 0; k < polylines_.size(); ++k) {
       const auto& pts = polylines_[k].points;
       const double r = PaintRadius(half_widths_[k]);
       const double r2 = ToleratedSquare(r);
       for (int j = 0; j < SegmentCount(polylines_[k]); ++j) {
         const int segment = segment_begin_[k] + j;
-        Visit(pts[j], End(pts, j), std::max(r, options_.epsilon),
-              [&](int i, int x, int y, double d2) {
-                ScratchCell& cell = s_.Touch(i, x, y, raster_.rect());
-                if (d2 <= r2 && (cell.flags & ScratchCell::kCounted) == 0) {
-                  cell.flags |= ScratchCell::kCounted;
-                  ++cell.paint;
-                  painted_.push_back(i);
-                }
-                if (d2 > eps2_) return;
-                if (OwnedP(i)) {
-                  ++cell.cover;
-                  near_.push_back({i, x, y});
-                }
-                if ((cell.flags & ScratchCell::kOwned) == 0 ||
-                    static_cast<float>(d2) < cell.fit.distance) {
-                  cell.flags |= ScratchCell::kOwned;
-                  cell.fit = {static_cast<float>(d2), segment};
-                }
-              });
+        const Point2 a = pts[j];
+        const Point2 b = End(pts, j);
+        const double radius = std::max(r, options_.epsilon);
+        const double radius2 = ToleratedSquare(radius);
+        ForEachCellNearSegmentIn(window, a, b, radius, [&, flags, cells](int x, int y) {
+          const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
+          if (d2 > radius2) return;
+          const int i = (y - window.y0) * window.width + (x - window.x0);  // raster_.Index(x, y)
+          ScratchCell& cell = cells[i];
+          if ((cell.flags & ScratchCell::kSeen) == 0) {  // s_.Touch(i, x, y, rect)
+            cell.flags = ScratchCell::kSeen | (rect.Contains(x, y) ? ScratchCell::kInRect : 0);
+            s_.touched.push_back(i);
+          }
+          if (d2 <= r2 && (cell.flags & ScratchCell::kCounted) == 0) {
+            cell.flags |= ScratchCell::kCounted;
+            ++cell.paint;
+            painted_.push_back(i);
+          }
+          if (d2 > eps2) return;
+          if ((flags[i] & CellRaster::kOwned) != 0) {
+            ++cell.cover;
+            near_.push_back({i, x, y});
+          }
+          if ((cell.flags & ScratchCell::kOwned) == 0 ||
+              static_cast<float>(d2) < cell.fit.distance) {
+            cell.flags |= ScratchCell::kOwned;
+            cell.fit = {static_cast<float>(d2), segment};
+          }
+        });
         near_begin_[segment + 1] = static_cast<int>(near_.size());
       }
       painted_begin_[k + 1] = static_cast<int>(painted_.size());

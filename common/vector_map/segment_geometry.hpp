@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -35,41 +36,13 @@ inline double PointSegmentDistanceSquared(const Point2& p, const Point2& a, cons
 // [a, b] (a superset: a band about 2 * radius + 3 cells wide along the segment; never misses one).
 // Callers test the exact distance themselves. A degenerate segment (a == b) is a point.
 template <typename F>
-void ForEachCellNearSegment(const Point2& a, const Point2& b, double radius, F&& f) {
-  constexpr double kSlack = 1e-7;
-  const double dx = b.x() - a.x();
-  const double dy = b.y() - a.y();
-  const bool along_x = std::abs(dx) >= std::abs(dy);
-  // Iterate the major axis (u) and, per major coordinate, the minor range (v) the band needs.
-  const double au = along_x ? a.x() : a.y();
-  const double av = along_x ? a.y() : a.x();
-  const double du = along_x ? dx : dy;
-  const double dv = along_x ? dy : dx;
-  const int u_min = static_cast<int>(std::ceil(std::min(au, au + du) - radius - kSlack));
-  const int u_max = static_cast<int>(std::floor(std::max(au, au + du) + radius + kSlack));
-  for (int u = u_min; u <= u_max; ++u) {
-    double v_lo = av;
-    double v_hi = av;
-    if (du != 0.0) {
-      double t0 = (u - radius - au) / du;
-      double t1 = (u + radius - au) / du;
-      if (t0 > t1) std::swap(t0, t1);
-      t0 = std::clamp(t0, 0.0, 1.0);
-      t1 = std::clamp(t1, 0.0, 1.0);
-      v_lo = std::min(av + t0 * dv, av + t1 * dv);
-      v_hi = std::max(av + t0 * dv, av + t1 * dv);
-    }
-    const int v_min = static_cast<int>(std::ceil(v_lo - radius - kSlack));
-    const int v_max = static_cast<int>(std::floor(v_hi + radius + kSlack));
-    for (int v = v_min; v <= v_max; ++v) {
-      if (along_x) {
-        f(u, v);
-      } else {
-        f(v, u);
-      }
-    }
-  }
-}
+void ForEachCellNearSegment(const Point2& a, const Point2& b, double radius, F&& f);
+
+// The same cells, in the same order, restricted to those inside `clip`: the band is clipped per
+// row, so a caller that would skip cells outside a rectangle pays no bounds test per cell.
+template <typename F>
+void ForEachCellNearSegmentIn(const grid::CellRect& clip, const Point2& a, const Point2& b,
+                              double radius, F&& f);
 
 // The continuity constraint for one segment, decided exactly: is every point of [a, b] within
 // `epsilon` of some delimitation point? Computes, for each delimitation point near the segment,
@@ -90,6 +63,78 @@ double SampledMaxDistanceToDelimitation(const Point2& a, const Point2& b,
                                         double step);
 
 // Implementation ---------------------------------------------------------------------------------
+
+namespace segment_geometry_detail {
+
+// static_cast<int>(std::ceil(v)) and static_cast<int>(std::floor(v)) for v in the int range,
+// without the libm calls (x86-64 without SSE4.1 has no rounding instruction).
+inline int CeilToInt(double v) {
+  const int i = static_cast<int>(v);  // toward zero
+  return i < v ? i + 1 : i;
+}
+inline int FloorToInt(double v) {
+  const int i = static_cast<int>(v);
+  return i > v ? i - 1 : i;
+}
+
+// ForEachCellNearSegment's cells with x in [x_lo, x_hi] and y in [y_lo, y_hi].
+template <typename F>
+void ForEachCellNearSegmentClipped(const Point2& a, const Point2& b, double radius, int x_lo,
+                                   int x_hi, int y_lo, int y_hi, F&& f) {
+  constexpr double kSlack = 1e-7;
+  const double dx = b.x() - a.x();
+  const double dy = b.y() - a.y();
+  const bool along_x = std::abs(dx) >= std::abs(dy);
+  // Iterate the major axis (u) and, per major coordinate, the minor range (v) the band needs.
+  const double au = along_x ? a.x() : a.y();
+  const double av = along_x ? a.y() : a.x();
+  const double du = along_x ? dx : dy;
+  const double dv = along_x ? dy : dx;
+  const int u_lo = along_x ? x_lo : y_lo;
+  const int u_hi = along_x ? x_hi : y_hi;
+  const int clip_v_lo = along_x ? y_lo : x_lo;
+  const int clip_v_hi = along_x ? y_hi : x_hi;
+  const int u_min = std::max(CeilToInt(std::min(au, au + du) - radius - kSlack), u_lo);
+  const int u_max = std::min(FloorToInt(std::max(au, au + du) + radius + kSlack), u_hi);
+  for (int u = u_min; u <= u_max; ++u) {
+    double v_lo = av;
+    double v_hi = av;
+    if (du != 0.0) {
+      double t0 = (u - radius - au) / du;
+      double t1 = (u + radius - au) / du;
+      if (t0 > t1) std::swap(t0, t1);
+      t0 = std::clamp(t0, 0.0, 1.0);
+      t1 = std::clamp(t1, 0.0, 1.0);
+      v_lo = std::min(av + t0 * dv, av + t1 * dv);
+      v_hi = std::max(av + t0 * dv, av + t1 * dv);
+    }
+    const int v_min = std::max(CeilToInt(v_lo - radius - kSlack), clip_v_lo);
+    const int v_max = std::min(FloorToInt(v_hi + radius + kSlack), clip_v_hi);
+    for (int v = v_min; v <= v_max; ++v) {
+      if (along_x) {
+        f(u, v);
+      } else {
+        f(v, u);
+      }
+    }
+  }
+}
+
+}  // namespace segment_geometry_detail
+
+template <typename F>
+void ForEachCellNearSegment(const Point2& a, const Point2& b, double radius, F&& f) {
+  constexpr int kMin = std::numeric_limits<int>::min();
+  constexpr int kMax = std::numeric_limits<int>::max();
+  segment_geometry_detail::ForEachCellNearSegmentClipped(a, b, radius, kMin, kMax, kMin, kMax, f);
+}
+
+template <typename F>
+void ForEachCellNearSegmentIn(const grid::CellRect& clip, const Point2& a, const Point2& b,
+                              double radius, F&& f) {
+  segment_geometry_detail::ForEachCellNearSegmentClipped(
+      a, b, radius, clip.x0, clip.x0 + clip.width - 1, clip.y0, clip.y0 + clip.height - 1, f);
+}
 
 // True if the sorted intervals cover [0, length] (gaps up to the distance tolerance allowed).
 bool IntervalsCover(std::vector<std::pair<double, double>>& intervals, double length);

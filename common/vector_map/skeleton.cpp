@@ -107,17 +107,18 @@ std::vector<int> ThinToSkeleton(CellRaster& raster, double epsilon) {
   }
   // Wall pockets count as occupied (wall_pockets.hpp), so that a wall full of them thins to one
   // centre line instead of a ladder of rings.
-  bool pockets_added = false;
+  const size_t hollowed = list.size();
   for (const int i : WallPocketCells(raster)) {
     if (rect.Contains(raster.X(i), raster.Y(i))) {
       raster.at(i) |= CellRaster::kSkeleton;
       list.push_back(i);
-      pockets_added = true;
     } else {
       raster.at(i) |= CellRaster::kAnchor;
     }
   }
-  if (pockets_added) std::sort(list.begin(), list.end());
+  // Both parts are in row-major order (WallPocketCells returns its cells sorted).
+  std::inplace_merge(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(hollowed),
+                     list.end());
   const std::vector<int> window = DiscOffsets(raster, epsilon);
   // The default epsilon (sqrt(2) cells) gives the 3 x 3 block; a fixed-size copy lets the
   // compiler unroll the window loops, which run for every pixel.

@@ -6,15 +6,18 @@
 
 namespace fleetmap::vector_map {
 
-void MarkCovered(CellRaster& raster, const Point2& a, const Point2& b, double epsilon) {
+void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, double epsilon) {
   const double eps2 = ToleratedSquare(epsilon);
-  ForEachCellNearSegment(a, b, epsilon, [&](int x, int y) {
-    if (!raster.Contains(x, y)) return;
-    const int i = raster.Index(x, y);
-    if ((raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) != CellRaster::kOwned) return;
-    if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= eps2) {
-      raster.at(i) |= CellRaster::kCovered;
-    }
+  // The cell loop reads only locals: a byte store may alias anything read through a reference or
+  // the raster's members, which would then be reloaded for every cell.
+  const Point2 a = from;
+  const Point2 b = to;
+  const CellRect window = raster.window();
+  uint8_t* const flags = &raster.at(0);
+  ForEachCellNearSegmentIn(window, a, b, epsilon, [&, flags](int x, int y) {
+    const int i = (y - window.y0) * window.width + (x - window.x0);  // raster.Index(x, y)
+    if ((flags[i] & (CellRaster::kOwned | CellRaster::kCovered)) != CellRaster::kOwned) return;
+    if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= eps2) flags[i] |= CellRaster::kCovered;
   });
 }
 

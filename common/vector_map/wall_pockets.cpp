@@ -14,7 +14,8 @@ class PocketFinder {
     for (const int i : raster_.occupied_near_rect()) {
       for (const int o : {1, -1, stride_, -stride_}) {
         const int start = i + o;
-        if (!InNearRect(start) || raster_.Has(start, kStop)) continue;
+        // The flag test first: most neighbours of an occupied cell are occupied or visited.
+        if (raster_.Has(start, kStop) || !InNearRect(start)) continue;
         Flood(start);
       }
     }
