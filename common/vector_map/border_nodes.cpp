@@ -49,6 +49,12 @@ std::optional<Point2> BorderNodes::Node(int x, int y, int out_x, int out_y) cons
   while (hi + 1 < limit && crossing_at(hi + 1)) ++hi;
   const int length = hi - lo + 1;
   if (length <= 3) return inner + half_out + 0.5 * (lo + hi) * along;
+  // A longer run is a wall along the border. Only a pixel at one of its ends gets a node there; a
+  // chain that ends in the middle is a piece of the wall's skeleton cut by thinning (its pixels
+  // hang on the anchors across the border), and a node at the far end of the run would fan out
+  // one long segment per piece. Its P points are covered by a line along the wall instead (the
+  // cover stage), on each side of the border.
+  if (std::min(-lo, hi) > 1) return std::nullopt;
   const Point2 first = inner + half_out + (lo + 0.5) * along;
   const Point2 last = inner + half_out + (hi - 0.5) * along;
   return std::abs(lo + 0.5) <= std::abs(hi - 0.5) ? first : last;

@@ -450,6 +450,22 @@ TEST(VectorizerTileTest, TilesHoldConstraintsAndStitchWithoutSeams) {
   EXPECT_GE(shared_ends, 8);
 }
 
+TEST(VectorizerTileTest, WallAlongATileBorderIsALineOnEachSide) {
+  // A wall three cells thick lying on the border between two tiles, one or two of its rows on
+  // each side: each tile covers its rows with a line along the wall (plus the stubs to the corner
+  // nodes at its ends), not with a fan of segments from one end of the wall.
+  for (const int left_rows : {1, 2}) {
+    OccupancyGrid grid(40, 40, 0.05, {}, grid::kFreeValue);
+    FillRect(grid, 20 - left_rows, 5, 22 - left_rows, 34, grid::kOccupiedValue);
+    const TileRun run = VectorizeInTiles(grid, 20);
+    SCOPED_TRACE(::testing::Message() << left_rows << " rows left of the border");
+    ExpectValid(run.whole, grid);
+    size_t vertices = 0;
+    for (const auto& [key, map] : run.tiles) vertices += map.ObstacleVertexCount();
+    EXPECT_LE(vertices, 16u);
+  }
+}
+
 TEST(VectorizerTileTest, QuantisedTilesStitchExactly) {
   const OccupancyGrid grid = SeamGrid();
   const int tile = 16;
