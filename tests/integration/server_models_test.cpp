@@ -20,6 +20,8 @@
 #include "common/process/subprocess.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
+#include "common/transport/topics.hpp"
+#include "common/transport/vector_tile_reader.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 
 namespace fleetmap {
@@ -221,6 +223,29 @@ grid::OccupancyGrid RoomWithBoxes(const std::vector<Point2>& boxes) {
   return map;
 }
 
+// Whether a fused tile arrives, before `deadline`, with an obstacle vertex near every box: the
+// server has fused the current robot's map (the boxes stand elsewhere in every session).
+bool FusedTilesShowBoxes(transport::VectorTileReader& fused, transport::WakeUp& wake_up,
+                         const std::vector<Point2>& boxes,
+                         std::chrono::steady_clock::time_point deadline) {
+  while (std::chrono::steady_clock::now() < deadline) {
+    wake_up.WaitFor(milliseconds(100));
+    for (const transport::TileEvent& event : fused.Drain()) {
+      if (event.kind != transport::TileEvent::Kind::kTile) continue;
+      bool all = true;
+      for (const Point2& box : boxes) {
+        bool near = false;
+        for (const vector_map::Polyline& polyline : event.tile.map.obstacles) {
+          for (const Point2& vertex : polyline.points) near |= (vertex - box).norm() < 0.35;
+        }
+        all &= near;
+      }
+      if (all) return true;
+    }
+  }
+  return false;
+}
+
 TEST_F(ServerModelsTest, ObjectsAreLearnedFromTheSessionsOfRobotsThatLeft) {
   auto wake_up = std::make_shared<transport::WakeUp>();
   auto templates = transport::ObjectTemplateReader::Create(*participant_, wake_up);
@@ -229,6 +254,10 @@ TEST_F(ServerModelsTest, ObjectsAreLearnedFromTheSessionsOfRobotsThatLeft) {
   const std::string store = TempPath(std::to_string(domain_) + "_store.db");
   std::remove(store.c_str());
   auto server = Start({kServer, "--duration", "120", "--store", store});
+  auto fused_wake_up = std::make_shared<transport::WakeUp>();
+  auto fused = transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic,
+                                                   fused_wake_up);
+  ASSERT_TRUE(fused.ok()) << fused.status();
   // Three sessions of one room; the boxes stand somewhere else each time.
   const std::vector<std::vector<Point2>> placements = {
       {{1.5, 1.5}, {4.5, 4.0}}, {{1.0, 4.5}, {3.0, 2.0}}, {{4.5, 1.0}, {2.0, 3.5}}};
@@ -238,7 +267,10 @@ TEST_F(ServerModelsTest, ObjectsAreLearnedFromTheSessionsOfRobotsThatLeft) {
         {kAgent, "--robot-id", robot, "--map", SaveGrid(RoomWithBoxes(placements[t]), robot)});
     ASSERT_TRUE(server->WaitForOutput("robot " + robot + " joined", kDeadline)) << server->Output();
     ASSERT_TRUE(agent->WaitForOutput("changed tiles", kDeadline)) << agent->Output();
-    std::this_thread::sleep_for(seconds(2));  // the server fuses the tiles
+    // The session keeps what the server fused: wait for it rather than for a fixed time.
+    ASSERT_TRUE(FusedTilesShowBoxes(**fused, *fused_wake_up, placements[t],
+                                    std::chrono::steady_clock::now() + kDeadline))
+        << server->Output();
     agent->Signal(SIGTERM);
     ASSERT_EQ(agent->Wait(kDeadline), 0);
     ASSERT_TRUE(server->WaitForOutput("mapping session", kDeadline)) << server->Output();
