@@ -49,18 +49,12 @@ std::optional<Point2> BorderNodes::Node(int x, int y, int out_x, int out_y) cons
   while (hi + 1 < limit && crossing_at(hi + 1)) ++hi;
   const int length = hi - lo + 1;
   if (length <= 3) return inner + half_out + 0.5 * (lo + hi) * along;
-  // A longer run is a wall along the border. Only a pixel at one of its ends gets a node there; a
-  // chain that ends in the middle is a piece of the wall's skeleton cut by thinning (its pixels
-  // hang on the anchors across the border), and a node at the far end of the run would fan out
-  // one long segment per piece. Its P points are covered by a line along the wall instead (the
-  // cover stage), on each side of the border.
-  if (std::min(-lo, hi) > 1) return std::nullopt;
   const Point2 first = inner + half_out + (lo + 0.5) * along;
   const Point2 last = inner + half_out + (hi - 0.5) * along;
   return std::abs(lo + 0.5) <= std::abs(hi - 0.5) ? first : last;
 }
 
-std::optional<Point2> BorderNodes::For(int index) const {
+std::optional<Point2> BorderNodes::For(int index, int next) const {
   const CellRect& rect = raster_.rect();
   const int x = raster_.X(index);
   const int y = raster_.Y(index);
@@ -75,6 +69,10 @@ std::optional<Point2> BorderNodes::For(int index) const {
                                       {y == rect.y0 + rect.height - 1, 0, 1}}};
   for (const Side& side : sides) {
     if (!side.at) continue;
+    if (next < 0) continue;
+    // The chain must come from inside: its next pixel one step farther from this side.
+    const int step_out = (raster_.X(next) - x) * side.out_x + (raster_.Y(next) - y) * side.out_y;
+    if (step_out >= 0) continue;
     const int along_x = side.out_y != 0 ? 1 : 0;
     const int along_y = side.out_x != 0 ? 1 : 0;
     bool anchored = false;

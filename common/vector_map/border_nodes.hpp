@@ -19,8 +19,12 @@ class BorderNodes {
               const grid::StateThresholds& thresholds)
       : raster_(raster), grid_(grid), thresholds_(thresholds) {}
 
-  // The node for a chain end pixel (raster index) next to an anchor across a tile side, if any.
-  std::optional<Point2> For(int index) const;
+  // The node for a chain end pixel `index` (raster index) next to an anchor across a tile side,
+  // if the chain comes from inside the tile: `next`, the chain's pixel after the end (-1 for a
+  // one-pixel chain), must be one step farther from that side. A chain running along the border,
+  // or a lone pixel on it (pieces of a wall lying on the border, cut by thinning), gets no node:
+  // its P points are covered along the wall instead, and a node would add a segment per piece.
+  std::optional<Point2> For(int index, int next) const;
 
  private:
   bool Occupied(int x, int y) const;

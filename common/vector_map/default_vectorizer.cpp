@@ -76,7 +76,9 @@ class TileRun {
           const int end = side == 0 ? pixels.front() : pixels.back();
           if (SkeletonDegree(raster_, end) > 1) continue;
           if (pixels.size() == 1 && side == 1 && chain.on_border[0]) continue;
-          const auto node = nodes_.For(end);
+          const int next =
+              pixels.size() >= 2 ? (side == 0 ? pixels[1] : pixels[pixels.size() - 2]) : -1;
+          const auto node = nodes_.For(end, next);
           if (!node || !Continuous(CellPoint(end), *node)) continue;
           if (side == 0) {
             chain.points.insert(chain.points.begin(), *node);
