@@ -331,6 +331,20 @@ TEST(VmapFileTest, AVersionOneFileIsRefusedNamingBothVersions) {
   std::remove(path.c_str());
 }
 
+TEST(VmapFileTest, AVersionTwoFileIsRefusedNamingBothVersions) {
+  // Version 2 had this layout with the quantum tile_size / 16384: its coordinates would decode
+  // 2.4 % off, so it is refused by its format string.
+  std::string bytes = Encoded(SampleMap());
+  const size_t at = bytes.find("fleetmap-vmap/3");
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + std::string("fleetmap-vmap/").size()] = '2';
+  const auto decoded = DecodeVmap(bytes, "v2.vmap");
+  ASSERT_FALSE(decoded.ok());
+  EXPECT_THAT(decoded.status().message(),
+              HasSubstr("v2.vmap: format fleetmap-vmap/2 is another version of the .vmap format; "
+                        "this fleetmap reads fleetmap-vmap/3 only"));
+}
+
 TEST(VmapFileTest, SeededMutationsNeverCrash) {
   const std::string bytes = Encoded(SampleMap());
   std::mt19937 random(1234);
