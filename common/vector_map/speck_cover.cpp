@@ -1,12 +1,16 @@
 #include "common/vector_map/speck_cover.hpp"
 
+#include <cmath>
+#include <utility>
+
 #include "common/vector_map/chain_simplifier.hpp"
 #include "common/vector_map/segment_geometry.hpp"
 #include "common/vector_map/skeleton.hpp"
 
 namespace fleetmap::vector_map {
 
-void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, double epsilon) {
+void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, double epsilon,
+                 uint8_t want) {
   const double eps2 = ToleratedSquare(epsilon);
   // The cell loop reads only locals: a byte store may alias anything read through a reference or
   // the raster's members, which would then be reloaded for every cell.
@@ -16,30 +20,38 @@ void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, doubl
   uint8_t* const flags = &raster.at(0);
   ForEachCellNearSegmentIn(window, a, b, epsilon, [&, flags](int x, int y) {
     const int i = (y - window.y0) * window.width + (x - window.x0);  // raster.Index(x, y)
-    if ((flags[i] & (CellRaster::kOwned | CellRaster::kCovered)) != CellRaster::kOwned) return;
+    if ((flags[i] & (want | CellRaster::kCovered)) != want) return;
     if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= eps2) flags[i] |= CellRaster::kCovered;
   });
 }
 
-void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
-  for (const CellPolyline& polyline : polylines) {
-    const auto& pts = polyline.points;
-    if (pts.size() == 1) MarkCovered(raster, pts[0], pts[0], epsilon);
-    for (size_t k = 0; k + 1 < pts.size(); ++k) MarkCovered(raster, pts[k], pts[k + 1], epsilon);
-    if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon);
+void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilon, uint8_t want) {
+  const auto& pts = polyline.points;
+  if (pts.size() == 1) MarkCovered(raster, pts[0], pts[0], epsilon, want);
+  for (size_t k = 0; k + 1 < pts.size(); ++k) {
+    MarkCovered(raster, pts[k], pts[k + 1], epsilon, want);
   }
+  if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon, want);
+}
+
+void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
+  for (const CellPolyline& polyline : polylines) MarkCovered(raster, polyline, epsilon);
+  CoverOpen(raster, epsilon, raster.owned_delimitation(), CellRaster::kOwned, polylines);
+}
+
+void CoverOpen(CellRaster& raster, double epsilon, const std::vector<int>& points, uint8_t want,
+               std::vector<CellPolyline>& polylines) {
   const double eps2 = ToleratedSquare(epsilon);
   auto is_p = [&](int x, int y) { return raster.IsDelimitation(x, y); };
   std::vector<int> links = DiscOffsets(raster, 2.0 * epsilon);
   links.erase(links.begin());  // the cell itself
-  auto open = [&](int i) {
-    return (raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) == CellRaster::kOwned;
-  };
+  auto open = [&](int i) { return (raster.at(i) & (want | CellRaster::kCovered)) == want; };
   std::vector<int> forward;
   std::vector<int> backward;
   std::vector<Point2> chain;
   std::vector<std::vector<int>> pieces;
-  for (const int start : raster.owned_delimitation()) {
+  std::vector<std::pair<double, double>> intervals;
+  for (const int start : points) {
     if (!open(start)) continue;
     raster.at(start) |= CellRaster::kCovered;
     forward.assign(1, start);
@@ -70,6 +82,22 @@ void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline
       const Point2& b = chain[j];
       for (int k = i + 1; k < j; ++k) {
         if (PointSegmentDistanceSquared(chain[k], a, b) > eps2) return false;
+      }
+      // The chain's own points are P points: if their epsilon-disc intervals already cover the
+      // segment it is continuous (sound); else the exact test against all of P decides.
+      const double length = (b - a).norm();
+      if (length > kDistanceTolerance) {
+        const Point2 u = (b - a) / length;
+        intervals.clear();
+        for (int k = i; k <= j; ++k) {
+          const Point2 w = chain[k] - a;
+          const double along = w.dot(u);
+          const double half2 = eps2 - (w.squaredNorm() - along * along);
+          if (half2 < 0.0) continue;
+          const double half = std::sqrt(half2);
+          intervals.emplace_back(along - half, along + half);
+        }
+        if (IntervalsCover(intervals, length)) return true;
       }
       return SegmentContinuousIf(a, b, epsilon, is_p);
     };
