@@ -9,8 +9,7 @@
 
 namespace fleetmap::vector_map {
 
-void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, double epsilon,
-                 uint8_t want) {
+void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, double epsilon) {
   const double eps2 = ToleratedSquare(epsilon);
   // The cell loop reads only locals: a byte store may alias anything read through a reference or
   // the raster's members, which would then be reloaded for every cell.
@@ -20,38 +19,33 @@ void MarkCovered(CellRaster& raster, const Point2& from, const Point2& to, doubl
   uint8_t* const flags = &raster.at(0);
   ForEachCellNearSegmentIn(window, a, b, epsilon, [&, flags](int x, int y) {
     const int i = (y - window.y0) * window.width + (x - window.x0);  // raster.Index(x, y)
-    if ((flags[i] & (want | CellRaster::kCovered)) != want) return;
+    if ((flags[i] & (CellRaster::kOwned | CellRaster::kCovered)) != CellRaster::kOwned) return;
     if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= eps2) flags[i] |= CellRaster::kCovered;
   });
 }
 
-void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilon, uint8_t want) {
+void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilon) {
   const auto& pts = polyline.points;
-  if (pts.size() == 1) MarkCovered(raster, pts[0], pts[0], epsilon, want);
-  for (size_t k = 0; k + 1 < pts.size(); ++k) {
-    MarkCovered(raster, pts[k], pts[k + 1], epsilon, want);
-  }
-  if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon, want);
+  if (pts.size() == 1) MarkCovered(raster, pts[0], pts[0], epsilon);
+  for (size_t k = 0; k + 1 < pts.size(); ++k) MarkCovered(raster, pts[k], pts[k + 1], epsilon);
+  if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon);
 }
 
 void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
   for (const CellPolyline& polyline : polylines) MarkCovered(raster, polyline, epsilon);
-  CoverOpen(raster, epsilon, raster.owned_delimitation(), CellRaster::kOwned, polylines);
-}
-
-void CoverOpen(CellRaster& raster, double epsilon, const std::vector<int>& points, uint8_t want,
-               std::vector<CellPolyline>& polylines) {
   const double eps2 = ToleratedSquare(epsilon);
   auto is_p = [&](int x, int y) { return raster.IsDelimitation(x, y); };
   std::vector<int> links = DiscOffsets(raster, 2.0 * epsilon);
   links.erase(links.begin());  // the cell itself
-  auto open = [&](int i) { return (raster.at(i) & (want | CellRaster::kCovered)) == want; };
+  auto open = [&](int i) {
+    return (raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) == CellRaster::kOwned;
+  };
   std::vector<int> forward;
   std::vector<int> backward;
   std::vector<Point2> chain;
   std::vector<std::vector<int>> pieces;
   std::vector<std::pair<double, double>> intervals;
-  for (const int start : points) {
+  for (const int start : raster.owned_delimitation()) {
     if (!open(start)) continue;
     raster.at(start) |= CellRaster::kCovered;
     forward.assign(1, start);

@@ -19,17 +19,9 @@ namespace fleetmap::vector_map {
 // segment of `polylines`. Uses CellRaster::kCovered.
 void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines);
 
-// The same for the points of `points` whose flags have every bit of `want` (kOwned and
-// possibly a caller's marking bit, so that a trial covers one set of points only) and not
-// kCovered; chains link only such points. CoverRemaining is this with all owned P points.
-void CoverOpen(CellRaster& raster, double epsilon, const std::vector<int>& points, uint8_t want,
-               std::vector<CellPolyline>& polylines);
-
-// Sets CellRaster::kCovered on the P points with every bit of `want` (kOwned and possibly a
-// caller's marking bit) within `epsilon` of segment [a, b], or of a polyline's segments.
-void MarkCovered(CellRaster& raster, const Point2& a, const Point2& b, double epsilon,
-                 uint8_t want = CellRaster::kOwned);
-void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilon,
-                 uint8_t want = CellRaster::kOwned);
+// Sets CellRaster::kCovered on the owned P points within `epsilon` of segment [a, b], or of a
+// polyline's segments.
+void MarkCovered(CellRaster& raster, const Point2& a, const Point2& b, double epsilon);
+void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilon);
 
 }  // namespace fleetmap::vector_map
