@@ -1,5 +1,6 @@
 #include "cli/paper_experiment.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <span>
 #include <string>
@@ -32,10 +33,14 @@ struct Vectorized {
   std::string vmap;
 };
 
-StatusOr<Vectorized> Vectorize(const grid::OccupancyGrid& grid, bool line_refit) {
+// `tile_size` <= 0: the fleet's default tiles.
+StatusOr<Vectorized> Vectorize(const grid::OccupancyGrid& grid, bool line_refit,
+                               bool free_space = true, double tile_size = 0.0) {
   Vectorized out;
   vector_map::TiledVectorizeOptions options;
   options.vectorizer.refit_lines = line_refit;
+  options.vectorizer.extract_free_space = free_space;
+  if (tile_size > 0.0) options.tile_size = tile_size;
   FLEETMAP_ASSIGN_OR_RETURN(out.tiled,
                             vector_map::VectorizeTiled(grid, Transform2::Identity(), options));
   FLEETMAP_ASSIGN_OR_RETURN(out.vmap, transport::EncodeVmap(out.tiled));
@@ -117,6 +122,12 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
   FLEETMAP_ASSIGN_OR_RETURN(const std::string obstacles_vmap,
                             transport::EncodeVmap(obstacles_only));
   FLEETMAP_ASSIGN_OR_RETURN(result.vmap_obstacles, metrics::MeasureBytes(Bytes(obstacles_vmap)));
+  // The terrain's grid starts at the origin, so a tile of the terrain's size holds all of it.
+  const double terrain_extent = std::max(robot.width(), robot.height()) * robot.resolution();
+  FLEETMAP_ASSIGN_OR_RETURN(
+      const Vectorized one_tile,
+      Vectorize(robot, options.line_refit, /*free_space=*/false, terrain_extent));
+  result.vmap_obstacles_one_tile = one_tile.vmap.size();
 
   const vector_map::VectorMap robot_merged = robot_vector.tiled.Merged();
   const vector_map::VectorMap truth_merged = truth_vector.tiled.Merged();

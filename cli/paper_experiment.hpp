@@ -45,6 +45,9 @@ struct PaperTerrainResult {
   metrics::CompressedSizes vmap;  // V (.vmap bytes), VZ (gzip -9), zstd -19
   // The same tiles without their free-space polygons: obstacles only, as the paper's vector map.
   metrics::CompressedSizes vmap_obstacles;
+  // Obstacles only with the whole terrain as one tile: one vector map of the terrain in one file,
+  // as the paper's V is (10 m tiles, above, are what the fleet sends: per-tile headers and seams).
+  size_t vmap_obstacles_one_tile = 0;
   size_t vertices = 0;
   size_t segments = 0;
   size_t truth_vmap = 0;                // .vmap bytes of the ground truth's vector map

@@ -83,6 +83,23 @@ TEST(CliSimTest, BenchPaperWritesReportCsvAndCharts) {
   const std::string csv = ReadFile(dir + "/results.csv");
   EXPECT_THAT(csv, HasSubstr("kind,size_m,seed"));
   EXPECT_THAT(csv, HasSubstr("\noffice,10,3,200,200,"));
+  // A 10 m terrain is one 10 m tile already: its obstacles as one tile cost the same bytes.
+  std::istringstream lines(csv);
+  std::string header, row;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  auto column = [&](const std::string& name) {
+    std::istringstream names(header), values(row);
+    std::string field, value;
+    while (std::getline(names, field, ',') && std::getline(values, value, ',')) {
+      if (field == name) return value;
+    }
+    return std::string("missing");
+  };
+  EXPECT_NE(column("V_obst_one_tile"), "missing");
+  EXPECT_EQ(column("V_obst_one_tile"), column("V_obst"));
+  EXPECT_GT(std::stoi(column("V_obst")), 0);
+  EXPECT_THAT(ReadFile(dir + "/report.md"), HasSubstr("P / V obst one tile"));
   // Same seed, same robot map bytes.
   const std::string again = TempDir("paper_again");
   ASSERT_EQ(RunFleetmap({"bench", "paper", "--out", again, "--sizes", "10", "--kinds", "office",
