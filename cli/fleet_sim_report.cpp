@@ -99,8 +99,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
   // A plain double and a flag: GCC 12 sees optional<double> through fmt and nlohmann::json as
   // maybe-uninitialized.
   const bool has_ratio = grid.has_value() && tiles.total_bytes > 0;
-  const double ratio =
-      has_ratio ? static_cast<double>(grid->total_bytes) / tiles.total_bytes : 0.0;
+  const double ratio = has_ratio ? static_cast<double>(grid->total_bytes) / tiles.total_bytes : 0.0;
   std::string ratio_text = "n/a";
   std::string ratio_sentence;
   if (has_ratio) {
@@ -189,9 +188,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       "map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\nReport: {}/report.md, "
       "image: {}",
       options.robots, sim::TerrainKindName(options.kind), options.size, tiles.seconds,
-      tiles.total_bytes,
-      ratio_sentence,
-      Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
+      tiles.total_bytes, ratio_sentence, Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
       Percent(quality.occupied_picture_distance), Percent(quality.unoccupied_picture_distance),
       100.0 * tiles.server_cpu_seconds / std::max(1e-9, tiles.seconds),
       tiles.server_peak_rss_bytes / 1e6, out_dir, png_written.ok() ? png : "none");

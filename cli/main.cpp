@@ -2,22 +2,22 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/exit_codes.hpp"
-#include "cli/info_command.hpp"
-#include "cli/sim_command.hpp"
+#include "cli/bench_extrapolation_command.hpp"
 #include "cli/bench_fleet_command.hpp"
-#include "cli/terrain_command.hpp"
+#include "cli/bench_objects_command.hpp"
 #include "cli/bench_paper_command.hpp"
+#include "cli/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/extrapolate_command.hpp"
+#include "cli/info_command.hpp"
+#include "cli/learn_objects_command.hpp"
 #include "cli/rasterize_command.hpp"
 #include "cli/render_command.hpp"
+#include "cli/sim_command.hpp"
+#include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
-#include "cli/bench_vectorize_command.hpp"
-#include "cli/extrapolate_command.hpp"
-#include "cli/bench_extrapolation_command.hpp"
-#include "cli/bench_objects_command.hpp"
-#include "cli/learn_objects_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};

@@ -38,12 +38,10 @@ std::vector<CellPolyline> MergeAtSharedEnds(std::vector<CellPolyline> polylines)
   for (size_t k = 0; k + 1 < ends.size();) {
     const auto& [x0, y0, e0] = ends[k];
     const auto& [x1, y1, e1] = ends[k + 1];
-    const bool same = x0 == x1 && y0 == y1 &&
-                      polylines[e0 / 2].points[e0 % 2 == 0 ? 0 : polylines[e0 / 2].points.size() -
-                                                                     1] ==
-                          polylines[e1 / 2].points[e1 % 2 == 0 ? 0
-                                                               : polylines[e1 / 2].points.size() -
-                                                                     1];
+    const bool same =
+        x0 == x1 && y0 == y1 &&
+        polylines[e0 / 2].points[e0 % 2 == 0 ? 0 : polylines[e0 / 2].points.size() - 1] ==
+            polylines[e1 / 2].points[e1 % 2 == 0 ? 0 : polylines[e1 / 2].points.size() - 1];
     if (same && e0 / 2 != e1 / 2) {
       partner[e0] = e1;
       partner[e1] = e0;

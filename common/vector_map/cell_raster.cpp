@@ -117,8 +117,7 @@ CellRaster::CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, in
     uint8_t* row = flags_.data() + static_cast<size_t>(r) * stride_;
     const int base = r * stride_;
     const size_t before = occupied_.size();
-    CollectRow(row, rect.x0 - 1 - x0_, rect.x0 + rect.width + 1 - x0_, base, kOccupied,
-               occupied_);
+    CollectRow(row, rect.x0 - 1 - x0_, rect.x0 + rect.width + 1 - x0_, base, kOccupied, occupied_);
     if (y < rect.y0 || y >= rect.y0 + rect.height) continue;
     for (size_t k = before; k < occupied_.size(); ++k) {
       const int index = occupied_[k];

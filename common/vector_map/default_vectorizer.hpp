@@ -20,7 +20,6 @@ int DefaultMargin(double epsilon);
 
 // `raster` built with at least DefaultMargin(epsilon); `epsilon` in cells. Polylines in cells.
 std::vector<CellPolyline> DefaultVectorize(CellRaster& raster, const grid::OccupancyGrid& grid,
-                                           const grid::StateThresholds& thresholds,
-                                           double epsilon);
+                                           const grid::StateThresholds& thresholds, double epsilon);
 
 }  // namespace fleetmap::vector_map

@@ -75,9 +75,8 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
     std::vector<Point2> pts;
     pts.reserve(polyline.points.size());
     for (const Point2& p : polyline.points) pts.push_back(frame.ToCell(p));
-    const double radius = options_.use_half_width
-                              ? std::max(polyline.half_width, min_half_width)
-                              : fixed_radius;
+    const double radius =
+        options_.use_half_width ? std::max(polyline.half_width, min_half_width) : fixed_radius;
     r = radius / resolution;
     r2 = ToleratedSquare(r);
     if (pts.size() == 1) mark(pts[0], pts[0]);

@@ -87,7 +87,8 @@ StatusOr<TiledVectorMap> VectorizeTiled(const grid::OccupancyGrid& grid,
   map.epsilon = vectorizer.EpsilonFor(grid.resolution());
   for (const auto& [id, rect] : rects) {
     if (AllUnknown(grid, rect)) continue;
-    FLEETMAP_ASSIGN_OR_RETURN(VectorMap tile, VectorizeRect(vectorizer, grid, fleet_from_map, rect));
+    FLEETMAP_ASSIGN_OR_RETURN(VectorMap tile,
+                              VectorizeRect(vectorizer, grid, fleet_from_map, rect));
     map.tiles.emplace(id, std::move(tile));
   }
   return map;
