@@ -18,6 +18,36 @@ CellPolyline MakePolyline(const std::vector<Point2>& points, const std::vector<i
   return polyline;
 }
 
+bool IsHairpin(const Point2& from, const Point2& at, const Point2& to) {
+  const Point2 in = at - from;
+  const Point2 out = to - at;
+  return in.dot(out) < -0.5 * in.norm() * out.norm();
+}
+
+std::vector<CellPolyline> SplitAtHairpins(const std::vector<CellPolyline>& polylines) {
+  std::vector<CellPolyline> split;
+  for (const CellPolyline& polyline : polylines) {
+    const auto& pts = polyline.points;
+    if (polyline.closed || pts.size() < 3) {
+      split.push_back(polyline);
+      continue;
+    }
+    CellPolyline piece;
+    piece.start_on_border = polyline.start_on_border;
+    for (size_t k = 0; k < pts.size(); ++k) {
+      piece.points.push_back(pts[k]);
+      if (k > 0 && k + 1 < pts.size() && IsHairpin(pts[k - 1], pts[k], pts[k + 1])) {
+        split.push_back(piece);
+        piece = CellPolyline{};
+        piece.points.push_back(pts[k]);
+      }
+    }
+    piece.end_on_border = polyline.end_on_border;
+    split.push_back(std::move(piece));
+  }
+  return split;
+}
+
 std::vector<CellPolyline> MergeAtSharedEnds(std::vector<CellPolyline> polylines) {
   const int n = static_cast<int>(polylines.size());
   auto mergeable = [&](int i) { return !polylines[i].closed && polylines[i].points.size() >= 2; };
@@ -34,6 +64,11 @@ std::vector<CellPolyline> MergeAtSharedEnds(std::vector<CellPolyline> polylines)
     }
   }
   std::sort(ends.begin(), ends.end());
+  // The vertex next to end e, inside its polyline.
+  auto inner = [&](int e) -> const Point2& {
+    const auto& pts = polylines[e / 2].points;
+    return e % 2 == 0 ? pts[1] : pts[pts.size() - 2];
+  };
   std::vector<int> partner(2 * static_cast<size_t>(n), -1);
   for (size_t k = 0; k + 1 < ends.size();) {
     const auto& [x0, y0, e0] = ends[k];
@@ -42,7 +77,9 @@ std::vector<CellPolyline> MergeAtSharedEnds(std::vector<CellPolyline> polylines)
         x0 == x1 && y0 == y1 &&
         polylines[e0 / 2].points[e0 % 2 == 0 ? 0 : polylines[e0 / 2].points.size() - 1] ==
             polylines[e1 / 2].points[e1 % 2 == 0 ? 0 : polylines[e1 / 2].points.size() - 1];
-    if (same && e0 / 2 != e1 / 2) {
+    const Point2& at =
+        polylines[e0 / 2].points[e0 % 2 == 0 ? 0 : polylines[e0 / 2].points.size() - 1];
+    if (same && e0 / 2 != e1 / 2 && !IsHairpin(inner(e0), at, inner(e1))) {
       partner[e0] = e1;
       partner[e1] = e0;
       k += 2;

@@ -8,6 +8,7 @@
 #include "common/vector_map/border_nodes.hpp"
 #include "common/vector_map/chain_simplifier.hpp"
 #include "common/vector_map/chain_tracer.hpp"
+#include "common/vector_map/half_width.hpp"
 #include "common/vector_map/segment_geometry.hpp"
 #include "common/vector_map/skeleton.hpp"
 #include "common/vector_map/speck_cover.hpp"
@@ -23,6 +24,8 @@ struct Chain {
   bool ring = false;
   int base = 0;  // global position of points[0]
 };
+
+constexpr double kMinHalfWidth = 0.5;  // cells: the Rasterizer paints at least this far
 
 // A zeroed per-thread int image, reused across calls (callers restore the zeros).
 std::vector<int>& ZeroedSlots(size_t size) {
@@ -46,7 +49,11 @@ class TileRun {
     BuildChains();
     Attach();
     std::vector<CellPolyline> polylines;
-    for (size_t c = 0; c < chains_.size(); ++c) Simplify(c, polylines);
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      const size_t first = polylines.size();
+      Simplify(c, polylines);
+      ChooseCover(c, first, polylines);
+    }
     polylines = MergeAtSharedEnds(std::move(polylines));
     CoverRemaining(raster_, eps_, polylines);
     return polylines;
@@ -248,6 +255,46 @@ class TileRun {
     }
   }
 
+  // A chain along a wall too thick for one centre line (SLAM blur makes walls 3-5 cells thick)
+  // zigzags between its faces, a vertex every few pixels. For such a chain the cover stage on the
+  // chain's own P points is tried too: it draws the two faces. The cover wins if it saves at
+  // least two vertices (the P points nearest to the chain's ends are not attached to it, and the
+  // final cover stage may need a vertex for them).
+  void ChooseCover(size_t c, size_t first, std::vector<CellPolyline>& out) {
+    constexpr size_t kMinVertices = 3;
+    constexpr int kMaxPixelsPerSegment = 6;  // straighter chains are left alone (and cost nothing)
+    const Chain& chain = chains_[c];
+    if (chain.on_border[0] || chain.on_border[1]) return;  // border nodes stitch the tiles
+    size_t skeleton_vertices = 0;
+    for (size_t k = first; k < out.size(); ++k) skeleton_vertices += out[k].points.size();
+    const int n = static_cast<int>(chain.points.size());
+    if (skeleton_vertices < kMinVertices ||
+        n >= kMaxPixelsPerSegment * static_cast<int>(skeleton_vertices - 1)) {
+      return;
+    }
+    cover_points_.clear();
+    for (int k = bucket_start_[chain.base]; k < bucket_start_[chain.base + n]; ++k) {
+      const Point2& p = bucket_points_[k];
+      cover_points_.push_back(raster_.Index(static_cast<int>(p.x()), static_cast<int>(p.y())));
+    }
+    cover_.clear();
+    CoverPoints(raster_, eps_, cover_points_, cover_);
+    cover_ = SplitAtHairpins(cover_);
+    size_t cover_vertices = 0;
+    for (const CellPolyline& polyline : cover_) cover_vertices += polyline.points.size();
+    if (cover_vertices + 2 > skeleton_vertices) return;
+    skeleton_.assign(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+    if (PaintMatch(raster_, cover_, eps_, kMinHalfWidth) <
+        PaintMatch(raster_, skeleton_, eps_, kMinHalfWidth)) {
+      return;
+    }
+    out.resize(first);
+    out.insert(out.end(), cover_.begin(), cover_.end());
+  }
+
+  std::vector<int> cover_points_;
+  std::vector<CellPolyline> cover_;
+  std::vector<CellPolyline> skeleton_;
   CellRaster& raster_;
   BorderNodes nodes_;
   double eps_;

@@ -111,4 +111,35 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
   return half_widths;
 }
 
+int PaintMatch(CellRaster& raster, const std::vector<CellPolyline>& polylines, double epsilon,
+               double min_half_width) {
+  const std::vector<double> half_widths =
+      CoveredHalfWidths(raster, polylines, epsilon, min_half_width);
+  thread_local std::vector<int> painted;
+  painted.clear();
+  int match = 0;
+  auto paint = [&](const Point2& a, const Point2& b, double radius) {
+    const double r2 = ToleratedSquare(radius);
+    ForEachCellNearSegmentIn(raster.rect(), a, b, radius, [&](int x, int y) {
+      const int i = raster.Index(x, y);
+      if (raster.Has(i, CellRaster::kVisited) ||
+          PointSegmentDistanceSquared(Point2(x, y), a, b) > r2) {
+        return;
+      }
+      raster.at(i) |= CellRaster::kVisited;
+      painted.push_back(i);
+      match += raster.Has(i, CellRaster::kOccupied) ? 1 : -1;
+    });
+  };
+  for (size_t p = 0; p < polylines.size(); ++p) {
+    const auto& pts = polylines[p].points;
+    const double radius = std::max(half_widths[p], min_half_width);
+    if (pts.size() == 1) paint(pts[0], pts[0], radius);
+    for (size_t k = 0; k + 1 < pts.size(); ++k) paint(pts[k], pts[k + 1], radius);
+    if (polylines[p].closed && pts.size() >= 3) paint(pts.back(), pts.front(), radius);
+  }
+  raster.Clear(painted, CellRaster::kVisited);
+  return match;
+}
+
 }  // namespace fleetmap::vector_map

@@ -20,4 +20,10 @@ std::vector<double> CoveredHalfWidths(const CellRaster& raster,
                                       const std::vector<CellPolyline>& polylines, double epsilon,
                                       double min_half_width);
 
+// How well the Rasterizer paints the rectangle's cells back from `polylines` alone, with the half
+// widths CoveredHalfWidths gives them (at least `min_half_width`): occupied cells painted minus
+// other cells painted. Lets a stage choose between two drawings of the same obstacle.
+int PaintMatch(CellRaster& raster, const std::vector<CellPolyline>& polylines, double epsilon,
+               double min_half_width);
+
 }  // namespace fleetmap::vector_map

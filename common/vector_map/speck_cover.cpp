@@ -31,23 +31,26 @@ void MarkCovered(CellRaster& raster, const CellPolyline& polyline, double epsilo
   if (polyline.closed) MarkCovered(raster, pts.back(), pts.front(), epsilon);
 }
 
-void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
-  for (const CellPolyline& polyline : polylines) MarkCovered(raster, polyline, epsilon);
+namespace {
+
+// Chains the points `open` accepts, starting from each of `starts` in turn, through neighbours up
+// to 2 epsilon apart (nearest first), calling `take` on each point chained, and appends each
+// chain simplified with the full check.
+template <typename Open, typename Take>
+void CoverChains(const CellRaster& raster, double epsilon, const std::vector<int>& starts,
+                 Open open, Take take, std::vector<CellPolyline>& polylines) {
   const double eps2 = ToleratedSquare(epsilon);
   auto is_p = [&](int x, int y) { return raster.IsDelimitation(x, y); };
   std::vector<int> links = DiscOffsets(raster, 2.0 * epsilon);
   links.erase(links.begin());  // the cell itself
-  auto open = [&](int i) {
-    return (raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) == CellRaster::kOwned;
-  };
   std::vector<int> forward;
   std::vector<int> backward;
   std::vector<Point2> chain;
   std::vector<std::vector<int>> pieces;
   std::vector<std::pair<double, double>> intervals;
-  for (const int start : raster.owned_delimitation()) {
+  for (const int start : starts) {
     if (!open(start)) continue;
-    raster.at(start) |= CellRaster::kCovered;
+    take(start);
     forward.assign(1, start);
     backward.clear();
     for (auto* walk : {&forward, &backward}) {
@@ -61,7 +64,7 @@ void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline
           }
         }
         if (next < 0) break;
-        raster.at(next) |= CellRaster::kCovered;
+        take(next);
         walk->push_back(next);
         current = next;
       }
@@ -99,6 +102,26 @@ void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline
     SimplifyChain(static_cast<int>(chain.size()), valid, pieces);
     for (const auto& piece : pieces) polylines.push_back(MakePolyline(chain, piece));
   }
+}
+
+}  // namespace
+
+void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines) {
+  for (const CellPolyline& polyline : polylines) MarkCovered(raster, polyline, epsilon);
+  CoverChains(
+      raster, epsilon, raster.owned_delimitation(),
+      [&](int i) {
+        return (raster.at(i) & (CellRaster::kOwned | CellRaster::kCovered)) == CellRaster::kOwned;
+      },
+      [&](int i) { raster.at(i) |= CellRaster::kCovered; }, polylines);
+}
+
+void CoverPoints(CellRaster& raster, double epsilon, const std::vector<int>& points,
+                 std::vector<CellPolyline>& polylines) {
+  for (const int i : points) raster.at(i) |= CellRaster::kVisited;
+  CoverChains(
+      raster, epsilon, points, [&](int i) { return raster.Has(i, CellRaster::kVisited); },
+      [&](int i) { raster.at(i) &= static_cast<uint8_t>(~CellRaster::kVisited); }, polylines);
 }
 
 }  // namespace fleetmap::vector_map

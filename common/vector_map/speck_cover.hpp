@@ -19,6 +19,12 @@ namespace fleetmap::vector_map {
 // segment of `polylines`. Uses CellRaster::kCovered.
 void CoverRemaining(CellRaster& raster, double epsilon, std::vector<CellPolyline>& polylines);
 
+// Appends polylines so that each of `points` (raster indices of P points, in the order chains
+// start from) is within `epsilon` (cells) of a segment, as the cover stage would with only these
+// points open. Uses CellRaster::kVisited (clear on entry and on return).
+void CoverPoints(CellRaster& raster, double epsilon, const std::vector<int>& points,
+                 std::vector<CellPolyline>& polylines);
+
 // Sets CellRaster::kCovered on the owned P points within `epsilon` of segment [a, b], or of a
 // polyline's segments.
 void MarkCovered(CellRaster& raster, const Point2& a, const Point2& b, double epsilon);

@@ -15,6 +15,7 @@
 #include "common/vector_map/line_refit.hpp"
 #include "common/vector_map/painted_cells.hpp"
 #include "common/vector_map/paper_vectorizer.hpp"
+#include "common/vector_map/point_collapse.hpp"
 
 namespace fleetmap::vector_map {
 
@@ -88,6 +89,7 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   } else {
     CellRaster raster(grid, rect, DefaultMargin(eps_cells), options_.thresholds);
     polylines = DefaultVectorize(raster, grid, options_.thresholds, eps_cells);
+    CollapseToPoints(raster, eps_cells, polylines);
     if (lattice.enabled()) {
       // Half widths are measured from the snapped vertices (what a reader will see).
       for (CellPolyline& polyline : polylines) {

@@ -81,6 +81,53 @@ TEST(VectorizerTest, IsolatedCellIsAPointObstacle) {
   ExpectValid(map, grid);
 }
 
+// The cells of `grid` whose state `back` (a rasterized vector map) gets wrong.
+int CellsChanged(const OccupancyGrid& grid, const OccupancyGrid& back) {
+  int changed = 0;
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) changed += grid.StateAt(x, y) != back.StateAt(x, y);
+  }
+  return changed;
+}
+
+TEST(VectorizerTest, BlobsOneDiscPaintsAreOnePoint) {
+  // A pair of cells and a 2 x 2 block: one point each, whose disc paints the blob exactly.
+  const OccupancyGrid grid = GridFromPicture({"..........",  //
+                                              ".##.......",  //
+                                              "..........",  //
+                                              "......##..",  //
+                                              "......##..",  //
+                                              ".........."});
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 2u);
+  for (const Polyline& obstacle : map.obstacles) EXPECT_EQ(obstacle.points.size(), 1u);
+  EXPECT_EQ(CellsChanged(grid, *Rasterizer().Rasterize(map, grid)), 0);
+}
+
+TEST(VectorizerTest, ARowOfThreeCellsStaysALine) {
+  // One point 1 cell from both ends would satisfy both constraints, but its disc would paint the
+  // two cells beside the middle one too: the line paints the row exactly, so it stays.
+  const OccupancyGrid grid = GridFromPicture({".......", ".......", ".###...", "......."});
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  ASSERT_EQ(map.obstacles.size(), 1u);
+  EXPECT_EQ(map.obstacles[0].points.size(), 2u);
+  EXPECT_EQ(CellsChanged(grid, *Rasterizer().Rasterize(map, grid)), 0);
+}
+
+TEST(VectorizerTest, WallFourCellsThickIsDrawnByItsFaces) {
+  // No centre line is within epsilon (sqrt 2 cells) of both faces of a wall four cells thick, and
+  // hollowing keeps all of it, so the skeleton zigzags between the faces (56 vertices on this
+  // wall). The two faces are a few vertices and paint the wall back nearly as well.
+  OccupancyGrid grid(90, 30, 0.05, {}, grid::kFreeValue);
+  FillRect(grid, 5, 10, 84, 13, grid::kOccupiedValue);
+  const VectorMap map = VectorizeOrDie(grid);
+  ExpectValid(map, grid);
+  EXPECT_LE(map.ObstacleVertexCount(), 8u);
+  EXPECT_LE(CellsChanged(grid, *Rasterizer().Rasterize(map, grid)), 3);
+}
+
 TEST(VectorizerTest, AllOccupiedIsOutlinedAtTheGridBorder) {
   const OccupancyGrid grid(30, 20, 0.05, {}, grid::kOccupiedValue);
   const VectorMap map = VectorizeOrDie(grid);
