@@ -206,9 +206,10 @@ using fleetmap_msgs::msg::dds_::VectorTile_;
 using vector_map::FreePolygon;
 using vector_map::Polyline;
 
-// obstacle_sizes, free_polygon_rings and free_ring_sizes are uint16: the most vertices one wire
-// polyline or ring, and the most rings one polygon, can have.
+// free_polygon_rings and free_ring_sizes are uint16: the most vertices one wire ring, and the most
+// rings one polygon, can have. obstacle_sizes are uint8: longer polylines travel as pieces.
 constexpr size_t kMaxWireCount = UINT16_MAX;
+constexpr size_t kMaxWirePolyline = UINT8_MAX;
 
 // Quantises coordinates relative to one tile's corner. Decoding computes the point as
 // (tile index * kTileQuantaPerSide + local) * quantum, an integer times the quantum, so a point on
@@ -234,18 +235,6 @@ class TileQuantiser {
     return {(corner_units_.x() + x) * quantum_, (corner_units_.y() + y) * quantum_};
   }
 
-  // Whole quanta, rounded up so that a reader never paints an obstacle thinner than it was
-  // measured; the slack keeps a half width that already is whole quanta (as the vectorizer makes
-  // them on the tile lattice) exact through the division.
-  StatusOr<uint16_t> HalfWidth(double half_width) const {
-    const double quanta = std::ceil(half_width / quantum_ - 1e-9);
-    if (!(quanta >= 0.0 && quanta <= UINT16_MAX)) {
-      return InvalidArgumentError("an obstacle half width of " + std::to_string(half_width) +
-                                  " m does not fit");
-    }
-    return static_cast<uint16_t>(quanta);
-  }
-
  private:
   StatusOr<int16_t> Quantise(double coordinate, double corner_units) const {
     const double units = std::round(coordinate / quantum_ - corner_units);
@@ -260,6 +249,19 @@ class TileQuantiser {
   Point2 corner_units_;  // the tile's corner in quanta
   double quantum_;
 };
+
+// Whole HalfWidthStep(epsilon), rounded up so that a reader never paints an obstacle thinner than
+// it was measured; the slack keeps a half width that already is whole steps (as the vectorizer
+// makes them on the tile lattice) exact through the division.
+StatusOr<uint8_t> HalfWidthSteps(double half_width, double epsilon) {
+  if (half_width == 0.0) return 0;
+  const double steps = std::ceil(half_width / vector_map::HalfWidthStep(epsilon) - 1e-9);
+  if (!(steps >= 0.0 && steps <= vector_map::kMaxHalfWidthSteps)) {
+    return InvalidArgumentError("an obstacle half width of " + std::to_string(half_width) +
+                                " m is not within epsilon (" + std::to_string(epsilon) + " m)");
+  }
+  return static_cast<uint8_t>(steps);
+}
 
 template <typename T>
 uint64_t Sum(const std::vector<T>& values) {
@@ -296,21 +298,6 @@ Status CheckOptionalLength(size_t values, const char* name, size_t elements, con
                               " values for " + std::to_string(elements) + " " + what);
 }
 
-// Half widths are at most epsilon (docs/file-formats.md), plus the quantum the rounding up may
-// add: a larger one is a broken or hostile tile that would make a rasterizer paint huge discs.
-Status CheckHalfWidths(const std::vector<uint16_t>& half_widths, const char* name,
-                       const VectorTile_& tile) {
-  const double limit = std::ceil(tile.epsilon() / tile.quantum()) + 1.0;
-  for (size_t k = 0; k < half_widths.size(); ++k) {
-    if (half_widths[k] > limit) {
-      return InvalidArgumentError(std::string(name) + "[" + std::to_string(k) + "] is " +
-                                  std::to_string(half_widths[k]) + " quanta, more than epsilon (" +
-                                  std::to_string(tile.epsilon()) + " m)");
-    }
-  }
-  return Status::Ok();
-}
-
 Status CheckObstacleCounts(const VectorTile_& tile) {
   const size_t polylines = tile.obstacle_sizes().size();
   FLEETMAP_RETURN_IF_ERROR(CheckSameLength(tile.obstacle_x().size(), "obstacle_x",
@@ -334,9 +321,6 @@ Status CheckObstacleCounts(const VectorTile_& tile) {
       CheckSameLength(tile.point_x().size(), "point_x", tile.point_y().size(), "point_y"));
   FLEETMAP_RETURN_IF_ERROR(CheckOptionalLength(tile.point_half_widths().size(), "point_half_widths",
                                                tile.point_x().size(), "points"));
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckHalfWidths(tile.obstacle_half_widths(), "obstacle_half_widths", tile));
-  FLEETMAP_RETURN_IF_ERROR(CheckHalfWidths(tile.point_half_widths(), "point_half_widths", tile));
   FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_x(), "obstacle_x"));
   FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_y(), "obstacle_y"));
   FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.point_x(), "point_x"));
@@ -391,18 +375,18 @@ Status CheckTile(const VectorTile_& tile) {
 }
 
 // One polyline of two or more vertices. A closed one is written with its first vertex repeated at
-// its end (its closing segment; fewer than three vertices have none). More than kMaxWireCount
-// vertices are written as open pieces of at most kMaxWireCount, each starting at the last vertex
-// of the one before, so the pieces have exactly the polyline's segments.
-Status AppendPolyline(const Polyline& polyline, uint16_t half_width, const TileQuantiser& quantiser,
+// its end (its closing segment; fewer than three vertices have none). More than kMaxWirePolyline
+// vertices are written as open pieces of at most kMaxWirePolyline, each starting at the last
+// vertex of the one before, so the pieces have exactly the polyline's segments.
+Status AppendPolyline(const Polyline& polyline, uint8_t half_width, const TileQuantiser& quantiser,
                       VectorTile_* out) {
   const std::vector<Point2>& points = polyline.points;
   const size_t n = points.size();
   const size_t total = polyline.closed && n >= 3 ? n + 1 : n;
   size_t start = 0;
   while (true) {
-    const size_t end = std::min(total, start + kMaxWireCount);
-    out->obstacle_sizes().push_back(static_cast<uint16_t>(end - start));
+    const size_t end = std::min(total, start + kMaxWirePolyline);
+    out->obstacle_sizes().push_back(static_cast<uint8_t>(end - start));
     out->obstacle_half_widths().push_back(half_width);
     for (size_t i = start; i < end; ++i) {
       FLEETMAP_RETURN_IF_ERROR(
@@ -439,8 +423,8 @@ Status AppendFreePolygon(const FreePolygon& polygon, const TileQuantiser& quanti
   return Status::Ok();
 }
 
-bool AllZero(const std::vector<uint16_t>& values) {
-  return std::all_of(values.begin(), values.end(), [](uint16_t value) { return value == 0; });
+bool AllZero(const std::vector<uint8_t>& values) {
+  return std::all_of(values.begin(), values.end(), [](uint8_t value) { return value == 0; });
 }
 
 }  // namespace
@@ -464,7 +448,8 @@ StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   out.resolution(static_cast<float>(message.map.resolution));
   for (const Polyline& polyline : message.map.obstacles) {
     if (polyline.points.empty()) continue;
-    FLEETMAP_ASSIGN_OR_RETURN(const uint16_t half_width, quantiser.HalfWidth(polyline.half_width));
+    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width,
+                              HalfWidthSteps(polyline.half_width, message.map.epsilon));
     if (polyline.points.size() == 1) {
       FLEETMAP_RETURN_IF_ERROR(
           quantiser.Append(polyline.points[0], &out.point_x(), &out.point_y()));
@@ -497,6 +482,7 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   out.map.epsilon = tile.epsilon();
   out.map.resolution = tile.resolution();
   const TileQuantiser quantiser(out.tile, out.tile_size);
+  const double half_width_step = vector_map::HalfWidthStep(out.map.epsilon);
   const auto& xs = tile.obstacle_x();
   const auto& ys = tile.obstacle_y();
   out.map.obstacles.reserve(tile.obstacle_sizes().size() + tile.point_x().size());
@@ -507,8 +493,9 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
     Polyline polyline;
     // The LinearRing convention: a repeated first vertex closes the polyline.
     polyline.closed = n >= 4 && xs[vertex] == xs[last] && ys[vertex] == ys[last];
-    polyline.half_width =
-        tile.obstacle_half_widths().empty() ? 0.0 : tile.obstacle_half_widths()[k] * tile.quantum();
+    polyline.half_width = tile.obstacle_half_widths().empty()
+                              ? 0.0
+                              : tile.obstacle_half_widths()[k] * half_width_step;
     const size_t kept = polyline.closed ? n - 1 : n;
     polyline.points.reserve(kept);
     for (size_t i = 0; i < kept; ++i) {
@@ -521,7 +508,7 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
     Polyline point;
     point.points.push_back(quantiser.Decode(tile.point_x()[i], tile.point_y()[i]));
     point.half_width =
-        tile.point_half_widths().empty() ? 0.0 : tile.point_half_widths()[i] * tile.quantum();
+        tile.point_half_widths().empty() ? 0.0 : tile.point_half_widths()[i] * half_width_step;
     out.map.obstacles.push_back(std::move(point));
   }
   size_t ring = 0;

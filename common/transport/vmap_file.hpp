@@ -13,11 +13,12 @@
 
 namespace fleetmap::transport {
 
-// Version 3 (quantum tile_size / 16000, tiled_vector_map.hpp) replaced version 2 (the same layout
-// with tile_size / 16384), which replaced version 1 (uint32 counts, no point arrays, closed flags);
-// a file of another version is refused with a message naming both.
+// Version 4 (uint8 obstacle sizes and half widths in steps of epsilon / 254) replaced version 3
+// (uint16 for both, half widths in quanta), which replaced version 2 (quantum tile_size / 16384
+// instead of tile_size / 16000), which replaced version 1 (uint32 counts, no point arrays, closed
+// flags); a file of another version is refused with a message naming both.
 inline constexpr char kVmapFormatPrefix[] = "fleetmap-vmap/";
-inline constexpr char kVmapFormat[] = "fleetmap-vmap/3";
+inline constexpr char kVmapFormat[] = "fleetmap-vmap/4";
 
 struct VmapReadOptions {
   size_t max_bytes = size_t{1} << 30;  // a larger file is refused before it is read

@@ -38,4 +38,8 @@ void VectorMap::Append(const VectorMap& other) {
 
 double DefaultEpsilon(double resolution) { return std::numbers::sqrt2 * resolution; }
 
+double HalfWidthStep(double epsilon) {
+  return static_cast<double>(static_cast<float>(epsilon)) / kHalfWidthStepsPerEpsilon;
+}
+
 }  // namespace fleetmap::vector_map

@@ -55,4 +55,12 @@ struct VectorMap {
 // sqrt(2) * resolution: the smallest distance joining a cell centre to its 8 neighbours.
 double DefaultEpsilon(double resolution);
 
+// Half widths travel in the tile codec as uint8 counts of HalfWidthStep(epsilon): epsilon (as the
+// tile's float field holds it) / 254. So 254 steps make epsilon and the 255th absorbs the float's
+// rounding: a half width of exactly epsilon always fits. At the default epsilon of a 5 cm grid a
+// step is 0.28 mm.
+inline constexpr int kHalfWidthStepsPerEpsilon = 254;
+inline constexpr int kMaxHalfWidthSteps = 255;
+double HalfWidthStep(double epsilon);
+
 }  // namespace fleetmap::vector_map

@@ -72,13 +72,15 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   map.epsilon = epsilon;
   if (rect.empty()) return map;
 
-  // A half width in cells as emitted, metres: on a lattice rounded up to whole quanta (a codec
-  // storing quanta then loses nothing).
+  // A half width in cells as emitted, metres: on a lattice (for the tile codec) rounded up to
+  // whole HalfWidthStep(epsilon), which the codec stores exactly.
+  const double half_width_step = HalfWidthStep(epsilon);
   auto emitted_half_width = [&](double half_width_cells) {
     const double h = half_width_cells * resolution;
-    return lattice.enabled()
-               ? std::min(epsilon, std::ceil(h / lattice.quantum()) * lattice.quantum())
-               : h;
+    if (!lattice.enabled()) return h;
+    const double steps =
+        std::min<double>(kMaxHalfWidthSteps, std::ceil(h / half_width_step - 1e-9));
+    return steps * half_width_step;
   };
   std::vector<CellPolyline> polylines;
   std::vector<double> half_widths;

@@ -161,8 +161,8 @@ Point2 At(int i, int j) {
   return {(kTile.x * n + i) * q, (kTile.y * n + j) * q};
 }
 
-// Whole quanta, as the vectorizer makes half widths on the lattice.
-double Quanta(int n) { return n * TileQuantum(kTileSize); }
+// Whole half-width steps of the tiles' epsilon, as the vectorizer makes half widths on the lattice.
+double Steps(int n) { return n * vector_map::HalfWidthStep(0.0707); }
 
 VectorTileMessage TileWith(std::vector<Polyline> obstacles, std::vector<FreePolygon> free = {}) {
   VectorTileMessage message;
@@ -211,26 +211,45 @@ grid::OccupancyGrid Painted(const std::vector<Polyline>& obstacles) {
 TEST(VectorTileCodecTest, PointObstaclesTravelInThePointArrays) {
   const Polyline line{{At(0, 0), At(100, 0)}, false, 0.0};
   const Polyline speck{{At(7, 8)}, false, 0.0};
-  const Polyline fat_speck{{At(9, 10)}, false, Quanta(41)};
+  const Polyline fat_speck{{At(9, 10)}, false, Steps(41)};
   const Polyline ring{{At(10, 10), At(20, 10), At(20, 20)}, true, 0.0};
   const VectorTileIdl idl = Encoded(TileWith({line, speck, ring, fat_speck}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint16_t>{2, 4}));
+  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{2, 4}));
   EXPECT_TRUE(idl.obstacle_half_widths().empty());  // all 0
   EXPECT_EQ(idl.point_x(), (std::vector<int16_t>{7, 9}));
   EXPECT_EQ(idl.point_y(), (std::vector<int16_t>{8, 10}));
-  EXPECT_EQ(idl.point_half_widths(), (std::vector<uint16_t>{0, 41}));
+  EXPECT_EQ(idl.point_half_widths(), (std::vector<uint8_t>{0, 41}));
   // Exactly what went in: points come back as one-vertex open polylines, after the others.
   EXPECT_EQ(Decoded(idl), (std::vector<Polyline>{line, ring, speck, fat_speck}));
 }
 
+TEST(VectorTileCodecTest, HalfWidthsTravelAsStepsOfEpsilonAndEpsilonAlwaysFits) {
+  // The tile carries epsilon as a float; 254 steps of it make epsilon, so a half width of exactly
+  // the (double) epsilon still fits in 255 steps whichever way the float rounded.
+  for (const double epsilon : {0.0707, 0.07071067811865477, 0.1414213562373095, 0.0353553, 0.3}) {
+    VectorTileMessage message = TileWith({Polyline{{At(0, 0), At(100, 0)}, false, epsilon}});
+    message.map.epsilon = epsilon;
+    const VectorTileIdl idl = Encoded(message);
+    ASSERT_EQ(idl.obstacle_half_widths().size(), 1u);
+    EXPECT_GE(idl.obstacle_half_widths()[0], vector_map::kHalfWidthStepsPerEpsilon);
+    const std::vector<Polyline> back = Decoded(idl);
+    ASSERT_EQ(back.size(), 1u);
+    EXPECT_GE(back[0].half_width, epsilon) << epsilon;
+    EXPECT_LT(back[0].half_width, epsilon * 1.005) << epsilon;
+    // Beyond epsilon is not a half width the constraints allow: refused, naming both.
+    message.map.obstacles[0].half_width = epsilon * 1.01;
+    EXPECT_THAT(ToIdl(message).status().message(), HasSubstr("is not within epsilon"));
+  }
+}
+
 TEST(VectorTileCodecTest, ClosedPolylinesRepeatTheirFirstVertex) {
-  const Polyline triangle{{At(10, 10), At(20, 10), At(20, 20)}, true, Quanta(3)};
-  const Polyline open_triangle{{At(10, 10), At(20, 10), At(20, 20)}, false, Quanta(3)};
+  const Polyline triangle{{At(10, 10), At(20, 10), At(20, 20)}, true, Steps(3)};
+  const Polyline open_triangle{{At(10, 10), At(20, 10), At(20, 20)}, false, Steps(3)};
   const VectorTileIdl idl = Encoded(TileWith({triangle, open_triangle}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint16_t>{4, 3}));
+  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{4, 3}));
   EXPECT_EQ(idl.obstacle_x(), (std::vector<int16_t>{10, 20, 20, 10, 10, 20, 20}));
   EXPECT_EQ(idl.obstacle_y(), (std::vector<int16_t>{10, 10, 20, 10, 10, 10, 20}));
-  EXPECT_EQ(idl.obstacle_half_widths(), (std::vector<uint16_t>{3, 3}));
+  EXPECT_EQ(idl.obstacle_half_widths(), (std::vector<uint8_t>{3, 3}));
   EXPECT_EQ(Decoded(idl), (std::vector<Polyline>{triangle, open_triangle}));
 
   // A closed ring whose last vertex already equals its first keeps it.
@@ -245,19 +264,18 @@ TEST(VectorTileCodecTest, DegenerateClosednessTakesItsCanonicalForm) {
   // closed adds a segment only from three vertices on (Polyline::SegmentCount), so a closed
   // polyline of two vertices is the open one, and a closed point is a point.
   const Polyline closed_pair{{At(1, 1), At(5, 1)}, true, 0.0};
-  const Polyline closed_point{{At(3, 3)}, true, Quanta(2)};
+  const Polyline closed_point{{At(3, 3)}, true, Steps(2)};
   const std::vector<Polyline> back = Decoded(Encoded(TileWith({closed_pair, closed_point})));
   EXPECT_EQ(back, (std::vector<Polyline>{Polyline{{At(1, 1), At(5, 1)}, false, 0.0},
-                                         Polyline{{At(3, 3)}, false, Quanta(2)}}));
+                                         Polyline{{At(3, 3)}, false, Steps(2)}}));
   EXPECT_EQ(back[0].SegmentCount(), closed_pair.SegmentCount());
 }
 
 TEST(VectorTileCodecTest, AnOpenLoopComesBackClosedAndPaintsTheSameCells) {
   // The vectorizer never emits this (MakePolyline closes such pieces), but another writer may:
   // n >= 4 vertices whose last is the first read as the closed ring, with the same segments.
-  const Polyline loop{{At(200, 200), At(1800, 200), At(1800, 1500), At(200, 1500), At(200, 200)},
-                      false,
-                      Quanta(40)};
+  const Polyline loop{
+      {At(200, 200), At(1800, 200), At(1800, 1500), At(200, 1500), At(200, 200)}, false, Steps(40)};
   const std::vector<Polyline> back = Decoded(Encoded(TileWith({loop})));
   ASSERT_EQ(back.size(), 1u);
   EXPECT_TRUE(back[0].closed);
@@ -279,10 +297,10 @@ std::vector<Point2> ManyPoints(size_t count) {
 }
 
 TEST(VectorTileCodecTest, ALongOpenPolylineIsSplitIntoPiecesSharingTheirEnds) {
-  const Polyline wall{ManyPoints(2 * 65535 + 10), false, Quanta(5)};
+  const Polyline wall{ManyPoints(2 * 255 + 10), false, Steps(5)};
   const VectorTileIdl idl = Encoded(TileWith({wall}));
-  // 131080 vertices: 65535, then 65535 from the 65535th, then the last 12 from the 131069th.
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint16_t>{65535, 65535, 12}));
+  // 520 vertices: 255, then 255 from the 255th, then the last 12 from the 509th.
+  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{255, 255, 12}));
   const std::vector<Polyline> pieces = Decoded(idl);
   ASSERT_EQ(pieces.size(), 3u);
   std::vector<Point2> joined;
@@ -302,10 +320,10 @@ TEST(VectorTileCodecTest, ALongOpenPolylineIsSplitIntoPiecesSharingTheirEnds) {
 }
 
 TEST(VectorTileCodecTest, ALongClosedPolylineBecomesOpenPiecesWithAllItsSegments) {
-  // 65535 vertices closed: 65536 on the wire with the repeated first, one too many.
-  const Polyline ring{ManyPoints(65535), true, 0.0};
+  // 255 vertices closed: 256 on the wire with the repeated first, one too many.
+  const Polyline ring{ManyPoints(255), true, 0.0};
   const VectorTileIdl idl = Encoded(TileWith({ring}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint16_t>{65535, 2}));
+  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{255, 2}));
   const std::vector<Polyline> pieces = Decoded(idl);
   ASSERT_EQ(pieces.size(), 2u);
   EXPECT_FALSE(pieces[0].closed);
@@ -315,7 +333,7 @@ TEST(VectorTileCodecTest, ALongClosedPolylineBecomesOpenPiecesWithAllItsSegments
   EXPECT_EQ(pieces[1].points, (std::vector<Point2>{ring.points.back(), ring.points.front()}));
   EXPECT_EQ(pieces[0].SegmentCount() + pieces[1].SegmentCount(), ring.SegmentCount());
   // One vertex fewer fits whole and stays closed.
-  const Polyline fits{ManyPoints(65534), true, 0.0};
+  const Polyline fits{ManyPoints(254), true, 0.0};
   EXPECT_EQ(Decoded(Encoded(TileWith({fits}))), std::vector<Polyline>{fits});
 }
 
@@ -347,8 +365,8 @@ TEST(VectorTileCodecTest, FreeRingsAndPolygonsTooLargeForTheCountsAreRefused) {
 }
 
 TEST(VectorTileCodecTest, FromIdlRefusesArraysThatDoNotAgree) {
-  const Polyline line{{At(0, 0), At(100, 0)}, false, Quanta(4)};
-  const Polyline speck{{At(7, 8)}, false, Quanta(2)};
+  const Polyline line{{At(0, 0), At(100, 0)}, false, Steps(4)};
+  const Polyline speck{{At(7, 8)}, false, Steps(2)};
   const FreePolygon square{{At(0, 0), At(900, 0), At(900, 900), At(0, 900)}, {{At(5, 5)}}};
   const VectorTileIdl good = Encoded(TileWith({line, speck}, {square}));
   ASSERT_TRUE(FromIdl(good).ok());
@@ -378,10 +396,6 @@ TEST(VectorTileCodecTest, FromIdlRefusesArraysThatDoNotAgree) {
        [](auto& t) {
          t.point_half_widths({2, 2});
        }},
-      {"point_half_widths[0] is 200 quanta, more than epsilon",
-       [](auto& t) { t.point_half_widths({200}); }},
-      {"obstacle_half_widths[0] is 65535 quanta, more than epsilon",
-       [](auto& t) { t.obstacle_half_widths({65535}); }},
       {"point_x value 30000 lies outside its tile", [](auto& t) { t.point_x({30000}); }},
       {"point_y value -2000 lies outside its tile", [](auto& t) { t.point_y({-2000}); }},
       {"obstacle_y value 17500 lies outside its tile",
@@ -429,20 +443,25 @@ TEST(VectorTileCodecTest, SeededRandomTilesNeverCrashTheDecoder) {
     for (auto& v : values) v = static_cast<uint16_t>(small(limit));
     return values;
   };
+  const auto bytes = [&](int count, int limit) {
+    std::vector<uint8_t> values(count);
+    for (auto& v : values) v = static_cast<uint8_t>(small(limit));
+    return values;
+  };
   const VectorTileIdl base = Encoded(TileWith({}));
   int decoded = 0;
   for (int round = 0; round < 20000; ++round) {
     VectorTileIdl tile = base;
     const int polylines = small(3);
-    tile.obstacle_sizes(counts(polylines, 5));
+    tile.obstacle_sizes(bytes(polylines, 5));
     const int vertices = small(12);
     tile.obstacle_x(coordinates(vertices));
     tile.obstacle_y(coordinates(small(1) == 0 ? vertices : small(12)));
-    tile.obstacle_half_widths(counts(small(1) == 0 ? polylines : small(3), 130));
+    tile.obstacle_half_widths(bytes(small(1) == 0 ? polylines : small(3), 255));
     const int points = small(3);
     tile.point_x(coordinates(points));
     tile.point_y(coordinates(small(1) == 0 ? points : small(3)));
-    tile.point_half_widths(counts(small(1) == 0 ? 0 : small(3), 130));
+    tile.point_half_widths(bytes(small(1) == 0 ? 0 : small(3), 255));
     const int polygons = small(2);
     tile.free_polygon_rings(counts(polygons, 2));
     tile.free_ring_sizes(counts(small(3), 4));
@@ -477,7 +496,7 @@ grid::OccupancyGrid Rooms() {
 }
 
 // What the vectorizer makes of a floor plan, of closed rooms and of speckle (many point obstacles
-// and small rings) comes back exactly, in wire order; half widths off the quantum round up.
+// and small rings) comes back exactly, in wire order, half widths included (whole steps).
 TEST(VectorTileCodecTest, VectorizerTilesRoundTrip) {
   size_t points = 0;
   size_t closed = 0;
@@ -488,7 +507,6 @@ TEST(VectorTileCodecTest, VectorizerTilesRoundTrip) {
     const StatusOr<vector_map::TiledVectorMap> tiled =
         vector_map::VectorizeTiled(grid, Transform2::Identity(), options);
     ASSERT_TRUE(tiled.ok()) << tiled.status();
-    const double q = TileQuantum(options.tile_size);
     for (const auto& [id, map] : tiled->tiles) {
       VectorTileMessage message;
       message.tile = id;
@@ -505,13 +523,7 @@ TEST(VectorTileCodecTest, VectorizerTilesRoundTrip) {
         const Polyline& got = back->map.obstacles[k];
         EXPECT_EQ(got.points, sent.points) << id << " obstacle " << k;
         EXPECT_EQ(got.closed, sent.closed) << id << " obstacle " << k;
-        // The vectorizer's half widths are whole quanta or epsilon, which rounds up.
-        if (sent.half_width < map.epsilon) {
-          EXPECT_EQ(got.half_width, sent.half_width) << id << " obstacle " << k;
-        } else {
-          EXPECT_GE(got.half_width, sent.half_width);
-          EXPECT_LT(got.half_width, sent.half_width + q);
-        }
+        EXPECT_EQ(got.half_width, sent.half_width) << id << " obstacle " << k;
         // Never an open loop (it would come back closed).
         if (!sent.closed && sent.points.size() >= 4) {
           EXPECT_NE(sent.points.front(), sent.points.back()) << id << " obstacle " << k;

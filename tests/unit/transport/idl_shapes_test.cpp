@@ -81,7 +81,7 @@ TEST(IdlShapesTest, VectorMapShapeMatchesGeneratedCode) {
   tile.free_x({0, 9, 9});
   tile.free_y({0, 0, 9});
   fleetmap_msgs::msg::dds_::VectorMap_ map;
-  map.format("fleetmap-vmap/3");
+  map.format("fleetmap-vmap/4");
   map.frame_id("fleet");
   map.tiles({tile, tile});
   ExpectShapeMatches(tile, VectorTileShape());
@@ -97,7 +97,7 @@ TEST(IdlShapesTest, VectorMapShapeMatchesGeneratedCode) {
 
 TEST(IdlShapesTest, VmapFormatShapeIsTheFirstFieldOfAVectorMap) {
   fleetmap_msgs::msg::dds_::VectorMap_ map;
-  map.format("fleetmap-vmap/3");
+  map.format("fleetmap-vmap/4");
   map.frame_id("fleet");
   const std::string bytes = Serialize(map, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS);
   const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),

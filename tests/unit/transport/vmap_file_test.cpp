@@ -29,8 +29,8 @@ Point2 At(const TileId& tile, double tile_size, int i, int j) {
   return {(tile.x * n + i) * q, (tile.y * n + j) * q};
 }
 
-// Half widths of whole quanta, as the vectorizer makes them on the tile lattice.
-double Quanta(double tile_size, int n) { return n * TileQuantum(tile_size); }
+// Half widths of whole steps of epsilon 0.0707, as the vectorizer makes them on the tile lattice.
+double Steps(int n) { return n * vector_map::HalfWidthStep(0.0707); }
 
 // Every kind of geometry the layout has: open and closed polylines, point obstacles with and
 // without a half width, polygons with and without holes, and a tile with obstacles only.
@@ -45,12 +45,12 @@ TiledVectorMap SampleMap() {
   first.frame_id = "fleet";
   first.resolution = 0.05;
   first.epsilon = 0.0707;
-  first.obstacles.push_back(Polyline{
-      {At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16000, 9000)}, false, Quanta(10, 82)});
+  first.obstacles.push_back(
+      Polyline{{At(a, 10, 0, 0), At(a, 10, 100, 5), At(a, 10, 16000, 9000)}, false, Steps(180)});
   first.obstacles.push_back(Polyline{{At(a, 10, 7, 7)}, false, 0.0});  // a point obstacle
   first.obstacles.push_back(
-      Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, Quanta(10, 41)});
-  first.obstacles.push_back(Polyline{{At(a, 10, 300, 40)}, false, Quanta(10, 41)});
+      Polyline{{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}, true, Steps(90)});
+  first.obstacles.push_back(Polyline{{At(a, 10, 300, 40)}, false, Steps(90)});
   first.free_space.push_back(
       FreePolygon{{At(a, 10, 0, 0), At(a, 10, 1000, 0), At(a, 10, 1000, 1000), At(a, 10, 0, 1000)},
                   {{At(a, 10, 10, 10), At(a, 10, 20, 10), At(a, 10, 20, 20)}}});
@@ -90,11 +90,12 @@ TEST(VmapFileTest, RoundTripIsExactOnTheLattice) {
   }
 }
 
-TEST(VmapFileTest, HalfWidthsOffTheQuantumRoundUp) {
+TEST(VmapFileTest, HalfWidthsOffTheStepRoundUp) {
   TiledVectorMap map = SampleMap();
   auto& obstacles = map.tiles.at({0, 0}).obstacles;
-  obstacles[0].half_width = 0.05;   // 81.92 quanta
-  obstacles[1].half_width = 0.025;  // a point: 40.96 quanta
+  obstacles[0].half_width = 0.05;    // 179.6 steps
+  obstacles[1].half_width = 0.025;   // a point: 89.8 steps
+  obstacles[2].half_width = 0.0707;  // epsilon itself fits, whatever the float rounding
   const auto decoded = DecodeVmap(Encoded(map), "sample.vmap");
   ASSERT_TRUE(decoded.ok()) << decoded.status();
   const auto& back = decoded->tiles.at({0, 0}).obstacles;
@@ -102,16 +103,16 @@ TEST(VmapFileTest, HalfWidthsOffTheQuantumRoundUp) {
   ASSERT_EQ(back.size(), sent.size());
   for (size_t k = 0; k < sent.size(); ++k) {
     EXPECT_EQ(back[k].points, sent[k].points);
-    // Never thinner than what was sent, and less than a quantum thicker.
+    // Never thinner than what was sent, and less than a step thicker.
     EXPECT_GE(back[k].half_width, sent[k].half_width);
-    EXPECT_LT(back[k].half_width, sent[k].half_width + TileQuantum(10.0));
+    EXPECT_LT(back[k].half_width, sent[k].half_width + vector_map::HalfWidthStep(0.0707));
   }
 }
 
 // The example of docs/file-formats.md (VectorTile, field by field), after the encapsulation.
 std::string DocumentedExample() {
   const char* const fields[] = {
-      "10 00 00 00 66 6c 65 65 74 6d 61 70 2d 76 6d 61 70 2f 33 00",  // format
+      "10 00 00 00 66 6c 65 65 74 6d 61 70 2d 76 6d 61 70 2f 34 00",  // format
       "06 00 00 00 66 6c 65 65 74 00",                                // frame_id
       "00 00",                                                        // padding
       "00 00 00 00 00 00 24 40",                                      // tile_size 10
@@ -132,8 +133,10 @@ std::string DocumentedExample() {
       "7b 14 ae 47 e1 7a 44 3f",                                      // quantum
       "29 cb 90 3d",                                                  // epsilon
       "cd cc 4c 3d",                                                  // resolution
-      "02 00 00 00 02 00 04 00",                                      // obstacle_sizes [2, 4]
-      "02 00 00 00 52 00 00 00",                          // obstacle_half_widths [82, 0]
+      "02 00 00 00 02 04",                                            // obstacle_sizes [2, 4]
+      "00 00",                                                        // padding
+      "02 00 00 00 b4 00",                                // obstacle_half_widths [180, 0]
+      "00 00",                                            // padding
       "06 00 00 00 00 00 66 06 64 00 c8 00 c8 00 64 00",  // obstacle_x
       "06 00 00 00 00 00 00 00 64 00 64 00 c8 00 64 00",  // obstacle_y
       "01 00 00 00 f4 01",                                // point_x [500]
@@ -166,7 +169,7 @@ TEST(VmapFileTest, TheDocumentedExampleIsWhatTheCodecWrites) {
   tile.frame_id = "fleet";
   tile.epsilon = 0.0707;
   tile.obstacles = {
-      Polyline{{At(id, 10, 0, 0), At(id, 10, 1638, 0)}, false, Quanta(10, 82)},
+      Polyline{{At(id, 10, 0, 0), At(id, 10, 1638, 0)}, false, Steps(180)},
       Polyline{{At(id, 10, 100, 100), At(id, 10, 200, 100), At(id, 10, 200, 200)}, true, 0.0},
       Polyline{{At(id, 10, 500, 700)}, false, 0.0}};
   tile.free_space = {FreePolygon{{At(id, 10, 0, 0), At(id, 10, 1638, 0), At(id, 10, 0, 1638)}, {}}};
@@ -240,13 +243,13 @@ TEST(VmapFileTest, RefusesOtherFormatsAndBadHeaders) {
   other[1] = 7;  // encapsulation: not plain CDR
   EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(), HasSubstr("not a plain CDR"));
   other = bytes;
-  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/3"
+  other[4 + 4] = 'g';  // inside the format string "fleetmap-vmap/4"
   EXPECT_THAT(DecodeVmap(other, "x.vmap").status().message(),
-              HasSubstr("x.vmap: format \"gleetmap-vmap/3\" is not fleetmap-vmap/3"));
+              HasSubstr("x.vmap: format \"gleetmap-vmap/4\" is not fleetmap-vmap/4"));
   EXPECT_FALSE(DecodeVmap("hello world, not a map", "x.vmap").ok());
   // A format string longer than any version's, in a file larger than the bytes read for it.
   TiledVectorMap large = SampleMap();
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 400; ++i) {
     large.tiles.at({0, 0}).obstacles.push_back(Polyline{{At({0, 0}, 10, i, 3 * i)}});
   }
   other = Encoded(large);
@@ -277,15 +280,15 @@ TEST(VmapFileTest, RefusesLengthsThatClaimMoreThanTheFileHolds) {
 
 TEST(VmapFileTest, RefusesCountsThatDoNotAddUp) {
   std::string bytes = Encoded(SampleMap());
-  // The first tile's obstacle_sizes: 2 polylines of 3 and 3 + 1 (closed) vertices, as uint16.
-  const std::string needle("\x02\x00\x00\x00\x03\x00\x04\x00", 8);
+  // The first tile's obstacle_sizes: 2 polylines of 3 and 3 + 1 (closed) vertices, as uint8.
+  const std::string needle("\x02\x00\x00\x00\x03\x04", 6);
   const size_t at = bytes.find(needle);
   ASSERT_NE(at, std::string::npos);
   bytes[at + 4] = 2;  // the sum no longer matches
   EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
               HasSubstr("counts.vmap: tile (0, 0): obstacle_sizes add up to 6 vertices but 7"));
   bytes[at + 4] = 1;  // a one-vertex polyline outside the point arrays
-  bytes[at + 6] = 6;
+  bytes[at + 5] = 6;
   EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
               HasSubstr("obstacle_sizes[0] is 1"));
 }
@@ -317,7 +320,7 @@ TEST(VmapFileTest, AVersionOneFileIsRefusedNamingBothVersions) {
   EXPECT_EQ(decoded.status().code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(decoded.status().message(),
               HasSubstr("old.vmap: format fleetmap-vmap/1 is another version of the .vmap format; "
-                        "this fleetmap reads fleetmap-vmap/3 only"));
+                        "this fleetmap reads fleetmap-vmap/4 only"));
   // From a file as well.
   const std::string path =
       ::testing::TempDir() + "/vmap_v1_test_" + std::to_string(getpid()) + ".vmap";
@@ -331,18 +334,21 @@ TEST(VmapFileTest, AVersionOneFileIsRefusedNamingBothVersions) {
   std::remove(path.c_str());
 }
 
-TEST(VmapFileTest, AVersionTwoFileIsRefusedNamingBothVersions) {
-  // Version 2 had this layout with the quantum tile_size / 16384: its coordinates would decode
-  // 2.4 % off, so it is refused by its format string.
-  std::string bytes = Encoded(SampleMap());
-  const size_t at = bytes.find("fleetmap-vmap/3");
-  ASSERT_NE(at, std::string::npos);
-  bytes[at + std::string("fleetmap-vmap/").size()] = '2';
-  const auto decoded = DecodeVmap(bytes, "v2.vmap");
-  ASSERT_FALSE(decoded.ok());
-  EXPECT_THAT(decoded.status().message(),
-              HasSubstr("v2.vmap: format fleetmap-vmap/2 is another version of the .vmap format; "
-                        "this fleetmap reads fleetmap-vmap/3 only"));
+TEST(VmapFileTest, VersionTwoAndThreeFilesAreRefusedNamingBothVersions) {
+  // Version 2 (quantum tile_size / 16384: coordinates 2.4 % off) and version 3 (uint16 sizes and
+  // half widths in quanta) are refused by their format string, before any array is read.
+  for (const char version : {'2', '3'}) {
+    std::string bytes = Encoded(SampleMap());
+    const size_t at = bytes.find("fleetmap-vmap/4");
+    ASSERT_NE(at, std::string::npos);
+    bytes[at + std::string("fleetmap-vmap/").size()] = version;
+    const auto decoded = DecodeVmap(bytes, "old.vmap");
+    ASSERT_FALSE(decoded.ok());
+    EXPECT_THAT(decoded.status().message(),
+                HasSubstr(std::string("old.vmap: format fleetmap-vmap/") + version +
+                          " is another version of the .vmap format; this fleetmap reads "
+                          "fleetmap-vmap/4 only"));
+  }
 }
 
 TEST(VmapFileTest, SeededMutationsNeverCrash) {
@@ -373,7 +379,7 @@ TEST(VmapFileTest, SeededMutationsOfTheArraysNeverCrash) {
   // Byte edits only from tile (0, 0)'s obstacle_sizes on, where counts, point arrays, half widths
   // and coordinates sit side by side; a quarter are random bytes, the rest flip one bit.
   const std::string bytes = Encoded(SampleMap());
-  const size_t arrays = bytes.find(std::string("\x02\x00\x00\x00\x03\x00\x04\x00", 8));
+  const size_t arrays = bytes.find(std::string("\x02\x00\x00\x00\x03\x04", 6));
   ASSERT_NE(arrays, std::string::npos);
   std::mt19937 random(4321);
   int decoded_ok = 0;
