@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/vector_map/half_width.hpp"
 #include "common/vector_map/segment_geometry.hpp"
@@ -40,6 +41,7 @@ void CollapseToPoints(CellRaster& raster, double epsilon, std::vector<CellPolyli
   const CellRect window = raster.window();
   std::vector<Point2> covered;
   std::vector<CellPolyline> drawing(1);
+  std::vector<std::pair<double, Point2>> valid;  // (squared reach, candidate)
   for (CellPolyline& polyline : polylines) {
     const std::vector<Point2>& pts = polyline.points;
     if (pts.size() < 2 || polyline.closed || polyline.start_on_border || polyline.end_on_border ||
@@ -66,21 +68,28 @@ void CollapseToPoints(CellRaster& raster, double epsilon, std::vector<CellPolyli
     };
     const std::array<Point2, 4> candidates = {on_half_cells(centroid), pts.front(), pts.back(),
                                               on_half_cells(0.5 * (pts.front() + pts.back()))};
-    drawing[0] = polyline;
-    int best_score = PaintMatch(raster, drawing, epsilon, kMinHalfWidth);  // to paint as well
-    double best_reach = std::numeric_limits<double>::infinity();
-    const Point2* chosen = nullptr;
+    // The geometric tests first: the paint match is the costly one.
+    valid.clear();
     for (const Point2& c : candidates) {
       double reach = 0.0;
       for (const Point2& p : covered) reach = std::max(reach, (p - c).squaredNorm());
-      if (reach > eps2 || !NearDelimitation(raster, c, epsilon)) continue;
+      const bool seen =
+          std::any_of(valid.begin(), valid.end(), [&](const auto& v) { return v.second == c; });
+      if (!seen && reach <= eps2 && NearDelimitation(raster, c, epsilon)) {
+        valid.emplace_back(reach, c);
+      }
+    }
+    if (valid.empty()) continue;
+    std::stable_sort(valid.begin(), valid.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    drawing[0] = polyline;
+    int best_score = PaintMatch(raster, drawing, epsilon, kMinHalfWidth);  // to paint as well
+    const Point2* chosen = nullptr;
+    for (const auto& [reach, c] : valid) {  // nearest reach first: it wins ties
       drawing[0].points.assign(1, c);
       const int score = PaintMatch(raster, drawing, epsilon, kMinHalfWidth);
-      if (score < best_score || (score == best_score && chosen != nullptr && reach >= best_reach)) {
-        continue;
-      }
+      if (score < best_score || (score == best_score && chosen != nullptr)) continue;
       best_score = score;
-      best_reach = reach;
       chosen = &c;
     }
     if (chosen != nullptr) polyline.points.assign(1, *chosen);
