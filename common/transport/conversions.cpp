@@ -210,6 +210,8 @@ using vector_map::Polyline;
 // rings one polygon, can have. obstacle_sizes are uint8: longer polylines travel as pieces.
 constexpr size_t kMaxWireCount = UINT16_MAX;
 constexpr size_t kMaxWirePolyline = UINT8_MAX;
+// VectorTile::layout_version of this layout (docs/file-formats.md, "Versions").
+constexpr uint8_t kTileLayoutVersion = 4;
 
 // Quantises coordinates relative to one tile's corner. Decoding computes the point as
 // (tile index * kTileQuantaPerSide + local) * quantum, an integer times the quantum, so a point on
@@ -352,6 +354,13 @@ Status CheckFreeCounts(const VectorTile_& tile) {
 
 // Everything a tile must satisfy, on the way out and on the way in.
 Status CheckTile(const VectorTile_& tile) {
+  if (tile.layout_version() != kTileLayoutVersion) {
+    return InvalidArgumentError(
+        "layout_version is " + std::to_string(tile.layout_version()) + ", this fleetmap reads " +
+        std::to_string(kTileLayoutVersion) +
+        ": the tile comes from another fleetmap version (3 and older had no such field); agents "
+        "and server must run the same version");
+  }
   if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
     return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
                                 " is not a positive number");
@@ -442,6 +451,7 @@ StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   out.stamp(ToIdl(message.stamp));
   out.frame_id(message.map.frame_id);
   out.revision(message.revision);
+  out.layout_version(kTileLayoutVersion);
   out.tile_size(message.tile_size);
   out.quantum(quantiser.quantum());
   out.epsilon(static_cast<float>(message.map.epsilon));

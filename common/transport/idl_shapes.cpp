@@ -87,6 +87,7 @@ const CdrShape& VectorTileShape() {
                                  Struct("stamp", TimeShape()),
                                  String("frame_id"),
                                  Primitive("revision", 4),
+                                 Primitive("layout_version", 1),
                                  Primitive("tile_size", 8),
                                  Primitive("quantum", 8),
                                  Primitive("epsilon", 4),

@@ -2,6 +2,8 @@
 // readers/writers in this test process with intra-process delivery off. Each test uses its own
 // random domain so parallel runs never meet.
 
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -15,10 +17,12 @@
 
 #include "common/grid/map_io.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/store/map_store.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/robot_status_writer.hpp"
+#include "common/transport/tile_payload.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "tests/integration/fleet_binaries.hpp"
@@ -419,6 +423,55 @@ TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {
   restarted.Signal(SIGINT);
   EXPECT_EQ(restarted.Wait(kDeadline), 0);
   std::remove(store.c_str());
+}
+
+// A robot tile as fleetmap-vmap/3 (wire format version 3) laid it out: uint16 obstacle sizes and
+// half widths in quanta. A store written by that version holds such payloads.
+std::string VersionThreeTilePayload(const std::string& robot) {
+  std::string bytes(512, '\0');
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  cdr << robot << int32_t{1} << int32_t{0} << int32_t{0} << uint32_t{0};  // key, stamp
+  cdr << std::string("fleet") << uint32_t{1} << 10.0 << 10.0 / 16000 << 0.0707f << 0.05f;
+  cdr << std::vector<uint16_t>{2} << std::vector<uint16_t>{80};  // sizes, half widths
+  cdr << std::vector<int16_t>{0, 8000} << std::vector<int16_t>{4000, 4000};
+  cdr << std::vector<int16_t>{} << std::vector<int16_t>{} << std::vector<uint16_t>{};
+  cdr << std::vector<uint16_t>{} << std::vector<uint16_t>{} << std::vector<int16_t>{}
+      << std::vector<int16_t>{};
+  bytes.resize(cdr.getSerializedDataLength());
+  return bytes;
+}
+
+TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored) {
+  const std::string path = ::testing::TempDir() + "/fleet_old_store_" + std::to_string(getpid()) +
+                           "_" + std::to_string(domain_) + ".db";
+  std::remove(path.c_str());
+  {
+    auto store = store::MapStore::Open(path);
+    ASSERT_TRUE(store.ok()) << store.status();
+    transport::VectorTileMessage tile;
+    tile.robot_id = "alpha";
+    tile.tile = TileId{0, 0};
+    tile.revision = 1;
+    tile.map.frame_id = "fleet";
+    tile.map.epsilon = 0.0707;
+    tile.map.obstacles.push_back({{Point2(1.0, 5.0), Point2(9.0, 5.0)}, false, 0.0});
+    const StatusOr<std::string> good = transport::EncodeTilePayload(tile);
+    ASSERT_TRUE(good.ok()) << good.status();
+    ASSERT_TRUE((*store)
+                    ->PutTiles({{"alpha", TileId{0, 0}, 1, 1, *good},
+                                {"beta", TileId{1, 0}, 1, 1, VersionThreeTilePayload("beta")}})
+                    .ok());
+  }
+  Subprocess server({kServer, "--duration", "30", "--store", path}, env_);
+  EXPECT_TRUE(server.WaitForOutput("restored 1 robot tiles", kDeadline)) << server.Output();
+  EXPECT_NE(server.Output().find("skipping a stored tile of beta"), std::string::npos)
+      << server.Output();
+  server.Signal(SIGINT);
+  EXPECT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  std::remove(path.c_str());
 }
 
 TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {

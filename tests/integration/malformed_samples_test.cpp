@@ -245,6 +245,7 @@ fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
   tile.robot_id(robot);
   tile.frame_id("fleet");
+  tile.layout_version(4);
   tile.tile_size(10.0);
   tile.quantum(vector_map::TileQuantum(10.0));
   tile.epsilon(0.07f);
@@ -268,6 +269,7 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
   };
   const Case cases[] = {
       {"obstacle_sizes add up to", [](auto& t) { t.obstacle_sizes({3}); }},
+      {"layout_version is 3, this fleetmap reads 4", [](auto& t) { t.layout_version(3); }},
       {"epsilon 0.000000 is not a positive distance", [](auto& t) { t.epsilon(0.0f); }},
       {"outside its tile",
        [](auto& t) {

@@ -375,6 +375,7 @@ TEST(VectorTileCodecTest, FromIdlRefusesArraysThatDoNotAgree) {
     std::function<void(VectorTileIdl&)> spoil;
   };
   const Case cases[] = {
+      {"layout_version is 0, this fleetmap reads 4", [](auto& t) { t.layout_version(0); }},
       {"obstacle_x has 2 values but obstacle_y 3", [](auto& t) { t.obstacle_y().push_back(1); }},
       {"obstacle_sizes add up to 3 vertices but 2 are given",
        [](auto& t) { t.obstacle_sizes({3}); }},

@@ -128,7 +128,8 @@ std::string DocumentedExample() {
       "06 00 00 00 66 6c 65 65 74 00",                                // frame_id
       "00 00",                                                        // padding
       "00 00 00 00",                                                  // revision
-      "00 00 00 00",                                                  // padding
+      "04",                                                           // layout_version
+      "00 00 00",                                                     // padding
       "00 00 00 00 00 00 24 40",                                      // tile_size
       "7b 14 ae 47 e1 7a 44 3f",                                      // quantum
       "29 cb 90 3d",                                                  // epsilon
