@@ -255,11 +255,13 @@ class TileRun {
     }
   }
 
-  // A chain along a wall too thick for one centre line (SLAM blur makes walls 3-5 cells thick)
-  // zigzags between its faces, a vertex every few pixels. For such a chain the cover stage on the
-  // chain's own P points is tried too: it draws the two faces. The cover wins if it saves at
-  // least two vertices (the P points nearest to the chain's ends are not attached to it, and the
-  // final cover stage may need a vertex for them).
+  // A chain along a wall four cells thick (no centre line is within epsilon of both faces, and
+  // hollowing keeps such a wall whole) zigzags between its faces, a vertex every few pixels. For
+  // such a chain the cover stage on the chain's own P points is tried too: it draws the two faces,
+  // cut at hairpins so that each face gets its own half width. The faces win if they save at least
+  // two vertices (the P points nearest to the chain's ends are not attached to it, and the final
+  // cover stage may need a vertex for them) and paint the cells back no worse (on blurred SLAM
+  // walls they often would not).
   void ChooseCover(size_t c, size_t first, std::vector<CellPolyline>& out) {
     constexpr size_t kMinVertices = 3;
     constexpr int kMaxPixelsPerSegment = 6;  // straighter chains are left alone (and cost nothing)
@@ -292,9 +294,6 @@ class TileRun {
     out.insert(out.end(), cover_.begin(), cover_.end());
   }
 
-  std::vector<int> cover_points_;
-  std::vector<CellPolyline> cover_;
-  std::vector<CellPolyline> skeleton_;
   CellRaster& raster_;
   BorderNodes nodes_;
   double eps_;
@@ -311,6 +310,9 @@ class TileRun {
   std::vector<std::pair<double, double>> intervals_;
   std::vector<int> marked_;
   std::vector<std::pair<int, int>> attached_;
+  std::vector<int> cover_points_;       // ChooseCover's scratch
+  std::vector<CellPolyline> cover_;     // ChooseCover's scratch
+  std::vector<CellPolyline> skeleton_;  // ChooseCover's scratch
 };
 
 }  // namespace
