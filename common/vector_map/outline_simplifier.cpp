@@ -75,6 +75,109 @@ bool MatchVertices(const std::vector<cv::Point>& contour, const std::vector<cv::
   return true;
 }
 
+// Douglas-Peucker of a closed contour of integer points: what cv::approxPolyDP(contour, out,
+// epsilon, true) gives (OpenCV 4.6), vertex for vertex and in the same order, without its
+// InputArray, Mat and output copies (a tile has hundreds of contours, most of a few points, where
+// those cost far more than the algorithm). Each step reproduces OpenCV's arithmetic, since ties and
+// epsilon comparisons decide which points stay:
+//  1. the start is found by three rounds of "the point farthest from the current start" (strictly
+//     farther, first in contour order wins; the offset carries over to the next round); if every
+//     point is within epsilon of the last start, that start alone is the result;
+//  2. the ring is split there and at the farthest point, and each stretch is split at its point
+//     farthest (strictly, first wins) from the chord's line, first half first, until within
+//     epsilon; each stretch emits its first point;
+//  3. a closing pass, in place and cyclic from the last vertex, drops a vertex within
+//     epsilon / sqrt(2) of the line through its neighbours when their chord is neither horizontal
+//     nor vertical and the vertex lies between them, then skips the vertex after it.
+void ApproxClosed(const std::vector<cv::Point>& contour, double epsilon,
+                  std::vector<cv::Point>& out) {
+  out.clear();
+  const int n = static_cast<int>(contour.size());
+  if (n == 0) return;
+  const double eps2 = epsilon * epsilon;
+  auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
+  int start = 0;
+  int offset = 0;
+  double farthest2 = 0.0;
+  for (int round = 0; round < 3; ++round) {
+    start = (start + offset) % n;
+    const cv::Point& s = contour[start];
+    farthest2 = 0.0;
+    for (int j = 1, k = next(start); j < n; ++j, k = next(k)) {
+      const double dx = contour[k].x - s.x;
+      const double dy = contour[k].y - s.y;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 > farthest2) {
+        farthest2 = d2;
+        offset = j;
+      }
+    }
+  }
+  if (farthest2 <= eps2) {
+    out.push_back(contour[start]);
+    return;
+  }
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.clear();
+  const int far = (start + offset) % n;
+  stack.emplace_back(far, start);
+  stack.emplace_back(start, far);
+  while (!stack.empty()) {
+    const auto [first, last] = stack.back();
+    stack.pop_back();
+    const cv::Point& a = contour[first];
+    const cv::Point& b = contour[last];
+    const double dx = b.x - a.x;
+    const double dy = b.y - a.y;
+    double worst = 0.0;
+    int split = first;
+    for (int k = next(first); k != last; k = next(k)) {
+      const double d = std::abs((contour[k].y - a.y) * dx - (contour[k].x - a.x) * dy);
+      if (d > worst) {
+        worst = d;
+        split = k;
+      }
+    }
+    if (worst * worst <= eps2 * (dx * dx + dy * dy)) {
+      out.push_back(a);
+    } else {
+      stack.emplace_back(split, last);
+      stack.emplace_back(first, split);
+    }
+  }
+  // 3., on `out` as the ring buffer it works in (writes may wrap onto vertices not yet read).
+  const int count = static_cast<int>(out.size());
+  int kept = count;
+  auto step = [count](int k) { return k + 1 < count ? k + 1 : 0; };
+  int pos = count - 1;
+  cv::Point prev = out[pos];
+  pos = step(pos);
+  int write = pos;
+  cv::Point mid = out[pos];
+  pos = step(pos);
+  for (int i = 0; i < count && kept > 2; ++i) {
+    const cv::Point end = out[pos];
+    pos = step(pos);
+    const double dx = end.x - prev.x;
+    const double dy = end.y - prev.y;
+    const double d = std::abs((mid.x - prev.x) * dy - (mid.y - prev.y) * dx);
+    const int between = (mid.x - prev.x) * (end.x - mid.x) + (mid.y - prev.y) * (end.y - mid.y);
+    if (d * d <= 0.5 * eps2 * (dx * dx + dy * dy) && dx != 0 && dy != 0 && between >= 0) {
+      --kept;
+      out[write] = prev = end;
+      write = step(write);
+      mid = out[pos];
+      pos = step(pos);
+      ++i;
+      continue;
+    }
+    out[write] = prev = mid;
+    write = step(write);
+    mid = end;
+  }
+  out.resize(static_cast<size_t>(kept));
+}
+
 }  // namespace
 
 OutlineSimplifier::OutlineSimplifier(const cv::Mat& guarded, double epsilon_cells)
@@ -163,7 +266,7 @@ void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int
 
 std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour) const {
   std::vector<cv::Point> simplified;
-  cv::approxPolyDP(contour, simplified, epsilon_, /*closed=*/true);
+  ApproxClosed(contour, epsilon_, simplified);
   if (!any_guarded_ || contour.size() < 3 || simplified.empty()) return simplified;
   const int n = static_cast<int>(contour.size());
   std::vector<int> kept;
