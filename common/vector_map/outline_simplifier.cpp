@@ -95,26 +95,33 @@ void ApproxClosed(const std::vector<cv::Point>& contour, double epsilon,
   const int n = static_cast<int>(contour.size());
   if (n == 0) return;
   const double eps2 = epsilon * epsilon;
-  auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
+  // OpenCV computes the distances below in double from integer coordinates: the squares and cross
+  // products are integers far below 2^53, so it computes them exactly, and the same integers give
+  // the same comparisons. The cyclic scans run as two straight ones (no wrap test per point).
+  const cv::Point* const c = contour.data();
   int start = 0;
   int offset = 0;
-  double farthest2 = 0.0;
+  int64_t farthest2 = 0;
   for (int round = 0; round < 3; ++round) {
     start = (start + offset) % n;
-    const cv::Point& s = contour[start];
-    farthest2 = 0.0;
-    for (int j = 1, k = next(start); j < n; ++j, k = next(k)) {
-      const double dx = contour[k].x - s.x;
-      const double dy = contour[k].y - s.y;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 > farthest2) {
-        farthest2 = d2;
-        offset = j;
+    const cv::Point s = c[start];
+    farthest2 = 0;
+    auto scan = [&](int from, int to, int first_offset) {
+      for (int k = from; k < to; ++k) {
+        const int64_t dx = c[k].x - s.x;
+        const int64_t dy = c[k].y - s.y;
+        const int64_t d2 = dx * dx + dy * dy;
+        if (d2 > farthest2) {
+          farthest2 = d2;
+          offset = first_offset + (k - from);
+        }
       }
-    }
+    };
+    scan(start + 1, n, 1);
+    scan(0, start, n - start);
   }
-  if (farthest2 <= eps2) {
-    out.push_back(contour[start]);
+  if (static_cast<double>(farthest2) <= eps2) {
+    out.push_back(c[start]);
     return;
   }
   thread_local std::vector<std::pair<int, int>> stack;
@@ -125,20 +132,31 @@ void ApproxClosed(const std::vector<cv::Point>& contour, double epsilon,
   while (!stack.empty()) {
     const auto [first, last] = stack.back();
     stack.pop_back();
-    const cv::Point& a = contour[first];
-    const cv::Point& b = contour[last];
-    const double dx = b.x - a.x;
-    const double dy = b.y - a.y;
-    double worst = 0.0;
+    const cv::Point a = c[first];
+    const int64_t dx = c[last].x - a.x;
+    const int64_t dy = c[last].y - a.y;
+    int64_t worst = 0;
     int split = first;
-    for (int k = next(first); k != last; k = next(k)) {
-      const double d = std::abs((contour[k].y - a.y) * dx - (contour[k].x - a.x) * dy);
-      if (d > worst) {
-        worst = d;
-        split = k;
+    auto scan = [&](int from, int to) {
+      for (int k = from; k < to; ++k) {
+        const int64_t cross = (c[k].y - a.y) * dx - (c[k].x - a.x) * dy;
+        const int64_t d = cross < 0 ? -cross : cross;
+        if (d > worst) {
+          worst = d;
+          split = k;
+        }
       }
+    };
+    if (first < last) {
+      scan(first + 1, last);
+    } else {
+      scan(first + 1, n);
+      scan(0, last);
     }
-    if (worst * worst <= eps2 * (dx * dx + dy * dy)) {
+    const double d = static_cast<double>(worst);
+    const double ddx = static_cast<double>(dx);
+    const double ddy = static_cast<double>(dy);
+    if (d * d <= eps2 * (ddx * ddx + ddy * ddy)) {
       out.push_back(a);
     } else {
       stack.emplace_back(split, last);
