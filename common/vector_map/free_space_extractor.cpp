@@ -223,8 +223,9 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
   const OutlineSimplifier simplifier(any_solid ? cv::Mat(cls == kSolid) : cv::Mat(), epsilon_cells);
+  std::vector<cv::Point> simplified;
   auto convert = [&](const std::vector<cv::Point>& contour) {
-    const std::vector<cv::Point> simplified = simplifier.Simplify(contour);
+    simplifier.Simplify(contour, &simplified);
     std::vector<Point2> ring;
     ring.reserve(simplified.size());
     for (const cv::Point& p : simplified) ring.emplace_back(rect.x0 + p.x, rect.y0 + p.y);

@@ -258,7 +258,8 @@ void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int
                                std::vector<int>* kept) const {
   const size_t first = kept->size();
   const double epsilon2 = epsilon_ * epsilon_;
-  std::vector<std::pair<int, int>> stack = {{i, j}};
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.assign(1, {i, j});
   while (!stack.empty()) {
     const auto [lo, hi] = stack.back();
     stack.pop_back();
@@ -282,14 +283,15 @@ void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int
   std::sort(kept->begin() + static_cast<std::ptrdiff_t>(first), kept->end());
 }
 
-std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour) const {
-  std::vector<cv::Point> simplified;
-  ApproxClosed(contour, epsilon_, simplified);
-  if (!any_guarded_ || contour.size() < 3 || simplified.empty()) return simplified;
+void OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour,
+                                 std::vector<cv::Point>* ring) const {
+  ApproxClosed(contour, epsilon_, *ring);
+  if (!any_guarded_ || contour.size() < 3 || ring->empty()) return;
   const int n = static_cast<int>(contour.size());
-  std::vector<int> kept;
-  std::vector<int> at;
-  if (MatchVertices(contour, simplified, &at)) {
+  thread_local std::vector<int> kept;
+  thread_local std::vector<int> at;
+  kept.clear();
+  if (MatchVertices(contour, *ring, &at)) {
     bool changed = false;
     for (size_t m = 0; m < at.size(); ++m) {
       const int i = at[m];
@@ -300,7 +302,7 @@ std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>&
         changed = true;
       }
     }
-    if (!changed) return simplified;
+    if (!changed) return;
   } else {
     // The whole ring, checked: split at its first point and the point farthest from it.
     int farthest = 0;
@@ -319,10 +321,8 @@ std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>&
       Refine(contour, farthest, n, &kept);
     }
   }
-  std::vector<cv::Point> ring;
-  ring.reserve(kept.size());
-  for (const int k : kept) ring.push_back(contour[static_cast<size_t>(k % n)]);
-  return ring;
+  ring->clear();
+  for (const int k : kept) ring->push_back(contour[static_cast<size_t>(k % n)]);
 }
 
 }  // namespace fleetmap::vector_map
