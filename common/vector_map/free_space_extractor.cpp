@@ -219,8 +219,10 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     }
   }
   if (epsilon_cells >= 1.0) FillSpeckHoles(cls, kSolid, any_solid, mask);
-  std::vector<std::vector<cv::Point>> contours;
-  std::vector<cv::Vec4i> hierarchy;
+  // Per-thread, so that findContours resizes the contours of the previous call in place (it
+  // overwrites every one) instead of allocating hundreds of small vectors.
+  thread_local std::vector<std::vector<cv::Point>> contours;
+  thread_local std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
   const OutlineSimplifier simplifier(any_solid ? cv::Mat(cls == kSolid) : cv::Mat(), epsilon_cells);
   std::vector<cv::Point> simplified;
