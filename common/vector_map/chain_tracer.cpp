@@ -123,14 +123,26 @@ std::vector<int> PairEndsAtJunctions(const CellRaster& raster, const Neighbourho
 }
 
 // Concatenates chains along the paired ends.
-std::vector<PixelChain> MergeThroughJunctions(const std::vector<PixelChain>& chains,
+std::vector<PixelChain> MergeThroughJunctions(std::vector<PixelChain> chains,
                                               const std::vector<int>& partner) {
   const int n = static_cast<int>(chains.size());
   std::vector<PixelChain> merged;
+  merged.reserve(chains.size());
   std::vector<bool> used(n, false);
-  // A merged chain is built in a reused buffer, then stored with one allocation.
+  // A merged chain is built in a reused buffer, then stored with one allocation; a chain that
+  // continues into no other (most of them) is moved over as it is, reversed if walked from its
+  // back, and no other walk reads it again (it is used).
   thread_local std::vector<int> buffer;
   auto walk = [&](int start_end) {
+    const int first = start_end / 2;
+    used[first] = true;
+    const int first_next = partner[start_end % 2 == 0 ? 2 * first + 1 : 2 * first];
+    if (first_next < 0 || used[first_next / 2]) {
+      auto& pixels = chains[first].pixels;
+      if (start_end % 2 != 0) std::reverse(pixels.begin(), pixels.end());
+      merged.push_back(std::move(chains[first]));
+      return;
+    }
     buffer.clear();
     int end = start_end;
     while (true) {
@@ -248,7 +260,8 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
     chains.push_back({std::vector<int>(chain.begin(), chain.end())});
   }
   raster.Clear(skeleton, CellRaster::kVisited);
-  return MergeThroughJunctions(chains, PairEndsAtJunctions(raster, nb, chains));
+  const std::vector<int> partner = PairEndsAtJunctions(raster, nb, chains);
+  return MergeThroughJunctions(std::move(chains), partner);
 }
 
 }  // namespace fleetmap::vector_map
