@@ -155,6 +155,31 @@ class TileRun {
     for (const auto& [position, p] : attached) bucket_points_[fill_[position]++] = CellPoint(p);
   }
 
+  // Calls f(p, interior) for the P points attached to vertices i..j (i < j) of a chain being
+  // simplified (vertex m is chain vertex (m + shift) mod period), vertex by vertex, until f
+  // returns false (then returns false); `interior` is whether p's vertex is strictly between i and
+  // j. Consecutive vertices at consecutive positions have adjacent buckets, so such a run is one
+  // range of points (no per-vertex index arithmetic).
+  template <typename F>
+  bool ForEachAttached(const Chain& chain, int shift, int period, int i, int j, F&& f) const {
+    for (int m = i; m <= j;) {
+      const int offset = (m + shift) % period;
+      // Vertices m..last sit at the consecutive positions offset..offset + (last - m).
+      const int last = std::min(j, m + (period - 1 - offset));
+      const int* const starts = bucket_start_.data() + chain.base + offset;
+      const int run = last - m;
+      const int end = starts[run + 1];
+      // The points of vertex i and of vertex j are not interior.
+      const int interior_begin = m == i ? starts[1] : starts[0];
+      const int interior_end = last == j ? starts[run] : end;
+      for (int k = starts[0]; k < end; ++k) {
+        if (!f(bucket_points_[k], k >= interior_begin && k < interior_end)) return false;
+      }
+      m = last + 1;
+    }
+    return true;
+  }
+
   void Simplify(size_t c, std::vector<CellPolyline>& out) {
     const Chain& chain = chains_[c];
     const auto& points = chain.points;
@@ -194,36 +219,32 @@ class TileRun {
       double swept = 0.0;
       bool covered = !subset_test;
       bool skipped = false;
-      for (int m = i; m <= j; ++m) {
-        const int position = chain.base + (m + shift) % period;
-        const bool interior = m > i && m < j;
-        for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
-          const Point2& p = bucket_points_[k];
-          if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
-          if (covered) continue;
-          double lo = 0.0;
-          double hi = 0.0;
-          if (!interval(p, lo, hi)) continue;
-          if (lo <= swept + kDistanceTolerance) {
-            swept = std::max(swept, hi);
-            covered = swept >= length;
-          } else {
-            skipped = true;
-          }
-        }
-      }
+      const bool within =
+          ForEachAttached(chain, shift, period, i, j, [&](const Point2& p, bool interior) {
+            if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
+            if (covered) return true;
+            double lo = 0.0;
+            double hi = 0.0;
+            if (!interval(p, lo, hi)) return true;
+            if (lo <= swept + kDistanceTolerance) {
+              swept = std::max(swept, hi);
+              covered = swept >= length;
+            } else {
+              skipped = true;
+            }
+            return true;
+          });
+      if (!within) return false;
       if (subset_test) {
         if (covered || (!skipped && swept >= length - kDistanceTolerance)) return true;
         if (skipped) {
           intervals_.clear();
-          for (int m = i; m <= j; ++m) {
-            const int position = chain.base + (m + shift) % period;
-            for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
-              double lo = 0.0;
-              double hi = 0.0;
-              if (interval(bucket_points_[k], lo, hi)) intervals_.emplace_back(lo, hi);
-            }
-          }
+          ForEachAttached(chain, shift, period, i, j, [&](const Point2& p, bool) {
+            double lo = 0.0;
+            double hi = 0.0;
+            if (interval(p, lo, hi)) intervals_.emplace_back(lo, hi);
+            return true;
+          });
           if (IntervalsCover(intervals_, length)) return true;
         }
       }
