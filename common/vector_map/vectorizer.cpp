@@ -125,8 +125,8 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   for (size_t k = 0; k < polylines.size(); ++k) {
     Polyline out;
     out.closed = polylines[k].closed;
-    out.points.reserve(polylines[k].points.size());
-    for (const Point2& p : polylines[k].points) out.points.push_back(lattice.Snap(frame.ToMap(p)));
+    out.points = std::move(polylines[k].points);  // converted in place (no copy)
+    for (Point2& p : out.points) p = lattice.Snap(frame.ToMap(p));
     if (!half_widths.empty()) out.half_width = emitted_half_width(half_widths[k]);
     map.obstacles.push_back(std::move(out));
   }
