@@ -27,6 +27,12 @@ struct Chain {
 
 constexpr double kMinHalfWidth = 0.5;  // cells: the Rasterizer paints at least this far
 
+// Chains kept per thread between tiles, with their point buffers (a tile has hundreds of chains).
+std::vector<Chain>& ThreadChains() {
+  thread_local std::vector<Chain> chains;
+  return chains;
+}
+
 // A zeroed per-thread int image, reused across calls (callers restore the zeros).
 std::vector<int>& ZeroedSlots(size_t size) {
   thread_local std::vector<int> slots;
@@ -41,7 +47,8 @@ class TileRun {
       : raster_(raster),
         nodes_(raster, grid, thresholds),
         eps_(epsilon),
-        eps2_(ToleratedSquare(epsilon)) {}
+        eps2_(ToleratedSquare(epsilon)),
+        chains_(ThreadChains()) {}
 
   std::vector<CellPolyline> Run() {
     const std::vector<int> skeleton = ThinToSkeleton(raster_, eps_);
@@ -49,7 +56,7 @@ class TileRun {
     BuildChains();
     Attach();
     std::vector<CellPolyline> polylines;
-    for (size_t c = 0; c < chains_.size(); ++c) {
+    for (size_t c = 0; c < chain_count_; ++c) {
       const size_t first = polylines.size();
       Simplify(c, polylines);
       ChooseCover(c, first, polylines);
@@ -68,13 +75,17 @@ class TileRun {
 
   // Points of each chain; an end pixel of degree <= 1 next to an anchor across the tile border is
   // extended to the border node. One-pixel chains without a node are left to the cover stage.
+  // The first chain_count_ of chains_ are this tile's (the others keep their buffers for later).
   void BuildChains() {
-    chains_.clear();
+    chain_count_ = 0;
     chain_pixels_.clear();
     int position = 0;
     for (const PixelChain& pixel_chain : pixel_chains_) {
       const auto& pixels = pixel_chain.pixels;
-      Chain chain;
+      if (chain_count_ == chains_.size()) chains_.emplace_back();
+      Chain& chain = chains_[chain_count_];
+      chain.points.clear();
+      chain.on_border = {false, false};
       chain.ring = pixel_chain.ring();
       chain.points.reserve(pixels.size() + 2);  // and the border nodes
       for (const int index : pixels) chain.points.push_back(CellPoint(index));
@@ -99,7 +110,7 @@ class TileRun {
       chain.base = position;
       position += static_cast<int>(chain.points.size());
       chain_pixels_.push_back(&pixel_chain);
-      chains_.push_back(std::move(chain));
+      ++chain_count_;
     }
     positions_ = position;
   }
@@ -112,7 +123,7 @@ class TileRun {
     // in several chains keeps the smallest (an end wins). Restored to 0 after use.
     std::vector<int>& where = ZeroedSlots(raster_.size());
     marked_.clear();
-    for (size_t c = 0; c < chains_.size(); ++c) {
+    for (size_t c = 0; c < chain_count_; ++c) {
       const auto& pixels = chain_pixels_[c]->pixels;
       const int shift = chains_[c].on_border[0] ? 1 : 0;
       const int n = static_cast<int>(pixels.size());
@@ -321,7 +332,8 @@ class TileRun {
   double eps_;
   double eps2_;
   std::vector<PixelChain> pixel_chains_;
-  std::vector<Chain> chains_;
+  std::vector<Chain>& chains_;
+  size_t chain_count_ = 0;
   std::vector<const PixelChain*> chain_pixels_;
   int positions_ = 0;
   std::vector<int> bucket_start_;
