@@ -135,11 +135,13 @@ void ApproxClosed(const std::vector<cv::Point>& contour, double epsilon,
     const cv::Point a = c[first];
     const int64_t dx = c[last].x - a.x;
     const int64_t dy = c[last].y - a.y;
+    // (y - a.y) dx - (x - a.x) dy, with the terms of a taken out of the loop.
+    const int64_t bias = a.y * dx - a.x * dy;
     int64_t worst = 0;
     int split = first;
     auto scan = [&](int from, int to) {
       for (int k = from; k < to; ++k) {
-        const int64_t cross = (c[k].y - a.y) * dx - (c[k].x - a.x) * dy;
+        const int64_t cross = c[k].y * dx - c[k].x * dy - bias;
         const int64_t d = cross < 0 ? -cross : cross;
         if (d > worst) {
           worst = d;
