@@ -39,6 +39,16 @@ constexpr std::array<uint8_t, 256> BuildDegreeTable() {
 }
 constexpr std::array<uint8_t, 256> kDegreeTable = BuildDegreeTable();
 
+// A cached mask: the mask | kCachedMask (entries without the bit are not cached).
+constexpr uint16_t kCachedMask = 0x100;
+
+// A zeroed per-thread mask cache over the raster, reused across calls (callers restore the zeros).
+std::vector<uint16_t>& ZeroedMaskCache(size_t size) {
+  thread_local std::vector<uint16_t> cache;
+  if (cache.size() < size) cache.resize(size, 0);
+  return cache;
+}
+
 struct Neighbourhood {
   explicit Neighbourhood(const CellRaster& raster) : raster(raster) {
     for (int k = 0; k < 8; ++k) {
@@ -49,13 +59,19 @@ struct Neighbourhood {
   // Bit k: m-adjacency link from `index` to its neighbour k.
   unsigned Links(int index) const { return kLinkTable[Mask(index)]; }
   int Degree(int index) const { return kDegreeTable[Mask(index)]; }
-  // Bit k: neighbour k is skeleton.
+  // Bit k: neighbour k is skeleton. Tracing asks for each pixel's mask several times (its degree,
+  // its links, its neighbours' degrees), so TraceChains caches the skeleton's masks.
   unsigned Mask(int index) const {
+    if (cache != nullptr && (cache[index] & kCachedMask) != 0) return cache[index] & 0xFFu;
+    return ComputeMask(index);
+  }
+  unsigned ComputeMask(int index) const {
     unsigned mask = 0;
     for (int k = 0; k < 8; ++k) mask |= (Skeleton(index + offset[k]) ? 1u : 0u) << k;
     return mask;
   }
   const CellRaster& raster;
+  const uint16_t* cache = nullptr;
   std::array<int, 8> offset{};
 };
 
@@ -123,14 +139,26 @@ std::vector<int> PairEndsAtJunctions(const CellRaster& raster, const Neighbourho
 }
 
 // Concatenates chains along the paired ends.
-std::vector<PixelChain> MergeThroughJunctions(const std::vector<PixelChain>& chains,
+std::vector<PixelChain> MergeThroughJunctions(std::vector<PixelChain> chains,
                                               const std::vector<int>& partner) {
   const int n = static_cast<int>(chains.size());
   std::vector<PixelChain> merged;
+  merged.reserve(chains.size());
   std::vector<bool> used(n, false);
-  // A merged chain is built in a reused buffer, then stored with one allocation.
+  // A merged chain is built in a reused buffer, then stored with one allocation; a chain that
+  // continues into no other (most of them) is moved over as it is, reversed if walked from its
+  // back, and no other walk reads it again (it is used).
   thread_local std::vector<int> buffer;
   auto walk = [&](int start_end) {
+    const int first = start_end / 2;
+    used[first] = true;
+    const int first_next = partner[start_end % 2 == 0 ? 2 * first + 1 : 2 * first];
+    if (first_next < 0 || used[first_next / 2]) {
+      auto& pixels = chains[first].pixels;
+      if (start_end % 2 != 0) std::reverse(pixels.begin(), pixels.end());
+      merged.push_back(std::move(chains[first]));
+      return;
+    }
     buffer.clear();
     int end = start_end;
     while (true) {
@@ -170,7 +198,11 @@ int SkeletonDegree(const CellRaster& raster, int index) {
 }
 
 std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& skeleton) {
-  const Neighbourhood nb(raster);
+  // The skeleton does not change while it is traced (only kVisited does, which masks ignore).
+  Neighbourhood nb(raster);
+  std::vector<uint16_t>& cache = ZeroedMaskCache(raster.size());
+  for (const int p : skeleton) cache[p] = static_cast<uint16_t>(kCachedMask | nb.ComputeMask(p));
+  nb.cache = cache.data();
   std::vector<PixelChain> chains;
   auto terminal = [&](int index) { return nb.Degree(index) != 2; };
   auto visited = [&](int index) { return raster.Has(index, CellRaster::kVisited); };
@@ -248,7 +280,9 @@ std::vector<PixelChain> TraceChains(CellRaster& raster, const std::vector<int>& 
     chains.push_back({std::vector<int>(chain.begin(), chain.end())});
   }
   raster.Clear(skeleton, CellRaster::kVisited);
-  return MergeThroughJunctions(chains, PairEndsAtJunctions(raster, nb, chains));
+  const std::vector<int> partner = PairEndsAtJunctions(raster, nb, chains);
+  for (const int p : skeleton) cache[p] = 0;
+  return MergeThroughJunctions(std::move(chains), partner);
 }
 
 }  // namespace fleetmap::vector_map

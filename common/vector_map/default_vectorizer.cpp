@@ -27,6 +27,12 @@ struct Chain {
 
 constexpr double kMinHalfWidth = 0.5;  // cells: the Rasterizer paints at least this far
 
+// Chains kept per thread between tiles, with their point buffers (a tile has hundreds of chains).
+std::vector<Chain>& ThreadChains() {
+  thread_local std::vector<Chain> chains;
+  return chains;
+}
+
 // A zeroed per-thread int image, reused across calls (callers restore the zeros).
 std::vector<int>& ZeroedSlots(size_t size) {
   thread_local std::vector<int> slots;
@@ -41,7 +47,8 @@ class TileRun {
       : raster_(raster),
         nodes_(raster, grid, thresholds),
         eps_(epsilon),
-        eps2_(ToleratedSquare(epsilon)) {}
+        eps2_(ToleratedSquare(epsilon)),
+        chains_(ThreadChains()) {}
 
   std::vector<CellPolyline> Run() {
     const std::vector<int> skeleton = ThinToSkeleton(raster_, eps_);
@@ -49,7 +56,7 @@ class TileRun {
     BuildChains();
     Attach();
     std::vector<CellPolyline> polylines;
-    for (size_t c = 0; c < chains_.size(); ++c) {
+    for (size_t c = 0; c < chain_count_; ++c) {
       const size_t first = polylines.size();
       Simplify(c, polylines);
       ChooseCover(c, first, polylines);
@@ -68,13 +75,17 @@ class TileRun {
 
   // Points of each chain; an end pixel of degree <= 1 next to an anchor across the tile border is
   // extended to the border node. One-pixel chains without a node are left to the cover stage.
+  // The first chain_count_ of chains_ are this tile's (the others keep their buffers for later).
   void BuildChains() {
-    chains_.clear();
+    chain_count_ = 0;
     chain_pixels_.clear();
     int position = 0;
     for (const PixelChain& pixel_chain : pixel_chains_) {
       const auto& pixels = pixel_chain.pixels;
-      Chain chain;
+      if (chain_count_ == chains_.size()) chains_.emplace_back();
+      Chain& chain = chains_[chain_count_];
+      chain.points.clear();
+      chain.on_border = {false, false};
       chain.ring = pixel_chain.ring();
       chain.points.reserve(pixels.size() + 2);  // and the border nodes
       for (const int index : pixels) chain.points.push_back(CellPoint(index));
@@ -99,7 +110,7 @@ class TileRun {
       chain.base = position;
       position += static_cast<int>(chain.points.size());
       chain_pixels_.push_back(&pixel_chain);
-      chains_.push_back(std::move(chain));
+      ++chain_count_;
     }
     positions_ = position;
   }
@@ -112,7 +123,7 @@ class TileRun {
     // in several chains keeps the smallest (an end wins). Restored to 0 after use.
     std::vector<int>& where = ZeroedSlots(raster_.size());
     marked_.clear();
-    for (size_t c = 0; c < chains_.size(); ++c) {
+    for (size_t c = 0; c < chain_count_; ++c) {
       const auto& pixels = chain_pixels_[c]->pixels;
       const int shift = chains_[c].on_border[0] ? 1 : 0;
       const int n = static_cast<int>(pixels.size());
@@ -155,6 +166,31 @@ class TileRun {
     for (const auto& [position, p] : attached) bucket_points_[fill_[position]++] = CellPoint(p);
   }
 
+  // Calls f(p, interior) for the P points attached to vertices i..j (i < j) of a chain being
+  // simplified (vertex m is chain vertex (m + shift) mod period), vertex by vertex, until f
+  // returns false (then returns false); `interior` is whether p's vertex is strictly between i and
+  // j. Consecutive vertices at consecutive positions have adjacent buckets, so such a run is one
+  // range of points (no per-vertex index arithmetic).
+  template <typename F>
+  bool ForEachAttached(const Chain& chain, int shift, int period, int i, int j, F&& f) const {
+    for (int m = i; m <= j;) {
+      const int offset = (m + shift) % period;
+      // Vertices m..last sit at the consecutive positions offset..offset + (last - m).
+      const int last = std::min(j, m + (period - 1 - offset));
+      const int* const starts = bucket_start_.data() + chain.base + offset;
+      const int run = last - m;
+      const int end = starts[run + 1];
+      // The points of vertex i and of vertex j are not interior.
+      const int interior_begin = m == i ? starts[1] : starts[0];
+      const int interior_end = last == j ? starts[run] : end;
+      for (int k = starts[0]; k < end; ++k) {
+        if (!f(bucket_points_[k], k >= interior_begin && k < interior_end)) return false;
+      }
+      m = last + 1;
+    }
+    return true;
+  }
+
   void Simplify(size_t c, std::vector<CellPolyline>& out) {
     const Chain& chain = chains_[c];
     const auto& points = chain.points;
@@ -194,36 +230,32 @@ class TileRun {
       double swept = 0.0;
       bool covered = !subset_test;
       bool skipped = false;
-      for (int m = i; m <= j; ++m) {
-        const int position = chain.base + (m + shift) % period;
-        const bool interior = m > i && m < j;
-        for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
-          const Point2& p = bucket_points_[k];
-          if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
-          if (covered) continue;
-          double lo = 0.0;
-          double hi = 0.0;
-          if (!interval(p, lo, hi)) continue;
-          if (lo <= swept + kDistanceTolerance) {
-            swept = std::max(swept, hi);
-            covered = swept >= length;
-          } else {
-            skipped = true;
-          }
-        }
-      }
+      const bool within =
+          ForEachAttached(chain, shift, period, i, j, [&](const Point2& p, bool interior) {
+            if (interior && PointSegmentDistanceSquared(p, a, b) > eps2_) return false;
+            if (covered) return true;
+            double lo = 0.0;
+            double hi = 0.0;
+            if (!interval(p, lo, hi)) return true;
+            if (lo <= swept + kDistanceTolerance) {
+              swept = std::max(swept, hi);
+              covered = swept >= length;
+            } else {
+              skipped = true;
+            }
+            return true;
+          });
+      if (!within) return false;
       if (subset_test) {
         if (covered || (!skipped && swept >= length - kDistanceTolerance)) return true;
         if (skipped) {
           intervals_.clear();
-          for (int m = i; m <= j; ++m) {
-            const int position = chain.base + (m + shift) % period;
-            for (int k = bucket_start_[position]; k < bucket_start_[position + 1]; ++k) {
-              double lo = 0.0;
-              double hi = 0.0;
-              if (interval(bucket_points_[k], lo, hi)) intervals_.emplace_back(lo, hi);
-            }
-          }
+          ForEachAttached(chain, shift, period, i, j, [&](const Point2& p, bool) {
+            double lo = 0.0;
+            double hi = 0.0;
+            if (interval(p, lo, hi)) intervals_.emplace_back(lo, hi);
+            return true;
+          });
           if (IntervalsCover(intervals_, length)) return true;
         }
       }
@@ -299,7 +331,8 @@ class TileRun {
   double eps_;
   double eps2_;
   std::vector<PixelChain> pixel_chains_;
-  std::vector<Chain> chains_;
+  std::vector<Chain>& chains_;
+  size_t chain_count_ = 0;
   std::vector<const PixelChain*> chain_pixels_;
   int positions_ = 0;
   std::vector<int> bucket_start_;

@@ -61,17 +61,31 @@ void FillSpeckHoles(const cv::Mat& cls, uint8_t solid, bool any_solid, cv::Mat& 
     }
     return false;
   };
+  // Filling a speck changes no other cell's test: its four neighbours are inside the region, so
+  // none of them is a speck. The specks of a row can then be found from the mask as it was, a
+  // block of cells at a time with a branch-free (vectorized) test, and blocks without one skipped.
+  constexpr int kBlock = 16;
   for (int y = 1; y + 1 < height; ++y) {
     uint8_t* row = mask.ptr<uint8_t>(y);
     const uint8_t* above = mask.ptr<uint8_t>(y - 1);
     const uint8_t* below = mask.ptr<uint8_t>(y + 1);
-    for (int x = 1; x + 1 < width; ++x) {
-      if (row[x] != 0 || row[x - 1] == 0 || row[x + 1] == 0 || above[x] == 0 || below[x] == 0) {
-        continue;
+    auto speck = [&](int x) {
+      return row[x] == 0 && row[x - 1] != 0 && row[x + 1] != 0 && above[x] != 0 && below[x] != 0;
+    };
+    auto fill = [&](int x) {
+      if (speck(x) && !(any_solid && solid_near(x, y))) row[x] = 255;
+    };
+    int x = 1;
+    for (; x + kBlock < width; x += kBlock) {
+      uint8_t any = 0;
+      for (int k = x; k < x + kBlock; ++k) {
+        any |= static_cast<uint8_t>((row[k] == 0) & (row[k - 1] != 0) & (row[k + 1] != 0) &
+                                    (above[k] != 0) & (below[k] != 0));
       }
-      if (any_solid && solid_near(x, y)) continue;
-      row[x] = 255;
+      if (any == 0) continue;
+      for (int k = x; k < x + kBlock; ++k) fill(k);
     }
+    for (; x + 1 < width; ++x) fill(x);
   }
 }
 
@@ -205,12 +219,15 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
     }
   }
   if (epsilon_cells >= 1.0) FillSpeckHoles(cls, kSolid, any_solid, mask);
-  std::vector<std::vector<cv::Point>> contours;
-  std::vector<cv::Vec4i> hierarchy;
+  // Per-thread, so that findContours resizes the contours of the previous call in place (it
+  // overwrites every one) instead of allocating hundreds of small vectors.
+  thread_local std::vector<std::vector<cv::Point>> contours;
+  thread_local std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
   const OutlineSimplifier simplifier(any_solid ? cv::Mat(cls == kSolid) : cv::Mat(), epsilon_cells);
+  std::vector<cv::Point> simplified;
   auto convert = [&](const std::vector<cv::Point>& contour) {
-    const std::vector<cv::Point> simplified = simplifier.Simplify(contour);
+    simplifier.Simplify(contour, &simplified);
     std::vector<Point2> ring;
     ring.reserve(simplified.size());
     for (const cv::Point& p : simplified) ring.emplace_back(rect.x0 + p.x, rect.y0 + p.y);

@@ -604,9 +604,16 @@ class RefitRun {
     size_t best_painted = 0;
     size_t painted = 0;
     int prefix = base_score;
+    // The cells come sorted by distance, so equal half widths (ties, and every cell beyond
+    // epsilon) are adjacent: each radius is computed once.
+    double r2_half_width = -1.0;
+    double r2 = 0.0;
     for (const Ranked& cell : ranked_) {
       const double half_width = std::min(options_.epsilon, std::sqrt(cell.d2));
-      const double r2 = ToleratedSquare(PaintRadius(half_width));
+      if (half_width != r2_half_width) {
+        r2_half_width = half_width;
+        r2 = ToleratedSquare(PaintRadius(half_width));
+      }
       while (painted < ranked_.size() && ranked_[painted].d2 <= r2) {
         prefix += ranked_[painted].value;
         ++painted;

@@ -75,6 +75,129 @@ bool MatchVertices(const std::vector<cv::Point>& contour, const std::vector<cv::
   return true;
 }
 
+// Douglas-Peucker of a closed contour of integer points: what cv::approxPolyDP(contour, out,
+// epsilon, true) gives (OpenCV 4.6), vertex for vertex and in the same order, without its
+// InputArray, Mat and output copies (a tile has hundreds of contours, most of a few points, where
+// those cost far more than the algorithm). Each step reproduces OpenCV's arithmetic, since ties and
+// epsilon comparisons decide which points stay:
+//  1. the start is found by three rounds of "the point farthest from the current start" (strictly
+//     farther, first in contour order wins; the offset carries over to the next round); if every
+//     point is within epsilon of the last start, that start alone is the result;
+//  2. the ring is split there and at the farthest point, and each stretch is split at its point
+//     farthest (strictly, first wins) from the chord's line, first half first, until within
+//     epsilon; each stretch emits its first point;
+//  3. a closing pass, in place and cyclic from the last vertex, drops a vertex within
+//     epsilon / sqrt(2) of the line through its neighbours when their chord is neither horizontal
+//     nor vertical and the vertex lies between them, then skips the vertex after it.
+void ApproxClosed(const std::vector<cv::Point>& contour, double epsilon,
+                  std::vector<cv::Point>& out) {
+  out.clear();
+  const int n = static_cast<int>(contour.size());
+  if (n == 0) return;
+  const double eps2 = epsilon * epsilon;
+  // OpenCV computes the distances below in double from integer coordinates: the squares and cross
+  // products are integers far below 2^53, so it computes them exactly, and the same integers give
+  // the same comparisons. The cyclic scans run as two straight ones (no wrap test per point).
+  const cv::Point* const c = contour.data();
+  int start = 0;
+  int offset = 0;
+  int64_t farthest2 = 0;
+  for (int round = 0; round < 3; ++round) {
+    start = (start + offset) % n;
+    const cv::Point s = c[start];
+    farthest2 = 0;
+    auto scan = [&](int from, int to, int first_offset) {
+      for (int k = from; k < to; ++k) {
+        const int64_t dx = c[k].x - s.x;
+        const int64_t dy = c[k].y - s.y;
+        const int64_t d2 = dx * dx + dy * dy;
+        if (d2 > farthest2) {
+          farthest2 = d2;
+          offset = first_offset + (k - from);
+        }
+      }
+    };
+    scan(start + 1, n, 1);
+    scan(0, start, n - start);
+  }
+  if (static_cast<double>(farthest2) <= eps2) {
+    out.push_back(c[start]);
+    return;
+  }
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.clear();
+  const int far = (start + offset) % n;
+  stack.emplace_back(far, start);
+  stack.emplace_back(start, far);
+  while (!stack.empty()) {
+    const auto [first, last] = stack.back();
+    stack.pop_back();
+    const cv::Point a = c[first];
+    const int64_t dx = c[last].x - a.x;
+    const int64_t dy = c[last].y - a.y;
+    // (y - a.y) dx - (x - a.x) dy, with the terms of a taken out of the loop.
+    const int64_t bias = a.y * dx - a.x * dy;
+    int64_t worst = 0;
+    int split = first;
+    auto scan = [&](int from, int to) {
+      for (int k = from; k < to; ++k) {
+        const int64_t cross = c[k].y * dx - c[k].x * dy - bias;
+        const int64_t d = cross < 0 ? -cross : cross;
+        if (d > worst) {
+          worst = d;
+          split = k;
+        }
+      }
+    };
+    if (first < last) {
+      scan(first + 1, last);
+    } else {
+      scan(first + 1, n);
+      scan(0, last);
+    }
+    const double d = static_cast<double>(worst);
+    const double ddx = static_cast<double>(dx);
+    const double ddy = static_cast<double>(dy);
+    if (d * d <= eps2 * (ddx * ddx + ddy * ddy)) {
+      out.push_back(a);
+    } else {
+      stack.emplace_back(split, last);
+      stack.emplace_back(first, split);
+    }
+  }
+  // 3., on `out` as the ring buffer it works in (writes may wrap onto vertices not yet read).
+  const int count = static_cast<int>(out.size());
+  int kept = count;
+  auto step = [count](int k) { return k + 1 < count ? k + 1 : 0; };
+  int pos = count - 1;
+  cv::Point prev = out[pos];
+  pos = step(pos);
+  int write = pos;
+  cv::Point mid = out[pos];
+  pos = step(pos);
+  for (int i = 0; i < count && kept > 2; ++i) {
+    const cv::Point end = out[pos];
+    pos = step(pos);
+    const double dx = end.x - prev.x;
+    const double dy = end.y - prev.y;
+    const double d = std::abs((mid.x - prev.x) * dy - (mid.y - prev.y) * dx);
+    const int between = (mid.x - prev.x) * (end.x - mid.x) + (mid.y - prev.y) * (end.y - mid.y);
+    if (d * d <= 0.5 * eps2 * (dx * dx + dy * dy) && dx != 0 && dy != 0 && between >= 0) {
+      --kept;
+      out[write] = prev = end;
+      write = step(write);
+      mid = out[pos];
+      pos = step(pos);
+      ++i;
+      continue;
+    }
+    out[write] = prev = mid;
+    write = step(write);
+    mid = end;
+  }
+  out.resize(static_cast<size_t>(kept));
+}
+
 }  // namespace
 
 OutlineSimplifier::OutlineSimplifier(const cv::Mat& guarded, double epsilon_cells)
@@ -137,7 +260,8 @@ void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int
                                std::vector<int>* kept) const {
   const size_t first = kept->size();
   const double epsilon2 = epsilon_ * epsilon_;
-  std::vector<std::pair<int, int>> stack = {{i, j}};
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.assign(1, {i, j});
   while (!stack.empty()) {
     const auto [lo, hi] = stack.back();
     stack.pop_back();
@@ -161,14 +285,15 @@ void OutlineSimplifier::Refine(const std::vector<cv::Point>& contour, int i, int
   std::sort(kept->begin() + static_cast<std::ptrdiff_t>(first), kept->end());
 }
 
-std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour) const {
-  std::vector<cv::Point> simplified;
-  cv::approxPolyDP(contour, simplified, epsilon_, /*closed=*/true);
-  if (!any_guarded_ || contour.size() < 3 || simplified.empty()) return simplified;
+void OutlineSimplifier::Simplify(const std::vector<cv::Point>& contour,
+                                 std::vector<cv::Point>* ring) const {
+  ApproxClosed(contour, epsilon_, *ring);
+  if (!any_guarded_ || contour.size() < 3 || ring->empty()) return;
   const int n = static_cast<int>(contour.size());
-  std::vector<int> kept;
-  std::vector<int> at;
-  if (MatchVertices(contour, simplified, &at)) {
+  thread_local std::vector<int> kept;
+  thread_local std::vector<int> at;
+  kept.clear();
+  if (MatchVertices(contour, *ring, &at)) {
     bool changed = false;
     for (size_t m = 0; m < at.size(); ++m) {
       const int i = at[m];
@@ -179,7 +304,7 @@ std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>&
         changed = true;
       }
     }
-    if (!changed) return simplified;
+    if (!changed) return;
   } else {
     // The whole ring, checked: split at its first point and the point farthest from it.
     int farthest = 0;
@@ -198,10 +323,8 @@ std::vector<cv::Point> OutlineSimplifier::Simplify(const std::vector<cv::Point>&
       Refine(contour, farthest, n, &kept);
     }
   }
-  std::vector<cv::Point> ring;
-  ring.reserve(kept.size());
-  for (const int k : kept) ring.push_back(contour[static_cast<size_t>(k % n)]);
-  return ring;
+  ring->clear();
+  for (const int k : kept) ring->push_back(contour[static_cast<size_t>(k % n)]);
 }
 
 }  // namespace fleetmap::vector_map

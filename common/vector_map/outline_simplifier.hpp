@@ -31,9 +31,10 @@ class OutlineSimplifier {
   // free. `epsilon_cells` is the Douglas-Peucker tolerance.
   OutlineSimplifier(const cv::Mat& guarded, double epsilon_cells);
 
-  // The simplified closed ring. A result of fewer than 3 vertices encloses no guarded cell, so a
-  // caller may drop such a hole.
-  std::vector<cv::Point> Simplify(const std::vector<cv::Point>& contour) const;
+  // The simplified closed ring, into `ring` (replacing its contents; a caller reuses one buffer for
+  // all its contours). A result of fewer than 3 vertices encloses no guarded cell, so a caller may
+  // drop such a hole.
+  void Simplify(const std::vector<cv::Point>& contour, std::vector<cv::Point>* ring) const;
 
   // Whether a guarded cell lies in the contour's bounding box (`box`, as cv::boundingRect gives
   // it) grown by a cell (O(1)): false means nothing the contour encloses or passes is guarded.

@@ -58,8 +58,9 @@ void PaintedAndNearCells(const grid::CellRect& rect, const std::vector<CellPolyl
   const double near_r = std::max(0.0, near_radius);
   const double near2 = MarkedSquare(near_r);
   double r2 = 0.0;
-  // One visit of the larger band: ForEachCellNearSegment's candidates only grow with the radius,
-  // so it lists every cell either call would have tested, and each test is the same exact one.
+  // One visit of the larger band, clipped to the rectangle: ForEachCellNearSegment's candidates
+  // only grow with the radius, so it lists every cell either call would have tested, and each test
+  // is the same exact one.
   // Locals only in the cell loop: a byte store may alias anything read through a reference or a
   // member, which would be reloaded for every cell.
   const grid::CellRect bounds = rect;
@@ -69,8 +70,7 @@ void PaintedAndNearCells(const grid::CellRect& rect, const std::vector<CellPolyl
     const Point2 a = from;
     const Point2 b = to;
     const double paint2 = r2;
-    ForEachCellNearSegment(a, b, std::max(r, near_r), [&](int x, int y) {
-      if (!bounds.Contains(x, y)) return;
+    ForEachCellNearSegmentIn(bounds, a, b, std::max(r, near_r), [&](int x, int y) {
       const double d2 = PointSegmentDistanceSquared(Point2(x, y), a, b);
       const size_t i = static_cast<size_t>(y - bounds.y0) * bounds.width + (x - bounds.x0);
       if (d2 <= paint2) painted_cells[i] = 1;

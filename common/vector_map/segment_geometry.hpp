@@ -110,12 +110,11 @@ void ForEachCellNearSegmentClipped(const Point2& a, const Point2& b, double radi
     }
     const int v_min = std::max(CeilToInt(v_lo - radius - kSlack), clip_v_lo);
     const int v_max = std::min(FloorToInt(v_hi + radius + kSlack), clip_v_hi);
-    for (int v = v_min; v <= v_max; ++v) {
-      if (along_x) {
-        f(u, v);
-      } else {
-        f(v, u);
-      }
+    // The axis test per row, not per cell.
+    if (along_x) {
+      for (int v = v_min; v <= v_max; ++v) f(u, v);
+    } else {
+      for (int v = v_min; v <= v_max; ++v) f(v, u);
     }
   }
 }

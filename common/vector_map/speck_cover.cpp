@@ -41,13 +41,22 @@ void CoverChains(const CellRaster& raster, double epsilon, const std::vector<int
                  Open open, Take take, std::vector<CellPolyline>& polylines) {
   const double eps2 = ToleratedSquare(epsilon);
   auto is_p = [&](int x, int y) { return raster.IsDelimitation(x, y); };
-  std::vector<int> links = DiscOffsets(raster, 2.0 * epsilon);
-  links.erase(links.begin());  // the cell itself
-  std::vector<int> forward;
-  std::vector<int> backward;
-  std::vector<Point2> chain;
-  std::vector<std::vector<int>> pieces;
-  std::vector<std::pair<double, double>> intervals;
+  // Per-thread storage (a tile runs this for about a hundred chains): the neighbour offsets are
+  // rebuilt only when the raster's stride or epsilon changes, and the buffers keep their capacity.
+  thread_local std::vector<int> links;
+  thread_local int links_stride = 0;
+  thread_local double links_epsilon = -1.0;
+  if (links_stride != raster.stride() || links_epsilon != epsilon) {
+    links = DiscOffsets(raster, 2.0 * epsilon);
+    links.erase(links.begin());  // the cell itself
+    links_stride = raster.stride();
+    links_epsilon = epsilon;
+  }
+  thread_local std::vector<int> forward;
+  thread_local std::vector<int> backward;
+  thread_local std::vector<Point2> chain;
+  thread_local std::vector<std::vector<int>> pieces;
+  thread_local std::vector<std::pair<double, double>> intervals;
   for (const int start : starts) {
     if (!open(start)) continue;
     take(start);

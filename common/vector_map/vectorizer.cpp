@@ -125,8 +125,8 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   for (size_t k = 0; k < polylines.size(); ++k) {
     Polyline out;
     out.closed = polylines[k].closed;
-    out.points.reserve(polylines[k].points.size());
-    for (const Point2& p : polylines[k].points) out.points.push_back(lattice.Snap(frame.ToMap(p)));
+    out.points = std::move(polylines[k].points);  // converted in place (no copy)
+    for (Point2& p : out.points) p = lattice.Snap(frame.ToMap(p));
     if (!half_widths.empty()) out.half_width = emitted_half_width(half_widths[k]);
     map.obstacles.push_back(std::move(out));
   }
@@ -136,9 +136,14 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     free_options.epsilon_cells = free_eps / resolution;
     // The cells the rasterizer will paint for these obstacles, from the emitted (snapped)
     // vertices and half widths, exactly as a reader sees them.
-    std::vector<CellPolyline> emitted(map.obstacles.size());
-    std::vector<double> radii(map.obstacles.size());
+    // Per-thread storage, its point buffers reused across calls (PaintedAndNearCells reads only
+    // the points and `closed`).
+    thread_local std::vector<CellPolyline> emitted;
+    thread_local std::vector<double> radii;
+    emitted.resize(map.obstacles.size());
+    radii.resize(map.obstacles.size());
     for (size_t k = 0; k < map.obstacles.size(); ++k) {
+      emitted[k].points.clear();
       for (const Point2& p : map.obstacles[k].points) emitted[k].points.push_back(frame.ToCell(p));
       emitted[k].closed = map.obstacles[k].closed;
       radii[k] = map.obstacles[k].half_width / resolution;
@@ -151,12 +156,17 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
     PaintedAndNearCells(rect, emitted, radii, 0.5, epsilon / resolution, &painted, &near_obstacles);
     free_options.painted = &painted;
     free_options.near_obstacles = &near_obstacles;
-    for (const auto& polygon : ExtractFreeSpace(grid, rect, options_.thresholds, free_options)) {
+    // The rings are moved over and converted in place (no copies).
+    std::vector<CellPolygon> polygons =
+        ExtractFreeSpace(grid, rect, options_.thresholds, free_options);
+    map.free_space.reserve(polygons.size());
+    for (CellPolygon& polygon : polygons) {
       FreePolygon out;
-      for (const Point2& p : polygon.outer) out.outer.push_back(lattice.Snap(frame.ToMap(p)));
-      for (const auto& hole : polygon.holes) {
-        auto& ring = out.holes.emplace_back();
-        for (const Point2& p : hole) ring.push_back(lattice.Snap(frame.ToMap(p)));
+      out.outer = std::move(polygon.outer);
+      for (Point2& p : out.outer) p = lattice.Snap(frame.ToMap(p));
+      out.holes = std::move(polygon.holes);
+      for (auto& hole : out.holes) {
+        for (Point2& p : hole) p = lattice.Snap(frame.ToMap(p));
       }
       map.free_space.push_back(std::move(out));
     }
