@@ -4,7 +4,7 @@
 // obstacle costs one vertex on the wire instead of two or more (docs/vector-maps.md, kDefault step
 // 7). Thinning leaves such short pieces on blobs of two to a few cells (a speck stretched by SLAM
 // blur, a chair leg); on a simulated 80 m office, two-vertex polylines shorter than two cells
-// were a quarter of the polylines.
+// were 15 % of the polylines.
 
 #include <vector>
 
