@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/vertex_breakdown.hpp"
 #include "common/core/ids.hpp"
@@ -73,7 +74,12 @@ struct VectorizeBenchRow {
 
   TileId changed_tile;
   int changed_cells = 0;
-  double revectorize_tile_ms = 0.0;  // median
+  double revectorize_tile_ms = 0.0;  // median, the busiest tile
+  struct TileUpdate {
+    TileId tile;
+    double ms = 0.0;  // median
+  };
+  std::vector<TileUpdate> tile_updates;  // every tile that has known cells
 };
 
 // Measures one map_server map. Errors name the file (load, vectorize or encode failures).

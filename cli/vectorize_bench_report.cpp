@@ -64,6 +64,20 @@ std::optional<double> MinDefined(const std::vector<VectorizeBenchRow>& rows,
   return min;
 }
 
+// The bound on one tile update.
+constexpr double kTileUpdateTargetMs = 1.0;
+
+size_t TilesWithinTarget(const VectorizeBenchRow& row) {
+  return std::count_if(
+      row.tile_updates.begin(), row.tile_updates.end(),
+      [](const VectorizeBenchRow::TileUpdate& update) { return update.ms <= kTileUpdateTargetMs; });
+}
+
+// "<tiles within the target> / <tiles timed>".
+std::string TilesWithinText(size_t within, size_t timed) {
+  return std::to_string(within) + " / " + std::to_string(timed);
+}
+
 bool OursValid(const VectorizeBenchRow& row) {
   return row.ours.check.ok() && row.ours_full.check.ok() && row.vmap_check.ok();
 }
@@ -163,9 +177,18 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   const double worst_time = max_of(TimeRatio);
   targets.push_back({"time (obstacles) <= 1.0 x OpenCV, every map", "worst " + Ratio(worst_time),
                      worst_time <= 1.0});
-  const double worst_tile = max_of([](const Row& r) { return r.revectorize_tile_ms; });
-  targets.push_back(
-      {"re-vectorize one 10 m tile <= 1 ms", "worst " + Ms(worst_tile) + " ms", worst_tile <= 1.0});
+  double slowest_tile = max_of([](const Row& r) { return r.revectorize_tile_ms; });
+  size_t tiles_within = 0;
+  size_t tiles_timed = 0;
+  for (const Row& row : rows) {
+    for (const auto& update : row.tile_updates) slowest_tile = std::max(slowest_tile, update.ms);
+    tiles_within += TilesWithinTarget(row);
+    tiles_timed += row.tile_updates.size();
+  }
+  targets.push_back({"re-vectorize one 10 m tile <= 1 ms, every tile",
+                     "slowest " + Ms(slowest_tile) + " ms; " +
+                         TilesWithinText(tiles_within, tiles_timed) + " tiles within",
+                     slowest_tile <= kTileUpdateTargetMs});
   const double worst_bytes = max_of(BytesRatio);
   targets.push_back({"full .vmap, zstd -19 <= 0.5 x grid zstd -19, every map",
                      "worst " + Ratio(worst_bytes), worst_bytes <= 0.5});
@@ -216,15 +239,16 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
 
   out << "| map | grid raw KB | gzip -9 | zstd -19 | PNG | .vmap obstacles raw / zstd KB | "
          ".vmap full raw KB | .vmap full zstd KB | full zstd / grid zstd | round-trip MS | OPDF "
-         "| UPDF | re-vectorize tile ms |\n"
-      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "| UPDF | busiest tile update ms | tiles updated <= 1 ms |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out << "| " << r.name << " | " << Kb(r.grid_raw) << " | " << Kb(r.grid_gzip) << " | "
         << Kb(r.grid_zstd) << " | " << Kb(r.grid_png) << " | " << Kb(r.vmap_obstacles_raw) << " / "
         << Kb(r.vmap_obstacles_zstd) << " | " << Kb(r.vmap_raw) << " | " << Kb(r.vmap_zstd) << " | "
         << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
         << Percent(r.round_trip_opdf) << " | " << Percent(r.round_trip_updf) << " | "
-        << Ms(r.revectorize_tile_ms) << " |\n";
+        << Ms(r.revectorize_tile_ms) << " | "
+        << TilesWithinText(TilesWithinTarget(r), r.tile_updates.size()) << " |\n";
   }
   const auto kb_sum = [&](const std::function<double(const Row&)>& get) {
     return Kb(static_cast<size_t>(sum(get)));
@@ -244,6 +268,13 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << Percent(MedianDefined(rows, &Row::round_trip_opdf)) << " | med "
       << Percent(MedianDefined(rows, &Row::round_trip_updf)) << " | med "
       << Ms(Median(Collect<double>(rows, [](const Row& r) { return r.revectorize_tile_ms; })))
+      << " | "
+      << TilesWithinText(static_cast<size_t>(sum([](const Row& r) {
+                           return static_cast<double>(TilesWithinTarget(r));
+                         })),
+                         static_cast<size_t>(sum([](const Row& r) {
+                           return static_cast<double>(r.tile_updates.size());
+                         })))
       << " |\n";
   PrintVertexBreakdown(rows, out);
 }
@@ -291,7 +322,13 @@ nlohmann::ordered_json VectorizeBenchJson(const std::vector<VectorizeBenchRow>& 
     map["vertices_by_component"] = VertexBreakdownJson(r.vertices_by_component);
     map["revectorize_tile"] = {{"tile", {r.changed_tile.x, r.changed_tile.y}},
                                {"changed_cells", r.changed_cells},
-                               {"ms", r.revectorize_tile_ms}};
+                               {"ms", r.revectorize_tile_ms},
+                               {"tiles_within_1ms", TilesWithinTarget(r)},
+                               {"every_tile", nlohmann::ordered_json::array()}};
+    for (const auto& update : r.tile_updates) {
+      map["revectorize_tile"]["every_tile"].push_back(
+          {{"tile", {update.tile.x, update.tile.y}}, {"ms", update.ms}});
+    }
     json["maps"].push_back(std::move(map));
   }
   json["targets"] = nlohmann::ordered_json::array();

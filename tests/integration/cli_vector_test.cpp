@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -410,6 +411,13 @@ TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
   EXPECT_GT(room["grid"]["zstd"].get<int>(), 0);
   EXPECT_TRUE(room["round_trip"]["MS"].is_number());
   EXPECT_EQ(room["revectorize_tile"]["changed_cells"], 5);
+  // Every tile with known cells is timed once, the busiest among them.
+  const nlohmann::json& every_tile = room["revectorize_tile"]["every_tile"];
+  EXPECT_EQ(every_tile.size(), room["vmap"]["tiles"].get<size_t>());
+  EXPECT_TRUE(std::any_of(every_tile.begin(), every_tile.end(), [&](const nlohmann::json& t) {
+    return t["tile"] == room["revectorize_tile"]["tile"] && t["ms"].get<double>() > 0.0;
+  }));
+  EXPECT_LE(room["revectorize_tile"]["tiles_within_1ms"].get<size_t>(), every_tile.size());
   EXPECT_FALSE(json["targets"].empty());
 
   // Where the vertices go: the room's components are the walls (with the attached shelf line,
