@@ -24,14 +24,21 @@ nlohmann::json ToGeoJson(const VectorMap& map) {
   nlohmann::json features = nlohmann::json::array();
   for (const Polyline& polyline : map.obstacles) {
     if (polyline.points.empty()) continue;
-    nlohmann::json coordinates = nlohmann::json::array();
-    for (const Point2& p : polyline.points) coordinates.push_back(Position(p));
-    if (polyline.closed || polyline.points.size() == 1) {
-      coordinates.push_back(Position(polyline.points.front()));
+    nlohmann::json geometry;
+    if (polyline.points.size() == 1) {
+      // A zero-length LineString would be an invalid geometry to GEOS-based tools (QGIS, shapely).
+      geometry = {{"type", "Point"}, {"coordinates", Position(polyline.points.front())}};
+    } else {
+      nlohmann::json coordinates = nlohmann::json::array();
+      for (const Point2& p : polyline.points) coordinates.push_back(Position(p));
+      if (polyline.closed) coordinates.push_back(Position(polyline.points.front()));
+      geometry = {{"type", "LineString"}, {"coordinates", coordinates}};
     }
+    // The half width is what the rasterizer paints around the line: a reader needs it to draw
+    // the obstacle as the grid will have it.
     features.push_back({{"type", "Feature"},
-                        {"properties", {{"kind", "obstacle"}}},
-                        {"geometry", {{"type", "LineString"}, {"coordinates", coordinates}}}});
+                        {"properties", {{"kind", "obstacle"}, {"half_width", polyline.half_width}}},
+                        {"geometry", geometry}});
   }
   for (const FreePolygon& polygon : map.free_space) {
     if (polygon.outer.empty()) continue;

@@ -279,9 +279,15 @@ TEST(CliVectorTest, GeoJsonHasTheRequiredStructure) {
     const std::string type = feature["geometry"]["type"];
     if (kind == "obstacle") {
       ++obstacles;
-      EXPECT_EQ(type, "LineString");
-      EXPECT_GE(feature["geometry"]["coordinates"].size(), 2u);
-      EXPECT_EQ(feature["geometry"]["coordinates"][0].size(), 2u);
+      const nlohmann::json& coordinates = feature["geometry"]["coordinates"];
+      if (type == "Point") {
+        EXPECT_EQ(coordinates.size(), 2u);
+      } else {
+        EXPECT_EQ(type, "LineString");
+        EXPECT_GE(coordinates.size(), 2u);
+        EXPECT_EQ(coordinates[0].size(), 2u);
+      }
+      EXPECT_GE(feature["properties"]["half_width"].get<double>(), 0.0);
     } else {
       ++free;
       EXPECT_EQ(kind, "free");

@@ -13,7 +13,7 @@ VectorMap SampleMap() {
   VectorMap map;
   map.epsilon = 0.07;
   map.resolution = 0.05;
-  map.obstacles.push_back(Polyline{{Point2(0, 0), Point2(1, 0), Point2(1, 1)}, false});
+  map.obstacles.push_back(Polyline{{Point2(0, 0), Point2(1, 0), Point2(1, 1)}, false, 0.035});
   map.obstacles.push_back(Polyline{{Point2(2, 2), Point2(3, 2), Point2(3, 3)}, true});
   map.obstacles.push_back(Polyline{{Point2(5, 5)}});
   map.free_space.push_back(FreePolygon{{Point2(0, 0), Point2(4, 0), Point2(4, 4), Point2(0, 4)},
@@ -33,7 +33,11 @@ TEST(GeoJsonTest, WritesObstaclesAndFreeSpace) {
   EXPECT_EQ(open["geometry"]["type"], "LineString");
   EXPECT_EQ(open["geometry"]["coordinates"].size(), 3u);
   EXPECT_EQ(json["features"][1]["geometry"]["coordinates"].size(), 4u);  // closed: repeats
-  EXPECT_EQ(json["features"][2]["geometry"]["coordinates"].size(), 2u);  // point: zero length
+  EXPECT_DOUBLE_EQ(open["properties"]["half_width"].get<double>(), 0.035);
+  const auto& point = json["features"][2];
+  EXPECT_EQ(point["properties"]["kind"], "obstacle");
+  EXPECT_EQ(point["geometry"]["type"], "Point");
+  EXPECT_EQ(point["geometry"]["coordinates"], nlohmann::json::array({5.0, 5.0}));
   const auto& free = json["features"][3];
   EXPECT_EQ(free["properties"]["kind"], "free");
   EXPECT_EQ(free["geometry"]["type"], "Polygon");
