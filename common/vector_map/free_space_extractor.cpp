@@ -203,9 +203,11 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
       for (uint8_t* cell = row; cell < row_end; ++cell) {
         cell = static_cast<uint8_t*>(std::memchr(cell, kAny, static_cast<size_t>(row_end - cell)));
         if (cell == nullptr) break;
-        bool near_out = false;
-        for (const ptrdiff_t d : around) near_out |= cell[d] == kOut || cell[d] == kSolid;
-        if (near_out) continue;
+        // One bit test per neighbour: bit c of kOutOrSolid says whether class c is one of them.
+        constexpr unsigned kOutOrSolid = 1u << kOut | 1u << kSolid;
+        unsigned near_out = 0;
+        for (const ptrdiff_t d : around) near_out |= kOutOrSolid >> cell[d];
+        if (near_out & 1u) continue;
         *cell = kJoined;
         joined.push_back(cell);
       }
