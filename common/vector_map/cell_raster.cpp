@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cstring>
 
 namespace fleetmap::vector_map {
@@ -66,6 +67,7 @@ CellRaster::~CellRaster() {
 CellRaster::CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, int margin,
                        const grid::StateThresholds& thresholds)
     : rect_(rect) {
+  assert(margin >= 1);  // the rectangle grown by one then lies inside the scan for P below
   const int pad = margin + 1;
   x0_ = rect.x0 - pad;
   y0_ = rect.y0 - pad;
@@ -99,7 +101,13 @@ CellRaster::CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, in
     row_any[r] = any;
   }
   // P: occupied cells with a 4-neighbour not occupied (the outermost ring is left without P).
+  // The same scan of a row lists the occupied cells of the rectangle grown by one (that row's
+  // occupied cells, clipped) and its P points inside the rectangle (owned), in row-major order.
   std::vector<int> occupied_row;
+  const int near_x0 = rect.x0 - 1 - x0_;
+  const int near_x1 = rect.x0 + rect.width + 1 - x0_;
+  const int rect_x0 = rect.x0 - x0_;
+  const int rect_x1 = rect.x0 + rect.width - x0_;
   for (int r = 1; r + 1 < rows_; ++r) {
     if (!row_any[r]) continue;
     uint8_t* row = flags_.data() + static_cast<size_t>(r) * stride_;
@@ -109,23 +117,16 @@ CellRaster::CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, in
       const uint8_t all = row[x - 1] & row[x + 1] & row[x - stride_] & row[x + stride_] & 1;
       if (!all) row[x] |= kDelimitation;
     }
-  }
-  // Lists for the rectangle (owned P) and the rectangle grown by one (occupied cells).
-  for (int y = rect.y0 - 1; y <= rect.y0 + rect.height; ++y) {
-    const int r = y - y0_;
-    if (!row_any[r]) continue;
-    uint8_t* row = flags_.data() + static_cast<size_t>(r) * stride_;
+    const int y = y0_ + r;
+    if (y < rect.y0 - 1 || y > rect.y0 + rect.height) continue;
+    const bool in_rect_rows = y >= rect.y0 && y < rect.y0 + rect.height;
     const int base = r * stride_;
-    const size_t before = occupied_.size();
-    CollectRow(row, rect.x0 - 1 - x0_, rect.x0 + rect.width + 1 - x0_, base, kOccupied, occupied_);
-    if (y < rect.y0 || y >= rect.y0 + rect.height) continue;
-    for (size_t k = before; k < occupied_.size(); ++k) {
-      const int index = occupied_[k];
-      const int x = index - base + x0_;
-      if (x < rect.x0 || x >= rect.x0 + rect.width) continue;
-      if (flags_[index] & kDelimitation) {
-        flags_[index] |= kOwned;
-        owned_.push_back(index);
+    for (const int x : occupied_row) {
+      if (x < near_x0 || x >= near_x1) continue;
+      occupied_.push_back(base + x);
+      if (in_rect_rows && x >= rect_x0 && x < rect_x1 && (row[x] & kDelimitation)) {
+        row[x] |= kOwned;
+        owned_.push_back(base + x);
       }
     }
   }

@@ -8,8 +8,8 @@
 //
 // The image covers the rectangle plus `margin` cells on every side (not clamped to the grid: cells
 // outside the grid are simply not occupied, as ALGORITHMS.md reads them), plus one more ring so
-// that P is exact everywhere inside the margin. P of a window is the whole grid's P restricted to
-// it, so neighbouring tiles agree on it.
+// that P is exact everywhere inside the margin (`margin` >= 1). P of a window is the whole grid's
+// P restricted to it, so neighbouring tiles agree on it.
 //
 // Thread-safety: not thread-safe; one CellRaster per call.
 

@@ -142,13 +142,16 @@ class EndRun {
     // (b) P points near the old segment stay within epsilon; (c) its painted cells stay painted.
     bool ok = true;
     const CellRect window = raster_.window();
+    // A cell beyond both radii of the old segment constrains nothing (no second distance).
+    const double bound2 = std::max(r2, eps2_);
     ForEachCellNearSegmentIn(window, inner, end, std::max(options_.epsilon, r), [&](int x, int y) {
       if (!ok) return;
       const Point2 c(x, y);
       const double before = PointSegmentDistanceSquared(c, inner, end);
+      if (before > bound2) return;
       const double after = PointSegmentDistanceSquared(c, inner, moved);
       if (before <= r2 && after > r2) ok = false;
-      if (raster_.IsDelimitation(x, y) && before <= eps2_ && after > eps2_) ok = false;
+      if (before <= eps2_ && after > eps2_ && raster_.IsDelimitation(x, y)) ok = false;
     });
     if (!ok) return false;
     // (d) newly painted cells: occupied ones of the tile against cells that are not occupied.

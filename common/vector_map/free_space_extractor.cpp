@@ -89,6 +89,20 @@ void FillSpeckHoles(const cv::Mat& cls, uint8_t solid, bool any_solid, cv::Mat& 
   }
 }
 
+// A (rows + 2) x (cols + 2) image whose one-cell frame holds `frame`. The inside is left as
+// allocated: the caller writes every cell of it, so clearing it first would be wasted.
+cv::Mat FramedImage(int rows, int cols, uint8_t frame) {
+  cv::Mat image(rows + 2, cols + 2, CV_8UC1);
+  std::memset(image.ptr<uint8_t>(0), frame, static_cast<size_t>(cols) + 2);
+  std::memset(image.ptr<uint8_t>(rows + 1), frame, static_cast<size_t>(cols) + 2);
+  for (int y = 1; y <= rows; ++y) {
+    uint8_t* row = image.ptr<uint8_t>(y);
+    row[0] = frame;
+    row[cols + 1] = frame;
+  }
+  return image;
+}
+
 }  // namespace
 
 std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const CellRect& rect,
@@ -126,8 +140,8 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
   constexpr uint8_t kEdge = 4;
   constexpr uint8_t kJoined = 5;
   constexpr uint8_t kReached = 6;
-  cv::Mat framed(rect.height + 2, rect.width + 2, CV_8UC1, cv::Scalar(kEdge));
-  cv::Mat framed_mask(rect.height + 2, rect.width + 2, CV_8UC1, cv::Scalar(0));
+  cv::Mat framed = FramedImage(rect.height, rect.width, kEdge);
+  cv::Mat framed_mask = FramedImage(rect.height, rect.width, 0);
   const cv::Rect inside(1, 1, rect.width, rect.height);
   cv::Mat cls = framed(inside);
   cv::Mat mask = framed_mask(inside);
@@ -189,9 +203,11 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
       for (uint8_t* cell = row; cell < row_end; ++cell) {
         cell = static_cast<uint8_t*>(std::memchr(cell, kAny, static_cast<size_t>(row_end - cell)));
         if (cell == nullptr) break;
-        bool near_out = false;
-        for (const ptrdiff_t d : around) near_out |= cell[d] == kOut || cell[d] == kSolid;
-        if (near_out) continue;
+        // One bit test per neighbour: bit c of kOutOrSolid says whether class c is one of them.
+        constexpr unsigned kOutOrSolid = 1u << kOut | 1u << kSolid;
+        unsigned near_out = 0;
+        for (const ptrdiff_t d : around) near_out |= kOutOrSolid >> cell[d];
+        if (near_out & 1u) continue;
         *cell = kJoined;
         joined.push_back(cell);
       }
@@ -207,6 +223,8 @@ std::vector<CellPolygon> ExtractFreeSpace(const grid::OccupancyGrid& grid, const
         framed_mask.data[cell - framed.data] = 255;
       }
     }
+    // Usually every joined cell is next to a free one: then none is left to flood.
+    if (reached.size() == joined.size()) reached.clear();
     while (!reached.empty()) {
       uint8_t* cell = reached.back();
       reached.pop_back();

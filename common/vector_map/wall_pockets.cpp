@@ -1,6 +1,7 @@
 #include "common/vector_map/wall_pockets.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace fleetmap::vector_map {
 namespace {
@@ -12,10 +13,17 @@ class PocketFinder {
 
   std::vector<int> Run() {
     for (const int i : raster_.occupied_near_rect()) {
-      for (const int o : {1, -1, stride_, -stride_}) {
-        const int start = i + o;
-        // The flag test first: most neighbours of an occupied cell are occupied or visited.
-        if (raster_.Has(start, kStop) || !InNearRect(start)) continue;
+      const int x = raster_.X(i);
+      const int y = raster_.Y(i);
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        const int start = i + dy * stride_ + dx;
+        // The flag test first: most neighbours of an occupied cell are occupied or visited. A
+        // start that is not sandwiched would end its flood at once, so it is not flooded (nor
+        // marked visited: a later flood that reaches it ends there all the same).
+        if (raster_.Has(start, kStop) || !near_rect_.Contains(x + dx, y + dy) ||
+            !Sandwiched(start)) {
+          continue;
+        }
         Flood(start);
       }
     }
