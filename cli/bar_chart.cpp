@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "common/grid/image_file.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -101,14 +102,7 @@ Status WriteBarChartPng(const BarChart& chart, const std::string& path) {
     cv::putText(image, chart.groups[g], {x0, top + plot_h + 20}, font, 0.5, cv::Scalar(0, 0, 0), 1,
                 cv::LINE_AA);
   }
-  try {
-    if (!cv::imwrite(path, image)) {
-      return InvalidArgumentError(path + ": cannot write the chart PNG");
-    }
-  } catch (const cv::Exception& e) {
-    return InvalidArgumentError(path + ": cannot write the chart PNG: " + e.what());
-  }
-  return Status::Ok();
+  return grid::WriteImageFile(path, image);
 }
 
 }  // namespace fleetmap::cli

@@ -22,7 +22,8 @@ struct BarChart {
   std::optional<double> y_max;  // linear axis top; default: the largest value
 };
 
-// Errors (kInvalidArgument): values not shaped groups x series; the file could not be written.
+// Errors: kInvalidArgument when values are not shaped groups x series; kUnavailable when the file
+// cannot be written (grid::WriteImageFile).
 Status WriteBarChartPng(const BarChart& chart, const std::string& path);
 
 }  // namespace fleetmap::cli

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/extrapolation_experiment.hpp"
 #include "cli/report_format.hpp"
+#include "common/core/file_io.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -117,9 +117,9 @@ std::string Report(const BenchExtrapolationOptions& options,
   return md.str();
 }
 
-void WriteCsv(const BenchExtrapolationOptions& options,
-              const std::vector<ExtrapolationSceneResult>& results, const std::string& path) {
-  std::ofstream csv(path);
+std::string ResultsCsv(const BenchExtrapolationOptions& options,
+                       const std::vector<ExtrapolationSceneResult>& results) {
+  std::ostringstream csv;
   csv << "seed,p_th,closed_doors,doors_detected,hinges_correct,door_fp,stairs_views,"
          "stairs_detected,stairs_fp,tracks,sides_correct,observed_free_cells,"
          "static_tp,static_fp,static_unobserved,doors_tp,doors_fp,doors_unobserved,people_tp,"
@@ -137,6 +137,7 @@ void WriteCsv(const BenchExtrapolationOptions& options,
       csv << "," << s.door_new_cells << "," << s.people_new_cells << "\n";
     }
   }
+  return csv.str();
 }
 
 nlohmann::json SummaryJson(const BenchExtrapolationOptions& options,
@@ -235,10 +236,16 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
   const std::string report = Report(options, results, seconds);
   out << report;
   if (!options.out_dir.empty()) {
-    std::ofstream(options.out_dir + "/report.md") << report;
-    WriteCsv(options, results, options.out_dir + "/results.csv");
-    std::ofstream(options.out_dir + "/results.json")
-        << SummaryJson(options, results, seconds).dump(2) << "\n";
+    for (const auto& [path, contents] :
+         {std::pair{options.out_dir + "/report.md", report},
+          std::pair{options.out_dir + "/results.csv", ResultsCsv(options, results)},
+          std::pair{options.out_dir + "/results.json",
+                    SummaryJson(options, results, seconds).dump(2) + "\n"}}) {
+      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
+        err << prefix << written.message() << "\n";
+        return kExitBadInput;
+      }
+    }
   }
   return kExitOk;
 }

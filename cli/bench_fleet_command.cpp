@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -11,6 +10,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/fleet_sim.hpp"
 #include "cli/fleet_sim_report.hpp"
+#include "common/core/file_io.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
@@ -177,7 +177,13 @@ int RunBenchFleet(const BenchFleetArgs& args) {
           Fmt(fleet.quality.unoccupied_picture_distance, ""));
     }
   }
-  if (!args.json_path.empty()) std::ofstream(args.json_path) << json.dump(2) << "\n";
+  if (!args.json_path.empty()) {
+    if (const Status written = WriteFileAtomically(args.json_path, json.dump(2) + "\n");
+        !written.ok()) {
+      std::cerr << "fleetmap bench fleet: " << written.message() << "\n";
+      return kExitBadInput;
+    }
+  }
   return kExitOk;
 }
 

@@ -3,16 +3,17 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "cli/bench_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/object_experiment.hpp"
 #include "cli/report_format.hpp"
+#include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 
 namespace fleetmap::cli {
@@ -129,8 +130,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
                            {"machine", MachineDescription()},
                            {"seconds_simulation", seconds_sim},
                            {"models", {ToJson(r.hierarchical), ToJson(r.flat)}}};
-    std::ofstream(options.out_dir + "/results.json") << json.dump(2) << "\n";
-    std::ofstream csv(options.out_dir + "/results.csv");
+    std::ostringstream csv;
     csv << "model,starts,good,test_log_likelihood,chosen_objects,chosen_templates,seconds_starts,"
            "seconds_selection,seconds_cross_validation\n";
     for (const ModelComparison* c : {&r.hierarchical, &r.flat}) {
@@ -138,6 +138,14 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
           << Fixed(c->test_log_likelihood, 3) << "," << c->chosen_objects << ","
           << c->chosen_templates << "," << Fixed(c->seconds_starts, 3) << ","
           << Fixed(c->seconds_selection, 3) << "," << Fixed(c->seconds_cross_validation, 3) << "\n";
+    }
+    for (const auto& [path, contents] :
+         {std::pair{options.out_dir + "/results.json", json.dump(2) + "\n"},
+          std::pair{options.out_dir + "/results.csv", csv.str()}}) {
+      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
+        err << "fleetmap bench objects: " << written.message() << "\n";
+        return kExitBadInput;
+      }
     }
   }
   return kExitOk;

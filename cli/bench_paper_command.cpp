@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -17,6 +16,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/paper_experiment.hpp"
 #include "cli/report_format.hpp"
+#include "common/core/file_io.hpp"
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::cli {
@@ -65,8 +65,8 @@ class ProgressBar {
   size_t last_size_ = 0;
 };
 
-void WriteCsv(const std::vector<PaperTerrainResult>& results, const std::string& path) {
-  std::ofstream csv(path);
+std::string ResultsCsv(const std::vector<PaperTerrainResult>& results) {
+  std::ostringstream csv;
   csv << "kind,size_m,seed,width,height,scans,distance_m,explored,observed_free,"
          "P,PZ,P_zstd,P_png,V,VZ,V_zstd,V_obst,VZ_obst,V_obst_zstd,V_obst_one_tile,V_truth,"
          "vertices,"
@@ -106,6 +106,7 @@ void WriteCsv(const std::vector<PaperTerrainResult>& results, const std::string&
     csv << "," << Fixed(r.seconds_explore, 2) << "," << Fixed(r.seconds_vectorize, 3) << ","
         << Fixed(r.seconds_total, 2) << "\n";
   }
+  return csv.str();
 }
 
 std::vector<std::optional<double>> Scores(const metrics::QualityScores& q) {
@@ -133,9 +134,9 @@ double MinScore(const std::vector<PaperTerrainResult>& results, int metric, bool
   return lowest;
 }
 
-void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrainResult>& results,
-                 double seconds, const std::string& path) {
-  std::ofstream md(path);
+std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerrainResult>& results,
+                   double seconds) {
+  std::ostringstream md;
   md << "# The Vector Maps paper's experiment on simulated terrains\n\n"
      << "Command: `fleetmap bench paper --out " << options.out_dir << " --seed " << options.seed
      << " --sizes ";
@@ -243,6 +244,7 @@ void WriteReport(const BenchPaperOptions& options, const std::vector<PaperTerrai
   }
   md << "\nCharts: sizes.png, quality_<kind>_<size>.png. Maps: maps/<kind>_<size>_{truth,robot,"
         "robot_vector,truth_vector}.png and the robot map as maps/<kind>_<size>_robot.yaml.\n";
+  return md.str();
 }
 
 Status WriteCharts(const BenchPaperOptions& options,
@@ -365,14 +367,20 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
   bar.Finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteCsv(results, options.out_dir + "/results.csv");
-  WriteReport(options, results, seconds, options.out_dir + "/report.md");
+  const std::string report = Report(options, results, seconds);
+  for (const auto& [path, contents] :
+       {std::pair{options.out_dir + "/results.csv", ResultsCsv(results)},
+        std::pair{options.out_dir + "/report.md", report}}) {
+    if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
+      err << prefix << written.message() << "\n";
+      return kExitBadInput;
+    }
+  }
   if (const Status charts = WriteCharts(options, results); !charts.ok()) {
     err << prefix << charts.message() << "\n";
     return kExitBadInput;
   }
-  std::ifstream report(options.out_dir + "/report.md");
-  out << report.rdbuf();
+  out << report;
   return kExitOk;
 }
 

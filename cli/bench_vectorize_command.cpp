@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "cli/command_inputs.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/vectorize_bench_report.hpp"
+#include "common/core/file_io.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -30,15 +30,6 @@ StatusOr<std::vector<std::string>> MapFiles(const std::string& dir) {
   if (files.empty()) return NotFoundError(dir + ": no *.yaml map files");
   std::sort(files.begin(), files.end());
   return files;
-}
-
-Status WriteFile(const std::string& path, const std::string& text) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) return NotFoundError(path + ": cannot open for writing");
-  file << text;
-  file.close();
-  if (!file) return DataLossError(path + ": write failed");
-  return Status::Ok();
 }
 
 }  // namespace
@@ -73,10 +64,10 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
   PrintVectorizeTargets(targets, out);
   if (!options.json_path.empty()) {
     const std::string json = VectorizeBenchJson(rows, targets, options.bench).dump(2) + "\n";
-    if (Status s = WriteFile(options.json_path, json); !s.ok()) return fail(s.message());
+    if (Status s = WriteFileAtomically(options.json_path, json); !s.ok()) return fail(s.message());
   }
   if (!options.csv_path.empty()) {
-    if (Status s = WriteFile(options.csv_path, VectorizeBenchCsv(rows)); !s.ok()) {
+    if (Status s = WriteFileAtomically(options.csv_path, VectorizeBenchCsv(rows)); !s.ok()) {
       return fail(s.message());
     }
   }

@@ -11,6 +11,7 @@
 
 #include "cli/exit_codes.hpp"
 #include "cli/extrapolation_outputs.hpp"
+#include "common/core/file_io.hpp"
 #include "common/extrapolation/door_detector.hpp"
 #include "common/extrapolation/entities_json.hpp"
 #include "common/extrapolation/extrapolator.hpp"
@@ -29,13 +30,6 @@ std::string ThresholdName(double p_th) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "pth_%.2f", p_th);
   return buffer;
-}
-
-Status WriteText(const std::string& path, const std::string& text) {
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  if (!file) return InvalidArgumentError(path + ": cannot write");
-  return Status::Ok();
 }
 
 // Writes everything for one threshold into `dir`; returns the summary line.
@@ -73,9 +67,9 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::E
   graph["floor"] = {{"observed_free_m2", floor.observed_free_cells * cell_area},
                     {"predicted_free_m2", floor.predicted_free_cells * cell_area},
                     {"files", {"predicted_free.yaml", "extrapolated.yaml"}}};
-  FLEETMAP_RETURN_IF_ERROR(WriteText(dir + "/graph.json", graph.dump(2) + "\n"));
-  FLEETMAP_RETURN_IF_ERROR(
-      WriteText(dir + "/predicted_free.geojson", PredictedFreeGeoJson(result, p_th).dump() + "\n"));
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/graph.json", graph.dump(2) + "\n"));
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/predicted_free.geojson",
+                                               PredictedFreeGeoJson(result, p_th).dump() + "\n"));
   FLEETMAP_RETURN_IF_ERROR(WriteOverlayPng(result, floor, entities, dir + "/overlay.png"));
 
   std::ostringstream line;
@@ -150,7 +144,8 @@ int RunExtrapolate(const ExtrapolateCommandOptions& options, std::ostream& out, 
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) return fail("--out: " + options.out_dir + ": cannot create the directory");
-  if (Status s = WriteText(options.out_dir + "/entities.json", ex::EntitiesToJson(entities));
+  if (Status s =
+          WriteFileAtomically(options.out_dir + "/entities.json", ex::EntitiesToJson(entities));
       !s.ok()) {
     return fail(s.message());
   }

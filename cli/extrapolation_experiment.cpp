@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <optional>
 
+#include "common/core/file_io.hpp"
 #include "common/extrapolation/door_detector.hpp"
 #include "common/extrapolation/entities_json.hpp"
 #include "common/extrapolation/extrapolator.hpp"
@@ -190,7 +190,8 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(truth, dir + "/truth.yaml"));
     FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(upper, dir + "/upper.yaml"));
     FLEETMAP_RETURN_IF_ERROR(ex::WritePly(all_views, dir + "/views.ply"));
-    std::ofstream(dir + "/entities.json") << ex::EntitiesToJson(entities);
+    FLEETMAP_RETURN_IF_ERROR(
+        WriteFileAtomically(dir + "/entities.json", ex::EntitiesToJson(entities)));
   }
   for (double p_th : options.p_th) {
     ex::ExtrapolationOptions extrapolation = options.extrapolation;

@@ -4,8 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "common/grid/image_file.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -171,12 +172,7 @@ Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,
              std::max(2, scale + 1));
     cv::circle(image, pixel(door.hinge), 2 * scale + 1, cv::Scalar(160, 40, 160), -1);
   }
-  try {
-    if (!cv::imwrite(path, image)) return InvalidArgumentError(path + ": cannot write the PNG");
-  } catch (const cv::Exception& e) {
-    return InvalidArgumentError(path + ": cannot write the PNG: " + e.what());
-  }
-  return Status::Ok();
+  return grid::WriteImageFile(path, image);
 }
 
 }  // namespace fleetmap::cli

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "common/core/file_io.hpp"
+#include "common/grid/image_file.hpp"
 #include "common/metrics/map_quality.hpp"
 
 namespace fleetmap::cli {
@@ -28,7 +28,7 @@ nlohmann::json Json(const std::optional<double>& value) {
 }
 
 // The fused map in grey (occupied black, free white, unknown grey) with each robot's path.
-Status WritePng(const FleetRunResult& run, const std::string& path) {
+Status WriteFusedPng(const FleetRunResult& run, const std::string& path) {
   const grid::OccupancyGrid& map = run.fused;
   if (map.empty()) return NotFoundError("no fused map was received");
   cv::Mat image(map.height(), map.width(), CV_8UC3);
@@ -56,8 +56,7 @@ Status WritePng(const FleetRunResult& run, const std::string& path) {
     }
     ++index;
   }
-  if (!cv::imwrite(path, image)) return NotFoundError(path + ": cannot write");
-  return Status::Ok();
+  return grid::WriteImageFile(path, image);
 }
 
 }  // namespace
@@ -108,7 +107,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
         fmt::format(" ({} fewer than the grid wire's {})", ratio_text, grid->total_bytes);
   }
   const std::string png = out_dir + "/fused.png";
-  const Status png_written = WritePng(tiles, png);
+  const Status png_written = WriteFusedPng(tiles, png);
 
   std::string md = fmt::format(
       "# fleetmap sim: {} robots, {} {} m, seed {}\n\n"
@@ -152,7 +151,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       tiles.server_peak_rss_bytes / 1e6);
   md +=
       png_written.ok() ? "![fused map](fused.png)\n" : "No image: " + png_written.message() + "\n";
-  std::ofstream(out_dir + "/report.md") << md;
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.md", md));
 
   nlohmann::json json = {
       {"robots", options.robots},
@@ -181,7 +180,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
   for (const auto& [name, robot] : tiles.robots) {
     json["per_robot"][name] = {{"bytes", robot.bytes}, {"updates", robot.updates}};
   }
-  std::ofstream(out_dir + "/report.json") << json.dump(2) << "\n";
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.json", json.dump(2) + "\n"));
 
   return fmt::format(
       "{} robots, {} {} m, {:.0f} s: {} bytes on the wire{}; latency p50 {} p95 {} p99 {}; fused "

@@ -4,16 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "cli/command_inputs.hpp"
 #include "cli/exit_codes.hpp"
+#include "common/core/file_io.hpp"
+#include "common/grid/image_file.hpp"
 #include "common/object_learning/object_learner.hpp"
 #include "common/object_learning/snapshot_extractor.hpp"
 
@@ -104,6 +104,24 @@ nlohmann::json ModelJson(const ol::LearnedModel& model, const std::vector<std::s
           {"seconds", seconds}};
 }
 
+// model.json, object_<n>.pgm, template_<m>.pgm and montage.png in `dir`.
+Status WriteOutputs(const ol::LearnedModel& model, const nlohmann::json& json,
+                    const std::string& dir) {
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/model.json", json.dump(2) + "\n"));
+  for (size_t n = 0; n < model.objects.size(); ++n) {
+    FLEETMAP_RETURN_IF_ERROR(grid::WriteImageFile(dir + "/object_" + std::to_string(n) + ".pgm",
+                                                  PatchImage(model.objects[n])));
+  }
+  for (size_t m = 0; m < model.templates.size(); ++m) {
+    FLEETMAP_RETURN_IF_ERROR(grid::WriteImageFile(dir + "/template_" + std::to_string(m) + ".pgm",
+                                                  PatchImage(model.templates[m])));
+  }
+  if (!model.objects.empty()) {
+    FLEETMAP_RETURN_IF_ERROR(grid::WriteImageFile(dir + "/montage.png", Montage(model)));
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 int RunLearnObjects(const LearnObjectsOptions& options, std::ostream& out, std::ostream& err) {
@@ -150,16 +168,10 @@ int RunLearnObjects(const LearnObjectsOptions& options, std::ostream& out, std::
     return kExitBadInput;
   }
   const nlohmann::json json = ModelJson(*model, options.maps, seconds);
-  std::ofstream(options.out_dir + "/model.json") << json.dump(2) << "\n";
-  for (size_t n = 0; n < model->objects.size(); ++n) {
-    cv::imwrite(options.out_dir + "/object_" + std::to_string(n) + ".pgm",
-                PatchImage(model->objects[n]));
+  if (Status s = WriteOutputs(*model, json, options.out_dir); !s.ok()) {
+    err << name << s.message() << "\n";
+    return kExitBadInput;
   }
-  for (size_t m = 0; m < model->templates.size(); ++m) {
-    cv::imwrite(options.out_dir + "/template_" + std::to_string(m) + ".pgm",
-                PatchImage(model->templates[m]));
-  }
-  if (!model->objects.empty()) cv::imwrite(options.out_dir + "/montage.png", Montage(*model));
   for (const std::string& warning : model->warnings) err << name << "warning: " << warning << "\n";
   if (options.json) {
     out << json.dump(2) << "\n";

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
@@ -45,11 +46,6 @@ StatusOr<Vectorized> Vectorize(const grid::OccupancyGrid& grid, bool line_refit,
                             vector_map::VectorizeTiled(grid, Transform2::Identity(), options));
   FLEETMAP_ASSIGN_OR_RETURN(out.vmap, transport::EncodeVmap(out.tiled));
   return out;
-}
-
-Status WritePng(const StatusOr<std::vector<uint8_t>>& png, const std::string& path) {
-  if (!png.ok()) return png.status();
-  return vector_map::WriteBytes(path, *png);
 }
 
 }  // namespace
@@ -155,14 +151,18 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
     vector_map::VectorPngOptions png_options;
     png_options.pixels_per_cell = truth.width() > 1000 ? 1 : 2;
     png_options.draw_vertices = truth.width() <= 1000;
-    FLEETMAP_RETURN_IF_ERROR(WritePng(vector_map::EncodeGridPng(truth), stem + "_truth.png"));
-    FLEETMAP_RETURN_IF_ERROR(WritePng(vector_map::EncodeGridPng(robot), stem + "_robot.png"));
-    FLEETMAP_RETURN_IF_ERROR(
-        WritePng(vector_map::RenderVectorMapPng(robot_merged, robot, png_options),
-                 stem + "_robot_vector.png"));
-    FLEETMAP_RETURN_IF_ERROR(
-        WritePng(vector_map::RenderVectorMapPng(truth_merged, truth, png_options),
-                 stem + "_truth_vector.png"));
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> truth_png,
+                              vector_map::EncodeGridPng(truth));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(stem + "_truth.png", truth_png));
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> robot_png,
+                              vector_map::EncodeGridPng(robot));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(stem + "_robot.png", robot_png));
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> robot_vector_png,
+                              vector_map::RenderVectorMapPng(robot_merged, robot, png_options));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(stem + "_robot_vector.png", robot_vector_png));
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> truth_vector_png,
+                              vector_map::RenderVectorMapPng(truth_merged, truth, png_options));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(stem + "_truth_vector.png", truth_vector_png));
     FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(robot, stem + "_robot.yaml"));
   }
   result.seconds_total = SecondsSince(start);

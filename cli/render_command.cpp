@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/exit_codes.hpp"
+#include "common/core/file_io.hpp"
 #include "common/vector_map/png.hpp"
 #include "common/vector_map/svg.hpp"
 
@@ -39,23 +40,19 @@ std::string GridSvg(const grid::OccupancyGrid& grid, const std::vector<uint8_t>&
          "\"/>\n</svg>\n";
 }
 
-Status WriteText(const std::string& path, const std::string& text) {
-  return vector_map::WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
-}
-
 Status RenderGrid(const RenderCommandOptions& options, bool svg) {
   FLEETMAP_ASSIGN_OR_RETURN(const grid::LoadedMap map,
                             LoadGridInput(options.input, options.max_cells));
   StatusOr<std::vector<uint8_t>> png = vector_map::EncodeGridPng(map.grid);
   if (!png.ok()) return png.status().WithContext(options.input);
-  if (svg) return WriteText(options.output, GridSvg(map.grid, *png));
-  return vector_map::WriteBytes(options.output, *png);
+  if (svg) return WriteFileAtomically(options.output, GridSvg(map.grid, *png));
+  return WriteFileAtomically(options.output, *png);
 }
 
 Status RenderVmap(const RenderCommandOptions& options, bool svg) {
   FLEETMAP_ASSIGN_OR_RETURN(const vector_map::TiledVectorMap tiled, ReadVmapInput(options.input));
   const vector_map::VectorMap merged = tiled.Merged();
-  if (svg) return WriteText(options.output, vector_map::ToSvg(merged));
+  if (svg) return WriteFileAtomically(options.output, vector_map::ToSvg(merged));
   grid::OccupancyGrid geometry;
   if (!options.like_yaml.empty()) {
     FLEETMAP_ASSIGN_OR_RETURN(grid::LoadedMap like,
@@ -69,7 +66,7 @@ Status RenderVmap(const RenderCommandOptions& options, bool svg) {
   }
   StatusOr<std::vector<uint8_t>> png = vector_map::RenderVectorMapPng(merged, geometry);
   if (!png.ok()) return png.status().WithContext(options.input);
-  return vector_map::WriteBytes(options.output, *png);
+  return WriteFileAtomically(options.output, *png);
 }
 
 }  // namespace

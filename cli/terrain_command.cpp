@@ -1,10 +1,10 @@
 #include "cli/terrain_command.hpp"
 
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "cli/exit_codes.hpp"
+#include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_geojson.hpp"
@@ -36,10 +36,10 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
     return kExitBadInput;
   }
   if (!options.geojson.empty()) {
-    std::ofstream file(options.geojson, std::ios::binary | std::ios::trunc);
-    file << sim::TerrainToGeoJsonString(terrain, 1) << "\n";
-    if (!file) {
-      err << "fleetmap terrain: " << options.geojson << ": cannot write the GeoJSON file\n";
+    const Status written =
+        WriteFileAtomically(options.geojson, sim::TerrainToGeoJsonString(terrain, 1) + "\n");
+    if (!written.ok()) {
+      err << "fleetmap terrain: " << written.message() << "\n";
       return kExitBadInput;
     }
   }

@@ -8,6 +8,7 @@
 #include <span>
 
 #include "cli/exit_codes.hpp"
+#include "common/core/file_io.hpp"
 #include "common/metrics/grid_sizes.hpp"
 #include "common/vector_map/geojson.hpp"
 #include "common/vector_map/png.hpp"
@@ -22,24 +23,20 @@ std::optional<vector_map::VectorizeMethod> MethodFromName(const std::string& nam
   return std::nullopt;
 }
 
-Status WriteText(const std::string& path, const std::string& text) {
-  return vector_map::WriteBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
-}
-
 // The optional pictures, drawn from the merged tiles (fleet frame = map frame).
 Status WritePictures(const VectorizeCommandOptions& options, const vector_map::VectorMap& merged,
                      const grid::OccupancyGrid& grid) {
   if (!options.geojson_path.empty()) {
     FLEETMAP_RETURN_IF_ERROR(
-        WriteText(options.geojson_path, vector_map::ToGeoJsonString(merged) + "\n"));
+        WriteFileAtomically(options.geojson_path, vector_map::ToGeoJsonString(merged) + "\n"));
   }
   if (!options.svg_path.empty()) {
-    FLEETMAP_RETURN_IF_ERROR(WriteText(options.svg_path, vector_map::ToSvg(merged)));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.svg_path, vector_map::ToSvg(merged)));
   }
   if (!options.png_path.empty()) {
     FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> png,
                               vector_map::RenderVectorMapPng(merged, grid));
-    FLEETMAP_RETURN_IF_ERROR(vector_map::WriteBytes(options.png_path, png));
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.png_path, png));
   }
   return Status::Ok();
 }
@@ -88,11 +85,8 @@ int RunVectorize(const VectorizeCommandOptions& options, std::ostream& out, std:
   size_t dropped_rings = 0;
   StatusOr<std::string> bytes = EncodeVmapBytes(&*map, &dropped_rings);
   if (!bytes.ok()) return fail(options.map_yaml + ": cannot encode: " + bytes.status().message());
-  if (Status s = vector_map::WriteBytes(options.output_vmap,
-                                        std::vector<uint8_t>(bytes->begin(), bytes->end()));
-      !s.ok()) {
+  if (Status s = WriteFileAtomically(options.output_vmap, *bytes); !s.ok())
     return fail(s.message());
-  }
   if (Status s = WritePictures(options, map->Merged(), grid); !s.ok()) return fail(s.message());
   StatusOr<metrics::CompressedSizes> sizes = metrics::MeasureBytes(
       std::span(reinterpret_cast<const uint8_t*>(bytes->data()), bytes->size()));

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <vector>
 
+#include "common/core/file_io.hpp"
+
 namespace fleetmap::extrapolation {
 namespace {
 
@@ -205,8 +207,7 @@ StatusOr<PointCloud> ReadPly(const std::string& path, int64_t max_points) {
 }
 
 Status WritePly(const PointCloud& cloud, const std::string& path, bool ascii) {
-  std::ofstream file(path, std::ios::binary);
-  if (!file) return InvalidArgumentError(path + ": cannot write");
+  std::ostringstream file;
   file << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian")
        << " 1.0\ncomment fleetmap point cloud, map frame, metres\nelement vertex " << cloud.size()
        << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
@@ -220,8 +221,7 @@ Status WritePly(const PointCloud& cloud, const std::string& path, bool ascii) {
       file.write(reinterpret_cast<const char*>(xyz), sizeof(xyz));
     }
   }
-  if (!file) return InvalidArgumentError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, file.str());
 }
 
 }  // namespace fleetmap::extrapolation

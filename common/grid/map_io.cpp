@@ -14,6 +14,8 @@
 #include <system_error>
 #include <vector>
 
+#include "common/core/file_io.hpp"
+#include "common/grid/image_file.hpp"
 #include "common/grid/pgm.hpp"
 
 namespace fleetmap::grid {
@@ -309,21 +311,7 @@ Status WriteYaml(const OccupancyGrid& grid, const std::string& yaml_path,
   out << YAML::Key << "free_thresh" << YAML::Value << FormatDouble(options.free_thresh);
   out << YAML::EndMap;
   if (!out.good()) return InternalError(yaml_path + ": YAML emitter failed: " + out.GetLastError());
-  std::ofstream file(yaml_path, std::ios::trunc);
-  if (!file) return UnavailableError(yaml_path + ": cannot open for writing");
-  file << out.c_str() << "\n";
-  file.close();
-  if (!file) return UnavailableError(yaml_path + ": write failed");
-  return Status::Ok();
-}
-
-Status WritePng(const cv::Mat& mat, const std::string& path) {
-  try {
-    if (!cv::imwrite(path, mat)) return UnavailableError(path + ": cannot write PNG");
-  } catch (const cv::Exception& e) {
-    return UnavailableError(path + ": cannot write PNG: " + e.what());
-  }
-  return Status::Ok();
+  return WriteFileAtomically(yaml_path, std::string(out.c_str()) + "\n");
 }
 
 }  // namespace
@@ -554,7 +542,7 @@ Status SaveMap(const OccupancyGrid& grid, const std::string& yaml_path,
     image.pixels.assign(mat.datastart, mat.dataend);
     FLEETMAP_RETURN_IF_ERROR(WritePgm(image, image_path.string()));
   } else {
-    FLEETMAP_RETURN_IF_ERROR(WritePng(mat, image_path.string()));
+    FLEETMAP_RETURN_IF_ERROR(WriteImageFile(image_path.string(), mat));
   }
   return WriteYaml(grid, yaml_path, image_path.filename().string(), options);
 }

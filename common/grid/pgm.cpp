@@ -10,6 +10,8 @@
 #include <streambuf>
 #include <system_error>
 
+#include "common/core/file_io.hpp"
+
 namespace fleetmap::grid {
 namespace {
 
@@ -387,12 +389,7 @@ StatusOr<std::string> EncodePgm(const PgmImage& image, PgmEncoding encoding) {
 Status WritePgm(const PgmImage& image, const std::string& path, PgmEncoding encoding) {
   FLEETMAP_RETURN_IF_ERROR(ValidatePgmImage(image, path));
   FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes, EncodePgm(image, encoding));
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return UnavailableError(path + ": cannot open for writing");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) return UnavailableError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, bytes);
 }
 
 }  // namespace fleetmap::grid

@@ -58,7 +58,7 @@ Status ValidatePgmImage(const PgmImage& image, const std::string& name);
 // Serializes a valid image (see ValidatePgmImage); P2 lines stay under 70 characters.
 StatusOr<std::string> EncodePgm(const PgmImage& image, PgmEncoding encoding = PgmEncoding::kBinary);
 
-// Writes a valid image to `path`, replacing the file.
+// Writes a valid image to `path`, replacing the file whole (WriteFileAtomically).
 Status WritePgm(const PgmImage& image, const std::string& path,
                 PgmEncoding encoding = PgmEncoding::kBinary);
 

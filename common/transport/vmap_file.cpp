@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/core/file_io.hpp"
 #include "common/transport/cdr_codec.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/idl_shapes.hpp"
@@ -103,11 +104,7 @@ StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const st
 
 Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& path) {
   FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes, EncodeVmap(map));
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) return NotFoundError(path + ": cannot open for writing");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) return DataLossError(path + ": write failed");
-  return Status::Ok();
+  return WriteFileAtomically(path, bytes);
 }
 
 StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,

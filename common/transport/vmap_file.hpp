@@ -28,6 +28,7 @@ StatusOr<std::string> EncodeVmap(const vector_map::TiledVectorMap& map);
 // `name` (a file name) prefixes every error. Never trusts a length it has not checked.
 StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const std::string& name);
 
+// Writes EncodeVmap(map) to `path`, whole or not at all (WriteFileAtomically).
 Status WriteVmapFile(const vector_map::TiledVectorMap& map, const std::string& path);
 StatusOr<vector_map::TiledVectorMap> ReadVmapFile(const std::string& path,
                                                   const VmapReadOptions& options = {});

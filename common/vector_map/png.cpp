@@ -1,7 +1,6 @@
 #include "common/vector_map/png.hpp"
 
 #include <cmath>
-#include <fstream>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -78,15 +77,6 @@ StatusOr<std::vector<uint8_t>> RenderVectorMapPng(const VectorMap& map,
   std::vector<uint8_t> bytes;
   if (!cv::imencode(".png", image, bytes)) return InternalError("png: OpenCV could not encode");
   return bytes;
-}
-
-Status WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return NotFoundError(path + ": cannot open for writing");
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-  if (!out) return DataLossError(path + ": write failed");
-  return Status::Ok();
 }
 
 }  // namespace fleetmap::vector_map

@@ -27,7 +27,4 @@ StatusOr<std::vector<uint8_t>> RenderVectorMapPng(const VectorMap& map,
                                                   const grid::OccupancyGrid& like,
                                                   const VectorPngOptions& options = {});
 
-// Writes bytes to a file. Errors name the path.
-Status WriteBytes(const std::string& path, const std::vector<uint8_t>& bytes);
-
 }  // namespace fleetmap::vector_map

@@ -104,5 +104,19 @@ TEST(CliObjectsTest, BadInputNamesTheFileAndExitsTwo) {
   std::filesystem::remove_all(dir);
 }
 
+// An output that cannot be written is an error naming the file (it used to be ignored, exit 0).
+// model.json is a non-empty directory, so the rename over it fails even for root.
+TEST(CliObjectsTest, UnwritableOutputNamesTheFileAndExitsTwo) {
+  const std::string dir = TempDir("unwritable");
+  const std::string a = SaveRoom(dir, "a", {{10, 10}, {60, 60}});
+  const std::string b = SaveRoom(dir, "b", {{30, 70}, {70, 20}});
+  std::filesystem::create_directories(dir + "/out/model.json/keep");
+  const process::CommandResult run = RunFleetmap({"learn-objects", a, b, "--out", dir + "/out"});
+  EXPECT_EQ(run.exit_code, 2) << run.out << run.err;
+  EXPECT_THAT(run.err, HasSubstr(dir + "/out/model.json: cannot write: Is a directory"));
+  EXPECT_TRUE(std::filesystem::is_directory(dir + "/out/model.json/keep"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace fleetmap::cli

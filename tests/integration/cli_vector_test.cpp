@@ -362,7 +362,8 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       {{"vectorize", map, "-o", vmap, "--method", "fancy"}, {map, "unknown --method 'fancy'"}},
       {{"vectorize", map, "-o", vmap, "--max-cells", "1000"}, {"room.pgm", "limit of 1000"}},
       {{"vectorize", rotated, "-o", dir + "/r.vmap"}, {rotated, "rotated"}},
-      {{"vectorize", map, "-o", dir + "/no/such/dir/x.vmap"}, {"no/such/dir/x.vmap"}},
+      {{"vectorize", map, "-o", dir + "/no/such/dir/x.vmap"},
+       {dir + "/no/such/dir/x.vmap: cannot write: No such file or directory"}},
       {{"validate", map, missing_vmap}, {missing_vmap, "no such file"}},
       {{"validate", missing, vmap}, {missing, "no such file"}},
       {{"validate", map, truncated}, {truncated, "not a valid .vmap"}},
@@ -380,6 +381,8 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       {{"render", corrupt, "-o", dir + "/c.svg"}, {corrupt, "not a valid .vmap"}},
       {{"render", map, "-o", dir + "/c.gif"}, {"c.gif", "expected .svg or .png"}},
       {{"render", dir + "/room.txt", "-o", dir + "/c.png"}, {"room.txt", "unknown input"}},
+      {{"render", map, "-o", dir + "/no/such/dir/c.png"},
+       {dir + "/no/such/dir/c.png: cannot write: No such file or directory"}},
       {{"bench", "vectorize", "--maps", dir + "/nowhere"}, {dir + "/nowhere", "no such directory"}},
       {{"bench", "vectorize", "--maps", dir, "--runs", "3"}, {"--runs must be >= 5"}},
   };

@@ -6,12 +6,11 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/process/subprocess.hpp"
+#include "tests/scratch_dir.hpp"  // ReadFile
 
 namespace fleetmap::testing {
 
@@ -30,14 +29,6 @@ inline std::string FreshTempDir(const std::string& prefix) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
-}
-
-// The whole file, or "" if it cannot be read.
-inline std::string ReadFile(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return buffer.str();
 }
 
 }  // namespace fleetmap::testing
