@@ -52,13 +52,21 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
   // One thread: the comparison is per core, and OpenCV would otherwise use its pool.
   cv::setNumThreads(1);
 
+  // A map that cannot be measured (unreadable, corrupt, too large) is named and skipped: the
+  // others are still measured and reported, and the exit code says that one was not.
   std::vector<VectorizeBenchRow> rows;
+  size_t skipped = 0;
   for (const std::string& file : *files) {
     err << "measuring " << file << "\n";
     StatusOr<VectorizeBenchRow> row = MeasureVectorizeBench(file, options.bench);
-    if (!row.ok()) return fail(row.status().message());
+    if (!row.ok()) {
+      fail(row.status().message() + " (skipped)");
+      ++skipped;
+      continue;
+    }
     rows.push_back(std::move(row).value());
   }
+  if (rows.empty()) return fail(options.maps_dir + ": no map could be measured");
   const std::vector<BenchTarget> targets = EvaluateVectorizeTargets(rows);
   PrintVectorizeBenchTables(rows, out);
   PrintVectorizeTargets(targets, out);
@@ -72,6 +80,10 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
     }
   }
   out.flush();
+  if (skipped > 0) {
+    return fail(std::to_string(skipped) + " of " + std::to_string(files->size()) +
+                " maps skipped, see above");
+  }
   return out ? kExitOk : kExitBadInput;
 }
 

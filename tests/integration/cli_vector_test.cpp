@@ -24,6 +24,7 @@ namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::RunFleetmap;
 
 // A fresh directory per test and process, so parallel ctest runs never share files.
@@ -395,6 +396,25 @@ TEST(CliVectorTest, BadInputsExitWithCode2AndNameTheFile) {
       EXPECT_THAT(run.err, HasSubstr(message)) << label;
     }
   }
+}
+
+TEST(CliVectorTest, BenchVectorizeSkipsACorruptMapAndMeasuresTheRest) {
+  const std::string dir = TestDir();
+  std::filesystem::create_directories(dir + "/maps");
+  Save(Room(), dir + "/maps", "room");
+  const std::string broken = dir + "/maps/broken.yaml";
+  WriteText(broken, "image: broken.pgm\nresolution: 0.05\n");  // no origin, no image
+  const std::string json_path = dir + "/bench.json";
+  const process::CommandResult run =
+      RunFleetmap({"bench", "vectorize", "--maps", dir + "/maps", "--json", json_path});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr(broken));
+  EXPECT_THAT(run.err, HasSubstr("1 of 2 maps skipped"));
+  EXPECT_THAT(run.out, HasSubstr("| room |"));
+  EXPECT_THAT(run.out, Not(HasSubstr("| broken |")));
+  const nlohmann::json json = nlohmann::json::parse(ReadText(json_path));
+  ASSERT_EQ(json["maps"].size(), 1u);
+  EXPECT_EQ(json["maps"][0]["name"], "room");
 }
 
 TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
