@@ -113,7 +113,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
       const std::string path = options.out_dir + "/maps/session_" + std::to_string(t) + ".yaml";
       const Status saved = grid::SaveMap(data->maps[t], path);
       if (!saved.ok()) {
-        err << "fleetmap bench objects: " << path << ": " << saved.message() << "\n";
+        err << "fleetmap bench objects: " << saved.message() << "\n";  // it names the file
         return kExitBadInput;
       }
     }
