@@ -1,10 +1,31 @@
 """Reads and writes map_server maps with an 8-bit binary PGM image (enough for these tools)."""
 import os
+import sys
+
+
+def parse_args(usage, convert):
+    """(map, out_dir, number) from the command line, or exits (status 1) saying what is wrong."""
+    if len(sys.argv) != 4:
+        raise SystemExit("usage: " + usage)
+    try:
+        number = convert(sys.argv[3])
+    except ValueError:
+        raise SystemExit("%s: not a number: %s\nusage: %s" % (sys.argv[0], sys.argv[3], usage))
+    if not os.path.isdir(sys.argv[2]):
+        raise SystemExit(sys.argv[2] + ": no such directory")
+    return sys.argv[1], sys.argv[2], number
 
 
 def load_map(yaml_path):
     """Returns (metadata dict of strings, width, height, pixel bytes, top row first)."""
     meta = {}
+    try:
+        return _load(yaml_path, meta)
+    except (OSError, KeyError, ValueError, IndexError) as error:
+        raise SystemExit("%s: cannot read the map: %s" % (yaml_path, error))
+
+
+def _load(yaml_path, meta):
     with open(yaml_path) as f:
         for line in f:
             if ":" in line:

@@ -7,13 +7,12 @@ case"). The output is named <map>_rot<DEG>.yaml / .pgm.
 """
 import math
 import os
-import sys
 
-from map_file import load_map, save_map
+from map_file import load_map, parse_args, save_map
 
 
 def main():
-    source, out_dir, degrees = sys.argv[1], sys.argv[2], float(sys.argv[3])
+    source, out_dir, degrees = parse_args("rotate_map.py MAP.yaml OUT_DIR DEG", float)
     meta, width, height, pixels = load_map(source)
     c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
     out_w = int(abs(width * c) + abs(height * s)) + 2

@@ -6,13 +6,14 @@ Usage: scale_map.py MAP.yaml OUT_DIR K   (python3, standard library only; 8-bit 
 The output is named <map>_up<K>.yaml / .pgm (docs/results.md, "The general case").
 """
 import os
-import sys
 
-from map_file import load_map, save_map
+from map_file import load_map, parse_args, save_map
 
 
 def main():
-    source, out_dir, k = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    source, out_dir, k = parse_args("scale_map.py MAP.yaml OUT_DIR K", int)
+    if k < 1:
+        raise SystemExit("K must be >= 1, got %d" % k)
     meta, width, height, pixels = load_map(source)
     out_w, out_h = width * k, height * k
     out = bytearray(out_w * out_h)
