@@ -71,6 +71,7 @@ class Observer {
       // The first revisions a late reader gets are history, not updates: skip stamps from
       // before the robots started.
       if (event.tile.stamp < started_) continue;
+      if (event.tile.tile.x >= hostile_first_tile_x_) continue;  // the hostile peer's
       result->latencies_ms.push_back(
           std::chrono::duration<double, std::milli>(now - event.tile.stamp).count());
     }
@@ -80,6 +81,7 @@ class Observer {
   }
 
   void MarkStart() { started_ = Clock::now(); }
+  void IgnoreTilesFrom(int first_tile_x) { hostile_first_tile_x_ = first_tile_x; }
 
  private:
   Observer() = default;
@@ -90,6 +92,7 @@ class Observer {
   std::unique_ptr<transport::VectorTileReader> fused_tiles_;
   std::unique_ptr<transport::OccupancyGridReader> fused_grid_;
   Timestamp started_;
+  int hostile_first_tile_x_ = INT32_MAX;
 };
 
 }  // namespace
@@ -159,6 +162,12 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
         env));
   }
 
+  std::unique_ptr<HostileFlood> flood;
+  if (options.hostile) {
+    FLEETMAP_ASSIGN_OR_RETURN(flood, HostileFlood::Create(domain, *options.hostile));
+    observer->IgnoreTilesFrom(options.hostile->first_tile_x);
+    flood->Start();
+  }
   auto next_progress = start;
   while (steady_clock::now() - start < options.duration) {
     observer->Poll(&result);
@@ -172,12 +181,17 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     result.server_cpu_seconds = usage->cpu_seconds;
     result.server_peak_rss_bytes = usage->peak_rss_bytes;
   }
+  if (flood != nullptr) {
+    flood->Stop();
+    result.hostile_tiles_written = flood->tiles_written();
+  }
   for (auto& agent : agents) agent->Signal(SIGTERM);
   for (auto& agent : agents) agent->Wait(std::chrono::seconds(10));
   const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);
   while (steady_clock::now() < drain_until) observer->Poll(&result);
   server.Signal(SIGINT);
   server.Wait(std::chrono::seconds(10));
+  result.server_output = server.Output();
   result.seconds = std::chrono::duration<double>(steady_clock::now() - start).count();
   for (const auto& [name, robot] : result.robots) result.total_bytes += robot.bytes;
   return result;

@@ -7,9 +7,11 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cli/hostile_flood.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -27,6 +29,8 @@ struct FleetSimOptions {
   double scans_per_second = 25.0;  // each simulated laser
   std::string wire = "tiles";      // "tiles" or "grid"
   std::string bin_dir;             // where fleetmap-server and fleetmap-agent are
+  // A hostile peer flooding the server while the fleet runs (bench fleet --hostile).
+  std::optional<HostileFloodOptions> hostile;
 
   Status Validate() const;
 };
@@ -42,10 +46,13 @@ struct FleetRunResult {
   std::map<std::string, FleetRobotResult> robots;
   uint64_t total_bytes = 0;
   std::vector<double> latencies_ms;  // fused tile received - the robot update that caused it
+                                     // (the honest robots' tiles only)
   grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map
   double server_cpu_seconds = 0.0;
   int64_t server_peak_rss_bytes = 0;
   double seconds = 0.0;  // wall time of the run
+  uint64_t hostile_tiles_written = 0;
+  std::string server_output;  // what the server printed, its summary table last
 };
 
 // Runs the fleet for `options.duration`, then lets the robots leave and stops the server.

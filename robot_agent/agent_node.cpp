@@ -44,6 +44,7 @@ Status AgentOptions::Validate() const {
   if (map_check_period.count() <= 0)
     return InvalidArgumentError("the map check period must be > 0");
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
+  if (claim_wait.count() < 0) return InvalidArgumentError("--claim-wait must be >= 0");
   return Status::Ok();
 }
 
@@ -87,6 +88,11 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
         node->entity_publisher_,
         EntityPublisher::Create(*node->participant_, o.robot, o.entities_path));
   }
+
+  FLEETMAP_ASSIGN_OR_RETURN(node->claim_watch_,
+                            IdClaimWatch::Create(*node->participant_, o.robot));
+  // Every endpoint is created, so discovery runs while the agent listens for a prior claim.
+  FLEETMAP_RETURN_IF_ERROR(node->claim_watch_->CheckIdIsFree(o.claim_wait));
 
   RobotStatus& status = node->status_;
   status.robot = o.robot;
@@ -138,6 +144,15 @@ Status AgentNode::PublishStatus() {
   return status_writer_->Write(status_);
 }
 
+void AgentNode::WatchIdClaims() {
+  for (const std::string& other : claim_watch_->NewClaimants()) {
+    spdlog::error(
+        "{}: participant {} also claims robot id {}; the server keeps this agent (the first "
+        "claim) and refuses the other",
+        options_.robot.value, other, options_.robot.value);
+  }
+}
+
 void AgentNode::DrainFusedTiles() {
   for (const transport::TileEvent& event : fused_reader_->Drain()) {
     if (event.kind == transport::TileEvent::Kind::kTile) ++fused_tiles_received_;
@@ -187,6 +202,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
       next_status += options_.status_period;
     }
     DrainFusedTiles();
+    WatchIdClaims();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 

@@ -14,6 +14,7 @@
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "robot_agent/entity_publisher.hpp"
+#include "robot_agent/id_claim_watch.hpp"
 #include "robot_agent/map_source.hpp"
 #include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/tile_publisher.hpp"
@@ -40,6 +41,9 @@ struct AgentOptions {
   std::chrono::milliseconds status_period{500};  // must stay below the 1.5 s liveliness lease
   std::chrono::milliseconds map_check_period{200};
   std::chrono::milliseconds duration{0};  // run this long, then leave; 0: until stopped
+  // How long the agent listens, before it joins, for another participant already speaking for
+  // its robot id (DDS discovery on a LAN takes a few hundred milliseconds). 0: do not check.
+  std::chrono::milliseconds claim_wait{1000};
   transport::ParticipantOptions dds;
 
   // Checks every field once; the error names the option and the value.
@@ -65,6 +69,9 @@ class AgentNode {
   Status OnNewMap(const grid::OccupancyGrid& map);
   Status PublishStatus();
   void DrainFusedTiles();
+  // Another participant that starts claiming this robot id once the agent is in the fleet is
+  // reported: the server keeps this agent and refuses the other.
+  void WatchIdClaims();
 
   AgentOptions options_;
   RobotStatus status_;
@@ -76,6 +83,7 @@ class AgentNode {
   std::unique_ptr<TilePublisher> tile_publisher_;                // Wire::kTiles
   std::unique_ptr<transport::VectorTileReader> fused_reader_;
   std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
+  std::unique_ptr<IdClaimWatch> claim_watch_;
   uint64_t fused_tiles_received_ = 0;
 };
 

@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
   app.add_option("--duration", duration_s, "seconds to run before leaving (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  double claim_wait_s = 1.0;
+  app.add_option("--claim-wait", claim_wait_s,
+                 "seconds to listen for another agent already using this robot id (0: skip)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
@@ -95,6 +99,7 @@ int main(int argc, char** argv) {
     options.fleet_from_map = mine->second;
   }
   options.map_from_robot = PoseFrom(pose);
+  options.claim_wait = std::chrono::milliseconds(static_cast<int64_t>(claim_wait_s * 1000.0));
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
   if (localhost_only) options.dds.localhost_only = true;

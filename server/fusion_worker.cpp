@@ -1,5 +1,6 @@
 #include "server/fusion_worker.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "common/transport/tile_payload.hpp"
@@ -68,7 +69,13 @@ Status FusionWorker::Restore() {
     }
     const Timestamp stamp{
         std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(record.stamp_ns))};
-    FLEETMAP_RETURN_IF_ERROR(fusion_.UpdateRobotTile(record.owner, record.tile, tile->map, stamp));
+    // A store written before admission control may hold tiles this server now refuses.
+    if (const Status updated = fusion_.UpdateRobotTile(record.owner, record.tile, tile->map, stamp);
+        !updated.ok()) {
+      spdlog::warn("server: skipping a stored tile of {}: {}", record.owner, updated.message());
+      continue;
+    }
+    admission_.Adopt(record.owner, record.tile);
     ++restored;
   }
   std::lock_guard lock(stats_mutex_);
@@ -113,8 +120,10 @@ FusionStats FusionWorker::stats() const {
 
 void FusionWorker::Loop() {
   while (!stop_.load()) {
-    wake_up_->WaitFor(std::chrono::milliseconds(50));
+    if (queue_.empty()) wake_up_->WaitFor(std::chrono::milliseconds(50));
     HandleTileEvents();
+    // Bounded, so that new samples are drained (and a flood coalesced) while a backlog lasts.
+    FuseQueuedTiles(kFusionSlice);
     HandleGrids();
     PublishFused(std::chrono::steady_clock::now());
     HandleRobotRecords();
@@ -175,47 +184,145 @@ void FusionWorker::Persist() {
 }
 
 void FusionWorker::HandleTileEvents() {
-  for (transport::TileEvent& event : tile_reader_->Drain()) {
-    const std::string& robot = event.tile.robot_id;
-    if (event.kind == transport::TileEvent::Kind::kRejected) {
-      spdlog::warn("server: dropped a robot tile: {}", event.error.message());
-      std::lock_guard lock(stats_mutex_);
-      if (robot.empty()) {
-        ++stats_.rejected_unattributed;
-      } else {
-        ++stats_.robots[robot].rejected;
-      }
-      continue;
-    }
-    if (!registry_->MaySpeakFor(robot, event.writer)) {
-      spdlog::warn("server: dropped tile ({}, {}) claiming robot {} from a second agent",
-                   event.tile.tile.x, event.tile.tile.y, robot);
-      std::lock_guard lock(stats_mutex_);
-      ++stats_.robots[robot].rejected;
-      continue;
-    }
-    if (event.kind == transport::TileEvent::Kind::kRemoved) {
-      fusion_.RemoveRobotTile(robot, event.tile.tile);
-      sessions_->RemoveTile(robot, event.tile.tile);
-      continue;
-    }
-    const Status updated =
-        fusion_.UpdateRobotTile(robot, event.tile.tile, event.tile.map, event.tile.stamp);
-    if (updated.ok()) {
-      sessions_->RecordTile(robot, event.tile.tile, event.tile.map, event.tile.stamp);
-      if (store_ != nullptr) Remember(robot, event.tile);
-    }
-    std::lock_guard lock(stats_mutex_);
-    FusionStats::Robot& stats = stats_.robots[robot];
-    if (!updated.ok()) {
-      ++stats.rejected;
-      spdlog::warn("server: dropped tile ({}, {}) of {}: {}", event.tile.tile.x, event.tile.tile.y,
-                   robot, updated.message());
-      continue;
-    }
-    ++stats.tiles;
-    stats.bytes += event.serialized_bytes;
+  const Timestamp now = Clock::now();
+  const auto steady = std::chrono::steady_clock::now();
+  for (transport::TileEvent& event : tile_reader_->Drain()) Admit(std::move(event), now, steady);
+  ReleaseHeldTiles(steady);
+}
+
+void FusionWorker::Refuse(const std::string& robot, Refusal reason, const std::string& detail) {
+  // A name that is not a robot name (empty, too long) is not used as a key anywhere.
+  const bool named = IsValidRobotName(robot);
+  refusals_.Refuse(named ? robot : std::string(), reason, detail);
+  std::lock_guard lock(stats_mutex_);
+  ++stats_.refusals_by_reason[RefusalName(reason)];
+  if (!named) {
+    ++stats_.rejected_unattributed;
+    return;
   }
+  FusionStats::Robot& counts = stats_.robots[robot];
+  ++counts.rejected;
+  if (reason != Refusal::kMalformed) ++counts.refused_by_admission;
+}
+
+void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
+                         std::chrono::steady_clock::time_point steady) {
+  const std::string robot = event.tile.robot_id;
+  if (event.kind == transport::TileEvent::Kind::kRejected) {
+    Refuse(robot, Refusal::kMalformed, event.error.message());
+    return;
+  }
+  if (auto refused = TileAdmission::CheckRobotId(event.tile)) {
+    Refuse(robot, refused->reason, refused->detail);
+    return;
+  }
+  switch (registry_->WhoSpeaks(robot, event.writer)) {
+    case RobotRegistry::Speaker::kOther:
+      Refuse(robot, Refusal::kNotOwner,
+             fmt::format("tile ({}, {}) for robot {} from participant {}, which does not own it",
+                         event.tile.tile.x, event.tile.tile.y, robot,
+                         RobotRegistry::ParticipantOf(event.writer)));
+      return;
+    case RobotRegistry::Speaker::kUnclaimed: {
+      // Its status (and with it, who owns the id) may still be on its way: hold the newest
+      // revision of each tile for a while, for a bounded number of ids.
+      const bool known = held_.count(robot) > 0;
+      if (!known && held_.size() >= kMaxHeldRobots) {
+        Refuse(robot, Refusal::kUnclaimed, "a tile for a robot id no status claims (too many)");
+        return;
+      }
+      auto& tiles = held_[robot];
+      if (tiles.size() >= options_.admission.max_tiles_per_robot &&
+          tiles.count(event.tile.tile) == 0) {
+        Refuse(robot, Refusal::kTileQuota, "too many tiles held for an unclaimed robot id");
+        return;
+      }
+      const TileId key = event.tile.tile;
+      tiles.insert_or_assign(key, HeldTile{std::move(event), steady});
+      return;
+    }
+    case RobotRegistry::Speaker::kOwner:
+      break;
+  }
+  if (event.kind == transport::TileEvent::Kind::kRemoved) {
+    RemoveTile(robot, event.tile.tile);
+    return;
+  }
+  TileAdmission::Verdict verdict =
+      admission_.Admit(event.tile, event.serialized_bytes, now, steady);
+  if (const auto* refused = std::get_if<TileAdmission::Refused>(&verdict)) {
+    Refuse(robot, refused->reason, refused->detail);
+    return;
+  }
+  const Timestamp evidence = std::get<TileAdmission::Admitted>(verdict).evidence_stamp;
+  const TileId key = event.tile.tile;
+  queue_.Push(robot, key, PendingTile{std::move(event.tile), evidence, event.serialized_bytes});
+}
+
+void FusionWorker::RemoveTile(const std::string& robot, const TileId& tile) {
+  queue_.Erase(robot, tile);
+  fusion_.RemoveRobotTile(robot, tile);
+  sessions_->RemoveTile(robot, tile);
+  admission_.Forget(robot, tile);
+}
+
+void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady) {
+  const Timestamp now = Clock::now();
+  for (auto robot = held_.begin(); robot != held_.end();) {
+    const std::string owner = registry_->OwnerOf(robot->first);
+    for (auto it = robot->second.begin(); it != robot->second.end();) {
+      HeldTile& held = it->second;
+      if (!owner.empty()) {
+        // Admit() sorts the owner's tiles from the others now that the id is claimed.
+        Admit(std::move(held.event), now, steady);
+        it = robot->second.erase(it);
+      } else if (steady - held.arrived > options_.unclaimed_wait) {
+        Refuse(robot->first, Refusal::kUnclaimed,
+               fmt::format("tile ({}, {}) waited {} s for a status claiming robot {}; dropped",
+                           it->first.x, it->first.y,
+                           std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait)
+                               .count(),
+                           robot->first));
+        it = robot->second.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    robot = robot->second.empty() ? held_.erase(robot) : std::next(robot);
+  }
+}
+
+void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!queue_.empty() && std::chrono::steady_clock::now() - start < budget) {
+    std::string robot;
+    const auto turn_start = std::chrono::steady_clock::now();
+    for (PendingTile& pending : queue_.NextTurn(kTilesPerTurn, &robot)) {
+      ApplyTile(robot, std::move(pending));
+    }
+    // The turn's cost includes vectorizing what it changed: that is what delays the others.
+    PublishFused(std::chrono::steady_clock::now());
+    queue_.Charge(robot, std::chrono::steady_clock::now() - turn_start);
+  }
+  std::lock_guard lock(stats_mutex_);
+  stats_.tiles_waiting = queue_.size();
+}
+
+void FusionWorker::ApplyTile(const std::string& robot, PendingTile pending) {
+  const transport::VectorTileMessage& tile = pending.tile;
+  const Status updated =
+      fusion_.UpdateRobotTile(robot, tile.tile, tile.map, pending.evidence_stamp);
+  if (!updated.ok()) {
+    Refuse(robot, Refusal::kMalformed,
+           fmt::format("tile ({}, {}): {}", tile.tile.x, tile.tile.y, updated.message()));
+    return;
+  }
+  sessions_->RecordTile(robot, tile.tile, tile.map, pending.evidence_stamp);
+  if (store_ != nullptr) Remember(robot, tile);
+  std::lock_guard lock(stats_mutex_);
+  FusionStats::Robot& stats = stats_.robots[robot];
+  ++stats.tiles;
+  stats.bytes += pending.bytes;
 }
 
 void FusionWorker::HandleGrids() {
@@ -269,7 +376,17 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   bool map_sent = false;
   if (map_dirty_ && now - last_map_ >= options_.map_period) {
     transport::MapMessage map;
-    map.grid = fusion_.FusedGrid();
+    fusion::GridWindow shown;
+    map.grid = fusion_.FusedGrid(&shown);
+    if (shown.tiles_left_out > 0 && shown.tiles_left_out != tiles_outside_map_) {
+      spdlog::warn(
+          "server: the fused tiles span more than one grid of {} cells can show: "
+          "rt/fleetmap/map shows tiles ({}, {})..({}, {}) ({} tiles) and leaves {} out; "
+          "rt/fleetmap/fused_tiles carries them all",
+          options_.fusion.max_grid_cells, shown.rect.min.x, shown.rect.min.y, shown.rect.max.x,
+          shown.rect.max.y, shown.tiles_shown, shown.tiles_left_out);
+    }
+    tiles_outside_map_ = shown.tiles_left_out;
     map.frame_id = "fleet";
     map.stamp = Clock::now();
     if (StatusOr<size_t> written = map_writer_->Write(map); written.ok()) {
@@ -286,6 +403,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   stats_.fused_bytes_published += bytes;
   stats_.maps_published += map_sent ? 1 : 0;
   stats_.fused_tiles = fusion_.fused_tiles().size();
+  stats_.tiles_outside_map = tiles_outside_map_;
 }
 
 }  // namespace fleetmap::server

@@ -19,8 +19,11 @@
 #include "common/transport/vector_tile_reader.hpp"
 #include "common/transport/vector_tile_writer.hpp"
 #include "common/transport/wake_up.hpp"
+#include "server/fair_tile_queue.hpp"
+#include "server/refusal_log.hpp"
 #include "server/robot_registry.hpp"
 #include "server/session_archive.hpp"
+#include "server/tile_admission.hpp"
 
 namespace fleetmap::server {
 
@@ -34,6 +37,10 @@ struct FusionWorkerOptions {
   int64_t history_rows = 2'000'000;
   // The fused grid goes out on rt/fleetmap/map at most this often (when it changed).
   std::chrono::milliseconds map_period{1000};
+  // What a robot's tiles must satisfy, and its quotas.
+  AdmissionOptions admission;
+  // Tiles of a robot id that no live status claims yet wait this long for the claim.
+  std::chrono::milliseconds unclaimed_wait{std::chrono::seconds(10)};
 };
 
 // What the worker has done, per robot and in total. A snapshot; thread-safe to take.
@@ -42,13 +49,17 @@ struct FusionStats {
     uint64_t tiles = 0;
     uint64_t bytes = 0;
     uint64_t rejected = 0;
+    uint64_t refused_by_admission = 0;  // part of rejected: ids, ranges, stamps, quotas, owner
   };
   std::map<std::string, Robot> robots;
   uint64_t rejected_unattributed = 0;  // samples too broken to name their robot
+  std::map<std::string, uint64_t> refusals_by_reason;  // every refused tile, by RefusalName
   uint64_t fused_tiles_published = 0;
   uint64_t fused_bytes_published = 0;
   uint64_t maps_published = 0;
   size_t fused_tiles = 0;
+  size_t tiles_waiting = 0;           // admitted robot tiles not fused yet
+  size_t tiles_outside_map = 0;       // fused tiles the last rt/fleetmap/map grid could not show
   size_t restored_tiles = 0;  // robot tiles read back from the store at start
   uint64_t store_errors = 0;
   size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
@@ -89,15 +100,38 @@ class FusionWorker {
     transport::MapMessage map;
     Pose2 fleet_from_map;
   };
+  // An admitted robot tile waiting for its robot's turn.
+  struct PendingTile {
+    transport::VectorTileMessage tile;
+    Timestamp evidence_stamp;
+    size_t bytes = 0;
+  };
+  // A tile of a robot id no status claims yet, with the writer that sent it.
+  struct HeldTile {
+    transport::TileEvent event;
+    std::chrono::steady_clock::time_point arrived;
+  };
 
   FusionWorker(const FusionWorkerOptions& options, fusion::TileFusion fusion,
                std::shared_ptr<RobotRegistry> registry)
-      : options_(options), fusion_(std::move(fusion)), registry_(std::move(registry)) {}
+      : options_(options),
+        fusion_(std::move(fusion)),
+        registry_(std::move(registry)),
+        admission_(options.admission, options.fusion) {}
 
   // Rebuilds the fused map from the robot tiles in the store.
   Status Restore();
   void Loop();
+  // Drains the tile reader: admission, then the fair queue (or the unclaimed hold).
   void HandleTileEvents();
+  void Admit(transport::TileEvent event, Timestamp now, std::chrono::steady_clock::time_point steady);
+  void Refuse(const std::string& robot, Refusal reason, const std::string& detail);
+  void RemoveTile(const std::string& robot, const TileId& tile);
+  // Tiles held for robot ids that a status has claimed since, or that waited too long.
+  void ReleaseHeldTiles(std::chrono::steady_clock::time_point steady);
+  // Fuses queued tiles turn by turn, fairly between robots, for at most `budget`.
+  void FuseQueuedTiles(std::chrono::steady_clock::duration budget);
+  void ApplyTile(const std::string& robot, PendingTile pending);
   void Persist();
   // Robot state changes: a robot that left or was lost ends its mapping session.
   void HandleRobotRecords();
@@ -120,9 +154,19 @@ class FusionWorker {
   FusedMapListener on_fused_map_;
   SessionsListener on_sessions_;
   std::vector<store::TileRecord> unsaved_;  // worker thread only
+  TileAdmission admission_;                 // worker thread only
+  FairTileQueue<PendingTile> queue_;        // worker thread only
+  std::map<std::string, std::map<TileId, HeldTile>> held_;  // worker thread only
+  RefusalLog refusals_{"server"};           // worker thread only
   std::atomic<bool> stop_{false};
   std::thread thread_;
   bool map_dirty_ = false;  // worker thread only
+  size_t tiles_outside_map_ = 0;  // worker thread only
+  // Robot tiles one turn fuses before the next robot's turn, and how long one loop fuses before
+  // it drains the readers again.
+  static constexpr size_t kTilesPerTurn = 8;
+  static constexpr std::chrono::milliseconds kFusionSlice{50};
+  static constexpr size_t kMaxHeldRobots = 64;
   std::chrono::steady_clock::time_point last_map_{};
   mutable std::mutex stats_mutex_;
   FusionStats stats_;  // guarded by stats_mutex_

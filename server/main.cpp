@@ -54,11 +54,29 @@ int main(int argc, char** argv) {
                  "extrapolation threshold on the peak-normalised kernels, in (0, 1)");
   app.add_option("--confirm-precision", options.prediction.confirm_precision,
                  "a judged prediction is confirmed at this observed precision, else retracted");
+  app.add_option("--max-tiles-per-robot", options.fusion.admission.max_tiles_per_robot,
+                 "distinct tiles one robot id may hold (about 250 KB of server memory each)")
+      ->check(CLI::PositiveNumber);
+  double max_clock_ahead_s = 30.0;
+  app.add_option("--max-clock-ahead", max_clock_ahead_s,
+                 "refuse tiles stamped more than this many seconds ahead of the server's clock")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-bytes-per-second", options.fusion.admission.max_bytes_per_second,
+                 "sustained tile bytes per second one robot may send")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-robots-per-participant", options.max_robots_per_participant,
+                 "robot ids one DDS participant may speak for")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-map-cells", options.fusion.fusion.max_grid_cells,
+                 "cells of the one grid on rt/fleetmap/map (the fused tiles carry everything)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
 
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
+  options.fusion.admission.max_clock_ahead =
+      std::chrono::milliseconds(static_cast<int64_t>(max_clock_ahead_s * 1000.0));
   options.fusion.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;

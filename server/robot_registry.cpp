@@ -6,20 +6,41 @@ RobotRegistry::Claim RobotRegistry::ClaimRobot(const std::string& robot,
                                                const std::string& writer) {
   std::lock_guard lock(mutex_);
   const std::string participant = ParticipantOf(writer);
-  const auto [it, inserted] = participant_by_robot_.emplace(robot, participant);
-  if (inserted) return Claim::kNew;
-  return it->second == participant ? Claim::kSame : Claim::kClash;
+  const auto it = participant_by_robot_.find(robot);
+  if (it != participant_by_robot_.end()) {
+    return it->second == participant ? Claim::kSame : Claim::kClash;
+  }
+  size_t& owned = robots_by_participant_[participant];
+  if (owned >= max_robots_per_participant_) return Claim::kTooMany;
+  ++owned;
+  participant_by_robot_.emplace(robot, participant);
+  return Claim::kNew;
 }
 
-void RobotRegistry::Release(const std::string& robot) {
-  std::lock_guard lock(mutex_);
-  participant_by_robot_.erase(robot);
-}
-
-bool RobotRegistry::MaySpeakFor(const std::string& robot, const std::string& writer) const {
+bool RobotRegistry::Release(const std::string& robot, const std::string& writer) {
   std::lock_guard lock(mutex_);
   const auto it = participant_by_robot_.find(robot);
-  return it == participant_by_robot_.end() || it->second == ParticipantOf(writer);
+  if (it == participant_by_robot_.end() || it->second != ParticipantOf(writer)) return false;
+  const auto owned = robots_by_participant_.find(it->second);
+  if (owned != robots_by_participant_.end() && --owned->second == 0) {
+    robots_by_participant_.erase(owned);
+  }
+  participant_by_robot_.erase(it);
+  return true;
+}
+
+RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const std::string& robot,
+                                                const std::string& writer) const {
+  std::lock_guard lock(mutex_);
+  const auto it = participant_by_robot_.find(robot);
+  if (it == participant_by_robot_.end()) return Speaker::kUnclaimed;
+  return it->second == ParticipantOf(writer) ? Speaker::kOwner : Speaker::kOther;
+}
+
+std::string RobotRegistry::OwnerOf(const std::string& robot) const {
+  std::lock_guard lock(mutex_);
+  const auto it = participant_by_robot_.find(robot);
+  return it == participant_by_robot_.end() ? std::string() : it->second;
 }
 
 }  // namespace fleetmap::server

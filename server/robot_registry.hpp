@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <mutex>
 #include <string>
@@ -7,25 +8,41 @@
 namespace fleetmap::server {
 
 // Which agent speaks for which robot id: the DDS participant (the first 24 hex digits of a writer
-// id) whose status claimed the id first. A second agent with the same id is a misconfiguration
-// that must be reported, not merged. Thread-safe: the control thread claims, the fusion worker
-// checks.
+// id) whose status claimed the id first, for as long as that robot is alive. A second agent with
+// the same id is a misconfiguration or a hijack attempt: its statuses, disposals, tiles and
+// entities are refused and reported, never merged. Without DDS Security a participant is not
+// authenticated, so this stops mistakes and casual forgery, not a peer that claims an id first.
+// Thread-safe: the control thread claims and releases, the fusion worker checks.
 class RobotRegistry {
  public:
-  enum class Claim { kNew, kSame, kClash };
+  enum class Claim {
+    kNew,       // the id was free: now it is this participant's
+    kSame,      // the participant already owns it
+    kClash,     // another participant owns it
+    kTooMany,   // the participant already owns max_robots_per_participant ids
+  };
+  enum class Speaker { kOwner, kUnclaimed, kOther };
+
+  explicit RobotRegistry(size_t max_robots_per_participant = 16)
+      : max_robots_per_participant_(max_robots_per_participant) {}
 
   // Claims `robot` for the participant of `writer`.
   Claim ClaimRobot(const std::string& robot, const std::string& writer);
-  // Frees the id when its robot left or was lost, so a restarted agent can take it.
-  void Release(const std::string& robot);
-  // Whether a sample from `writer` may speak for `robot` (true while nobody claimed it).
-  bool MaySpeakFor(const std::string& robot, const std::string& writer) const;
+  // Frees the id when its robot left or was lost, if `writer` speaks for its owner; returns
+  // whether it did.
+  bool Release(const std::string& robot, const std::string& writer);
+  // Who `writer` is to `robot`.
+  Speaker WhoSpeaks(const std::string& robot, const std::string& writer) const;
+  // The participant owning `robot`, or empty.
+  std::string OwnerOf(const std::string& robot) const;
 
   static std::string ParticipantOf(const std::string& writer) { return writer.substr(0, 24); }
 
  private:
+  const size_t max_robots_per_participant_;
   mutable std::mutex mutex_;
   std::map<std::string, std::string> participant_by_robot_;  // guarded by mutex_
+  std::map<std::string, size_t> robots_by_participant_;      // guarded by mutex_
 };
 
 }  // namespace fleetmap::server

@@ -32,12 +32,17 @@ store::RobotRecord RobotRecordFor(const RobotId& robot, const std::string& state
 
 Status ServerOptions::Validate() const {
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
+  if (max_robots_per_participant == 0) {
+    return InvalidArgumentError("--max-robots-per-participant must be >= 1");
+  }
+  FLEETMAP_RETURN_IF_ERROR(fusion.admission.Validate());
   return Status::Ok();
 }
 
 StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   std::unique_ptr<ServerNode> node(new ServerNode(std::move(options)));
+  node->registry_ = std::make_shared<RobotRegistry>(node->options_.max_robots_per_participant);
   transport::ParticipantOptions dds = node->options_.dds;
   dds.name = "fleetmap-server";
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
@@ -109,27 +114,39 @@ void ServerNode::HandleRobotEvents() {
         OnRobotAlive(event.status, event.writer);
         break;
       case transport::RobotEvent::Kind::kLeft:
-        OnRobotGone(event.robot, RobotRecord::State::kLeft);
+        OnRobotGone(event.robot, RobotRecord::State::kLeft, event.writer);
         break;
       case transport::RobotEvent::Kind::kLost:
-        OnRobotGone(event.robot, RobotRecord::State::kLost);
+        OnRobotGone(event.robot, RobotRecord::State::kLost, event.writer);
         break;
       case transport::RobotEvent::Kind::kRejected:
-        spdlog::warn("server: dropped a robot status sample: {}", event.error.message());
+        refusals_.Refuse("", Refusal::kMalformed,
+                         "a robot status sample: " + event.error.message());
         break;
     }
   }
 }
 
 void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writer) {
-  RobotRecord& record = robots_[status.robot];
-  if (registry_->ClaimRobot(status.robot.value, writer) == RobotRegistry::Claim::kClash) {
-    if (record.id_clashes++ == 0) {
-      spdlog::error("server: two agents claim robot id {}: keeping the first, ignoring the other",
-                    status.robot.value);
-    }
+  const RobotRegistry::Claim claim = registry_->ClaimRobot(status.robot.value, writer);
+  if (claim == RobotRegistry::Claim::kClash) {
+    ++robots_[status.robot].id_clashes;
+    refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
+                     fmt::format("a status from participant {} claims robot id {}, which "
+                                 "participant {} owns: keeping the first, ignoring the other",
+                                 RobotRegistry::ParticipantOf(writer), status.robot.value,
+                                 registry_->OwnerOf(status.robot.value)));
     return;
   }
+  if (claim == RobotRegistry::Claim::kTooMany) {
+    refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
+                     fmt::format("participant {} already speaks for {} robots; its claim of {} "
+                                 "is ignored",
+                                 RobotRegistry::ParticipantOf(writer),
+                                 options_.max_robots_per_participant, status.robot.value));
+    return;
+  }
+  RobotRecord& record = robots_[status.robot];
   // New, or back after it left or was lost.
   const bool joining =
       record.last_status.robot.value.empty() || record.state != RobotRecord::State::kActive;
@@ -158,7 +175,17 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
         configured->second.yaw);
   }
   if (const auto early = early_entities_.find(status.robot); early != early_entities_.end()) {
-    for (transport::EntityMessage& entity : early->second) SubmitEntity(std::move(entity), record);
+    for (auto& [entity_writer, entity] : early->second) {
+      if (registry_->WhoSpeaks(status.robot.value, entity_writer) ==
+          RobotRegistry::Speaker::kOwner) {
+        SubmitEntity(std::move(entity), record);
+      } else {
+        ++rejected_entities_;
+        refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
+                         "an entity sent for robot " + status.robot.value +
+                             " before its owner claimed it, by another participant");
+      }
+    }
     early_entities_.erase(early);
   }
   if (!joining) return;
@@ -170,14 +197,24 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
                            status.fleet_from_map.y, status.fleet_from_map.yaw));
 }
 
-void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state) {
+void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
+                             const std::string& writer) {
   const auto it = robots_.find(robot);
   if (it == robots_.end() || it->second.state != RobotRecord::State::kActive) return;
+  if (registry_->WhoSpeaks(robot.value, writer) != RobotRegistry::Speaker::kOwner) {
+    // A second agent with this id went away, or a peer disposed an instance it does not own.
+    refusals_.Refuse(robot.value, Refusal::kNotOwner,
+                     fmt::format("participant {} {} robot {}, which participant {} owns: ignored",
+                                 RobotRegistry::ParticipantOf(writer),
+                                 state == RobotRecord::State::kLeft ? "disposed" : "lost",
+                                 robot.value, registry_->OwnerOf(robot.value)));
+    return;
+  }
   RobotRecord& record = it->second;
   HandleMaps();  // keep whatever the robot sent before it went
   record.state = state;
   record.map_reader.reset();
-  registry_->Release(robot.value);
+  registry_->Release(robot.value, writer);
   fusion_worker_->RecordRobot(RobotRecordFor(robot, RobotStateName(state)));
   if (state == RobotRecord::State::kLost) {
     spdlog::warn("server: robot {} lost (no liveliness within {} ms); its map stays, marked stale",
@@ -222,10 +259,14 @@ void ServerNode::HandleEntities() {
       spdlog::warn("server: dropped an entity: {}", event.error.message());
       continue;
     }
-    if (!registry_->MaySpeakFor(robot.value, event.writer)) {
+    const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot.value, event.writer);
+    if (speaker == RobotRegistry::Speaker::kOther) {
       ++rejected_entities_;
-      spdlog::warn("server: dropped entity {} claiming robot {} from a second agent",
-                   event.message.entity_id(), robot.value);
+      refusals_.Refuse(robot.value, Refusal::kNotOwner,
+                       fmt::format("entity {} for robot {} from participant {}, which does not "
+                                   "own it",
+                                   event.message.entity_id(), robot.value,
+                                   RobotRegistry::ParticipantOf(event.writer)));
       continue;
     }
     if (event.kind == transport::EntityEvent::Kind::kRemoved) {
@@ -233,10 +274,17 @@ void ServerNode::HandleEntities() {
       continue;
     }
     const auto record = robots_.find(robot);
-    if (record == robots_.end() || record->second.last_status.robot.value.empty()) {
+    if (speaker == RobotRegistry::Speaker::kUnclaimed || record == robots_.end() ||
+        record->second.last_status.robot.value.empty()) {
       // Its fleet_from_map comes with its status: keep the entity until then (bounded).
-      std::vector<transport::EntityMessage>& early = early_entities_[robot];
-      if (early.size() < 1024) early.push_back(std::move(event.message));
+      if (early_entities_.size() >= kMaxEarlyRobots && early_entities_.count(robot) == 0) {
+        ++rejected_entities_;
+        refusals_.Refuse(robot.value, Refusal::kUnclaimed,
+                         "an entity for a robot id no status claims (too many such ids)");
+        continue;
+      }
+      auto& early = early_entities_[robot];
+      if (early.size() < 1024) early.emplace_back(event.writer, std::move(event.message));
       continue;
     }
     SubmitEntity(std::move(event.message), record->second);
@@ -266,6 +314,14 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
       "rt/fleetmap/map; {} samples rejected before they named a robot\n",
       fusion.fused_tiles, fusion.fused_tiles_published, fusion.fused_bytes_published,
       fusion.maps_published, fusion.rejected_unattributed);
+  if (!fusion.refusals_by_reason.empty() || refusals_.total() > 0) {
+    std::string reasons;
+    for (const auto& [reason, count] : fusion.refusals_by_reason) {
+      reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", count, reason);
+    }
+    fmt::print("refused: tiles: {}; statuses, disposals and entities: {}\n",
+               reasons.empty() ? "none" : reasons, refusals_.total());
+  }
   if (learning_worker_) {
     const ObjectLearningStats learning = learning_worker_->stats();
     fmt::print(

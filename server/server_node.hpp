@@ -18,6 +18,7 @@
 #include "server/fusion_worker.hpp"
 #include "server/object_learning_worker.hpp"
 #include "server/prediction_worker.hpp"
+#include "server/refusal_log.hpp"
 #include "server/robot_registry.hpp"
 
 namespace fleetmap::server {
@@ -31,6 +32,8 @@ struct ServerOptions {
   // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what
   // their status says; a tile-wire robot whose status disagrees is reported.
   std::map<RobotId, Pose2> transforms;
+  // Robot ids one DDS participant may speak for (an agent speaks for one; a simulation for a few).
+  size_t max_robots_per_participant = 16;
 
   Status Validate() const;
 };
@@ -75,7 +78,8 @@ class ServerNode {
 
   void HandleRobotEvents();
   void OnRobotAlive(const RobotStatus& status, const std::string& writer);
-  void OnRobotGone(const RobotId& robot, RobotRecord::State state);
+  // `writer` sent the disposal or lost its liveliness: only the robot's owner ends it.
+  void OnRobotGone(const RobotId& robot, RobotRecord::State state, const std::string& writer);
   // Where the robot's map frame sits in the fleet: the configured transform, else its own word.
   Pose2 FleetFromMap(const RobotRecord& record) const;
   void HandleMaps();
@@ -88,13 +92,16 @@ class ServerNode {
   std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
-  std::shared_ptr<RobotRegistry> registry_ = std::make_shared<RobotRegistry>();
+  std::shared_ptr<RobotRegistry> registry_;
   std::unique_ptr<FusionWorker> fusion_worker_;
   std::unique_ptr<ObjectLearningWorker> learning_worker_;   // null when disabled
   std::unique_ptr<PredictionWorker> prediction_worker_;     // null when disabled
   std::unique_ptr<transport::EntityReader> entity_reader_;  // null when prediction is disabled
-  // Entities of robots whose status (and so fleet_from_map) has not arrived yet, by robot.
-  std::map<RobotId, std::vector<transport::EntityMessage>> early_entities_;
+  // Entities of robots whose status (and so fleet_from_map) has not arrived yet, by robot, with
+  // the writer that sent each: only the owner's are used once a status claims the robot.
+  static constexpr size_t kMaxEarlyRobots = 64;
+  std::map<RobotId, std::vector<std::pair<std::string, transport::EntityMessage>>> early_entities_;
+  RefusalLog refusals_{"server"};
   uint64_t rejected_entities_ = 0;
   std::map<RobotId, RobotRecord> robots_;
 };

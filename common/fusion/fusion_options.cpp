@@ -1,5 +1,6 @@
 #include "common/fusion/fusion_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -23,7 +24,25 @@ Status FusionOptions::Validate() const {
   if (margin_cells < 0 || margin_cells > CellsPerTile()) {
     return InvalidArgumentError("fusion margin_cells must be in 0..cells per tile");
   }
+  if (!std::isfinite(max_coordinate) || max_coordinate < tile_size) {
+    return InvalidArgumentError("fusion max_coordinate must be at least one tile");
+  }
+  if (max_grid_cells < static_cast<int64_t>(CellsPerTile()) * CellsPerTile()) {
+    return InvalidArgumentError("fusion max_grid_cells must hold at least one tile");
+  }
   return Status::Ok();
+}
+
+Status FusionOptions::CheckTileInRange(const TileId& tile) const {
+  // The far corner of the tile, computed in double: tile keys are any int32 on the wire.
+  const double reach = (std::max(std::abs(static_cast<double>(tile.x)),
+                                 std::abs(static_cast<double>(tile.y))) +
+                        1.0) *
+                       tile_size;
+  if (reach <= max_coordinate) return Status::Ok();
+  return InvalidArgumentError("tile (" + std::to_string(tile.x) + ", " + std::to_string(tile.y) +
+                         ") lies " + std::to_string(reach) + " m from the fleet origin, beyond the " +
+                         std::to_string(max_coordinate) + " m this server accepts");
 }
 
 int FusionOptions::CellsPerTile() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 #include "common/vector_map/vectorizer.hpp"
 
@@ -12,8 +13,16 @@ struct FusionOptions {
   // walls crossing a border end at the same point in both tiles.
   int margin_cells = 4;
   vector_map::VectorizerOptions vectorizer;
+  // Tiles further than this from the fleet origin are refused: UTM northings stay below 1e7 m,
+  // and beyond 2e7 m no place on Earth is meant.
+  double max_coordinate = 2e7;
+  // Cells of the one grid FusedGrid() builds for rt/fleetmap/map (a nav_msgs/OccupancyGrid must
+  // be dense). When the fused tiles span more, it shows the largest group of nearby tiles.
+  int64_t max_grid_cells = int64_t{1} << 26;  // 64 M cells: 8192 x 8192, 410 m square at 5 cm
 
   Status Validate() const;
+  // Whether `tile` lies within max_coordinate of the origin; the error names it otherwise.
+  Status CheckTileInRange(const TileId& tile) const;
   // Cells along one side of a tile, and the exact resolution that fits them.
   int CellsPerTile() const;
   double FusedResolution() const;

@@ -57,6 +57,7 @@ uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
 
 Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
                                    const vector_map::VectorMap& map, Timestamp stamp) {
+  FLEETMAP_RETURN_IF_ERROR(options_.CheckTileInRange(tile));
   const grid::OccupancyGrid geometry = EmptyTileGrid(tile);
   FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid cells,
                             vector_map::Rasterizer().Rasterize(map, geometry));
@@ -178,24 +179,34 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   return changed;
 }
 
-grid::OccupancyGrid TileFusion::FusedGrid() const {
-  if (tiles_.empty()) return grid::OccupancyGrid();
-  int32_t min_x = INT32_MAX, min_y = INT32_MAX, max_x = INT32_MIN, max_y = INT32_MIN;
+grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
+  if (tiles_.empty()) {
+    if (shown != nullptr) *shown = GridWindow{};
+    return grid::OccupancyGrid();
+  }
+  std::vector<SourcedTile> sourced;
+  sourced.reserve(tiles_.size());
+  std::map<std::string, int> robot_numbers;
   for (const auto& [tile, state] : tiles_) {
-    min_x = std::min(min_x, tile.x);
-    min_y = std::min(min_y, tile.y);
-    max_x = std::max(max_x, tile.x);
-    max_y = std::max(max_y, tile.y);
+    SourcedTile& entry = sourced.emplace_back(SourcedTile{tile, {}});
+    for (const auto& [robot, contribution] : state.robots) {
+      entry.robots.push_back(
+          robot_numbers.emplace(robot, static_cast<int>(robot_numbers.size())).first->second);
+    }
   }
   const int cells = options_.CellsPerTile();
-  grid::OccupancyGrid out(static_cast<int>(max_x - min_x + 1) * cells,
-                          static_cast<int>(max_y - min_y + 1) * cells, options_.FusedResolution(),
-                          Pose2{min_x * options_.tile_size, min_y * options_.tile_size, 0.0},
+  const int64_t cells_per_tile = int64_t{cells} * cells;
+  const GridWindow window = ChooseGridWindow(sourced, options_.max_grid_cells / cells_per_tile);
+  if (shown != nullptr) *shown = window;
+  const TileRect& rect = window.rect;
+  grid::OccupancyGrid out(static_cast<int>(rect.width() * cells),
+                          static_cast<int>(rect.height() * cells), options_.FusedResolution(),
+                          Pose2{rect.min.x * options_.tile_size, rect.min.y * options_.tile_size, 0.0},
                           kUnknownValue);
   for (const auto& [tile, state] : tiles_) {
-    if (state.fused.empty()) continue;
-    const int x0 = static_cast<int>(tile.x - min_x) * cells;
-    const int y0 = static_cast<int>(tile.y - min_y) * cells;
+    if (state.fused.empty() || !rect.Contains(tile)) continue;
+    const int x0 = static_cast<int>((int64_t{tile.x} - rect.min.x) * cells);
+    const int y0 = static_cast<int>((int64_t{tile.y} - rect.min.y) * cells);
     for (int y = 0; y < cells; ++y) {
       std::memcpy(&out.at(x0, y0 + y), &state.fused.data()[static_cast<size_t>(y) * cells],
                   static_cast<size_t>(cells));

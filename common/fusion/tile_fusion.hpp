@@ -10,6 +10,7 @@
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/fusion/fusion_options.hpp"
+#include "common/fusion/grid_window.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/vector_map.hpp"
 #include "common/vector_map/vectorizer.hpp"
@@ -37,7 +38,7 @@ class TileFusion {
  public:
   static StatusOr<TileFusion> Create(const FusionOptions& options);
 
-  // A robot's new revision of a tile (fleet frame).
+  // A robot's new revision of a tile (fleet frame). Fails for a tile beyond max_coordinate.
   Status UpdateRobotTile(const std::string& robot, const TileId& tile,
                          const vector_map::VectorMap& map, Timestamp stamp);
   void RemoveRobotTile(const std::string& robot, const TileId& tile);
@@ -46,8 +47,11 @@ class TileFusion {
   // changed.
   StatusOr<std::vector<FusedTile>> FuseChanged();
 
-  // The fused cells of every tile as one fleet-frame grid (yaw 0), the smallest that holds them.
-  grid::OccupancyGrid FusedGrid() const;
+  // The fused cells as one fleet-frame grid (yaw 0): the smallest that holds every tile when it
+  // has at most options().max_grid_cells cells, else the window ChooseGridWindow() picks (the
+  // largest group of nearby tiles). `shown`, if given, says which tiles it holds and how many
+  // it leaves out.
+  grid::OccupancyGrid FusedGrid(GridWindow* shown = nullptr) const;
   // The fused vector map of one tile, if any.
   const FusedTile* FindFusedTile(const TileId& tile) const;
   const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }

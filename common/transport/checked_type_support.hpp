@@ -68,12 +68,50 @@ class CheckedPubSubType : public GeneratedPubSubType {
     return GeneratedPubSubType::deserialize(payload, data);
   }
 
+  // The generated key serializer writes into a buffer sized for keys of at most 255 characters
+  // and throws on a longer one, on a Fast DDS thread where nothing catches it: the process would
+  // abort. A key that cannot be hashed makes Fast DDS drop the sample (or refuse the write).
+  bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
+              bool force_md5) override {
+    try {
+      return GeneratedPubSubType::getKey(data, handle, force_md5);
+    } catch (const std::exception& error) {
+      if (MalformedSink* sink = ScopedMalformedSink::Current()) {
+        sink->Refuse(InvalidArgumentError(std::string("key cannot be hashed: ") + error.what()));
+      }
+      return false;
+    } catch (...) {
+      return false;
+    }
+  }
+
  private:
   const CdrShape& shape_;
 };
 
+// Runs `callback` on a DDS listener thread so that nothing it throws escapes into Fast DDS,
+// where an exception terminates the process: whatever a peer sends, the receiver survives. What
+// was thrown goes to `sink` as a refusal.
+template <typename Callback>
+void GuardListener(MalformedSink* sink, const char* what, Callback callback) noexcept {
+  try {
+    callback();
+  } catch (const std::exception& error) {
+    try {
+      sink->Refuse(InternalError(std::string(what) + " failed: " + error.what()));
+    } catch (...) {
+    }
+  } catch (...) {
+    try {
+      sink->Refuse(InternalError(std::string(what) + " failed"));
+    } catch (...) {
+    }
+  }
+}
+
 // Takes every sample `reader` holds and hands each valid one to `handle(sample, info)`, with
-// refusals going to `sink`. A refused payload does not end the loop; an empty reader does.
+// refusals going to `sink`. A refused payload does not end the loop; an empty reader does. A
+// sample whose handling throws is refused, and the loop goes on.
 template <typename Sample, typename Handle>
 void TakeAll(eprosima::fastdds::dds::DataReader* reader, MalformedSink* sink, Handle handle) {
   constexpr int kMaxTakes = 100000;  // a bound, so a misbehaving reader cannot spin forever
@@ -82,11 +120,12 @@ void TakeAll(eprosima::fastdds::dds::DataReader* reader, MalformedSink* sink, Ha
   const ScopedMalformedSink scope(sink);
   for (int i = 0; i < kMaxTakes; ++i) {
     const uint64_t refused_before = sink->refused();
-    if (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      handle(sample, info);
-    } else if (sink->refused() == refused_before) {
-      return;
-    }
+    bool taken = false;
+    GuardListener(sink, "taking a sample", [&] {
+      taken = reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK;
+      if (taken) handle(sample, info);
+    });
+    if (!taken && sink->refused() == refused_before) return;
   }
 }
 

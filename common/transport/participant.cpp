@@ -13,6 +13,8 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <string>
 
+#include "common/transport/writer_id.hpp"
+
 namespace fleetmap::transport {
 namespace {
 
@@ -119,6 +121,13 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
                             std::to_string(domain_id));
   }
   return self;
+}
+
+std::string Participant::id() const {
+  eprosima::fastrtps::rtps::InstanceHandle_t handle;
+  const auto& prefix = participant_->guid().guidPrefix.value;
+  for (size_t i = 0; i < sizeof(prefix); ++i) handle.value[i] = prefix[i];
+  return WriterId(handle).substr(0, 24);
 }
 
 Participant::~Participant() {

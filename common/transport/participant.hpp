@@ -48,6 +48,9 @@ class Participant {
 
   int domain_id() const { return domain_id_; }
   bool localhost_only() const { return localhost_only_; }
+  // The participant's GUID prefix in hex (24 digits): the first digits of every WriterId of its
+  // writers (see writer_id.hpp), so a node can tell its own samples from another participant's.
+  std::string id() const;
 
   // For transport's own readers and writers: the topic `name` of `type` (registering the type
   // on first use); each AcquireTopic is paired with one ReleaseTopic.

@@ -41,10 +41,11 @@ RobotEvent RobotEvent::Alive(RobotStatus status) {
   return event;
 }
 
-RobotEvent RobotEvent::Gone(Kind kind, RobotId robot) {
+RobotEvent RobotEvent::Gone(Kind kind, RobotId robot, std::string writer) {
   RobotEvent event;
   event.kind = kind;
   event.robot = std::move(robot);
+  event.writer = std::move(writer);
   return event;
 }
 
@@ -75,14 +76,18 @@ class RobotStatusReader::Listener : public dds::DataReaderListener, public Malfo
   // A writer whose lease lapsed: its process died, hung or was cut off.
   void on_liveliness_changed(dds::DataReader* /*reader*/,
                              const dds::LivelinessChangedStatus& status) override {
-    if (status.not_alive_count_change > 0) WriterGone(status.last_publication_handle);
+    GuardListener(this, "a liveliness change", [&] {
+      if (status.not_alive_count_change > 0) WriterGone(status.last_publication_handle);
+    });
   }
 
   // A writer that went away without disposing its robots (a clean exit that skipped Leave()).
   // After a Leave() the robot is already gone and the node ignores the repeat.
   void on_subscription_matched(dds::DataReader* /*reader*/,
                                const dds::SubscriptionMatchedStatus& status) override {
-    if (status.current_count_change < 0) WriterGone(status.last_publication_handle);
+    GuardListener(this, "a writer leaving", [&] {
+      if (status.current_count_change < 0) WriterGone(status.last_publication_handle);
+    });
   }
 
   std::vector<RobotEvent> Drain() { return events_.Drain(); }
@@ -121,7 +126,7 @@ class RobotStatusReader::Listener : public dds::DataReaderListener, public Malfo
     }
     const bool disposed = info.instance_state == dds::NOT_ALIVE_DISPOSED_INSTANCE_STATE;
     events_.Push(RobotEvent::Gone(disposed ? RobotEvent::Kind::kLeft : RobotEvent::Kind::kLost,
-                                  std::move(robot)));
+                                  std::move(robot), WriterId(info.publication_handle)));
   }
 
   void WriterGone(const dds::InstanceHandle_t& writer) {
@@ -130,7 +135,7 @@ class RobotStatusReader::Listener : public dds::DataReaderListener, public Malfo
       const auto it = robots_by_writer_.find(writer);
       if (it == robots_by_writer_.end()) return;
       for (const RobotId& robot : it->second) {
-        events_.Push(RobotEvent::Gone(RobotEvent::Kind::kLost, robot));
+        events_.Push(RobotEvent::Gone(RobotEvent::Kind::kLost, robot, WriterId(writer)));
       }
       robots_by_writer_.erase(it);
     }

@@ -28,10 +28,12 @@ struct RobotEvent {
   RobotId robot;
   RobotStatus status;  // for kStatus
   Status error;        // for kRejected
-  std::string writer;  // for kStatus: the DDS writer that sent it (two per robot id: a clash)
+  // The DDS writer that sent the status, the disposal or whose liveliness lapsed: only the
+  // writer that owns a robot id may end its robot (two per robot id: a clash or a hijack).
+  std::string writer;
 
   static RobotEvent Alive(RobotStatus status);
-  static RobotEvent Gone(Kind kind, RobotId robot);
+  static RobotEvent Gone(Kind kind, RobotId robot, std::string writer);
   static RobotEvent Rejected(Status error);
 };
 

@@ -389,14 +389,36 @@ TEST_F(FleetDdsTest, ServerPlacesGridRobotsWithItsTransformsFile) {
   std::remove(transforms.c_str());
 }
 
-TEST_F(FleetDdsTest, TwoAgentsWithOneRobotIdAreReported) {
+TEST_F(FleetDdsTest, AnAgentWhoseRobotIdIsTakenIsToldAndExits) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   auto first = StartAgent("twin", map_path_);
   ASSERT_TRUE(server.WaitForOutput("robot twin joined", kDeadline)) << server.Output();
-  auto second = StartAgent("twin", tall_map_path_);
-  EXPECT_TRUE(server.WaitForOutput("two agents claim robot id twin", kDeadline)) << server.Output();
+  auto second = StartAgent("twin", tall_map_path_, {"--claim-wait", "5"});
+  EXPECT_EQ(second->Wait(kDeadline), 2) << second->Output();
+  EXPECT_NE(second->Output().find("robot id twin is already taken on DDS domain"),
+            std::string::npos)
+      << second->Output();
   server.Signal(SIGINT);
   ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  EXPECT_NE(server.Output().find("twin             active"), std::string::npos) << server.Output();
+}
+
+TEST_F(FleetDdsTest, ASecondAgentThatSkipsTheCheckIsRefusedAndTheFirstIsWarned) {
+  Subprocess server({kServer, "--duration", "60"}, env_);
+  auto first = StartAgent("twin", map_path_);
+  ASSERT_TRUE(server.WaitForOutput("robot twin joined", kDeadline)) << server.Output();
+  auto second = StartAgent("twin", tall_map_path_, {"--claim-wait", "0"});
+  EXPECT_TRUE(server.WaitForOutput("claims robot id twin, which participant", kDeadline))
+      << server.Output();
+  EXPECT_TRUE(first->WaitForOutput("also claims robot id twin", kDeadline)) << first->Output();
+  // The second agent's departure must not end the first's robot.
+  second->Signal(SIGINT);
+  EXPECT_EQ(second->Wait(kDeadline), 0) << second->Output();
+  std::this_thread::sleep_for(seconds(3));  // past the liveliness lease: a wrong "lost" shows
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  EXPECT_NE(server.Output().find("twin             active"), std::string::npos) << server.Output();
+  EXPECT_EQ(server.Output().find("robot twin left"), std::string::npos) << server.Output();
 }
 
 TEST_F(FleetDdsTest, RestartedServerResumesTheFusedMapFromItsStore) {

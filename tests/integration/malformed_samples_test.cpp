@@ -15,6 +15,7 @@
 
 #include "common/process/subprocess.hpp"
 #include "common/transport/checked_type_support.hpp"
+#include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/qos.hpp"
@@ -131,7 +132,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   // A robot name that is not a ROS name token.
   auto bad_name = StatusOf("bad/robot");
   EXPECT_TRUE(WriteUntilServerSays((*status_writer)->writer(), bad_name, server,
-                                   "dropped a robot status sample"))
+                                   "(malformed): a robot status sample"))
       << server.Output();
   EXPECT_NE(server.Output().find("bad/robot"), std::string::npos);
 
@@ -191,6 +192,7 @@ class TileWirePeerTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const int domain = process::RandomDomainId();
+    domain_ = domain;
     const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
                                                     {"FLEETMAP_LOCALHOST_ONLY", "1"}};
     server_ = std::make_unique<process::Subprocess>(
@@ -233,6 +235,7 @@ class TileWirePeerTest : public ::testing::Test {
     return server_->Output();
   }
 
+  int domain_ = 0;
   std::unique_ptr<process::Subprocess> server_;
   std::unique_ptr<process::Subprocess> alpha_;
   std::unique_ptr<transport::Participant> participant_;
@@ -244,6 +247,7 @@ class TileWirePeerTest : public ::testing::Test {
 fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
   tile.robot_id(robot);
+  tile.stamp(transport::ToIdl(Clock::now()));
   tile.frame_id("fleet");
   tile.layout_version(4);
   tile.tile_size(10.0);
@@ -335,6 +339,116 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     }
   }
   EXPECT_TRUE(saw_gamma) << output;
+}
+
+// What a hostile peer on the same domain tries first, each answered with a refusal that names
+// the problem, while the server keeps fusing: keys at the end of the int32 range, stamps from
+// the future or before 1970, an empty robot id, another fleet's tile size.
+TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeepsFusing) {
+  auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
+                            transport::VectorTileQos().writer);
+  ASSERT_NE(tile_writer, nullptr);
+  struct Case {
+    const char* expect;
+    std::function<void(fleetmap_msgs::msg::dds_::VectorTile_&)> spoil;
+  };
+  const Case cases[] = {
+      {"tile (2147483647, 2147483647) lies",
+       [](auto& t) {
+         t.tile_x(INT32_MAX);
+         t.tile_y(INT32_MAX);
+       }},
+      {"ahead of this server's clock",
+       [](auto& t) { t.stamp(transport::ToIdl(Clock::now() + std::chrono::hours(24 * 365))); }},
+      {"before this server's clock",
+       [](auto& t) {
+         builtin_interfaces::msg::dds_::Time_ before_1970;
+         before_1970.sec(-5);
+         t.stamp(before_1970);
+       }},
+      {"robot_id \"\" of tile", [](auto& t) { t.robot_id(""); }},
+      {"this fleet's tiles are 10 m",
+       [](auto& t) {
+         t.tile_size(20.0);
+         t.quantum(vector_map::TileQuantum(20.0));
+       }},
+  };
+  int32_t x = 0;
+  for (const Case& c : cases) {
+    auto tile = Tile("gamma");
+    tile.tile_x(100 + x++);  // one instance each
+    c.spoil(tile);
+    EXPECT_TRUE(SendUntilServerSays(*tile_writer, tile, c.expect)) << c.expect << "\n"
+                                                                   << server_->Output();
+  }
+  // A far but honest place (1000 km out) is fused like any other.
+  auto far = Tile("gamma");
+  far.tile_x(100000);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto fused =
+      transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
+  ASSERT_TRUE(fused.ok()) << fused.status();
+  bool far_fused = false;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (!far_fused && std::chrono::steady_clock::now() < deadline) {
+    far.stamp(transport::ToIdl(Clock::now()));
+    tile_writer->writer()->write(&far);
+    status_writer_->writer()->write(&gamma_);
+    wake_up->WaitFor(std::chrono::milliseconds(200));
+    for (const transport::TileEvent& event : (*fused)->Drain()) {
+      far_fused |= event.kind == transport::TileEvent::Kind::kTile &&
+                   event.tile.tile == TileId{100000, 0} && !event.tile.map.obstacles.empty();
+    }
+  }
+  EXPECT_TRUE(far_fused) << server_->Output();
+  // The fused grid cannot span 1000 km: it shows the larger group and says what it left out.
+  EXPECT_TRUE(server_->WaitForOutput("leaves 1 out", kDeadline)) << server_->Output();
+  tile_writer.reset();
+  const std::string output = StopServer();
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
+  EXPECT_NE(output.find("stamp out of window"), std::string::npos) << output;
+}
+
+// A peer that knows an agent's robot id can neither end that robot nor speak for it.
+TEST_F(TileWirePeerTest, APeerCannotDisposeOrOverwriteAnotherAgentsRobot) {
+  auto forged = StatusOf("alpha");
+  forged.map_topic("rt/fleetmap/robot_tiles");
+  EXPECT_TRUE(SendUntilServerSays(*status_writer_, forged,
+                                  "claims robot id alpha, which participant"))
+      << server_->Output();
+  // Its disposal of alpha's status instance is refused: alpha stays active.
+  status_writer_->writer()->dispose(&forged, dds::HANDLE_NIL);
+  EXPECT_TRUE(server_->WaitForOutput("disposed robot alpha, which participant", kDeadline))
+      << server_->Output();
+  // And tiles in alpha's name (an all-free tile over alpha's walls) are refused.
+  auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
+                            transport::VectorTileQos().writer);
+  ASSERT_NE(tile_writer, nullptr);
+  auto erasing = Tile("alpha");
+  erasing.obstacle_sizes({});
+  erasing.obstacle_half_widths({});
+  erasing.obstacle_x({});
+  erasing.obstacle_y({});
+  erasing.point_x({});
+  erasing.point_y({});
+  erasing.free_polygon_rings({1});
+  erasing.free_ring_sizes({4});
+  erasing.free_x({0, 15999, 15999, 0});
+  erasing.free_y({0, 0, 15999, 15999});
+  EXPECT_TRUE(SendUntilServerSays(*tile_writer, erasing, "for robot alpha from participant"))
+      << server_->Output();
+  tile_writer.reset();
+  // An agent started with the id this peer holds (gamma) is told and exits.
+  process::Subprocess squatted({kAgent, "--robot-id", "gamma", "--map", kMap},
+                               {{"FLEETMAP_DOMAIN", std::to_string(domain_)},
+                                {"FLEETMAP_LOCALHOST_ONLY", "1"}});
+  status_writer_->writer()->write(&gamma_);
+  EXPECT_EQ(squatted.Wait(kDeadline), 2) << squatted.Output();
+  EXPECT_NE(squatted.Output().find("robot id gamma is already taken"), std::string::npos)
+      << squatted.Output();
+  const std::string output = StopServer();
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
+  EXPECT_EQ(output.find("robot alpha left"), std::string::npos) << output;
 }
 
 // A closed door of `robot`, 0.9 m wide, in its map frame.

@@ -189,6 +189,51 @@ TEST(TileFusionTest, RemovedContributionDisappears) {
   EXPECT_EQ(FusedAt(*fusion, 20, 20), kUnknownValue);
 }
 
+TEST(TileFusionTest, TileKeysBeyondTheMaximumCoordinateAreRefusedWithTheirKey) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  const vector_map::VectorMap empty;
+  const Status far = fusion->UpdateRobotTile("alpha", {INT32_MAX, INT32_MAX}, empty, kT0);
+  EXPECT_EQ(far.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(far.message(), ::testing::HasSubstr("tile (2147483647, 2147483647) lies"));
+  EXPECT_EQ(fusion->contribution_count(), 0u);
+}
+
+TEST(TileFusionTest, MapsFarFromTheOriginFuseAndTheirGridIsSmall) {
+  // A robot whose map sits 1000 km from the fleet origin (UTM-like coordinates), and one at the
+  // origin: the grid for rt/fleetmap/map must not span the 1000 km between them.
+  FusionOptions options = Options();
+  options.max_grid_cells = 40 * 40 * 16;  // 16 tiles
+  auto fusion = TileFusion::Create(options);
+  ASSERT_TRUE(fusion.ok());
+  OccupancyGrid far(80, 40, 0.05, Pose2{1e6, 1e6, 0.0}, kUnknownValue);
+  Fill(&far, 0, 0, 80, 40, kFreeValue);
+  Fill(&far, 0, 20, 80, 21, kOccupiedValue);
+  vector_map::TiledVectorizeOptions tiling;
+  tiling.tile_size = kTileSize;
+  const auto tiled = vector_map::VectorizeTiled(far, Transform2::Identity(), tiling);
+  ASSERT_TRUE(tiled.ok()) << tiled.status();
+  for (const auto& [tile, map] : tiled->tiles) {
+    ASSERT_TRUE(fusion->UpdateRobotTile("far", tile, map, kT0).ok());
+  }
+  OccupancyGrid near = Grid(40, 40);
+  Fill(&near, 0, 0, 40, 40, kFreeValue);
+  Feed(&*fusion, "near", near, kT0);
+  const auto changed = fusion->FuseChanged();
+  ASSERT_TRUE(changed.ok()) << changed.status();
+  EXPECT_EQ(changed->size(), 3u);
+
+  GridWindow shown;
+  const OccupancyGrid fused = fusion->FusedGrid(&shown);
+  // The largest group (the far robot's two tiles) is shown; the tile at the origin is left out.
+  EXPECT_EQ(fused.width(), 80);
+  EXPECT_EQ(fused.height(), 40);
+  EXPECT_NEAR(fused.origin().x, 1e6, 1e-6);
+  EXPECT_EQ(shown.tiles_left_out, 1u);
+  EXPECT_EQ(fused.at(10, 20), kOccupiedValue);
+  EXPECT_EQ(fused.at(70, 5), kFreeValue);
+}
+
 TEST(FusionOptionsTest, RejectsBadGeometry) {
   FusionOptions options = Options();
   options.tile_size = -1.0;

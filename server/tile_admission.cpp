@@ -1,0 +1,138 @@
+#include "server/tile_admission.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/store/store_records.hpp"
+
+namespace fleetmap::server {
+namespace {
+
+std::string TileName(const transport::VectorTileMessage& tile) {
+  return fmt::format("tile ({}, {})", tile.tile.x, tile.tile.y);
+}
+
+double Seconds(std::chrono::nanoseconds duration) {
+  return std::chrono::duration<double>(duration).count();
+}
+
+}  // namespace
+
+Status AdmissionOptions::Validate() const {
+  if (max_clock_ahead.count() < 0) return InvalidArgumentError("max_clock_ahead must be >= 0");
+  if (max_age.count() <= 0) return InvalidArgumentError("max_age must be positive");
+  if (max_tiles_per_robot == 0) return InvalidArgumentError("max_tiles_per_robot must be >= 1");
+  if (!(max_bytes_per_second > 0.0) || !(burst_bytes > 0.0)) {
+    return InvalidArgumentError("the byte quota and its burst must be positive");
+  }
+  return Status::Ok();
+}
+
+std::optional<TileAdmission::Refused> TileAdmission::CheckSettings(
+    const transport::VectorTileMessage& tile) const {
+  const double tile_size = fusion_.tile_size;
+  if (std::abs(tile.tile_size - tile_size) > 1e-9 * tile_size) {
+    return Refused{Refusal::kBadTileSettings,
+                   fmt::format("{} is cut in {} m tiles; this fleet's tiles are {} m",
+                               TileName(tile), tile.tile_size, tile_size)};
+  }
+  // A tile's geometry is only meaningful at a small fraction of the tile: a larger error bound
+  // or cell would let one tile paint arbitrary shapes.
+  const double largest = tile_size / 8.0;
+  if (!(tile.map.epsilon > 0.0 && tile.map.epsilon <= largest)) {
+    return Refused{Refusal::kBadTileSettings,
+                   fmt::format("{} has epsilon {} m; accepted: (0, {}] m", TileName(tile),
+                               tile.map.epsilon, largest)};
+  }
+  if (!(tile.map.resolution >= 1e-3 && tile.map.resolution <= largest)) {
+    return Refused{Refusal::kBadTileSettings,
+                   fmt::format("{} has resolution {} m; accepted: [0.001, {}] m", TileName(tile),
+                               tile.map.resolution, largest)};
+  }
+  if (const Status range = fusion_.CheckTileInRange(tile.tile); !range.ok()) {
+    return Refused{Refusal::kTileOutOfRange, range.message()};
+  }
+  return std::nullopt;
+}
+
+std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(
+    const transport::VectorTileMessage& tile, Timestamp now) const {
+  if (tile.stamp > now + options_.max_clock_ahead) {
+    return Refused{Refusal::kStampOutOfWindow,
+                   fmt::format("{} is stamped {:.1f} s ahead of this server's clock (at most {:.1f} "
+                               "s accepted): check the robot's clock",
+                               TileName(tile), Seconds(tile.stamp - now),
+                               Seconds(options_.max_clock_ahead))};
+  }
+  if (tile.stamp < now - options_.max_age) {
+    return Refused{Refusal::kStampOutOfWindow,
+                   fmt::format("{} is stamped {:.0f} s before this server's clock (at most {} h "
+                               "accepted)",
+                               TileName(tile), Seconds(now - tile.stamp), options_.max_age.count())};
+  }
+  return std::nullopt;
+}
+
+std::optional<TileAdmission::Refused> TileAdmission::CheckRobotId(
+    const transport::VectorTileMessage& tile) {
+  if (IsValidRobotName(tile.robot_id) && tile.robot_id != store::kFleetOwner) return std::nullopt;
+  return Refused{Refusal::kBadRobotId,
+                 fmt::format("robot_id \"{}\" of {} is not a ROS 2 name token of at most 64 "
+                             "characters (or is the reserved \"{}\")",
+                             tile.robot_id.substr(0, 64), TileName(tile), store::kFleetOwner)};
+}
+
+TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
+                                            Timestamp now,
+                                            std::chrono::steady_clock::time_point steady_now) {
+  if (auto refused = CheckRobotId(tile)) return *refused;
+  if (auto refused = CheckSettings(tile)) return *refused;
+  if (auto refused = CheckStamp(tile, now)) return *refused;
+
+  RobotQuota& quota = robots_[tile.robot_id];
+  if (quota.tiles.count(tile.tile) == 0 && quota.tiles.size() >= options_.max_tiles_per_robot) {
+    return Refused{Refusal::kTileQuota,
+                   fmt::format("{} would be robot {}'s tile number {}; a robot may hold {}",
+                               TileName(tile), tile.robot_id, quota.tiles.size() + 1,
+                               options_.max_tiles_per_robot)};
+  }
+  // Token bucket: refilled at the sustained rate, capped at the burst.
+  if (!quota.started) {
+    quota.byte_tokens = options_.burst_bytes;
+    quota.started = true;
+  } else {
+    const double elapsed = Seconds(steady_now - quota.refilled);
+    quota.byte_tokens = std::min(options_.burst_bytes,
+                                 quota.byte_tokens + std::max(0.0, elapsed) *
+                                                         options_.max_bytes_per_second);
+  }
+  quota.refilled = steady_now;
+  if (static_cast<double>(bytes) > quota.byte_tokens) {
+    return Refused{Refusal::kByteQuota,
+                   fmt::format("{} of {} bytes exceeds robot {}'s byte quota ({:.0f} bytes/s, "
+                               "burst {:.0f})",
+                               TileName(tile), bytes, tile.robot_id,
+                               options_.max_bytes_per_second, options_.burst_bytes)};
+  }
+  quota.byte_tokens -= static_cast<double>(bytes);
+  quota.tiles.insert(tile.tile);
+  return Admitted{std::min(tile.stamp, now)};
+}
+
+void TileAdmission::Adopt(const std::string& robot, const TileId& tile) {
+  robots_[robot].tiles.insert(tile);
+}
+
+void TileAdmission::Forget(const std::string& robot, const TileId& tile) {
+  const auto it = robots_.find(robot);
+  if (it != robots_.end()) it->second.tiles.erase(tile);
+}
+
+size_t TileAdmission::tiles_held(const std::string& robot) const {
+  const auto it = robots_.find(robot);
+  return it == robots_.end() ? 0 : it->second.tiles.size();
+}
+
+}  // namespace fleetmap::server

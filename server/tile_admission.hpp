@@ -1,0 +1,89 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <optional>
+#include <variant>
+
+#include "common/core/ids.hpp"
+#include "common/core/robot_status.hpp"
+#include "common/fusion/fusion_options.hpp"
+#include "common/transport/vector_tile_message.hpp"
+#include "server/refusal_log.hpp"
+
+namespace fleetmap::server {
+
+// What the server accepts from one robot. The defaults admit any honest agent with room to
+// spare and bound what a misbehaving or hostile peer can make the server hold.
+struct AdmissionOptions {
+  // Stamps later than the server's clock by more than this are refused (robots' clocks drift;
+  // a stamp from the future would win every conflict over newer evidence).
+  std::chrono::milliseconds max_clock_ahead{std::chrono::seconds(30)};
+  // Stamps older than this are refused. An agent's tiles reach a restarted server with the stamp
+  // of their last change, which can be days old.
+  std::chrono::hours max_age{24 * 30};
+  // Distinct tiles one robot id may hold (a 10 m tile fused costs about 250 KB).
+  size_t max_tiles_per_robot = 1024;
+  // Sustained serialized bytes per second per robot, and the burst above it (a new robot sends
+  // its whole map at once).
+  double max_bytes_per_second = 4e6;
+  double burst_bytes = 64e6;
+
+  Status Validate() const;
+};
+
+// Decides, tile by tile, whether a robot tile may reach fusion: its robot id, key, settings,
+// stamp and the robot's quotas. DDS-free and deterministic given `now`. Not thread-safe: the
+// fusion worker owns it.
+class TileAdmission {
+ public:
+  struct Admitted {
+    // The stamp fusion dates the tile's evidence with: the sample's own, but never later than
+    // its arrival (evidence cannot be newer than the moment it was received).
+    Timestamp evidence_stamp;
+  };
+  struct Refused {
+    Refusal reason;
+    std::string detail;
+  };
+  using Verdict = std::variant<Admitted, Refused>;
+
+  TileAdmission(const AdmissionOptions& options, const fusion::FusionOptions& fusion)
+      : options_(options), fusion_(fusion) {}
+
+  // Whether `robot` may name a robot tile's owner: a ROS 2 name token, not the fused map's.
+  static std::optional<Refused> CheckRobotId(const transport::VectorTileMessage& tile);
+
+  // Checks a decoded robot tile of `bytes` serialized bytes received at `now` (system clock for
+  // stamps, steady clock for rates). An admitted tile counts towards its robot's quotas.
+  Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes, Timestamp now,
+                std::chrono::steady_clock::time_point steady_now);
+
+  // A robot's tile that exists without passing Admit (restored from the store): it counts
+  // towards the robot's tile quota.
+  void Adopt(const std::string& robot, const TileId& tile);
+  // The robot removed the tile: it no longer counts.
+  void Forget(const std::string& robot, const TileId& tile);
+
+  size_t tiles_held(const std::string& robot) const;
+
+ private:
+  struct RobotQuota {
+    std::set<TileId> tiles;
+    double byte_tokens = 0.0;
+    std::chrono::steady_clock::time_point refilled{};
+    bool started = false;
+  };
+
+  std::optional<Refused> CheckSettings(const transport::VectorTileMessage& tile) const;
+  std::optional<Refused> CheckStamp(const transport::VectorTileMessage& tile, Timestamp now) const;
+
+  AdmissionOptions options_;
+  fusion::FusionOptions fusion_;
+  std::map<std::string, RobotQuota> robots_;
+};
+
+}  // namespace fleetmap::server

@@ -1,0 +1,83 @@
+#include "server/fair_tile_queue.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fleetmap::server {
+namespace {
+
+using std::chrono::milliseconds;
+
+TEST(FairTileQueueTest, ANewerRevisionOfAQueuedTileReplacesIt) {
+  FairTileQueue<int> queue;
+  queue.Push("alpha", {0, 0}, 1);
+  queue.Push("alpha", {1, 0}, 2);
+  queue.Push("alpha", {0, 0}, 3);
+  EXPECT_EQ(queue.size(), 2u);
+  std::string robot;
+  EXPECT_EQ(queue.NextTurn(10, &robot), (std::vector<int>{3, 2}));
+  EXPECT_EQ(robot, "alpha");
+  EXPECT_TRUE(queue.empty());
+}
+
+TEST(FairTileQueueTest, AFloodingRobotDoesNotDelayAnotherBeyondOneTurn) {
+  FairTileQueue<int> queue;
+  for (int i = 0; i < 1000; ++i) queue.Push("flood", {i, 0}, i);
+  std::string robot;
+  // The flood's first turn is expensive...
+  ASSERT_EQ(queue.NextTurn(8, &robot).size(), 8u);
+  queue.Charge(robot, milliseconds(400));
+  // ...then an honest robot's update arrives: it is served next, not after 992 tiles.
+  queue.Push("honest", {5, 5}, -1);
+  EXPECT_EQ(queue.NextTurn(8, &robot), (std::vector<int>{-1}));
+  EXPECT_EQ(robot, "honest");
+  queue.Charge(robot, milliseconds(2));
+  // With nobody else waiting the flood goes on.
+  EXPECT_EQ(queue.NextTurn(8, &robot).size(), 8u);
+  EXPECT_EQ(robot, "flood");
+}
+
+TEST(FairTileQueueTest, RobotsWithEqualCostsTakeTurns) {
+  FairTileQueue<int> queue;
+  for (int i = 0; i < 4; ++i) {
+    queue.Push("a", {i, 0}, i);
+    queue.Push("b", {i, 0}, 10 + i);
+  }
+  std::string served;
+  for (int turn = 0; turn < 4; ++turn) {
+    std::string robot;
+    ASSERT_EQ(queue.NextTurn(1, &robot).size(), 1u);
+    queue.Charge(robot, milliseconds(5));
+    served += robot;
+  }
+  EXPECT_EQ(served, "abab");
+}
+
+TEST(FairTileQueueTest, IdleTimeIsNotCredit) {
+  FairTileQueue<int> queue;
+  std::string robot;
+  queue.Push("a", {0, 0}, 0);
+  queue.NextTurn(1, &robot);
+  queue.Charge("a", milliseconds(1000));
+  // b arrives late: it starts level with a's progress, not 1000 ms behind it.
+  queue.Push("a", {1, 0}, 1);
+  queue.Push("b", {0, 0}, 2);
+  queue.NextTurn(1, &robot);
+  queue.Charge(robot, milliseconds(10));
+  const std::string first = robot;
+  queue.NextTurn(1, &robot);
+  EXPECT_NE(first, robot);
+}
+
+TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
+  FairTileQueue<int> queue;
+  queue.Push("a", {0, 0}, 1);
+  queue.Push("a", {1, 0}, 2);
+  queue.Erase("a", {0, 0});
+  queue.Erase("a", {7, 7});  // not queued: nothing happens
+  std::string robot;
+  EXPECT_EQ(queue.NextTurn(10, &robot), (std::vector<int>{2}));
+  EXPECT_TRUE(queue.empty());
+}
+
+}  // namespace
+}  // namespace fleetmap::server

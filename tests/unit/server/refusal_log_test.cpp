@@ -1,0 +1,40 @@
+#include "server/refusal_log.hpp"
+
+#include <gtest/gtest.h>
+
+namespace fleetmap::server {
+namespace {
+
+using std::chrono::seconds;
+
+TEST(RefusalLogTest, CountsEveryRefusalPerRobotAndReason) {
+  RefusalLog log("test");
+  const auto t0 = std::chrono::steady_clock::time_point(seconds(100));
+  for (int i = 0; i < 500; ++i) log.Refuse("gamma", Refusal::kTileQuota, "same", t0);
+  log.Refuse("gamma", Refusal::kNotOwner, "x", t0);
+  log.Refuse("", Refusal::kMalformed, "y", t0);
+  EXPECT_EQ(log.count("gamma", Refusal::kTileQuota), 500u);
+  EXPECT_EQ(log.count("gamma", Refusal::kNotOwner), 1u);
+  EXPECT_EQ(log.count("", Refusal::kMalformed), 1u);
+  EXPECT_EQ(log.total(), 502u);
+  EXPECT_EQ(log.counts().at("(unnamed)").at(Refusal::kMalformed), 1u);
+}
+
+TEST(RefusalLogTest, AFloodOfRobotIdsIsCountedInBoundedMemory) {
+  RefusalLog log("test");
+  const auto t0 = std::chrono::steady_clock::time_point(seconds(100));
+  for (int i = 0; i < 10000; ++i) {
+    log.Refuse("r" + std::to_string(i), Refusal::kUnclaimed, "held too long", t0);
+  }
+  EXPECT_EQ(log.total(), 10000u);
+  EXPECT_LE(log.counts().size(), 4097u);
+  EXPECT_GT(log.count("(others)", Refusal::kUnclaimed), 0u);
+}
+
+TEST(RefusalLogTest, ReasonsHaveNames) {
+  EXPECT_STREQ(RefusalName(Refusal::kStampOutOfWindow), "stamp out of window");
+  EXPECT_STREQ(RefusalName(Refusal::kNotOwner), "not the owner");
+}
+
+}  // namespace
+}  // namespace fleetmap::server
