@@ -4,6 +4,9 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "cli/bench_command.hpp"
@@ -29,17 +32,68 @@ struct BenchFleetArgs {
   // Also run one robot for robots x duration on the same terrain, and compare its map with the
   // fused map of the largest fleet: does fusing lose quality against one robot's own map?
   bool single_robot = false;
+  // Also run each fleet with a hostile peer flooding the server, and report what the honest
+  // robots see: latency, server memory, what the flood got in.
+  bool hostile = false;
 };
 
 struct Row {
   int robots = 0;
   FleetRunResult tiles;
   FleetRunResult grid;
+  std::optional<FleetRunResult> attacked;  // tiles, with a hostile flood (--hostile)
   metrics::QualityScores quality;
 };
 
 std::string Fmt(const std::optional<double>& value, const char* unit) {
   return value ? fmt::format("{:.1f}{}", *value, unit) : std::string("n/a");
+}
+
+// The server's summary line for `robot`: its tiles fused and samples rejected.
+std::pair<uint64_t, uint64_t> SummaryCounts(const std::string& output, const std::string& robot) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string name, state;
+    uint64_t tiles = 0, maps = 0, bytes = 0, rejected = 0;
+    if (fields >> name >> state >> tiles >> maps >> bytes >> rejected && name == robot) {
+      return {tiles, rejected};
+    }
+  }
+  return {0, 0};
+}
+
+void PrintHostileTable(const std::vector<Row>& rows, const HostileFloodOptions& flood,
+                       nlohmann::json* json) {
+  std::cout << fmt::format(
+      "\nUnder a hostile flood (one peer as robot \"{}\": {} heavy tiles rewritten {:.0f} times a "
+      "second, and {} distinct keys), honest robots' fused-tile latency and the server:\n\n",
+      flood.robot, flood.heavy_tiles, flood.rate_hz, flood.distinct_keys);
+  std::cout << "| robots | latency p50 / p95 / p99, quiet | latency p50 / p95 / p99, flooded | "
+               "server MB quiet / flooded | flood tiles sent | fused | refused |\n"
+               "|---|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Row& row = rows[i];
+    if (!row.attacked) continue;
+    const FleetRunResult& attacked = *row.attacked;
+    const auto [fused, refused] = SummaryCounts(attacked.server_output, flood.robot);
+    const auto quiet = [&](double p) { return Percentile(row.tiles.latencies_ms, p); };
+    const auto loud = [&](double p) { return Percentile(attacked.latencies_ms, p); };
+    std::cout << fmt::format("| {} | {} / {} / {} | {} / {} / {} | {:.0f} / {:.0f} | {} | {} | {} |\n",
+                             row.robots, Fmt(quiet(50), " ms"), Fmt(quiet(95), ""),
+                             Fmt(quiet(99), ""), Fmt(loud(50), " ms"), Fmt(loud(95), ""),
+                             Fmt(loud(99), ""), row.tiles.server_peak_rss_bytes / 1e6,
+                             attacked.server_peak_rss_bytes / 1e6, attacked.hostile_tiles_written,
+                             fused, refused);
+    (*json)[i]["hostile"] = {
+        {"latency_ms",
+         {{"p50", loud(50).value_or(-1)}, {"p95", loud(95).value_or(-1)},
+          {"p99", loud(99).value_or(-1)}}},
+        {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
+        {"flood_tiles_sent", attacked.hostile_tiles_written},
+        {"flood_tiles_fused", fused},
+        {"flood_samples_refused", refused}};
+  }
 }
 
 uint64_t Updates(const FleetRunResult& run) {
@@ -105,6 +159,21 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       }
       (wire == std::string("tiles") ? row.tiles : row.grid) = std::move(run).value();
     }
+    if (args.hostile) {
+      FleetSimOptions options = base;
+      options.robots = robots;
+      options.hostile = HostileFloodOptions{};
+      StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
+        std::cerr << fmt::format("\r{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s   ",
+                                 robots, seconds, args.duration_s)
+                  << std::flush;
+      });
+      if (!run.ok()) {
+        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        return 1;
+      }
+      row.attacked = std::move(run).value();
+    }
     auto quality = metrics::CompareMaps(ResampleOnto(row.tiles.fused, *truth), *truth);
     if (quality.ok()) row.quality = *quality;
     rows.push_back(std::move(row));
@@ -148,6 +217,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
          {"opdf", row.quality.occupied_picture_distance.value_or(-1)},
          {"updf", row.quality.unoccupied_picture_distance.value_or(-1)}});
   }
+  if (args.hostile) PrintHostileTable(rows, HostileFloodOptions{}, &json);
   if (args.single_robot && !rows.empty()) {
     const Row& fleet = rows.back();
     FleetSimOptions options = base;
@@ -202,6 +272,8 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   command->add_option("--json", args->json_path, "write the rows as JSON");
   command->add_flag("--single-robot", args->single_robot,
                     "also one robot for (largest fleet x duration), to compare map quality");
+  command->add_flag("--hostile", args->hostile,
+                    "also run each fleet while a hostile peer floods the server, and compare");
   command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
 }
 

@@ -65,7 +65,6 @@ class Observer {
         robot.path.push_back(event.status.map_from_robot);
       }
     }
-    const Timestamp now = Clock::now();
     for (const transport::TileEvent& event : fused_tiles_->Drain()) {
       if (event.kind != transport::TileEvent::Kind::kTile) continue;
       // The first revisions a late reader gets are history, not updates: skip stamps from
@@ -73,7 +72,7 @@ class Observer {
       if (event.tile.stamp < started_) continue;
       if (event.tile.tile.x >= hostile_first_tile_x_) continue;  // the hostile peer's
       result->latencies_ms.push_back(
-          std::chrono::duration<double, std::milli>(now - event.tile.stamp).count());
+          std::chrono::duration<double, std::milli>(event.received - event.tile.stamp).count());
     }
     for (StatusOr<transport::MapMessage>& map : fused_grid_->Drain()) {
       if (map.ok()) result->fused = std::move(map->grid);

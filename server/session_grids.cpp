@@ -3,17 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
+#include "common/fusion/grid_window.hpp"
 #include "common/fusion/tile_fusion.hpp"
 
 namespace fleetmap::server {
 namespace {
 
-// One session on its own: a fusion of one robot is that robot's map on the fused lattice.
+// One session on its own, its tiles within `window` only: a fusion of one robot is that robot's
+// map on the fused lattice.
 StatusOr<grid::OccupancyGrid> SessionGrid(const MappingSession& session,
+                                          const fusion::TileRect& window,
                                           const fusion::FusionOptions& options) {
   FLEETMAP_ASSIGN_OR_RETURN(fusion::TileFusion fusion, fusion::TileFusion::Create(options));
   for (const auto& [tile, map] : session.map.tiles) {
+    if (!window.Contains(tile)) continue;
     FLEETMAP_RETURN_IF_ERROR(fusion.UpdateRobotTile(session.robot, tile, map, session.ended)
                                  .WithContext("session " + std::to_string(session.id)));
   }
@@ -27,30 +32,34 @@ StatusOr<grid::OccupancyGrid> SessionGrid(const MappingSession& session,
 
 StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<MappingSession>& sessions,
                                                         const fusion::FusionOptions& options) {
-  std::vector<grid::OccupancyGrid> grids;
-  for (const MappingSession& session : sessions) {
-    FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid grid, SessionGrid(session, options));
-    grids.push_back(std::move(grid));
+  // The tiles every session mapped, each with the sessions that mapped it.
+  std::map<TileId, std::vector<int>> sessions_of;
+  for (size_t i = 0; i < sessions.size(); ++i) {
+    for (const auto& [tile, map] : sessions[i].map.tiles) {
+      sessions_of[tile].push_back(static_cast<int>(i));
+    }
   }
-  // Every grid's origin is a tile corner on one lattice: whole cells apart.
+  if (sessions_of.empty()) return std::vector<grid::OccupancyGrid>(sessions.size());
+  std::vector<fusion::SourcedTile> tiles;
+  tiles.reserve(sessions_of.size());
+  for (auto& [tile, mapped_by] : sessions_of) tiles.push_back({tile, std::move(mapped_by)});
+  // One window for all, within the grid budget: sessions kilometres apart (or a peer's tiles far
+  // away) must not make every grid span the distance between them.
+  const int cells = options.CellsPerTile();
+  const fusion::TileRect window =
+      fusion::ChooseGridWindow(tiles, options.max_grid_cells / (int64_t{cells} * cells)).rect;
   const double resolution = options.FusedResolution();
-  double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
-  for (const grid::OccupancyGrid& grid : grids) {
-    if (grid.empty()) continue;
-    min_x = std::min(min_x, grid.origin().x);
-    min_y = std::min(min_y, grid.origin().y);
-    max_x = std::max(max_x, grid.origin().x + grid.width() * resolution);
-    max_y = std::max(max_y, grid.origin().y + grid.height() * resolution);
-  }
-  if (!std::isfinite(min_x)) return grids;  // nothing mapped at all
-  const int width = static_cast<int>(std::lround((max_x - min_x) / resolution));
-  const int height = static_cast<int>(std::lround((max_y - min_y) / resolution));
+  const Pose2 origin{window.min.x * options.tile_size, window.min.y * options.tile_size, 0.0};
   std::vector<grid::OccupancyGrid> padded;
-  for (const grid::OccupancyGrid& grid : grids) {
-    grid::OccupancyGrid out(width, height, resolution, Pose2{min_x, min_y, 0.0});
+  for (const MappingSession& session : sessions) {
+    FLEETMAP_ASSIGN_OR_RETURN(const grid::OccupancyGrid grid,
+                              SessionGrid(session, window, options));
+    grid::OccupancyGrid out(static_cast<int>(window.width() * cells),
+                            static_cast<int>(window.height() * cells), resolution, origin);
     if (!grid.empty()) {
-      const int x0 = static_cast<int>(std::lround((grid.origin().x - min_x) / resolution));
-      const int y0 = static_cast<int>(std::lround((grid.origin().y - min_y) / resolution));
+      // Every grid's origin is a tile corner on one lattice: whole cells apart.
+      const int x0 = static_cast<int>(std::lround((grid.origin().x - origin.x) / resolution));
+      const int y0 = static_cast<int>(std::lround((grid.origin().y - origin.y) / resolution));
       for (int y = 0; y < grid.height(); ++y) {
         std::memcpy(&out.at(x0, y0 + y), grid.data().data() + static_cast<size_t>(y) * grid.width(),
                     static_cast<size_t>(grid.width()));

@@ -11,7 +11,9 @@ namespace fleetmap::server {
 
 // Rasterizes each session's vector map onto the fleet's fused cell lattice and pads them all to
 // the smallest box that holds every session, so the maps share size, resolution and origin (what
-// the object learner needs). Cells a session never saw are unknown.
+// the object learner needs). Cells a session never saw are unknown. The box holds at most
+// options.max_grid_cells cells: sessions too far apart for one grid are cut to the area most
+// sessions mapped (fusion::ChooseGridWindow).
 StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<MappingSession>& sessions,
                                                         const fusion::FusionOptions& options);
 

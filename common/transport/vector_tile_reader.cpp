@@ -28,6 +28,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
                          [this](const VectorTile_& sample, const dds::SampleInfo& info) {
                            TileEvent event;
                            event.writer = WriterId(info.publication_handle);
+                           event.received = Clock::now();
                            if (info.valid_data) {
                              OnSample(sample, info, std::move(event));
                            } else {

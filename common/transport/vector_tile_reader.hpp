@@ -22,6 +22,9 @@ struct TileEvent {
   Status error;            // kRejected
   std::string writer;
   size_t serialized_bytes = 0;
+  // When the listener took it: latency measured from here does not depend on when the reader's
+  // owner gets round to draining it.
+  Timestamp received;
 };
 
 // Receives vector tiles on rt/fleetmap/robot_tiles or rt/fleetmap/fused_tiles. The DDS listener

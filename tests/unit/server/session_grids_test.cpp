@@ -76,6 +76,25 @@ TEST(SessionGridsTest, SessionsShareOneGeometryAndKeepTheirOwnCells) {
   EXPECT_EQ(StateAt(second, {1.0, 1.0}), grid::CellState::kUnknown);
 }
 
+TEST(SessionGridsTest, ASessionFarAwayDoesNotStretchEveryGrid) {
+  // Two sessions of one building and a third 50 km away: one grid spanning all would hold 1e12
+  // cells. The grids cover the building, which two sessions mapped.
+  const std::vector<MappingSession> sessions = {
+      Session(1, Room({1.5, 1.5}, Pose2{0.0, 0.0, 0.0})),
+      Session(2, Room({4.0, 4.0}, Pose2{2.0, 2.0, 0.0})),
+      Session(3, Room({50001.5, 1.5}, Pose2{50000.0, 0.0, 0.0})),
+  };
+  const auto grids = SessionGrids(sessions, fusion::FusionOptions{});
+  ASSERT_TRUE(grids.ok()) << grids.status();
+  ASSERT_EQ(grids->size(), 3u);
+  for (const grid::OccupancyGrid& grid : *grids) {
+    EXPECT_LE(grid.width(), 400);
+    EXPECT_LE(grid.height(), 400);
+  }
+  EXPECT_GE(OccupiedInBox((*grids)[0], {1.5, 1.5}), 28);
+  EXPECT_EQ((*grids)[2].StateAt(0, 0), grid::CellState::kUnknown);
+}
+
 TEST(SessionGridsTest, NoSessionsGiveNoGrids) {
   const auto grids = SessionGrids({}, fusion::FusionOptions{});
   ASSERT_TRUE(grids.ok());
