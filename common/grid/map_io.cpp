@@ -210,7 +210,8 @@ StatusOr<OccupancyGrid> LoadOtherImage(const MapMetadata& metadata, const MapLoa
     return DataLossError(path + ": cannot decode image: " + e.what());
   }
   if (mat.empty()) {
-    return DataLossError(path + ": cannot decode image (not a PGM, and OpenCV cannot read it)");
+    return DataLossError(path + ": cannot decode the " + header.format +
+                         " image (truncated or corrupt)");
   }
   if (mat.cols != header.width || mat.rows != header.height) {
     // The file changed between the header and the pixels (it is being rewritten).
