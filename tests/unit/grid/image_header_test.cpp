@@ -86,6 +86,33 @@ TEST(ImageHeaderTest, AgreesWithWhatOpenCvDecodes) {
   }
 }
 
+std::string Le32(uint32_t value) {
+  return {static_cast<char>(value), static_cast<char>(value >> 8), static_cast<char>(value >> 16),
+          static_cast<char>(value >> 24)};
+}
+
+TEST(ImageHeaderTest, ReadsBmpSizeFromEitherHeaderAndCountsFourBytesPerPixel) {
+  fleetmap::testing::ScratchDir dir("image_header");
+  // File header (14 bytes: "BM", file size, reserved, pixel offset), then the DIB header.
+  const std::string file_header = "BM" + std::string(12, '\0');
+  // BITMAPINFOHEADER: size 40, width, height (negative: rows top-down).
+  const std::string info = Le32(40) + Le32(60000) + Le32(static_cast<uint32_t>(-60000));
+  StatusOr<ImageHeader> header = ReadImageHeader(WriteFile(dir, "a.bmp", file_header + info));
+  ASSERT_TRUE(header.ok()) << header.status();
+  EXPECT_EQ(header->format, "BMP");
+  EXPECT_EQ(header->width, 60000);
+  EXPECT_EQ(header->height, 60000);
+  EXPECT_EQ(header->channels * header->bytes_per_sample, 4);
+  EXPECT_EQ(header->CheckLimits("a.bmp", 400'000'000, int64_t{256} << 20).code(),
+            StatusCode::kResourceExhausted);
+  // OS/2 BITMAPCOREHEADER: size 12, 16-bit width and height, planes, bits per pixel.
+  const std::string core = Le32(12) + std::string("\x10\x00\x20\x00\x01\x00\x18\x00", 8);
+  header = ReadImageHeader(WriteFile(dir, "b.bmp", file_header + core));
+  ASSERT_TRUE(header.ok()) << header.status();
+  EXPECT_EQ(header->width, 16);
+  EXPECT_EQ(header->height, 32);
+}
+
 TEST(ImageHeaderTest, RefusesWhatIsNotAHeaderItCanTrust) {
   fleetmap::testing::ScratchDir dir("image_header");
   struct Case {
