@@ -45,6 +45,9 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError("the map check period must be > 0");
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
   if (claim_wait.count() < 0) return InvalidArgumentError("--claim-wait must be >= 0");
+  if (map_limits.max_cells <= 0 || map_limits.max_decoded_bytes <= 0) {
+    return InvalidArgumentError("--max-cells and --max-decoded-bytes must be > 0");
+  }
   return Status::Ok();
 }
 
@@ -54,7 +57,7 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   const AgentOptions& o = node->options_;
   // A bad map file is the user's to fix: fail before touching DDS.
   if (!o.map_path.empty()) {
-    FLEETMAP_ASSIGN_OR_RETURN(node->source_, FileMapSource::Create(o.map_path));
+    FLEETMAP_ASSIGN_OR_RETURN(node->source_, FileMapSource::Create(o.map_path, o.map_limits));
   }
   if (o.sim) {
     FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SimMapSource> sim, SimMapSource::Create(*o.sim));

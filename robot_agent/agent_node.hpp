@@ -34,6 +34,8 @@ struct AgentOptions {
   // An entities JSON file (doors, stairs, people's tracks; docs/extrapolation.md) the robot's
   // perception writes, re-read when it changes and published on rt/fleetmap/entities. Optional.
   std::string entities_path;
+  // Size limits for the images of map_path (docs/file-formats.md, "Limits").
+  grid::MapLoadOptions map_limits;
   Wire wire = Wire::kTiles;
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame

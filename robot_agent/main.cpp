@@ -31,7 +31,13 @@ int main(int argc, char** argv) {
   bool localhost_only = false;
   app.add_option("--robot-id", options.robot.value, "robot name, e.g. alpha")->required();
   app.add_option("--map", options.map_path,
-                 "ROS map_server YAML of the robot's map (re-read on change)");
+                 "ROS map_server YAML of the robot's map (re-read when it or its image changes)");
+  app.add_option("--max-cells", options.map_limits.max_cells,
+                 "refuse --map images with more cells than this")
+      ->capture_default_str();
+  app.add_option("--max-decoded-bytes", options.map_limits.max_decoded_bytes,
+                 "refuse --map images that decode to more bytes than this")
+      ->capture_default_str();
   app.add_option("--ros-topic", options.ros_topic,
                  "DDS topic with the robot's nav_msgs/OccupancyGrid, e.g. rt/map");
   app.add_option("--entities", options.entities_path,

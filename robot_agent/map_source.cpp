@@ -6,13 +6,30 @@
 
 namespace fleetmap::agent {
 
-StatusOr<std::unique_ptr<FileMapSource>> FileMapSource::Create(std::string path) {
-  std::unique_ptr<FileMapSource> source(new FileMapSource(std::move(path)));
-  FLEETMAP_ASSIGN_OR_RETURN(grid::LoadedMap loaded, grid::LoadMap(source->path_));
-  std::error_code error;
-  source->mtime_ = std::filesystem::last_write_time(source->path_, error);
-  source->pending_ = std::move(loaded.grid);
+StatusOr<std::unique_ptr<FileMapSource>> FileMapSource::Create(std::string path,
+                                                               grid::MapLoadOptions options) {
+  std::unique_ptr<FileMapSource> source(new FileMapSource(std::move(path), std::move(options)));
+  FLEETMAP_ASSIGN_OR_RETURN(source->pending_, source->Read());
   return source;
+}
+
+FileMapSource::Signatures FileMapSource::Now() const {
+  return {FileSignature::Of(path_), FileSignature::Of(image_path_)};
+}
+
+StatusOr<grid::OccupancyGrid> FileMapSource::Read() {
+  const FileSignature yaml = FileSignature::Of(path_);
+  StatusOr<grid::MapMetadata> metadata = grid::ReadMapYaml(path_, options_);
+  if (metadata.ok()) image_path_ = metadata->image_path;
+  const Signatures before{yaml, FileSignature::Of(image_path_)};
+  StatusOr<grid::OccupancyGrid> grid =
+      metadata.ok() ? grid::LoadMapImage(*metadata, options_) : metadata.status();
+  read_.reset();
+  if (Now() == before) read_ = before;
+  if (!grid.ok() && grid.status().code() == StatusCode::kNotFound && metadata.ok()) {
+    return NotFoundError(grid.status().message() + " (the image of " + path_ + ")");
+  }
+  return grid;
 }
 
 std::optional<grid::OccupancyGrid> FileMapSource::Poll() {
@@ -21,16 +38,23 @@ std::optional<grid::OccupancyGrid> FileMapSource::Poll() {
     pending_.reset();
     return first;
   }
-  std::error_code error;
-  const auto mtime = std::filesystem::last_write_time(path_, error);
-  if (error || mtime == mtime_) return std::nullopt;
-  mtime_ = mtime;  // a broken file is reported once, not at every poll
-  StatusOr<grid::LoadedMap> loaded = grid::LoadMap(path_);
-  if (!loaded.ok()) {
-    spdlog::warn("keeping the previous map: {}", loaded.status().message());
+  if (read_ && *read_ == Now()) return std::nullopt;  // nothing changed since the last read
+  StatusOr<grid::OccupancyGrid> grid = Read();
+  if (!read_) {
+    // A file changed while it was read (an editor is writing it): read again at the next poll.
+    spdlog::debug("{} changed while being read; reading it again", path_);
     return std::nullopt;
   }
-  return std::move(loaded->grid);
+  if (!grid.ok()) {
+    if (grid.status().message() != problem_) {
+      problem_ = grid.status().message();
+      spdlog::warn("keeping the previous map until {} can be read: {}", path_, problem_);
+    }
+    return std::nullopt;
+  }
+  if (!problem_.empty()) spdlog::info("{} can be read again", path_);
+  problem_.clear();
+  return std::move(grid).value();
 }
 
 StatusOr<std::unique_ptr<TopicMapSource>> TopicMapSource::Create(

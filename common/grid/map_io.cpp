@@ -16,6 +16,7 @@
 
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
+#include "common/grid/image_header.hpp"
 #include "common/grid/pgm.hpp"
 
 namespace fleetmap::grid {
@@ -154,30 +155,6 @@ bool LooksLikePgm(const std::string& path, const std::string& head) {
   return head.size() >= 2 && head[0] == 'P' && (head[1] == '2' || head[1] == '5');
 }
 
-Status CheckCells(int64_t width, int64_t height, const std::string& path,
-                  const MapLoadOptions& options) {
-  if (width * height > options.max_cells) {
-    return ResourceExhaustedError(path + ": image is " + std::to_string(width) + " x " +
-                                  std::to_string(height) + " = " + std::to_string(width * height) +
-                                  " cells, more than the limit of " +
-                                  std::to_string(options.max_cells));
-  }
-  return Status::Ok();
-}
-
-// PNG declares its size in the IHDR chunk: check it before OpenCV allocates anything.
-Status CheckPngHeader(const std::string& path, const std::string& head,
-                      const MapLoadOptions& options) {
-  static constexpr char kPngSignature[] = "\x89PNG\r\n\x1a\n";
-  if (head.size() < 24 || head.compare(0, 8, kPngSignature, 8) != 0) return Status::Ok();
-  const auto be32 = [&head](size_t at) {
-    int64_t value = 0;
-    for (size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<uint8_t>(head[at + i]);
-    return value;
-  };
-  return CheckCells(be32(16), be32(20), path, options);
-}
-
 OccupancyGrid MakeGrid(int width, int height, const MapMetadata& metadata) {
   return OccupancyGrid(width, height, metadata.resolution, metadata.origin);
 }
@@ -185,6 +162,7 @@ OccupancyGrid MakeGrid(int width, int height, const MapMetadata& metadata) {
 StatusOr<OccupancyGrid> LoadPgmImage(const MapMetadata& metadata, const MapLoadOptions& options) {
   PgmReadOptions pgm_options;
   pgm_options.max_cells = options.max_cells;
+  pgm_options.max_decoded_bytes = options.max_decoded_bytes;
   FLEETMAP_ASSIGN_OR_RETURN(const PgmImage image, ReadPgm(metadata.image_path, pgm_options));
   // A PGM has one channel and no alpha: the cell value depends on the sample alone.
   std::vector<int8_t> lut(static_cast<size_t>(image.max_value) + 1);
@@ -220,10 +198,11 @@ void ConvertMat(const cv::Mat& mat, double max_value, const MapMetadata& metadat
   }
 }
 
-StatusOr<OccupancyGrid> LoadOtherImage(const MapMetadata& metadata, const std::string& head,
-                                       const MapLoadOptions& options) {
+StatusOr<OccupancyGrid> LoadOtherImage(const MapMetadata& metadata, const MapLoadOptions& options) {
   const std::string& path = metadata.image_path;
-  FLEETMAP_RETURN_IF_ERROR(CheckPngHeader(path, head, options));
+  // OpenCV allocates the whole decoded image at once, as the header describes it: check first.
+  FLEETMAP_ASSIGN_OR_RETURN(const ImageHeader header, ReadImageHeader(path));
+  FLEETMAP_RETURN_IF_ERROR(header.CheckLimits(path, options.max_cells, options.max_decoded_bytes));
   cv::Mat mat;
   try {
     mat = cv::imread(path, cv::IMREAD_UNCHANGED);
@@ -231,9 +210,15 @@ StatusOr<OccupancyGrid> LoadOtherImage(const MapMetadata& metadata, const std::s
     return DataLossError(path + ": cannot decode image: " + e.what());
   }
   if (mat.empty()) {
-    return DataLossError(path + ": cannot decode image (not a PGM, and OpenCV cannot read it)");
+    return DataLossError(path + ": cannot decode the " + header.format +
+                         " image (truncated or corrupt)");
   }
-  FLEETMAP_RETURN_IF_ERROR(CheckCells(mat.cols, mat.rows, path, options));
+  if (mat.cols != header.width || mat.rows != header.height) {
+    // The file changed between the header and the pixels (it is being rewritten).
+    return DataLossError(path + ": decoded " + std::to_string(mat.cols) + " x " +
+                         std::to_string(mat.rows) + " pixels, the header said " +
+                         std::to_string(header.width) + " x " + std::to_string(header.height));
+  }
   if (mat.dims != 2 || mat.channels() > 4) {
     return InvalidArgumentError(path + ": unsupported image layout (" +
                                 std::to_string(mat.channels()) + " channels)");
@@ -457,9 +442,8 @@ StatusOr<OccupancyGrid> LoadMapImage(const MapMetadata& metadata, const MapLoadO
   if (!fs::is_regular_file(file_status)) {
     return InvalidArgumentError(path + ": is not a regular file, expected an image");
   }
-  const std::string head = FileHead(path, 32);
-  if (LooksLikePgm(path, head)) return LoadPgmImage(metadata, options);
-  return LoadOtherImage(metadata, head, options);
+  if (LooksLikePgm(path, FileHead(path, 2))) return LoadPgmImage(metadata, options);
+  return LoadOtherImage(metadata, options);
 }
 
 StatusOr<LoadedMap> LoadMap(const std::string& yaml_path, const MapLoadOptions& options) {

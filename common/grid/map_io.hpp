@@ -43,6 +43,11 @@ struct MapMetadata {
 struct MapLoadOptions {
   // Images with more cells than this fail with kResourceExhausted before their pixels are read.
   int64_t max_cells = 400'000'000;
+  // Likewise images whose decoded pixels take more bytes than this (width * height * channels *
+  // bytes per sample, as the decoder holds them, read from the file's header): a small PNG can
+  // hold a large image, and a 16-bit RGBA one decodes to 8 bytes per cell. 256 MiB is 268 million
+  // cells of an 8-bit gray PNG, or 134 million of a PGM (read into 16-bit samples).
+  int64_t max_decoded_bytes = int64_t{256} << 20;
   // nav2 reads any path the YAML names. fleetmap refuses, by default, an image that is not inside
   // the YAML's directory (`../x.pgm`, or an absolute path elsewhere): maps travel between robots
   // and machines, and a map file should not make a server open arbitrary files. The check is
@@ -60,9 +65,10 @@ struct LoadedMap {
 // (no file), kInvalidArgument (syntax error, missing or bad key, image outside the directory).
 StatusOr<MapMetadata> ReadMapYaml(const std::string& yaml_path, const MapLoadOptions& options = {});
 
-// Reads `metadata.image_path` (PGM with fleetmap's own reader; PNG, BMP... with OpenCV) and
-// converts it with the metadata's mode, negate and thresholds. Grid row 0 is the image's bottom
-// row. Errors name the image file.
+// Reads `metadata.image_path` (PGM with fleetmap's own reader; PNG and BMP with OpenCV, after
+// their header was checked against the limits; other formats are refused) and converts it with
+// the metadata's mode, negate and thresholds. Grid row 0 is the image's bottom row. Errors name
+// the image file.
 StatusOr<OccupancyGrid> LoadMapImage(const MapMetadata& metadata,
                                      const MapLoadOptions& options = {});
 

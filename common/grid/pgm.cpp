@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "common/core/file_io.hpp"
+#include "common/grid/image_header.hpp"
 
 namespace fleetmap::grid {
 namespace {
@@ -99,12 +100,13 @@ class PgmParser {
                               ParseHeaderNumber("maxval", 1, kMaxPgmValue));
     // Both sides are below 2^31, so the product cannot overflow int64.
     const int64_t cells = width * height;
-    if (cells > options_.max_cells) {
-      return ResourceExhaustedError(name_ + ": image is " + std::to_string(width) + " x " +
-                                    std::to_string(height) + " = " + std::to_string(cells) +
-                                    " cells, more than the limit of " +
-                                    std::to_string(options_.max_cells));
-    }
+    const ImageHeader header{.format = "PGM",
+                             .width = width,
+                             .height = height,
+                             .channels = 1,
+                             .bytes_per_sample = sizeof(uint16_t)};
+    FLEETMAP_RETURN_IF_ERROR(
+        header.CheckLimits(name_, options_.max_cells, options_.max_decoded_bytes));
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     image.max_value = static_cast<int>(max_value);
@@ -205,11 +207,20 @@ class PgmParser {
     return value;
   }
 
+  // Grows with the data actually present, so a lying header on a short file allocates little,
+  // and never past `cells` samples, the size the limits were checked against.
+  static void Append(uint16_t sample, int64_t cells, std::vector<uint16_t>* pixels) {
+    if (pixels->size() == pixels->capacity()) {
+      const int64_t doubled =
+          std::max<int64_t>(int64_t{1} << 20, 2 * static_cast<int64_t>(pixels->capacity()));
+      pixels->reserve(static_cast<size_t>(std::min(cells, doubled)));
+    }
+    pixels->push_back(sample);
+  }
+
   Status ParseBinaryPixels(int64_t cells, PgmImage* image) {
     const int bytes_per_sample = image->max_value > 255 ? 2 : 1;
     const int64_t expected_bytes = cells * bytes_per_sample;
-    // Grow with the data actually present, so a lying header on a short file allocates little.
-    image->pixels.reserve(static_cast<size_t>(std::min<int64_t>(cells, int64_t{1} << 20)));
     std::array<char, 1 << 16> chunk;
     int64_t got_bytes = 0;
     while (got_bytes < expected_bytes) {
@@ -228,7 +239,7 @@ class PgmParser {
           const int64_t index = static_cast<int64_t>(image->pixels.size());
           return PixelAboveMax(index, sample, image);
         }
-        image->pixels.push_back(sample);
+        Append(sample, cells, &image->pixels);
       }
       got_bytes += got;
       if (got < want) break;
@@ -244,7 +255,6 @@ class PgmParser {
   }
 
   Status ParseAsciiPixels(int64_t cells, PgmImage* image) {
-    image->pixels.reserve(static_cast<size_t>(std::min<int64_t>(cells, int64_t{1} << 20)));
     for (int64_t index = 0; index < cells; ++index) {
       in_.SkipSpaceAndComments();
       int c = in_.Peek();
@@ -268,7 +278,7 @@ class PgmParser {
                                                 ": digits followed by " + Describe(c));
       }
       if (value > image->max_value) return PixelAboveMax(index, value, image);
-      image->pixels.push_back(static_cast<uint16_t>(value));
+      Append(static_cast<uint16_t>(value), cells, &image->pixels);
     }
     return Status::Ok();
   }

@@ -34,6 +34,9 @@ struct PgmImage {
 struct PgmReadOptions {
   // Images with more cells than this fail with kResourceExhausted before any pixel is allocated.
   int64_t max_cells = 400'000'000;
+  // Likewise images whose pixels take more bytes than this once read: PgmImage holds every sample
+  // in 16 bits, so width * height * 2 bytes. The default, 256 MiB, is 134 million cells.
+  int64_t max_decoded_bytes = int64_t{256} << 20;
   // By default only whitespace may follow the pixels; a second image or junk is an error.
   bool allow_trailing_data = false;
 };

@@ -7,12 +7,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
 #include "common/grid/pgm.hpp"
+#include "tests/unit/grid/crafted_png.hpp"
 
 namespace fleetmap::grid {
 namespace {
@@ -237,6 +239,78 @@ TEST(MapIoTest, MaxCellsAppliesToPngBeforeDecoding) {
   EXPECT_THAT(status.message(), HasSubstr("scale_4x3.png: image is 4 x 3 = 12 cells"));
   options.max_cells = 12;
   EXPECT_TRUE(LoadMap(DataPath("scale_4x3.yaml"), options).ok());
+}
+
+constexpr char kYamlTail[] =
+    "resolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+
+TEST(MapIoTest, RefusesAPngThatWouldDecodeTooLargeBeforeDecodingIt) {
+  TempDir dir("map_io_decoded_bytes");
+  // 10000 x 10000 is under max_cells, but RGBA at 16 bits decodes to 800 MB: refused from the
+  // header. The file holds no pixel data, so decoding would have failed with kDataLoss instead.
+  dir.Write("rgba16.png", testing::PngHead(10000, 10000, 16, 6));
+  Status status =
+      LoadError(dir.Write("rgba16.yaml", std::string("image: rgba16.png\n") + kYamlTail));
+  EXPECT_EQ(status.code(), StatusCode::kResourceExhausted);
+  EXPECT_EQ(status.message(), dir.Path("rgba16.png") +
+                                  ": image is 10000 x 10000 with 4 channel(s) of 16 bits, "
+                                  "800000000 bytes decoded, more than the limit of 268435456 "
+                                  "bytes (max_decoded_bytes)");
+
+  // 60000 x 60000 is over both limits; with the cell limit lifted the byte limit still holds.
+  dir.Write("huge.png", testing::PngHead(60000, 60000, 16, 6));
+  const std::string huge = dir.Write("huge.yaml", std::string("image: huge.png\n") + kYamlTail);
+  status = LoadError(huge);
+  EXPECT_EQ(status.code(), StatusCode::kResourceExhausted);
+  EXPECT_THAT(status.message(), HasSubstr("60000 x 60000 = 3600000000 cells"));
+  MapLoadOptions options;
+  options.max_cells = std::numeric_limits<int64_t>::max();
+  status = LoadError(huge, options);
+  EXPECT_EQ(status.code(), StatusCode::kResourceExhausted);
+  EXPECT_THAT(status.message(), HasSubstr("28800000000 bytes decoded"));
+
+  // Under both limits the same header reaches the decoder, which finds no pixels.
+  options.max_decoded_bytes = std::numeric_limits<int64_t>::max();
+  EXPECT_EQ(
+      LoadError(dir.Write("small.yaml", std::string("image: rgba16.png\n") + kYamlTail), options)
+          .code(),
+      StatusCode::kDataLoss);
+}
+
+TEST(MapIoTest, MaxDecodedBytesIsAnInclusiveLimitForPngAndPgm) {
+  TempDir dir("map_io_decoded_bytes_limit");
+  // 4 x 3 RGBA at 16 bits: 96 bytes decoded.
+  ASSERT_TRUE(cv::imwrite(dir.Path("rgba.png"), cv::Mat(3, 4, CV_16UC4, cv::Scalar::all(65535))));
+  const std::string png_yaml = dir.Write("png.yaml", std::string("image: rgba.png\n") + kYamlTail);
+  // 4 x 3 PGM: 12 samples held in 16 bits, 24 bytes.
+  const std::string pgm_yaml = DataPath("raw_4x3.yaml");
+  MapLoadOptions options;
+  options.max_decoded_bytes = 96;
+  EXPECT_TRUE(LoadMap(png_yaml, options).ok());
+  options.max_decoded_bytes = 95;
+  EXPECT_EQ(LoadError(png_yaml, options).code(), StatusCode::kResourceExhausted);
+  options.max_decoded_bytes = 24;
+  EXPECT_TRUE(LoadMap(pgm_yaml, options).ok());
+  options.max_decoded_bytes = 23;
+  const Status status = LoadError(pgm_yaml, options);
+  EXPECT_EQ(status.code(), StatusCode::kResourceExhausted);
+  EXPECT_THAT(status.message(),
+              HasSubstr("raw_4x3.pgm: image is 4 x 3 with 1 channel(s) of 16 bits"));
+}
+
+TEST(MapIoTest, RefusesImageFormatsWhoseSizeIsNotCheckedBeforeDecoding) {
+  TempDir dir("map_io_other_formats");
+  ASSERT_TRUE(cv::imwrite(dir.Path("map.bmp"), cv::Mat(3, 4, CV_8UC1, cv::Scalar::all(254))));
+  const StatusOr<LoadedMap> bmp =
+      LoadMap(dir.Write("bmp.yaml", std::string("image: map.bmp\n") + kYamlTail));
+  ASSERT_TRUE(bmp.ok()) << bmp.status();
+  EXPECT_EQ(bmp->grid.width(), 4);
+  EXPECT_EQ(bmp->grid.at(0, 0), kFreeValue);
+
+  dir.Write("map.gif", "GIF89a" + std::string(40, '\0'));
+  const Status gif = LoadError(dir.Write("gif.yaml", std::string("image: map.gif\n") + kYamlTail));
+  EXPECT_EQ(gif.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(gif.message(), StartsWith(dir.Path("map.gif") + ": not a PGM, PNG or BMP image"));
 }
 
 TEST(MapIoTest, EscapingPathIsAllowedOnlyWhenAsked) {

@@ -176,6 +176,38 @@ TEST(PgmTest, MaxCellsIsAnInclusiveLimit) {
             StatusCode::kResourceExhausted);
 }
 
+TEST(PgmTest, MaxDecodedBytesCountsSixteenBitsPerSample) {
+  PgmReadOptions options;
+  options.max_decoded_bytes = 24;  // 4 x 3 samples of 2 bytes
+  EXPECT_TRUE(ReadPgm(DataPath("raw_4x3.pgm"), options).ok());
+  options.max_decoded_bytes = 23;
+  const StatusOr<PgmImage> image = ReadPgm(DataPath("raw_4x3.pgm"), options);
+  EXPECT_EQ(image.status().code(), StatusCode::kResourceExhausted);
+  EXPECT_EQ(image.status().message(),
+            DataPath("raw_4x3.pgm") +
+                ": image is 4 x 3 with 1 channel(s) of 16 bits, 24 bytes decoded, more than the "
+                "limit of 23 bytes (max_decoded_bytes)");
+  // The default limit, 256 MiB, holds 134217728 samples.
+  EXPECT_EQ(Decode("P5 16384 8192 255 ").status().code(), StatusCode::kDataLoss);
+  EXPECT_EQ(Decode("P5 16384 8193 255 ").status().code(), StatusCode::kResourceExhausted);
+}
+
+TEST(PgmTest, HoldsExactlyTheSamplesOfTheImage) {
+  // More samples than the first reservation: the buffer grows, but never past width * height.
+  PgmImage image;
+  image.width = 1500;
+  image.height = 1000;
+  image.pixels.assign(1'500'000, 7);
+  for (const PgmEncoding encoding : {PgmEncoding::kBinary, PgmEncoding::kAscii}) {
+    const StatusOr<std::string> bytes = EncodePgm(image, encoding);
+    ASSERT_TRUE(bytes.ok()) << bytes.status();
+    const StatusOr<PgmImage> read = Decode(*bytes);
+    ASSERT_TRUE(read.ok()) << read.status();
+    EXPECT_EQ(read->pixels, image.pixels);
+    EXPECT_EQ(read->pixels.capacity(), image.pixels.size());
+  }
+}
+
 TEST(PgmTest, RejectsPixelAboveMaxval) {
   const StatusOr<PgmImage> ascii = Decode("P2 2 2 100 50 0 7 101\n");
   ASSERT_FALSE(ascii.ok());
