@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--spread-metres", options.spread_metres, "distance of --spread tiles (1000)")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--spread-diagonal", options.spread_diagonal,
+               "--spread along x and y: key i at (i, i) * the step");
   app.add_flag("--long-id{300}", options.long_id,
                "a robot id of 300 (--long-id=N: N) characters on robot_tiles, robot_status and "
                "fused_tiles");

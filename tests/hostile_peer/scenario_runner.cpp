@@ -90,10 +90,11 @@ void ScenarioRunner::BuildOneShotTiles() {
   if (options_.spread > 0) {
     const auto step = static_cast<int32_t>(std::lround(options_.spread_metres / size));
     for (int i = 0; i < options_.spread; ++i) {
-      one_shot_.push_back({WallTile(me, TileKey{i * step, 0}, size), false, false});
+      const TileKey key{i * step, options_.spread_diagonal ? i * step : 0};
+      one_shot_.push_back({WallTile(me, key, size), false, false});
     }
     Say("spread: " + std::to_string(options_.spread) + " tiles of " + me + " " +
-        std::to_string(step) + " keys apart along x");
+        std::to_string(step) + " keys apart along " + (options_.spread_diagonal ? "x and y" : "x"));
   }
   if (options_.long_id > 0) {
     const std::string long_id(static_cast<size_t>(options_.long_id), 'x');

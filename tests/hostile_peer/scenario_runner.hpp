@@ -27,6 +27,7 @@ struct ScenarioOptions {
   bool far_key = false;                    // a tile keyed (2^31-1, 2^31-1)
   int spread = 0;                          // tiles `spread_metres` apart along x
   double spread_metres = 1000.0;
+  bool spread_diagonal = false;            // ... along x and y (a square bounding box)
   int long_id = 0;                         // a robot id this long on all three topics (0: off)
   bool empty_id = false;                   // tiles with robot_id ""
   bool future_stamp = false;               // robot_id's tiles and statuses a year ahead

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -76,6 +77,54 @@ TEST(HostilePeerTest, FastDdsReaderDecodesTheCycloneTile) {
       << peer->Output();
   EXPECT_TRUE(peer->WaitForOutput("matched 1 reader(s) on rt/fleetmap/robot_tiles", kDeadline))
       << peer->Output();
+  peer->Signal(SIGINT);
+  EXPECT_EQ(peer->Wait(kDeadline), 0) << peer->Output();
+}
+
+// The scenarios' tiles are valid by the wire format, so they reach a receiver's logic instead of
+// its shape checks: a far key, an empty robot id, a heavy flood tile, a hijacker's all-free tile.
+TEST(HostilePeerTest, ScenarioTilesPassFleetmapsChecks) {
+  const int domain = process::RandomDomainId();
+  auto participant = TestParticipant(domain);
+  ASSERT_NE(participant, nullptr);
+  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto reader =
+      transport::VectorTileReader::Create(*participant, transport::kRobotTilesTopic, wake_up);
+  ASSERT_TRUE(reader.ok()) << reader.status();
+
+  auto peer = testing::HostilePeer::Start(
+      domain, {"--far-key", "--empty-id", "--flood", "--flood-tiles", "1", "--flood-vertices",
+               "600", "--flood-rate", "2", "--flood-origin", "5,5", "--hijack", "ghost",
+               "--duration", "30"});
+  constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
+  bool far = false, empty = false, heavy = false, forged = false;
+  int rejected = 0;
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (!(far && empty && heavy && forged) && std::chrono::steady_clock::now() < deadline) {
+    wake_up->WaitFor(std::chrono::milliseconds(200));
+    for (const transport::TileEvent& event : (*reader)->Drain()) {
+      if (event.kind == transport::TileEvent::Kind::kRejected) {
+        ++rejected;
+        ADD_FAILURE() << event.error;
+        continue;
+      }
+      if (event.kind != transport::TileEvent::Kind::kTile) continue;
+      const transport::VectorTileMessage& tile = event.tile;
+      far |= tile.tile == TileId{kMax, kMax} && tile.robot_id == "intruder";
+      empty |= tile.robot_id.empty() && !tile.map.obstacles.empty();
+      // 600 vertices in polylines of at most 255.
+      size_t vertices = 0;
+      for (const auto& polyline : tile.map.obstacles) vertices += polyline.points.size();
+      heavy |= tile.tile == TileId{5, 5} && tile.map.obstacles.size() == 3 && vertices == 600;
+      forged |= tile.robot_id == "ghost" && tile.map.obstacles.empty() &&
+                tile.map.free_space.size() == 1;
+    }
+  }
+  EXPECT_TRUE(far) << peer->Output();
+  EXPECT_TRUE(empty) << peer->Output();
+  EXPECT_TRUE(heavy) << peer->Output();
+  EXPECT_TRUE(forged) << peer->Output();
+  EXPECT_EQ(rejected, 0);
   peer->Signal(SIGINT);
   EXPECT_EQ(peer->Wait(kDeadline), 0) << peer->Output();
 }
