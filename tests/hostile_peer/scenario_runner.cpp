@@ -191,9 +191,10 @@ bool ScenarioRunner::SendFloodRound(uint32_t round) {
     if (!Sent(peer_.WriteRobotTile(tile, &error_), &tiles_sent_)) return false;
   }
   if (round == 0) {
+    char rate[32];
+    std::snprintf(rate, sizeof(rate), "%g", options_.flood_rate);
     Say("flood: " + std::to_string(options_.flood_tiles) + " tiles of " +
-        std::to_string(options_.flood_vertices) + " vertices, " +
-        std::to_string(options_.flood_rate) + " rounds per second");
+        std::to_string(options_.flood_vertices) + " vertices, " + rate + " rounds per second");
   }
   return true;
 }
