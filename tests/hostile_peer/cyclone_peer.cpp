@@ -138,12 +138,14 @@ CyclonePeer::CyclonePeer(const PeerOptions& options) {
   }
   participant_ = CheckEntity(dds_create_participant(domain_id, nullptr, nullptr),
                              "creating a participant on domain " + std::to_string(domain_id));
-  tiles_topic_ = CheckEntity(dds_create_topic(participant_, &fleetmap_msgs_msg_dds__VectorTile__desc,
-                                              kRobotTilesTopic, nullptr, nullptr),
-                             std::string("creating topic ") + kRobotTilesTopic);
-  fused_topic_ = CheckEntity(dds_create_topic(participant_, &fleetmap_msgs_msg_dds__VectorTile__desc,
-                                              kFusedTilesTopic, nullptr, nullptr),
-                             std::string("creating topic ") + kFusedTilesTopic);
+  tiles_topic_ =
+      CheckEntity(dds_create_topic(participant_, &fleetmap_msgs_msg_dds__VectorTile__desc,
+                                   kRobotTilesTopic, nullptr, nullptr),
+                  std::string("creating topic ") + kRobotTilesTopic);
+  fused_topic_ =
+      CheckEntity(dds_create_topic(participant_, &fleetmap_msgs_msg_dds__VectorTile__desc,
+                                   kFusedTilesTopic, nullptr, nullptr),
+                  std::string("creating topic ") + kFusedTilesTopic);
   status_topic_ =
       CheckEntity(dds_create_topic(participant_, &fleetmap_msgs_msg_dds__RobotStatus__desc,
                                    kRobotStatusTopic, nullptr, nullptr),

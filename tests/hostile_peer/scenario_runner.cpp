@@ -80,7 +80,8 @@ void ScenarioRunner::BuildOneShotTiles() {
   if (!own.empty()) {
     Say("tiles of " + me + " at " + std::to_string(own.size()) + " keys" +
         (options_.future_stamp ? ", stamped a year ahead"
-                               : options_.past_stamp ? ", stamped -5 s (before the epoch)" : ""));
+         : options_.past_stamp ? ", stamped -5 s (before the epoch)"
+                               : ""));
   }
   if (options_.far_key) {
     const TileKey far{std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::max()};
@@ -183,10 +184,10 @@ bool ScenarioRunner::StepHijack(Clock::duration elapsed) {
 
 bool ScenarioRunner::SendFloodRound(uint32_t round) {
   for (int i = 0; i < options_.flood_tiles; ++i) {
-    TileSample tile = HeavyTile(options_.robot_id,
-                                BlockKey(options_.flood_origin, i, options_.flood_tiles),
-                                options_.tile_size, options_.flood_vertices,
-                                round * static_cast<uint32_t>(options_.flood_tiles) + i);
+    TileSample tile =
+        HeavyTile(options_.robot_id, BlockKey(options_.flood_origin, i, options_.flood_tiles),
+                  options_.tile_size, options_.flood_vertices,
+                  round * static_cast<uint32_t>(options_.flood_tiles) + i);
     tile.revision = round + 1;
     if (!Sent(peer_.WriteRobotTile(tile, &error_), &tiles_sent_)) return false;
   }

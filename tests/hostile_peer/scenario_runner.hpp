@@ -18,28 +18,28 @@
 namespace fleetmap::hostile {
 
 struct ScenarioOptions {
-  std::string robot_id = "intruder";       // the peer's own robot
-  double tile_size = 10.0;                 // metres, as the fleet tiles
+  std::string robot_id = "intruder";          // the peer's own robot
+  double tile_size = 10.0;                    // metres, as the fleet tiles
   std::chrono::milliseconds duration{10000};  // how long the participant stays
-  std::chrono::milliseconds period{0};     // re-send one-shot tiles this often (0: once)
-  bool status = true;                      // a status of robot_id every 0.5 s
-  std::vector<TileKey> tiles;              // valid wall tiles of robot_id
-  bool far_key = false;                    // a tile keyed (2^31-1, 2^31-1)
-  int spread = 0;                          // tiles `spread_metres` apart along x
+  std::chrono::milliseconds period{0};        // re-send one-shot tiles this often (0: once)
+  bool status = true;                         // a status of robot_id every 0.5 s
+  std::vector<TileKey> tiles;                 // valid wall tiles of robot_id
+  bool far_key = false;                       // a tile keyed (2^31-1, 2^31-1)
+  int spread = 0;                             // tiles `spread_metres` apart along x
   double spread_metres = 1000.0;
-  bool spread_diagonal = false;            // ... along x and y (a square bounding box)
-  int long_id = 0;                         // a robot id this long on all three topics (0: off)
-  bool empty_id = false;                   // tiles with robot_id ""
-  bool future_stamp = false;               // robot_id's tiles and statuses a year ahead
-  bool past_stamp = false;                 // ... at -5 s (before the epoch)
-  std::string hijack;                      // claim, dispose, then erase this robot's walls
-  std::string squat;                       // claim this robot id and keep it
-  bool flood = false;                      // heavy tiles at a rate
+  bool spread_diagonal = false;  // ... along x and y (a square bounding box)
+  int long_id = 0;               // a robot id this long on all three topics (0: off)
+  bool empty_id = false;         // tiles with robot_id ""
+  bool future_stamp = false;     // robot_id's tiles and statuses a year ahead
+  bool past_stamp = false;       // ... at -5 s (before the epoch)
+  std::string hijack;            // claim, dispose, then erase this robot's walls
+  std::string squat;             // claim this robot id and keep it
+  bool flood = false;            // heavy tiles at a rate
   int flood_tiles = 40;
-  double flood_rate = 5.0;                 // rounds per second
-  int flood_vertices = 4000;               // per tile
-  int flood_keys = 0;                      // this many distinct light tiles, once
-  TileKey flood_origin{0, 0};              // corner of the square block of flooded keys
+  double flood_rate = 5.0;     // rounds per second
+  int flood_vertices = 4000;   // per tile
+  int flood_keys = 0;          // this many distinct light tiles, once
+  TileKey flood_origin{0, 0};  // corner of the square block of flooded keys
 };
 
 class ScenarioRunner {
@@ -74,9 +74,9 @@ class ScenarioRunner {
   CyclonePeer& peer_;
   ScenarioOptions options_;
   std::vector<OneShot> one_shot_;
-  uint32_t sequence_ = 0;   // of statuses
-  uint32_t revision_ = 1;   // of re-sent and forged tiles
-  int tile_readers_ = 0;    // last reported matches
+  uint32_t sequence_ = 0;  // of statuses
+  uint32_t revision_ = 1;  // of re-sent and forged tiles
+  int tile_readers_ = 0;   // last reported matches
   int status_readers_ = 0;
   bool hijack_disposed_ = false;
   std::set<TileKey> forged_;  // keys of the hijacked robot already reported

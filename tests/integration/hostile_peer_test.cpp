@@ -93,9 +93,9 @@ TEST(HostilePeerTest, ScenarioTilesPassFleetmapsChecks) {
   ASSERT_TRUE(reader.ok()) << reader.status();
 
   auto peer = testing::HostilePeer::Start(
-      domain, {"--far-key", "--empty-id", "--flood", "--flood-tiles", "1", "--flood-vertices",
-               "600", "--flood-rate", "2", "--flood-origin", "5,5", "--hijack", "ghost",
-               "--duration", "30"});
+      domain,
+      {"--far-key", "--empty-id", "--flood", "--flood-tiles", "1", "--flood-vertices", "600",
+       "--flood-rate", "2", "--flood-origin", "5,5", "--hijack", "ghost", "--duration", "30"});
   constexpr int32_t kMax = std::numeric_limits<int32_t>::max();
   bool far = false, empty = false, heavy = false, forged = false;
   int rejected = 0;
@@ -116,8 +116,8 @@ TEST(HostilePeerTest, ScenarioTilesPassFleetmapsChecks) {
       size_t vertices = 0;
       for (const auto& polyline : tile.map.obstacles) vertices += polyline.points.size();
       heavy |= tile.tile == TileId{5, 5} && tile.map.obstacles.size() == 3 && vertices == 600;
-      forged |= tile.robot_id == "ghost" && tile.map.obstacles.empty() &&
-                tile.map.free_space.size() == 1;
+      forged |=
+          tile.robot_id == "ghost" && tile.map.obstacles.empty() && tile.map.free_space.size() == 1;
     }
   }
   EXPECT_TRUE(far) << peer->Output();
@@ -148,10 +148,9 @@ TEST(HostilePeerTest, ServerJoinsAndFusesTheCycloneRobot) {
   EXPECT_TRUE(server.WaitForOutput("robot intruder joined (tiles wire", kDeadline))
       << server.Output() << peer->Output();
   // The server fused the peer's walls: the fused tile (0, 0) has obstacles.
-  EXPECT_TRUE(WaitForTile(**fused, *wake_up, "fleet", TileId{0, 0},
-                          [](const transport::VectorTileMessage& tile) {
-                            return !tile.map.obstacles.empty();
-                          }))
+  EXPECT_TRUE(WaitForTile(
+      **fused, *wake_up, "fleet", TileId{0, 0},
+      [](const transport::VectorTileMessage& tile) { return !tile.map.obstacles.empty(); }))
       << server.Output() << peer->Output();
 
   peer->Signal(SIGINT);
