@@ -14,6 +14,10 @@ using CStatus = fleetmap_msgs_msg_dds__RobotStatus_;
 // fleetmap's localhost-only participants announce to 128 participant ports on 127.0.0.1; Cyclone
 // takes an index below 120 and announces to the ports of indexes up to the maximum.
 constexpr int kMaxParticipantIndex = 119;
+// fleetmap's participants on domain D - 1 announce to the first three participant ports of domain
+// D too (128 ports of 2 reach past the 250 of a domain): a peer there would join the wrong fleet
+// (issue 15, "Domains that do not leak"). Starting above them keeps the peer on its own domain.
+constexpr int kFirstParticipantIndex = 3;
 constexpr dds_duration_t kLivelinessLease = DDS_MSECS(1500);  // docs/topics.md
 
 void Check(dds_return_t result, const std::string& what) {
@@ -117,11 +121,13 @@ std::string Failed(const char* what, dds_return_t result) {
 
 }  // namespace
 
-std::string CyclonePeer::LocalhostConfig() {
+std::string CyclonePeer::LocalhostConfig(int participant_index) {
   return "<CycloneDDS><Domain id=\"any\">"
          "<General><Interfaces><NetworkInterface address=\"127.0.0.1\" multicast=\"false\"/>"
          "</Interfaces><AllowMulticast>false</AllowMulticast></General>"
-         "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
+         "<Discovery><ParticipantIndex>" +
+         std::to_string(participant_index) +
+         "</ParticipantIndex>"
          "<MaxAutoParticipantIndex>" +
          std::to_string(kMaxParticipantIndex) +
          "</MaxAutoParticipantIndex>"
@@ -133,8 +139,14 @@ std::string CyclonePeer::LocalhostConfig() {
 CyclonePeer::CyclonePeer(const PeerOptions& options) {
   const auto domain_id = static_cast<dds_domainid_t>(options.domain_id);
   if (options.localhost_only) {
-    domain_ = CheckEntity(dds_create_domain(domain_id, LocalhostConfig().c_str()),
-                          "creating domain " + std::to_string(options.domain_id));
+    // The first free participant index from kFirstParticipantIndex: a taken one fails to bind.
+    dds_return_t created = DDS_RETCODE_ERROR;
+    for (int index = kFirstParticipantIndex; index <= kMaxParticipantIndex && created < 0;
+         ++index) {
+      created = dds_create_domain(domain_id, LocalhostConfig(index).c_str());
+    }
+    domain_ = CheckEntity(created, "creating domain " + std::to_string(options.domain_id) +
+                                       " with a free participant index");
   }
   participant_ = CheckEntity(dds_create_participant(domain_id, nullptr, nullptr),
                              "creating a participant on domain " + std::to_string(domain_id));

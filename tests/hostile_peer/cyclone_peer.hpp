@@ -49,8 +49,8 @@ class CyclonePeer {
   // (the first call starts reading; transient local brings the tiles written before).
   std::set<TileKey> RobotTileKeys(const std::string& robot);
 
-  // The Cyclone configuration this peer runs with (empty: Cyclone's own).
-  static std::string LocalhostConfig();
+  // The Cyclone configuration of a localhost-only peer with this participant index.
+  static std::string LocalhostConfig(int participant_index);
 
  private:
   dds_entity_t Writer(dds_entity_t* writer, dds_entity_t topic, bool status);
