@@ -21,6 +21,7 @@
 #include "common/transport/wake_up.hpp"
 #include "server/robot_registry.hpp"
 #include "server/session_archive.hpp"
+#include "server/store_sync.hpp"
 
 namespace fleetmap::server {
 
@@ -50,7 +51,11 @@ struct FusionStats {
   uint64_t maps_published = 0;
   size_t fused_tiles = 0;
   size_t restored_tiles = 0;  // robot tiles read back from the store at start
-  uint64_t store_errors = 0;
+  uint64_t store_errors = 0;  // failed store writes (each retried) and refused records
+  // The store is behind the fused map: a write failed and store_pending records wait for the
+  // next attempt (once a second). Back to false when it caught up.
+  bool store_behind = false;
+  size_t store_pending = 0;
   size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
 };
 
@@ -101,8 +106,12 @@ class FusionWorker {
   void Persist();
   // Robot state changes: a robot that left or was lost ends its mapping session.
   void HandleRobotRecords();
-  // Queues a tile revision for the store.
+  // Queues a tile revision for the store (and, for a robot's tile, its changed contribution).
   void Remember(const std::string& owner, const transport::VectorTileMessage& tile);
+  // Queues a robot contribution that changed or was removed for the store.
+  void RememberContribution(const std::string& robot, const TileId& tile);
+  // Persist() at `now`; a final attempt at stop ignores the retry period and says what is lost.
+  void Persist(std::chrono::steady_clock::time_point now);
   void HandleGrids();
   void PublishFused(std::chrono::steady_clock::time_point now);
 
@@ -119,7 +128,7 @@ class FusionWorker {
   std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)
   FusedMapListener on_fused_map_;
   SessionsListener on_sessions_;
-  std::vector<store::TileRecord> unsaved_;  // worker thread only
+  std::unique_ptr<StoreSync> sync_;  // worker thread only (after Create)
   std::atomic<bool> stop_{false};
   std::thread thread_;
   bool map_dirty_ = false;  // worker thread only
