@@ -51,11 +51,11 @@ grid::OccupancyGrid AlphaMap() {
   return map;
 }
 
-// alpha after an edit: a crate in tile (0, 0), and tile (1, 0) forgotten (all unknown: its agent
+// alpha after an edit: a shelf in tile (0, 0), and tile (1, 0) forgotten (all unknown: its agent
 // disposes the tile).
 grid::OccupancyGrid AlphaEditedMap() {
   grid::OccupancyGrid map = AlphaMap();
-  Fill(&map, 120, 90, 160, 110, grid::kOccupiedValue);
+  Fill(&map, 140, 80, 142, 130, grid::kOccupiedValue);
   Fill(&map, 195, 0, 400, 200, grid::kUnknownValue);
   return map;
 }
@@ -133,8 +133,12 @@ class StoreRestartTest : public ::testing::Test {
         deadline = std::chrono::steady_clock::now() + settle;
       }
     }
+    if (!satisfied && newest) last_unsatisfied_ = newest;
     return satisfied ? newest : std::nullopt;
   }
+
+  // The newest grid of a FleetMap() call that timed out, for the failure message.
+  std::optional<grid::OccupancyGrid> last_unsatisfied_;
 
   std::unique_ptr<Subprocess> StartAgent(const std::string& robot, const std::string& map) {
     auto agent = std::make_unique<Subprocess>(
@@ -170,22 +174,32 @@ TEST_F(StoreRestartTest, KilledServerRestartsToTheSameMapCellForCell) {
   ASSERT_TRUE(server->WaitForOutput("robot beta joined", kDeadline)) << server->Output();
   std::this_thread::sleep_for(seconds(1));
 
-  // alpha edits its map: a crate where beta looked, and its second tile blanked.
+  // alpha edits its map: a shelf where beta looked, and its second tile blanked.
   // Saved beside, then renamed over the YAML the agent watches: it never sees half a map.
   const std::string edited_path = dir.Path("alpha_v2.yaml");
   ASSERT_TRUE(grid::SaveMap(AlphaEditedMap(), edited_path).ok());
   std::filesystem::rename(edited_path, alpha_path);
   ASSERT_TRUE(alpha->WaitForOutput("map revision 2", kDeadline)) << alpha->Output();
-  const Point2 crate(7.0, 5.0), alpha_wall_under_beta(3.0, 5.05), blanked(15.0, 5.0);
+  const Point2 shelf(7.05, 5.25), alpha_wall_under_beta(3.0, 5.05), blanked(15.0, 5.0);
   const auto before = FleetMap(
       [&](const grid::OccupancyGrid& map) {
-        return StateAt(map, crate) == grid::CellState::kOccupied &&
+        return StateAt(map, shelf) == grid::CellState::kOccupied &&
                StateAt(map, blanked) == grid::CellState::kUnknown;
       },
       seconds(2));
-  ASSERT_TRUE(before.has_value()) << server->Output();
+  ASSERT_TRUE(before.has_value())
+      << (last_unsatisfied_
+              ? "last map: shelf " +
+                    std::to_string(static_cast<int>(StateAt(*last_unsatisfied_, shelf))) +
+                    ", blanked " +
+                    std::to_string(static_cast<int>(StateAt(*last_unsatisfied_, blanked))) + ", " +
+                    std::to_string(last_unsatisfied_->width()) + " x " +
+                    std::to_string(last_unsatisfied_->height())
+              : std::string("no map"))
+      << "\n"
+      << server->Output() << alpha->Output();
   // What makes the comparison worth doing: alpha's wall under beta's newer view is free, the
-  // crate (alpha's newest evidence) is in, the blanked tile is gone.
+  // shelf (alpha's newest evidence) is in, the blanked tile is gone.
   EXPECT_EQ(StateAt(*before, alpha_wall_under_beta), grid::CellState::kFree);
   EXPECT_EQ(StateAt(*before, Point2(5.075, 4.0)), grid::CellState::kOccupied);  // beta's wall
 
@@ -208,7 +222,7 @@ TEST_F(StoreRestartTest, KilledServerRestartsToTheSameMapCellForCell) {
       FleetMap([](const grid::OccupancyGrid& map) { return !map.empty(); }, seconds(2));
   ASSERT_TRUE(after.has_value()) << restarted.Output();
   EXPECT_EQ(DifferingCells(*before, *after), 0)
-      << "crate " << static_cast<int>(StateAt(*after, crate)) << ", alpha's wall under beta "
+      << "shelf " << static_cast<int>(StateAt(*after, shelf)) << ", alpha's wall under beta "
       << static_cast<int>(StateAt(*after, alpha_wall_under_beta)) << ", blanked tile "
       << static_cast<int>(StateAt(*after, blanked)) << "\n"
       << restarted.Output();

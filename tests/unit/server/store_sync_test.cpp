@@ -185,10 +185,10 @@ TEST(StoreSyncTest, RowWhoseKeyDisagreesWithItsPayloadIsSkipped) {
     map.obstacles.push_back({{Point2(0.2, 1.0), Point2(1.8, 1.0)}, false, 0.0});
     const auto tile_0_0 = transport::EncodeTilePayload({"alpha", {0, 0}, 1, kT0, kTileSize, map});
     ASSERT_TRUE(tile_0_0.ok()) << tile_0_0.status();
-    // The payload of tile (0, 0) under a key 80 km away, another under beta's name; and one
-    // good row.
+    // The payload of tile (0, 0) under a key 2000 Mm away (its cells beyond the int range: fused
+    // there, start-up spun at 100 % CPU), another under beta's name; and one good row.
     ASSERT_TRUE(store
-                    ->PutTiles({{"alpha", {40000, 0}, 1, 1, *tile_0_0},
+                    ->PutTiles({{"alpha", {1 << 30, 0}, 1, 1, *tile_0_0},
                                 {"beta", {0, 0}, 1, 1, *tile_0_0},
                                 {"alpha", {0, 0}, 1, 1, *tile_0_0}})
                     .ok());
@@ -201,8 +201,9 @@ TEST(StoreSyncTest, RowWhoseKeyDisagreesWithItsPayloadIsSkipped) {
   ASSERT_TRUE(result.ok()) << result.status();
   EXPECT_EQ(result->from_history, 1u);
   ASSERT_EQ(result->skipped.size(), 2u);
-  EXPECT_THAT(result->skipped[0],
-              HasSubstr("alpha's tile (40000, 0) revision 1: its payload is alpha's tile (0, 0)"));
+  EXPECT_THAT(
+      result->skipped[0],
+      HasSubstr("alpha's tile (1073741824, 0) revision 1: its payload is alpha's tile (0, 0)"));
   EXPECT_THAT(result->skipped[1], HasSubstr("its payload is alpha's tile (0, 0), not the row's"));
   EXPECT_EQ(restored.contribution_count(), 1u);
 }
