@@ -255,8 +255,9 @@ std::string StoreOpenReport::Summary() const {
     if (unclean_close) {
       out += ", not closed by its last writer";
       out += wal_found ? " (WAL of " + std::to_string(wal_bytes) + " bytes, " +
-                             std::to_string(wal_frames_recovered) + " frames recovered)"
-                       : " (no WAL)";
+                             std::to_string(wal_frames_recovered) + " frames recovered"
+                       : " (no WAL";
+      out += shm_found ? ", -shm present)" : ", no -shm)";
     } else {
       out += ", closed cleanly";
     }

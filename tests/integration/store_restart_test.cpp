@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <optional>
 #include <string>
@@ -230,6 +232,75 @@ TEST_F(StoreRestartTest, KilledServerRestartsToTheSameMapCellForCell) {
       << restarted.Output();
   restarted.Signal(SIGINT);
   EXPECT_EQ(restarted.Wait(kDeadline), 0) << restarted.Output();
+}
+
+TEST_F(StoreRestartTest, WritesThatFailWhileTheStoreIsLockedAreRetriedNotDropped) {
+  ::fleetmap::testing::ScratchDir dir("store_restart");
+  const std::string store = dir.Path("fleet.db");
+  const std::string alpha_path = dir.Path("alpha.yaml");
+  ASSERT_TRUE(grid::SaveMap(AlphaMap(), alpha_path).ok());
+  auto server = std::make_unique<Subprocess>(
+      std::vector<std::string>{kServer, "--store", store, "--no-object-learning",
+                               "--no-extrapolation"},
+      env_);
+  ASSERT_TRUE(server->WaitForOutput("listening", kDeadline)) << server->Output();
+  auto alpha = StartAgent("alpha", alpha_path);
+  ASSERT_TRUE(alpha->WaitForOutput("map revision 1", kDeadline)) << alpha->Output();
+  ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+  std::this_thread::sleep_for(seconds(1));
+
+  // Another program holds the write lock: every write of the server fails (after its 2 s busy
+  // timeout) while alpha edits its map.
+  sqlite3* other = nullptr;
+  ASSERT_EQ(sqlite3_open(store.c_str(), &other), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr), SQLITE_OK);
+  const std::string edited_path = dir.Path("alpha_v2.yaml");
+  ASSERT_TRUE(grid::SaveMap(AlphaEditedMap(), edited_path).ok());
+  std::filesystem::rename(edited_path, alpha_path);
+  ASSERT_TRUE(alpha->WaitForOutput("map revision 2", kDeadline)) << alpha->Output();
+  const bool behind = server->WaitForOutput("map store is behind the fused map", kDeadline);
+  sqlite3_exec(other, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(other);
+  ASSERT_TRUE(behind) << server->Output();
+  ASSERT_TRUE(server->WaitForOutput("map store caught up after", kDeadline)) << server->Output();
+
+  const Point2 shelf(7.05, 5.25), blanked(15.0, 5.0);
+  const auto before = FleetMap(
+      [&](const grid::OccupancyGrid& map) {
+        return StateAt(map, shelf) == grid::CellState::kOccupied &&
+               StateAt(map, blanked) == grid::CellState::kUnknown;
+      },
+      seconds(1));
+  ASSERT_TRUE(before.has_value()) << server->Output();
+  alpha->Signal(SIGTERM);
+  EXPECT_EQ(alpha->Wait(kDeadline), 0) << alpha->Output();
+  std::this_thread::sleep_for(seconds(1));
+  server->Signal(SIGKILL);
+  ASSERT_EQ(server->Wait(kDeadline), 128 + SIGKILL);
+  server.reset();
+
+  Subprocess restarted({kServer, "--store", store, "--no-object-learning", "--no-extrapolation"},
+                       env_);
+  ASSERT_TRUE(restarted.WaitForOutput("restored", kDeadline)) << restarted.Output();
+  const auto after =
+      FleetMap([](const grid::OccupancyGrid& map) { return !map.empty(); }, seconds(2));
+  ASSERT_TRUE(after.has_value()) << restarted.Output();
+  EXPECT_EQ(DifferingCells(*before, *after), 0) << restarted.Output();
+  restarted.Signal(SIGINT);
+  EXPECT_EQ(restarted.Wait(kDeadline), 0) << restarted.Output();
+}
+
+TEST_F(StoreRestartTest, EmptyStoreFileIsRefusedWithHowToStartFresh) {
+  ::fleetmap::testing::ScratchDir dir("store_restart");
+  const std::string store = dir.Path("fleet.db");
+  std::ofstream(store).flush();  // a store truncated to 0 bytes
+  Subprocess server({kServer, "--store", store, "--duration", "5"}, env_);
+  EXPECT_EQ(server.Wait(kDeadline), 2) << server.Output();
+  EXPECT_NE(server.Output().find(store + ": the file is empty (0 bytes)"), std::string::npos)
+      << server.Output();
+  EXPECT_NE(server.Output().find("To start a new map, delete it"), std::string::npos)
+      << server.Output();
+  EXPECT_EQ(std::filesystem::file_size(store), 0u);
 }
 
 }  // namespace
