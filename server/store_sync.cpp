@@ -63,7 +63,11 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
   // again in order, date each cell's evidence as the live fusion did (as far as the history goes).
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> latest, store_->LatestTiles());
   for (const store::TileRecord& row : latest) {
-    if (row.owner == store::kFleetOwner) continue;  // fused tiles are rebuilt, not trusted
+    if (row.owner == store::kFleetOwner) {
+      // Fused tiles are rebuilt, not trusted; their revisions go on from the stored ones.
+      fused_revision_base_[row.tile] = row.revision;
+      continue;
+    }
     if (done.count({row.owner, row.tile}) > 0) continue;
     FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> revisions,
                               store_->TileHistory(row.owner, row.tile));
@@ -104,6 +108,11 @@ Status StoreSync::AddTile(store::TileRecord record) {
   if (store_ == nullptr) return Status::Ok();
   // One bad record must not make every later batch fail: refuse it here, alone.
   FLEETMAP_RETURN_IF_ERROR(store::ValidateTileRecord(record));
+  if (record.owner == store::kFleetOwner) {
+    // The fusion numbers its revisions from 1 again after a restart.
+    const auto base = fused_revision_base_.find(record.tile);
+    if (base != fused_revision_base_.end()) record.revision += base->second;
+  }
   if (!behind_) {
     tiles_.push_back(std::move(record));
     return Status::Ok();

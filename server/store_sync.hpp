@@ -54,7 +54,8 @@ class StoreSync {
   // when the store cannot be read.
   StatusOr<Restored> Restore(fusion::TileFusion* fusion);
 
-  // A tile revision to store (robot or fused).
+  // A tile revision to store (robot or fused; a fused tile's revision is counted on from the
+  // newest one stored before Restore()).
   // Each of these refuses a record the store would refuse (kInvalidArgument), so that one bad
   // record cannot hold back every later write.
   Status AddTile(store::TileRecord record);
@@ -84,6 +85,9 @@ class StoreSync {
   std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
   std::set<store::TileKey> changed_;
   std::map<std::string, store::RobotRecord> robots_;
+  // Per fused tile, the newest revision stored before this process: added to the fusion's
+  // revisions, so that the store's latest fused rows stay the newest.
+  std::map<TileId, uint32_t> fused_revision_base_;
   bool behind_ = false;
   uint64_t failed_attempts_ = 0;
   Status last_error_;

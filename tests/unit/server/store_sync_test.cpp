@@ -300,6 +300,30 @@ TEST(StoreSyncTest, RecordsTheStoreWouldRefuseAreRefusedAlone) {
   EXPECT_EQ(store->LatestTiles()->size(), 1u);
 }
 
+TEST(StoreSyncTest, FusedRevisionsGoOnFromTheStoredOnesAfterARestart) {
+  testing::ScratchDir dir("store_sync");
+  const std::string path = dir.Path("store.db");
+  {
+    auto store = OpenStore(path);
+    ASSERT_NE(store, nullptr);
+    ASSERT_TRUE(store->PutTiles({{"fleet", {0, 0}, 7, 1, "seven"}}).ok());
+  }
+  auto store = OpenStore(path);
+  ASSERT_NE(store, nullptr);
+  StoreSync sync(store.get(), {});
+  fusion::TileFusion fusion = MakeFusion();
+  ASSERT_TRUE(sync.Restore(&fusion).ok());
+  // The restarted fusion's first revisions of (0, 0) and of a new tile.
+  ASSERT_TRUE(sync.AddTile({"fleet", {0, 0}, 1, 2, "again"}).ok());
+  ASSERT_TRUE(sync.AddTile({"fleet", {1, 0}, 1, 2, "new"}).ok());
+  ASSERT_EQ(sync.Flush(fusion, kNow), FlushResult::kWritten);
+  const auto latest = store->LatestTiles("fleet");
+  ASSERT_TRUE(latest.ok());
+  ASSERT_EQ(latest->size(), 2u);
+  EXPECT_EQ((*latest)[0], (store::TileRecord{"fleet", {0, 0}, 8, 2, "again"}));
+  EXPECT_EQ((*latest)[1], (store::TileRecord{"fleet", {1, 0}, 1, 2, "new"}));
+}
+
 TEST(StoreSyncTest, RobotRecordsAreMergedWhileWaiting) {
   testing::ScratchDir dir("store_sync");
   auto store = OpenStore(dir.Path("store.db"));
