@@ -240,7 +240,8 @@ MapStore::MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& opt
 // Statements are members declared after db_, so they are finalized before the connection closes.
 MapStore::~MapStore() {
   // A clean close: the next Open will not warn. Failing (full disk) only makes it warn.
-  if (db_ != nullptr) {
+  // Only a store this process marked open: a refused file is never written.
+  if (db_ != nullptr && marked_open_) {
     (void)db_->Exec("UPDATE store_state SET value = 0 WHERE name = 'open'", "marking closed");
   }
 }
@@ -423,13 +424,21 @@ Status MapStore::CheckLastClose() {
                              std::chrono::system_clock::now().time_since_epoch())
                              .count();
   const std::string mark =
-      "UPDATE store_state SET value = 1 WHERE name = 'open'; "
+      "BEGIN IMMEDIATE; UPDATE store_state SET value = 1 WHERE name = 'open'; "
       "UPDATE store_state SET value = " +
-      std::to_string(now_ns) + " WHERE name = 'opened_ns'; PRAGMA wal_checkpoint(TRUNCATE);";
-  // In the main file, not only in the WAL: a lost WAL must not take the mark with it.
+      std::to_string(now_ns) + " WHERE name = 'opened_ns'; COMMIT;";
   if (const Status marked = db_->Exec(mark.c_str(), "marking the store open"); !marked.ok()) {
+    (void)db_->Exec("ROLLBACK", "marking the store open");
     report_.warnings.push_back(std::string(marked.message()) +
                                " (an unclean close will not be detected)");
+    return Status::Ok();
+  }
+  marked_open_ = true;
+  // In the main file, not only in the WAL: a lost WAL must not take the mark with it.
+  if (const Status checkpointed = db_->Exec("PRAGMA wal_checkpoint(TRUNCATE)", "checkpointing");
+      !checkpointed.ok()) {
+    report_.warnings.push_back(std::string(checkpointed.message()) +
+                               " (a lost WAL would take the open mark with it)");
   }
   return Status::Ok();
 }

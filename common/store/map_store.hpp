@@ -121,6 +121,7 @@ class MapStore {
   // trimming to max_history_rows needs no COUNT per batch.
   int64_t history_rows_ = 0;
   StoreOpenReport report_;
+  bool marked_open_ = false;  // store_state.open was set by this connection
 
   std::unique_ptr<SqliteStatement> upsert_latest_;
   std::unique_ptr<SqliteStatement> insert_history_;

@@ -290,7 +290,7 @@ TEST_F(MapStoreTest, RefusesAnotherApplicationsDatabase) {
 
 TEST_F(MapStoreTest, RefusesASchemaVersionFromTheFuture) {
   WriteSampleStore();
-  ExecRaw(path_, "PRAGMA user_version = 7");
+  ExecRaw(path_, "PRAGMA user_version = 7; UPDATE store_state SET value = 1 WHERE name = 'open'");
   const auto store = MapStore::Open(path_);
   ASSERT_FALSE(store.ok());
   EXPECT_EQ(store.status().code(), StatusCode::kInvalidArgument);
@@ -298,6 +298,17 @@ TEST_F(MapStoreTest, RefusesASchemaVersionFromTheFuture) {
             path_ +
                 ": schema version 7 is newer than this fleetmap supports (3); open it with a "
                 "newer fleetmap");
+  // Refused, never written: not even the open mark.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* open = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT value FROM store_state WHERE name = 'open'", -1, &open,
+                               nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(open), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(open, 0), 1);
+  sqlite3_finalize(open);
+  sqlite3_close(db);
 }
 
 TEST_F(MapStoreTest, RefusesACorruptDatabase) {
