@@ -11,10 +11,26 @@ namespace fleetmap::server {
 void FusionWorker::Remember(const std::string& owner, const transport::VectorTileMessage& tile) {
   StatusOr<std::string> payload = transport::EncodeTilePayload(tile);
   if (!payload.ok()) return;  // it was decoded from the wire; it encodes
-  unsaved_.push_back(store::TileRecord{
+  const Status queued = sync_->AddTile(store::TileRecord{
       owner, tile.tile, tile.revision,
       std::chrono::duration_cast<std::chrono::nanoseconds>(tile.stamp.time_since_epoch()).count(),
       std::move(payload).value()});
+  if (!queued.ok()) {
+    spdlog::warn("server: map store: not storing a tile: {}", queued.message());
+    std::lock_guard lock(stats_mutex_);
+    ++stats_.store_errors;
+    return;
+  }
+  if (owner != store::kFleetOwner) RememberContribution(owner, tile.tile);
+}
+
+void FusionWorker::RememberContribution(const std::string& robot, const TileId& tile) {
+  if (store_ == nullptr) return;
+  if (const Status queued = sync_->ContributionChanged(robot, tile); !queued.ok()) {
+    spdlog::warn("server: map store: not storing a contribution: {}", queued.message());
+    std::lock_guard lock(stats_mutex_);
+    ++stats_.store_errors;
+  }
 }
 
 StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
@@ -35,8 +51,14 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
     store_options.max_history_rows = options.history_rows;
     FLEETMAP_ASSIGN_OR_RETURN(worker->store_,
                               store::MapStore::Open(options.store_path, store_options));
-    FLEETMAP_RETURN_IF_ERROR(worker->Restore());
+    const store::StoreOpenReport& report = worker->store_->open_report();
+    spdlog::info("server: map store {}: {}", options.store_path, report.Summary());
+    for (const std::string& warning : report.warnings) {
+      spdlog::warn("server: map store: {}", warning);
+    }
   }
+  worker->sync_ = std::make_unique<StoreSync>(worker->store_.get(), StoreSync::Options{});
+  if (worker->store_ != nullptr) FLEETMAP_RETURN_IF_ERROR(worker->Restore());
   worker->sessions_ =
       std::make_unique<SessionArchive>(options.fusion.tile_size, worker->store_.get());
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<std::string> skipped, worker->sessions_->Restore());
@@ -56,32 +78,19 @@ FusionWorker::~FusionWorker() {
 }
 
 Status FusionWorker::Restore() {
-  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> records, store_->LatestTiles());
-  size_t restored = 0;
-  for (const store::TileRecord& record : records) {
-    if (record.owner == store::kFleetOwner) continue;  // fused tiles are rebuilt, not trusted
-    StatusOr<transport::VectorTileMessage> tile =
-        transport::DecodeTilePayload(record.payload, options_.store_path);
-    if (!tile.ok()) {
-      spdlog::warn("server: skipping a stored tile of {}: {}", record.owner,
-                   tile.status().message());
-      continue;
-    }
-    const Timestamp stamp{
-        std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(record.stamp_ns))};
-    // A store written before admission control may hold tiles this server now refuses.
-    if (const Status updated = fusion_.UpdateRobotTile(record.owner, record.tile, tile->map, stamp);
-        !updated.ok()) {
-      spdlog::warn("server: skipping a stored tile of {}: {}", record.owner, updated.message());
-      continue;
-    }
-    admission_.Adopt(record.owner, record.tile);
-    ++restored;
+  FLEETMAP_ASSIGN_OR_RETURN(const StoreSync::Restored restored, sync_->Restore(&fusion_));
+  for (const std::string& skipped : restored.skipped) {
+    spdlog::warn("server: skipping a stored tile: {}", skipped);
   }
+  // Restored tiles count towards their robots' quotas, as if they had just been admitted.
+  for (const auto& [robot, tile] : fusion_.contributions()) admission_.Adopt(robot, tile);
   std::lock_guard lock(stats_mutex_);
-  stats_.restored_tiles = restored;
-  if (restored > 0) {
-    spdlog::info("server: restored {} robot tiles from {}", restored, options_.store_path);
+  stats_.restored_tiles = restored.from_evidence + restored.from_history;
+  if (stats_.restored_tiles > 0) {
+    spdlog::info(
+        "server: restored {} robot tiles from {} ({} from their evidence, {} by fusing "
+        "their stored revisions again)",
+        stats_.restored_tiles, options_.store_path, restored.from_evidence, restored.from_history);
   }
   return Status::Ok();
 }
@@ -129,6 +138,11 @@ void FusionWorker::Loop() {
     HandleRobotRecords();
     Persist();
   }
+  Persist(std::chrono::steady_clock::time_point::max());
+  if (sync_->pending() > 0) {
+    spdlog::error("server: map store: stopping with {} records not stored: {}", sync_->pending(),
+                  sync_->last_error().message());
+  }
 }
 
 void FusionWorker::HandleRobotRecords() {
@@ -158,29 +172,34 @@ void FusionWorker::HandleRobotRecords() {
     if (on_sessions_) on_sessions_(sessions_->finished());
   }
   if (store_ == nullptr) return;
-  for (const store::RobotRecord& robot : records) {
-    if (const Status saved = store_->PutRobot(robot); !saved.ok()) {
-      spdlog::error("server: map store: {}", saved.message());
+  for (store::RobotRecord& robot : records) {
+    if (const Status queued = sync_->AddRobot(std::move(robot)); !queued.ok()) {
+      spdlog::error("server: map store: not storing a robot: {}", queued.message());
       std::lock_guard lock(stats_mutex_);
       ++stats_.store_errors;
     }
   }
 }
 
-void FusionWorker::Persist() {
-  if (store_ == nullptr) {
-    unsaved_.clear();
-    return;
-  }
+void FusionWorker::Persist() { Persist(std::chrono::steady_clock::now()); }
+
+void FusionWorker::Persist(std::chrono::steady_clock::time_point now) {
+  if (store_ == nullptr) return;
   // One transaction for everything this round: SQLite's cost is per commit, not per row.
-  if (!unsaved_.empty()) {
-    if (const Status saved = store_->PutTiles(unsaved_); !saved.ok()) {
-      spdlog::error("server: map store: {}", saved.message());
-      std::lock_guard lock(stats_mutex_);
-      ++stats_.store_errors;
-    }
-    unsaved_.clear();
+  const uint64_t failed_before = sync_->failed_attempts();
+  const StoreSync::FlushResult result = sync_->Flush(fusion_, now);
+  if (result == StoreSync::FlushResult::kFailed && failed_before == 0) {
+    spdlog::error(
+        "server: map store is behind the fused map: {} ({} records wait; retrying "
+        "every second, nothing is dropped)",
+        sync_->last_error().message(), sync_->pending());
+  } else if (result == StoreSync::FlushResult::kWritten && failed_before > 0) {
+    spdlog::info("server: map store caught up after {} failed writes", failed_before);
   }
+  std::lock_guard lock(stats_mutex_);
+  if (result == StoreSync::FlushResult::kFailed) ++stats_.store_errors;
+  stats_.store_behind = sync_->behind();
+  stats_.store_pending = sync_->pending();
 }
 
 void FusionWorker::HandleTileEvents() {
@@ -262,6 +281,7 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
 void FusionWorker::RemoveTile(const std::string& robot, const TileId& tile) {
   queue_.Erase(robot, tile);
   fusion_.RemoveRobotTile(robot, tile);
+  RememberContribution(robot, tile);
   sessions_->RemoveTile(robot, tile);
   admission_.Forget(robot, tile);
 }
@@ -345,6 +365,7 @@ void FusionWorker::HandleGrids() {
         continue;
       }
       sessions_->RecordTile(update.robot, tile, map, update.map.stamp);
+      RememberContribution(update.robot, tile);
     }
   }
 }

@@ -24,6 +24,7 @@
 #include "server/robot_registry.hpp"
 #include "server/session_archive.hpp"
 #include "server/tile_admission.hpp"
+#include "server/store_sync.hpp"
 
 namespace fleetmap::server {
 
@@ -61,7 +62,11 @@ struct FusionStats {
   size_t tiles_waiting = 0;           // admitted robot tiles not fused yet
   size_t tiles_outside_map = 0;       // fused tiles the last rt/fleetmap/map grid could not show
   size_t restored_tiles = 0;  // robot tiles read back from the store at start
-  uint64_t store_errors = 0;
+  uint64_t store_errors = 0;  // failed store writes (each retried) and refused records
+  // The store is behind the fused map: a write failed and store_pending records wait for the
+  // next attempt (once a second). Back to false when it caught up.
+  bool store_behind = false;
+  size_t store_pending = 0;
   size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
 };
 
@@ -135,8 +140,12 @@ class FusionWorker {
   void Persist();
   // Robot state changes: a robot that left or was lost ends its mapping session.
   void HandleRobotRecords();
-  // Queues a tile revision for the store.
+  // Queues a tile revision for the store (and, for a robot's tile, its changed contribution).
   void Remember(const std::string& owner, const transport::VectorTileMessage& tile);
+  // Queues a robot contribution that changed or was removed for the store.
+  void RememberContribution(const std::string& robot, const TileId& tile);
+  // Persist() at `now`; a final attempt at stop ignores the retry period and says what is lost.
+  void Persist(std::chrono::steady_clock::time_point now);
   void HandleGrids();
   void PublishFused(std::chrono::steady_clock::time_point now);
 
@@ -158,6 +167,7 @@ class FusionWorker {
   FairTileQueue<PendingTile> queue_;        // worker thread only
   std::map<std::string, std::map<TileId, HeldTile>> held_;  // worker thread only
   RefusalLog refusals_{"server"};           // worker thread only
+  std::unique_ptr<StoreSync> sync_;  // worker thread only (after Create)
   std::atomic<bool> stop_{false};
   std::thread thread_;
   bool map_dirty_ = false;  // worker thread only

@@ -73,6 +73,7 @@ Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
     }
   }
   contribution.cells = std::move(cells);
+  contribution.stamp = std::max(contribution.stamp, stamp);
   state.newest_input = std::max(state.newest_input, stamp);
   to_refuse_.insert(tile);
   return Status::Ok();
@@ -82,6 +83,48 @@ void TileFusion::RemoveRobotTile(const std::string& robot, const TileId& tile) {
   const auto it = tiles_.find(tile);
   if (it == tiles_.end() || it->second.robots.erase(robot) == 0) return;
   to_refuse_.insert(tile);
+}
+
+std::optional<ContributionEvidence> TileFusion::ExportContribution(const std::string& robot,
+                                                                   const TileId& tile) const {
+  const auto state = tiles_.find(tile);
+  if (state == tiles_.end()) return std::nullopt;
+  const auto it = state->second.robots.find(robot);
+  if (it == state->second.robots.end()) return std::nullopt;
+  const Contribution& contribution = it->second;
+  return ContributionEvidence{contribution.cells.data(), contribution.changed_at,
+                              contribution.stamp};
+}
+
+Status TileFusion::ImportContribution(const std::string& robot, const TileId& tile,
+                                      ContributionEvidence evidence) {
+  FLEETMAP_RETURN_IF_ERROR(options_.CheckTileInRange(tile));
+  grid::OccupancyGrid cells = EmptyTileGrid(tile);
+  const size_t count = static_cast<size_t>(cells.cell_count());
+  if (evidence.cells.size() != count || evidence.changed_at.size() != count) {
+    return InvalidArgumentError(
+        "evidence of " + robot + " for tile (" + std::to_string(tile.x) + ", " +
+        std::to_string(tile.y) + ") has " + std::to_string(evidence.cells.size()) + " cells and " +
+        std::to_string(evidence.changed_at.size()) + " dates, not " + std::to_string(count));
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const int8_t value = evidence.cells[i];
+    if (value != kUnknownValue && value != grid::kFreeValue && value != kOccupiedValue) {
+      return InvalidArgumentError("evidence of " + robot + " for tile (" + std::to_string(tile.x) +
+                                  ", " + std::to_string(tile.y) + "): cell " + std::to_string(i) +
+                                  " has value " + std::to_string(value));
+    }
+  }
+  cells.mutable_data() = std::move(evidence.cells);
+  TileState& state = tiles_[tile];
+  if (state.fused.empty()) state.fused = EmptyTileGrid(tile);
+  Contribution& contribution = state.robots[robot];
+  contribution.cells = std::move(cells);
+  contribution.changed_at = std::move(evidence.changed_at);
+  contribution.stamp = evidence.stamp;
+  state.newest_input = std::max(state.newest_input, evidence.stamp);
+  to_refuse_.insert(tile);
+  return Status::Ok();
 }
 
 bool TileFusion::Refuse(const TileId& tile, TileState* state) {
@@ -218,6 +261,14 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
 const FusedTile* TileFusion::FindFusedTile(const TileId& tile) const {
   const auto it = vector_tiles_.find(tile);
   return it == vector_tiles_.end() ? nullptr : &it->second;
+}
+
+std::vector<std::pair<std::string, TileId>> TileFusion::contributions() const {
+  std::vector<std::pair<std::string, TileId>> out;
+  for (const auto& [tile, state] : tiles_) {
+    for (const auto& [robot, contribution] : state.robots) out.emplace_back(robot, tile);
+  }
+  return out;
 }
 
 size_t TileFusion::contribution_count() const {

@@ -2,8 +2,10 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/core/ids.hpp"
@@ -27,6 +29,14 @@ struct FusedTile {
   Timestamp source_stamp;
 };
 
+// One robot's evidence for one tile, exactly as the fusion keeps it: what a store needs to rebuild
+// the fused map after a restart (TileFusion::ExportContribution / ImportContribution).
+struct ContributionEvidence {
+  std::vector<int8_t> cells;         // 3-state, row-major, CellsPerTile() cells per side
+  std::vector<uint32_t> changed_at;  // per cell: when it last changed state (deciseconds)
+  Timestamp stamp;                   // the newest revision of the robot's tile seen so far
+};
+
 // The fleet's fused map, tile by tile. Each robot's tile is rasterized onto the tile's fused cells;
 // a fused cell takes the state of the robot whose evidence for it is newest, where a robot's
 // evidence for a cell dates from the revision in which that cell last changed state. Ties go to
@@ -43,6 +53,16 @@ class TileFusion {
                          const vector_map::VectorMap& map, Timestamp stamp);
   void RemoveRobotTile(const std::string& robot, const TileId& tile);
 
+  // A robot's contribution to a tile, if it has one: its cells with their evidence dates.
+  std::optional<ContributionEvidence> ExportContribution(const std::string& robot,
+                                                         const TileId& tile) const;
+  // Replaces a robot's contribution to a tile with one exported before (by this or an earlier
+  // process with the same options), as if its revisions had been fused again one by one.
+  // kInvalidArgument, changing nothing, when the tile is beyond max_coordinate, the sizes do not
+  // fit the tile or a cell is not free, occupied or unknown.
+  Status ImportContribution(const std::string& robot, const TileId& tile,
+                            ContributionEvidence evidence);
+
   // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
   // changed.
   StatusOr<std::vector<FusedTile>> FuseChanged();
@@ -56,6 +76,8 @@ class TileFusion {
   const FusedTile* FindFusedTile(const TileId& tile) const;
   const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }
   size_t contribution_count() const;
+  // Every (robot, tile) with a contribution.
+  std::vector<std::pair<std::string, TileId>> contributions() const;
   const FusionOptions& options() const { return options_; }
 
  private:
@@ -63,6 +85,7 @@ class TileFusion {
   struct Contribution {
     grid::OccupancyGrid cells;         // 3-state, on the tile's fused cells
     std::vector<uint32_t> changed_at;  // per cell: when it last changed state (deciseconds)
+    Timestamp stamp;                   // the newest revision received
   };
   struct TileState {
     std::map<std::string, Contribution> robots;

@@ -2,6 +2,11 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <utility>
 
@@ -54,6 +59,25 @@ CREATE TABLE sessions (
   payload    BLOB    NOT NULL
 );
 PRAGMA user_version = 2;
+)sql";
+
+// Version 3: each robot's evidence per tile, so that the fused map is rebuilt exactly, and whether
+// the last writer closed the store.
+constexpr char kMigrateToV3[] = R"sql(
+CREATE TABLE tile_evidence (
+  owner    TEXT    NOT NULL,
+  tile_x   INTEGER NOT NULL,
+  tile_y   INTEGER NOT NULL,
+  stamp_ns INTEGER NOT NULL,
+  payload  BLOB    NOT NULL,
+  PRIMARY KEY (owner, tile_x, tile_y)
+);
+CREATE TABLE store_state (
+  name  TEXT    NOT NULL PRIMARY KEY,
+  value INTEGER NOT NULL
+);
+INSERT INTO store_state (name, value) VALUES ('open', 0), ('opened_ns', 0);
+PRAGMA user_version = 3;
 )sql";
 
 // Upsert, never INSERT OR REPLACE: REPLACE deletes the old row, and the delete would cascade to
@@ -120,6 +144,70 @@ SELECT id, robot, started_ns, ended_ns, payload FROM sessions ORDER BY id
 // The tile's history goes with it (ON DELETE CASCADE).
 constexpr char kDeleteOwner[] = "DELETE FROM tile_latest WHERE owner = ?1";
 
+// The server writes its current evidence: always replace.
+constexpr char kUpsertEvidence[] = R"sql(
+INSERT INTO tile_evidence (owner, tile_x, tile_y, stamp_ns, payload) VALUES (?1, ?2, ?3, ?4, ?5)
+ON CONFLICT (owner, tile_x, tile_y) DO UPDATE SET
+  stamp_ns = excluded.stamp_ns, payload = excluded.payload
+)sql";
+
+constexpr char kSelectEvidence[] = R"sql(
+SELECT owner, tile_x, tile_y, stamp_ns, payload FROM tile_evidence ORDER BY owner, tile_x, tile_y
+)sql";
+
+// Through the UNIQUE index: cascaded deletes are not in Changes(), so count them first.
+constexpr char kCountTileHistory[] = R"sql(
+SELECT count(*) FROM tile_history WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3
+)sql";
+
+constexpr char kDeleteLatest[] =
+    "DELETE FROM tile_latest WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3";
+constexpr char kDeleteEvidence[] =
+    "DELETE FROM tile_evidence WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3";
+
+// What the WAL file beside a database holds, read before SQLite opens (and may reset) it. Format:
+// https://www.sqlite.org/fileformat2.html#walformat (big-endian header and frame headers).
+struct WalScan {
+  bool found = false;
+  int64_t bytes = 0;
+  bool header_valid = false;
+  // 1-based numbers of the frames that end a transaction and carry the header's salts: frames of
+  // commits since the WAL was last reset (older frames carry older salts).
+  std::vector<int64_t> commit_frames;
+};
+
+uint32_t BigEndian32(const char* bytes) {
+  uint32_t value = 0;
+  for (int i = 0; i < 4; ++i) value = (value << 8) | static_cast<uint8_t>(bytes[i]);
+  return value;
+}
+
+WalScan ScanWal(const std::string& wal_path) {
+  WalScan scan;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(wal_path, error)) return scan;
+  scan.found = true;
+  scan.bytes = static_cast<int64_t>(std::filesystem::file_size(wal_path, error));
+  std::ifstream wal(wal_path, std::ios::binary);
+  std::array<char, 32> header{};
+  if (!wal.read(header.data(), header.size())) return scan;
+  const uint32_t magic = BigEndian32(&header[0]);
+  const uint32_t page_size = BigEndian32(&header[8]);
+  const bool power_of_two =
+      page_size >= 512 && page_size <= 65536 && (page_size & (page_size - 1)) == 0;
+  if ((magic != 0x377f0682 && magic != 0x377f0683) || !power_of_two) return scan;
+  scan.header_valid = true;
+  const int64_t frame_size = 24 + static_cast<int64_t>(page_size);
+  std::array<char, 24> frame{};
+  for (int64_t n = 1; 32 + n * frame_size <= scan.bytes; ++n) {
+    wal.seekg(32 + (n - 1) * frame_size);
+    if (!wal.read(frame.data(), frame.size())) break;
+    const bool salts_match = std::equal(&frame[8], &frame[16], &header[16]);
+    if (salts_match && BigEndian32(&frame[4]) != 0) scan.commit_frames.push_back(n);
+  }
+  return scan;
+}
+
 // At most this many problems from a failed check are quoted in the error message.
 constexpr int kMaxCheckMessages = 3;
 
@@ -150,14 +238,77 @@ MapStore::MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& opt
     : db_(std::move(db)), options_(options) {}
 
 // Statements are members declared after db_, so they are finalized before the connection closes.
-MapStore::~MapStore() = default;
+MapStore::~MapStore() {
+  // A clean close: the next Open will not warn. Failing (full disk) only makes it warn.
+  // Only a store this process marked open: a refused file is never written.
+  if (db_ != nullptr && marked_open_) {
+    (void)db_->Exec("UPDATE store_state SET value = 0 WHERE name = 'open'", "marking closed");
+  }
+}
+
+std::string StoreOpenReport::Summary() const {
+  std::string out;
+  if (created) {
+    out = "created a new store";
+  } else {
+    out = "schema version " + std::to_string(found_version);
+    out += quick_checked ? ", quick check ok" : ", quick check skipped";
+    if (unclean_close) {
+      out += ", not closed by its last writer";
+      out += wal_found ? " (WAL of " + std::to_string(wal_bytes) + " bytes, " +
+                             std::to_string(wal_frames_recovered) + " frames recovered"
+                       : " (no WAL";
+      out += shm_found ? ", -shm present)" : ", no -shm)";
+    } else {
+      out += ", closed cleanly";
+    }
+  }
+  for (const std::string& warning : warnings) out += "; WARNING: " + warning;
+  return out;
+}
 
 StatusOr<std::unique_ptr<MapStore>> MapStore::Open(const std::string& path,
                                                    const StoreOptions& options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext(path));
+  // What lies on disk before SQLite touches it: opening replays, and writing resets, the WAL.
+  std::error_code error;
+  const bool exists = !path.empty() && std::filesystem::exists(path, error);
+  const WalScan wal = path.empty() ? WalScan{} : ScanWal(path + "-wal");
+  if (exists && std::filesystem::is_regular_file(path, error) &&
+      std::filesystem::file_size(path, error) == 0) {
+    std::string message = path +
+                          ": the file is empty (0 bytes): a map store never is, so it was "
+                          "truncated, or it is not a map store";
+    if (wal.found) {
+      message += " (" + path + "-wal beside it holds " + std::to_string(wal.bytes) + " bytes)";
+    }
+    return DataLossError(message +
+                         ". To start a new map, delete it with its -wal and -shm files, or pass "
+                         "a path that does not exist; to keep the old map, restore the file "
+                         "from a backup");
+  }
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SqliteConnection> db, SqliteConnection::Open(path));
   std::unique_ptr<MapStore> store(new MapStore(std::move(db), options));
+  store->report_.created = !exists;
+  store->report_.wal_found = wal.found;
+  store->report_.wal_bytes = wal.bytes;
+  store->report_.shm_found = std::filesystem::exists(path + "-shm", error);
   FLEETMAP_RETURN_IF_ERROR(store->Initialize());
+  // Which committed frames SQLite could not replay (it stops at the first bad frame).
+  if (wal.found && wal.bytes > 32 && !wal.header_valid) {
+    store->report_.warnings.push_back(
+        path + "-wal (" + std::to_string(wal.bytes) +
+        " bytes) has no valid header: SQLite ignored it, and what it held is lost");
+  }
+  int64_t lost = 0;
+  for (const int64_t frame : wal.commit_frames) {
+    if (frame > store->report_.wal_frames_recovered) ++lost;
+  }
+  if (lost > 0) {
+    store->report_.warnings.push_back(
+        path + "-wal is damaged: " + std::to_string(lost) + " committed transactions after frame " +
+        std::to_string(store->report_.wal_frames_recovered) + " could not be read and are lost");
+  }
   return store;
 }
 
@@ -166,7 +317,11 @@ Status MapStore::Initialize() {
   // The first statement reads the file: a foreign, damaged or too new file fails here, before
   // anything is written to it.
   FLEETMAP_ASSIGN_OR_RETURN(const int64_t version, ReadSchemaVersion());
-  if (options_.verify_on_open) FLEETMAP_RETURN_IF_ERROR(RunCheck("PRAGMA quick_check"));
+  report_.found_version = version;
+  if (options_.verify_on_open) {
+    FLEETMAP_RETURN_IF_ERROR(RunCheck("PRAGMA quick_check"));
+    report_.quick_checked = true;
+  }
 
   FLEETMAP_ASSIGN_OR_RETURN(
       std::unique_ptr<SqliteStatement> wal,
@@ -182,8 +337,25 @@ Status MapStore::Initialize() {
       options_.synchronous_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL",
       "setting the synchronous mode"));
   FLEETMAP_RETURN_IF_ERROR(db_->Exec("PRAGMA foreign_keys = ON", "enabling foreign keys"));
+  if (options_.max_page_count > 0) {
+    const std::string cap = "PRAGMA max_page_count = " + std::to_string(options_.max_page_count);
+    FLEETMAP_RETURN_IF_ERROR(db_->Exec(cap.c_str(), "capping the file size"));
+  }
+  // Folds whatever the WAL held into the main file; its frame count is what SQLite recovered.
+  // (A new file has no WAL yet: SQLite refuses to checkpoint it.) PASSIVE, because TRUNCATE
+  // reports the emptied WAL; CheckLastClose() truncates it.
+  if (!report_.created) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        std::unique_ptr<SqliteStatement> checkpoint,
+        SqliteStatement::Prepare(*db_, "PRAGMA wal_checkpoint(PASSIVE)", "checkpointing the WAL"));
+    FLEETMAP_ASSIGN_OR_RETURN(const bool checkpointed, checkpoint->Step());
+    if (checkpointed)
+      report_.wal_frames_recovered = std::max<int64_t>(0, checkpoint->ColumnInt64(1));
+    checkpoint->Reset();
+  }
 
   FLEETMAP_RETURN_IF_ERROR(CreateOrMigrateSchema(version));
+  FLEETMAP_RETURN_IF_ERROR(CheckLastClose());
 
   FLEETMAP_RETURN_IF_ERROR(PrepareStatements());
   FLEETMAP_ASSIGN_OR_RETURN(history_rows_, CountHistoryRows());
@@ -225,7 +397,50 @@ Status MapStore::CreateOrMigrateSchema(int64_t version) {
   if (version < 2) {
     FLEETMAP_RETURN_IF_ERROR(db_->Exec(kMigrateToV2, "migrating the schema to version 2"));
   }
+  if (version < 3) {
+    FLEETMAP_RETURN_IF_ERROR(db_->Exec(kMigrateToV3, "migrating the schema to version 3"));
+  }
   return transaction.Commit();
+}
+
+Status MapStore::CheckLastClose() {
+  FLEETMAP_ASSIGN_OR_RETURN(const int64_t open,
+                            QueryInt(*db_, "SELECT value FROM store_state WHERE name = 'open'",
+                                     "reading the store state"));
+  report_.unclean_close = open != 0;
+  if (report_.unclean_close && !report_.wal_found) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        const int64_t opened_ns,
+        QueryInt(*db_, "SELECT value FROM store_state WHERE name = 'opened_ns'",
+                 "reading the store state"));
+    report_.warnings.push_back(
+        path() + " was not closed by the server that opened it (at " +
+        std::to_string(opened_ns / 1'000'000'000) + " s since the epoch) and its write-ahead log " +
+        path() +
+        "-wal is missing: what that server committed after opening may be lost (keep the -wal "
+        "file with the store when copying or moving it)");
+  }
+  const int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::system_clock::now().time_since_epoch())
+                             .count();
+  const std::string mark =
+      "BEGIN IMMEDIATE; UPDATE store_state SET value = 1 WHERE name = 'open'; "
+      "UPDATE store_state SET value = " +
+      std::to_string(now_ns) + " WHERE name = 'opened_ns'; COMMIT;";
+  if (const Status marked = db_->Exec(mark.c_str(), "marking the store open"); !marked.ok()) {
+    (void)db_->Exec("ROLLBACK", "marking the store open");
+    report_.warnings.push_back(std::string(marked.message()) +
+                               " (an unclean close will not be detected)");
+    return Status::Ok();
+  }
+  marked_open_ = true;
+  // In the main file, not only in the WAL: a lost WAL must not take the mark with it.
+  if (const Status checkpointed = db_->Exec("PRAGMA wal_checkpoint(TRUNCATE)", "checkpointing");
+      !checkpointed.ok()) {
+    report_.warnings.push_back(std::string(checkpointed.message()) +
+                               " (a lost WAL would take the open mark with it)");
+  }
+  return Status::Ok();
 }
 
 Status MapStore::RunCheck(const char* pragma) const {
@@ -271,6 +486,12 @@ Status MapStore::PrepareStatements() {
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_robots_, kSelectRobots, "reading the robots"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&insert_session_, kInsertSession, "writing a session"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_sessions_, kSelectSessions, "reading the sessions"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_evidence_, kUpsertEvidence, "writing tile evidence"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&select_evidence_, kSelectEvidence, "reading tile evidence"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&count_tile_history_, kCountTileHistory, "counting a tile's history"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&delete_latest_, kDeleteLatest, "deleting a tile"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&delete_evidence_, kDeleteEvidence, "deleting tile evidence"));
   return prepare(&delete_owner_, kDeleteOwner, "deleting an owner's tiles");
 }
 
@@ -284,18 +505,49 @@ StatusOr<int64_t> MapStore::CountHistoryRows() const {
 }
 
 Status MapStore::PutTiles(const std::vector<TileRecord>& tiles) {
-  const std::string batch = "batch of " + std::to_string(tiles.size()) + " tiles";
-  for (size_t i = 0; i < tiles.size(); ++i) {
-    const Status valid = ValidateTileRecord(tiles[i]);
+  StoreBatch batch;
+  batch.tiles = tiles;
+  return Write(batch);
+}
+
+Status MapStore::Write(const StoreBatch& batch) {
+  const std::string name = "batch of " + std::to_string(batch.tiles.size()) + " tiles";
+  for (size_t i = 0; i < batch.tiles.size(); ++i) {
+    const Status valid = ValidateTileRecord(batch.tiles[i]);
     if (!valid.ok())
-      return valid.WithContext(path() + ": " + batch + ", record " + std::to_string(i));
+      return valid.WithContext(path() + ": " + name + ", record " + std::to_string(i));
   }
-  if (tiles.empty()) return Status::Ok();
+  for (size_t i = 0; i < batch.evidence.size(); ++i) {
+    const Status valid = ValidateEvidenceRecord(batch.evidence[i]);
+    if (!valid.ok()) return valid.WithContext(path() + ": evidence record " + std::to_string(i));
+  }
+  for (const RobotRecord& robot : batch.robots) {
+    FLEETMAP_RETURN_IF_ERROR(ValidateRobotRecord(robot).WithContext(path()));
+  }
+  if (batch.empty()) return Status::Ok();
 
   SqliteTransaction transaction(*db_);
   FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
   int64_t history_rows = history_rows_;
-  for (const TileRecord& tile : tiles) {
+  const auto bind_key = [](SqliteStatement& statement, const std::string& owner,
+                           const TileId& tile) -> Status {
+    statement.Reset();
+    FLEETMAP_RETURN_IF_ERROR(statement.BindText(1, owner));
+    FLEETMAP_RETURN_IF_ERROR(statement.Bind(2, tile.x));
+    return statement.Bind(3, tile.y);
+  };
+  for (const TileKey& key : batch.removed) {
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*count_tile_history_, key.owner, key.tile));
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, count_tile_history_->Step());
+    const int64_t tile_history = row ? count_tile_history_->ColumnInt64(0) : 0;
+    count_tile_history_->Reset();
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_latest_, key.owner, key.tile));
+    FLEETMAP_RETURN_IF_ERROR(delete_latest_->Run());
+    if (db_->Changes() > 0) history_rows -= tile_history;  // the cascade took its history
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_evidence_, key.owner, key.tile));
+    FLEETMAP_RETURN_IF_ERROR(delete_evidence_->Run());
+  }
+  for (const TileRecord& tile : batch.tiles) {
     FLEETMAP_RETURN_IF_ERROR(BindTile(*upsert_latest_, tile));
     FLEETMAP_RETURN_IF_ERROR(upsert_latest_->Run());
     if (options_.keep_history) {
@@ -304,6 +556,13 @@ Status MapStore::PutTiles(const std::vector<TileRecord>& tiles) {
       history_rows += db_->Changes();
     }
   }
+  for (const EvidenceRecord& evidence : batch.evidence) {
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*upsert_evidence_, evidence.owner, evidence.tile));
+    FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->Bind(4, evidence.stamp_ns));
+    FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->BindBlob(5, evidence.payload));
+    FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->Run());
+  }
+  for (const RobotRecord& robot : batch.robots) FLEETMAP_RETURN_IF_ERROR(RunPutRobot(robot));
   if (options_.max_history_rows > 0 && history_rows > options_.max_history_rows) {
     trim_history_->Reset();
     FLEETMAP_RETURN_IF_ERROR(trim_history_->Bind(1, history_rows - options_.max_history_rows));
@@ -313,6 +572,22 @@ Status MapStore::PutTiles(const std::vector<TileRecord>& tiles) {
   FLEETMAP_RETURN_IF_ERROR(transaction.Commit());
   history_rows_ = history_rows;
   return Status::Ok();
+}
+
+StatusOr<std::vector<EvidenceRecord>> MapStore::Evidence() const {
+  select_evidence_->Reset();
+  std::vector<EvidenceRecord> out;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_evidence_->Step());
+    if (!row) break;
+    EvidenceRecord& evidence = out.emplace_back();
+    evidence.owner = select_evidence_->ColumnText(0);
+    evidence.tile.x = static_cast<int32_t>(select_evidence_->ColumnInt64(1));
+    evidence.tile.y = static_cast<int32_t>(select_evidence_->ColumnInt64(2));
+    evidence.stamp_ns = select_evidence_->ColumnInt64(3);
+    evidence.payload = select_evidence_->ColumnBlob(4);
+  }
+  return out;
 }
 
 StatusOr<std::vector<TileRecord>> MapStore::ReadTiles(SqliteStatement& query) const {
@@ -355,6 +630,10 @@ StatusOr<std::vector<TileRecord>> MapStore::TileHistory(const std::string& owner
 Status MapStore::PutRobot(const RobotRecord& robot) {
   FLEETMAP_RETURN_IF_ERROR(ValidateRobotRecord(robot).WithContext(path()));
   // A single statement is its own transaction.
+  return RunPutRobot(robot);
+}
+
+Status MapStore::RunPutRobot(const RobotRecord& robot) {
   upsert_robot_->Reset();
   FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(1, robot.robot));
   FLEETMAP_RETURN_IF_ERROR(upsert_robot_->Bind(2, robot.first_seen_ns));

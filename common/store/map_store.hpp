@@ -14,6 +14,23 @@
 
 namespace fleetmap::store {
 
+// What MapStore::Open found in and beside the file, for the server to say at start.
+struct StoreOpenReport {
+  bool created = false;        // there was no file: a new, empty store
+  int64_t found_version = 0;   // the schema version found (0: new), before any migration
+  bool quick_checked = false;  // PRAGMA quick_check ran and passed (Open fails when it does not)
+  bool wal_found = false;      // <path>-wal was there before opening: the last writer was killed
+  int64_t wal_bytes = 0;       // or is still running
+  bool shm_found = false;
+  int64_t wal_frames_recovered = 0;  // committed WAL frames SQLite replayed
+  bool unclean_close = false;        // the last writer did not close the store (killed, crashed)
+  // Data that may have been lost (a missing or damaged WAL), each in one sentence.
+  std::vector<std::string> warnings;
+
+  // One line: "created", or the version, check, WAL state and recovery, then the warnings.
+  std::string Summary() const;
+};
+
 // The fusion server's persistent state in one SQLite file: the latest revision of every tile
 // (robot and fused), the history of every revision (the object learner's input) and the robots
 // of the fleet. Every write is one transaction, so after a crash the file holds exactly the calls
@@ -24,11 +41,12 @@ namespace fleetmap::store {
 class MapStore {
  public:
   // The schema version this code writes, kept in PRAGMA user_version.
-  static constexpr int kSchemaVersion = 2;
+  static constexpr int kSchemaVersion = 3;
 
   // Opens `path`, creating the file and its schema if missing. Fails with a message naming the
-  // file when it is not an SQLite database, is corrupt (quick check), holds another application's
-  // tables, or has a schema version newer than kSchemaVersion.
+  // file when it is empty (0 bytes: truncated, never a store), is not an SQLite database, is
+  // corrupt (quick check), holds another application's tables, or has a schema version newer than
+  // kSchemaVersion. An older version is migrated. What it found is in open_report().
   static StatusOr<std::unique_ptr<MapStore>> Open(const std::string& path,
                                                   const StoreOptions& options = {});
   ~MapStore();
@@ -41,6 +59,14 @@ class MapStore {
   // appended to the history, then the oldest rows beyond max_history_rows are dropped. A record
   // that fails ValidateTileRecord refuses the whole batch with kInvalidArgument.
   Status PutTiles(const std::vector<TileRecord>& tiles);
+
+  // Commits a batch in one transaction, all or nothing: first deletes every `removed` key's latest
+  // row, history and evidence, then stores `tiles` as PutTiles does and replaces each `evidence`
+  // row, and writes `robots` as PutRobot does. An invalid record refuses the whole batch with
+  // kInvalidArgument.
+  Status Write(const StoreBatch& batch);
+  // Every evidence row, ordered by owner, x, y.
+  StatusOr<std::vector<EvidenceRecord>> Evidence() const;
 
   // The latest revision of every tile, or of `owner`'s tiles only; ordered by owner, x, y.
   StatusOr<std::vector<TileRecord>> LatestTiles(const std::string& owner = "") const;
@@ -70,16 +96,21 @@ class MapStore {
   Status CheckIntegrity() const;
 
   const std::string& path() const { return db_->path(); }
+  const StoreOpenReport& open_report() const { return report_; }
 
  private:
   MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options);
   Status Initialize();
+  // Marks the store open in the main file (not only the WAL), so that the next Open can tell
+  // whether this one was closed; says what the last writer left.
+  Status CheckLastClose();
   // The file's schema version: 1..kSchemaVersion, or 0 for a new empty file; anything else fails.
   StatusOr<int64_t> ReadSchemaVersion();
   // Creates the schema in a new file (version 0) or migrates an older one, in one transaction.
   Status CreateOrMigrateSchema(int64_t version);
   Status PrepareStatements();
   Status RunCheck(const char* pragma) const;
+  Status RunPutRobot(const RobotRecord& robot);
   StatusOr<int64_t> CountHistoryRows() const;
   StatusOr<std::vector<TileRecord>> ReadTiles(SqliteStatement& query) const;
 
@@ -89,6 +120,8 @@ class MapStore {
   // Rows in tile_history, known at open and kept up to date by every committed write, so that
   // trimming to max_history_rows needs no COUNT per batch.
   int64_t history_rows_ = 0;
+  StoreOpenReport report_;
+  bool marked_open_ = false;  // store_state.open was set by this connection
 
   std::unique_ptr<SqliteStatement> upsert_latest_;
   std::unique_ptr<SqliteStatement> insert_history_;
@@ -102,6 +135,11 @@ class MapStore {
   std::unique_ptr<SqliteStatement> insert_session_;
   std::unique_ptr<SqliteStatement> select_sessions_;
   std::unique_ptr<SqliteStatement> delete_owner_;
+  std::unique_ptr<SqliteStatement> upsert_evidence_;
+  std::unique_ptr<SqliteStatement> select_evidence_;
+  std::unique_ptr<SqliteStatement> count_tile_history_;
+  std::unique_ptr<SqliteStatement> delete_latest_;
+  std::unique_ptr<SqliteStatement> delete_evidence_;
 };
 
 }  // namespace fleetmap::store

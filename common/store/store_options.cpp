@@ -14,6 +14,10 @@ Status StoreOptions::Validate() const {
     return InvalidArgumentError("store options: busy_timeout_ms " +
                                 std::to_string(busy_timeout_ms) + " is negative");
   }
+  if (max_page_count < 0) {
+    return InvalidArgumentError("store options: max_page_count " + std::to_string(max_page_count) +
+                                " is negative (0 means no cap)");
+  }
   return Status::Ok();
 }
 

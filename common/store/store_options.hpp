@@ -25,6 +25,10 @@ struct StoreOptions {
   bool synchronous_full = false;
   // Run PRAGMA quick_check on open (reads the whole file: O(size) start-up time).
   bool verify_on_open = true;
+  // Caps the database file at this many pages (PRAGMA max_page_count; 0: SQLite's default, no
+  // practical cap). A write that needs more fails like a full disk (kResourceExhausted) until
+  // rows are deleted. Tests use it to simulate a full disk.
+  int64_t max_page_count = 0;
 
   Status Validate() const;
 };

@@ -20,6 +20,21 @@ Status ValidateTileRecord(const TileRecord& record) {
   return InvalidArgumentError(where.str() + ": " + what.str());
 }
 
+Status ValidateEvidenceRecord(const EvidenceRecord& record) {
+  std::ostringstream what;
+  if (!IsValidRobotName(record.owner)) {
+    what << "owner '" << record.owner
+         << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
+  } else if (record.stamp_ns < 0) {
+    what << "stamp_ns " << record.stamp_ns << " is negative";
+  } else {
+    return Status::Ok();
+  }
+  std::ostringstream where;
+  where << "evidence record (owner '" << record.owner << "', " << record.tile << ")";
+  return InvalidArgumentError(where.str() + ": " + what.str());
+}
+
 Status ValidateRobotRecord(const RobotRecord& record) {
   std::ostringstream what;
   if (!IsValidRobotName(record.robot)) {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
@@ -23,6 +24,29 @@ struct TileRecord {
   friend bool operator==(const TileRecord&, const TileRecord&) = default;
 };
 
+// One robot's evidence for one tile: what the fusion needs to rebuild that robot's contribution
+// exactly (its cells and when each last changed). Opaque to the store, like tile payloads.
+struct EvidenceRecord {
+  std::string owner;  // robot id
+  TileId tile;
+  int64_t stamp_ns = 0;  // the newest tile revision it reflects, ns since the Unix epoch
+  std::string payload;
+
+  friend bool operator==(const EvidenceRecord&, const EvidenceRecord&) = default;
+};
+
+// One (owner, tile): the key of tile_latest and tile_evidence rows.
+struct TileKey {
+  std::string owner;
+  TileId tile;
+
+  friend bool operator==(const TileKey&, const TileKey&) = default;
+  friend bool operator<(const TileKey& a, const TileKey& b) {
+    if (a.owner != b.owner) return a.owner < b.owner;
+    return a.tile < b.tile;
+  }
+};
+
 // What the server knows about a robot of the fleet.
 struct RobotRecord {
   std::string robot;  // robot id
@@ -32,6 +56,19 @@ struct RobotRecord {
   std::string status_payload;  // opaque: the server's encoding of the robot's last status
 
   friend bool operator==(const RobotRecord&, const RobotRecord&) = default;
+};
+
+// What MapStore::Write commits in one transaction.
+struct StoreBatch {
+  std::vector<TileRecord> tiles;         // revisions (latest row and history)
+  std::vector<EvidenceRecord> evidence;  // replaces each (owner, tile)'s evidence row
+  std::vector<TileKey> removed;          // deleted first: latest row, history and evidence
+  std::vector<RobotRecord> robots;       // as PutRobot
+
+  bool empty() const {
+    return tiles.empty() && evidence.empty() && removed.empty() && robots.empty();
+  }
+  size_t size() const { return tiles.size() + evidence.size() + removed.size() + robots.size(); }
 };
 
 // A finished mapping session: one robot's map of its session, from joining to leaving (or being
@@ -48,6 +85,8 @@ struct SessionRecord {
 
 // OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one), stamp_ns >= 0.
 Status ValidateTileRecord(const TileRecord& record);
+// OK when `record` may be stored: owner is a valid robot name, stamp_ns >= 0.
+Status ValidateEvidenceRecord(const EvidenceRecord& record);
 // OK when `record` may be stored: valid robot name, known state, 0 <= first_seen <= last_seen.
 Status ValidateRobotRecord(const RobotRecord& record);
 // OK when `record` may be stored: valid robot name, 0 <= started_ns <= ended_ns.

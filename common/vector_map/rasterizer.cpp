@@ -44,6 +44,18 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
   for (const FreePolygon& polygon : map.free_space) {
     rings.clear();
     if (polygon.outer.empty()) continue;
+    // Wholly off the grid: nothing to fill, and pixel coordinates could overflow.
+    double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
+    for (const Point2& p : polygon.outer) {
+      const Point2 c = frame.ToCell(p);
+      min_x = std::min(min_x, c.x());
+      min_y = std::min(min_y, c.y());
+      max_x = std::max(max_x, c.x());
+      max_y = std::max(max_y, c.y());
+    }
+    if (!(max_x >= -1.0 && min_x <= width + 1.0 && max_y >= -1.0 && min_y <= height + 1.0)) {
+      continue;
+    }
     rings.push_back(to_pixels(polygon.outer));
     for (const auto& hole : polygon.holes) {
       if (!hole.empty()) rings.push_back(to_pixels(hole));
@@ -63,9 +75,17 @@ StatusOr<grid::OccupancyGrid> Rasterizer::Rasterize(const VectorMap& map, int wi
 
   double r = 0.0;
   double r2 = 0.0;
+  // Only the grid's cells are walked, and a segment wholly off the grid is not walked at all:
+  // cell coordinates beyond the int range (a tile rasterized under another tile's key) would
+  // otherwise make the walk span the whole int range.
+  const grid::CellRect cells{0, 0, width, height};
   auto mark = [&](const Point2& a, const Point2& b) {
-    ForEachCellNearSegment(a, b, r, [&](int x, int y) {
-      if (!out.Contains(x, y)) return;
+    if (std::max(a.x(), b.x()) + r < -1.0 || std::min(a.x(), b.x()) - r > width + 1.0 ||
+        std::max(a.y(), b.y()) + r < -1.0 || std::min(a.y(), b.y()) - r > height + 1.0 ||
+        !std::isfinite(a.x() + a.y() + b.x() + b.y())) {
+      return;
+    }
+    ForEachCellNearSegmentIn(cells, a, b, r, [&](int x, int y) {
       if (PointSegmentDistanceSquared(Point2(x, y), a, b) <= r2) {
         data[static_cast<size_t>(y) * width + x] = grid::kOccupiedValue;
       }

@@ -489,7 +489,8 @@ TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored)
   }
   Subprocess server({kServer, "--duration", "30", "--store", path}, env_);
   EXPECT_TRUE(server.WaitForOutput("restored 1 robot tiles", kDeadline)) << server.Output();
-  EXPECT_NE(server.Output().find("skipping a stored tile of beta"), std::string::npos)
+  EXPECT_NE(server.Output().find("skipping a stored tile: " + path + ": beta's tile (1, 0)"),
+            std::string::npos)
       << server.Output();
   server.Signal(SIGINT);
   EXPECT_EQ(server.Wait(kDeadline), 0) << server.Output();

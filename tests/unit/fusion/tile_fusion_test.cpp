@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "common/vector_map/tiled_vector_map.hpp"
 
 namespace fleetmap::fusion {
@@ -232,6 +234,105 @@ TEST(TileFusionTest, MapsFarFromTheOriginFuseAndTheirGridIsSmall) {
   EXPECT_EQ(shown.tiles_left_out, 1u);
   EXPECT_EQ(fused.at(10, 20), kOccupiedValue);
   EXPECT_EQ(fused.at(70, 5), kFreeValue);
+}
+
+
+// alpha maps a room at t0; beta sees a wall across it at t0 + 5 s; alpha republishes at
+// t0 + 10 s for a change in one corner. Per-cell dating keeps beta's wall.
+void FeedOverlappingHistory(TileFusion* fusion) {
+  OccupancyGrid alpha = Grid(40, 40);
+  Fill(&alpha, 0, 0, 40, 40, kFreeValue);
+  Feed(fusion, "alpha", alpha, kT0);
+  OccupancyGrid beta = Grid(40, 40);
+  Fill(&beta, 0, 10, 40, 30, kFreeValue);
+  Fill(&beta, 5, 20, 35, 21, kOccupiedValue);
+  Feed(fusion, "beta", beta, kT0 + std::chrono::seconds(5));
+  Fill(&alpha, 2, 35, 6, 38, kOccupiedValue);
+  Feed(fusion, "alpha", alpha, kT0 + std::chrono::seconds(10));
+}
+
+TEST(TileFusionTest, ImportedEvidenceRebuildsTheFusionExactly) {
+  auto live = TileFusion::Create(Options());
+  ASSERT_TRUE(live.ok());
+  FeedOverlappingHistory(&*live);
+  ASSERT_TRUE(live->FuseChanged().ok());
+  ASSERT_EQ(FusedAt(*live, 20, 20), kOccupiedValue);  // beta's wall: newer than alpha's view
+
+  auto restored = TileFusion::Create(Options());
+  ASSERT_TRUE(restored.ok());
+  for (const std::string robot : {"alpha", "beta"}) {
+    std::optional<ContributionEvidence> evidence = live->ExportContribution(robot, {0, 0});
+    ASSERT_TRUE(evidence.has_value()) << robot;
+    ASSERT_TRUE(restored->ImportContribution(robot, {0, 0}, std::move(*evidence)).ok());
+  }
+  ASSERT_TRUE(restored->FuseChanged().ok());
+  EXPECT_EQ(restored->FusedGrid().data(), live->FusedGrid().data());
+  EXPECT_EQ(restored->contribution_count(), 2u);
+
+  // The dates carry on: the same new revision changes both the same way.
+  OccupancyGrid alpha = Grid(40, 40);
+  Fill(&alpha, 0, 0, 40, 40, kFreeValue);
+  Fill(&alpha, 2, 35, 6, 38, kOccupiedValue);
+  Fill(&alpha, 30, 2, 34, 6, kOccupiedValue);
+  Feed(&*live, "alpha", alpha, kT0 + std::chrono::seconds(20));
+  Feed(&*restored, "alpha", alpha, kT0 + std::chrono::seconds(20));
+  ASSERT_TRUE(live->FuseChanged().ok());
+  ASSERT_TRUE(restored->FuseChanged().ok());
+  EXPECT_EQ(restored->FusedGrid().data(), live->FusedGrid().data());
+  EXPECT_EQ(FusedAt(*restored, 20, 20), kOccupiedValue);
+}
+
+TEST(TileFusionTest, NewestRevisionsAloneDoNotRebuildTheFusion) {
+  // What a restart that replays only each tile's newest revision gets: alpha's whole tile dated
+  // t0 + 10 s, so its old view of the room erases beta's newer wall. Evidence export exists to
+  // avoid exactly this.
+  auto live = TileFusion::Create(Options());
+  ASSERT_TRUE(live.ok());
+  FeedOverlappingHistory(&*live);
+  ASSERT_TRUE(live->FuseChanged().ok());
+  auto replayed = TileFusion::Create(Options());
+  ASSERT_TRUE(replayed.ok());
+  OccupancyGrid alpha = Grid(40, 40);
+  Fill(&alpha, 0, 0, 40, 40, kFreeValue);
+  Fill(&alpha, 2, 35, 6, 38, kOccupiedValue);
+  OccupancyGrid beta = Grid(40, 40);
+  Fill(&beta, 0, 10, 40, 30, kFreeValue);
+  Fill(&beta, 5, 20, 35, 21, kOccupiedValue);
+  Feed(&*replayed, "beta", beta, kT0 + std::chrono::seconds(5));
+  Feed(&*replayed, "alpha", alpha, kT0 + std::chrono::seconds(10));
+  ASSERT_TRUE(replayed->FuseChanged().ok());
+  EXPECT_NE(replayed->FusedGrid().data(), live->FusedGrid().data());
+  EXPECT_EQ(FusedAt(*replayed, 20, 20), kFreeValue);
+}
+
+TEST(TileFusionTest, ExportOfAMissingContributionIsEmpty) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  EXPECT_FALSE(fusion->ExportContribution("alpha", {0, 0}).has_value());
+  OccupancyGrid grid = Grid(40, 40);
+  Fill(&grid, 0, 0, 40, 40, kFreeValue);
+  Feed(&*fusion, "alpha", grid, kT0);
+  EXPECT_TRUE(fusion->ExportContribution("alpha", {0, 0}).has_value());
+  EXPECT_FALSE(fusion->ExportContribution("beta", {0, 0}).has_value());
+  EXPECT_FALSE(fusion->ExportContribution("alpha", {1, 0}).has_value());
+  fusion->RemoveRobotTile("alpha", {0, 0});
+  EXPECT_FALSE(fusion->ExportContribution("alpha", {0, 0}).has_value());
+}
+
+TEST(TileFusionTest, ImportRefusesEvidenceThatDoesNotFitAndChangesNothing) {
+  auto fusion = TileFusion::Create(Options());
+  ASSERT_TRUE(fusion.ok());
+  ContributionEvidence short_evidence{std::vector<int8_t>(10, kFreeValue),
+                                      std::vector<uint32_t>(10, 1), kT0};
+  const Status wrong_size = fusion->ImportContribution("alpha", {0, 0}, short_evidence);
+  EXPECT_EQ(wrong_size.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(wrong_size.message(), ::testing::HasSubstr("not 1600"));
+  ContributionEvidence bad_value{std::vector<int8_t>(1600, kFreeValue),
+                                 std::vector<uint32_t>(1600, 1), kT0};
+  bad_value.cells[7] = 42;
+  const Status refused = fusion->ImportContribution("alpha", {0, 0}, bad_value);
+  EXPECT_THAT(refused.message(), ::testing::HasSubstr("cell 7 has value 42"));
+  EXPECT_EQ(fusion->contribution_count(), 0u);
 }
 
 TEST(FusionOptionsTest, RejectsBadGeometry) {

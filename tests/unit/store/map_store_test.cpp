@@ -290,14 +290,25 @@ TEST_F(MapStoreTest, RefusesAnotherApplicationsDatabase) {
 
 TEST_F(MapStoreTest, RefusesASchemaVersionFromTheFuture) {
   WriteSampleStore();
-  ExecRaw(path_, "PRAGMA user_version = 7");
+  ExecRaw(path_, "PRAGMA user_version = 7; UPDATE store_state SET value = 1 WHERE name = 'open'");
   const auto store = MapStore::Open(path_);
   ASSERT_FALSE(store.ok());
   EXPECT_EQ(store.status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(store.status().message(),
             path_ +
-                ": schema version 7 is newer than this fleetmap supports (2); open it with a "
+                ": schema version 7 is newer than this fleetmap supports (3); open it with a "
                 "newer fleetmap");
+  // Refused, never written: not even the open mark.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* open = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "SELECT value FROM store_state WHERE name = 'open'", -1, &open,
+                               nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(open), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(open, 0), 1);
+  sqlite3_finalize(open);
+  sqlite3_close(db);
 }
 
 TEST_F(MapStoreTest, RefusesACorruptDatabase) {
@@ -423,12 +434,212 @@ TEST_F(MapStoreTest, RefusesAnInvalidSession) {
 TEST_F(MapStoreTest, MigratesAVersionOneFileAndKeepsItsTiles) {
   WriteSampleStore();
   // What a version 1 fleetmap left: no sessions table.
-  ExecRaw(path_, "DROP TABLE sessions; PRAGMA user_version = 1");
+  ExecRaw(path_,
+          "DROP TABLE sessions; DROP TABLE tile_evidence; DROP TABLE store_state; "
+          "PRAGMA user_version = 1");
   auto store = OpenOrDie();
   ASSERT_NE(store, nullptr);
   EXPECT_FALSE(store->LatestTiles()->empty());
   EXPECT_TRUE(store->Sessions()->empty());
   EXPECT_TRUE(store->PutSession({0, "alpha", 1, 2, "x"}).ok());
+}
+
+TEST_F(MapStoreTest, MigratesAVersionTwoFileAndKeepsItsTilesAndSessions) {
+  {
+    auto store = OpenOrDie();
+    ASSERT_NE(store, nullptr);
+    ASSERT_TRUE(store->PutTiles(testing::WriterBatch(0)).ok());
+    ASSERT_TRUE(store->PutSession({0, "alpha", 1, 2, "x"}).ok());
+  }
+  // What a version 2 fleetmap left: no evidence, no store state.
+  ExecRaw(path_, "DROP TABLE tile_evidence; DROP TABLE store_state; PRAGMA user_version = 2");
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  EXPECT_EQ(store->open_report().found_version, 2);
+  EXPECT_FALSE(store->open_report().unclean_close);
+  EXPECT_EQ(store->LatestTiles(testing::kWriterRobot)->size(),
+            static_cast<size_t>(testing::kWriterTilesPerBatch));
+  EXPECT_EQ(store->Sessions()->size(), 1u);
+  EXPECT_TRUE(store->Evidence()->empty());
+  EXPECT_TRUE(store->Write({{}, {{"alpha", {0, 0}, 5, "evidence"}}, {}, {}}).ok());
+  store.reset();
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* version = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "PRAGMA user_version", -1, &version, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(version), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(version, 0), MapStore::kSchemaVersion);
+  sqlite3_finalize(version);
+  sqlite3_close(db);
+}
+
+TEST_F(MapStoreTest, EvidenceRowsAreReplacedAndRoundTrip) {
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const std::string binary("z\0\xff", 3);
+  ASSERT_TRUE(
+      store->Write({{}, {{"alpha", {0, 0}, 5, "old"}, {"beta", {-1, 2}, 6, binary}}, {}, {}}).ok());
+  ASSERT_TRUE(store->Write({{}, {{"alpha", {0, 0}, 9, "new"}}, {}, {}}).ok());
+  const auto evidence = store->Evidence();
+  ASSERT_TRUE(evidence.ok()) << evidence.status();
+  EXPECT_THAT(*evidence, ElementsAre(EvidenceRecord{"alpha", {0, 0}, 9, "new"},
+                                     EvidenceRecord{"beta", {-1, 2}, 6, binary}));
+  const Status refused = store->Write({{}, {{"", {0, 0}, 1, "x"}}, {}, {}});
+  EXPECT_EQ(refused.code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(refused.message(), HasSubstr("evidence record 0"));
+}
+
+TEST_F(MapStoreTest, RemovedTileLosesItsRowsHistoryAndEvidenceOnly) {
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  ASSERT_TRUE(store
+                  ->Write({{Tile("alpha", 0, 0, 1, 10), Tile("alpha", 0, 0, 2, 20),
+                            Tile("alpha", 1, 0, 1, 10), Tile("beta", 0, 0, 1, 10)},
+                           {{"alpha", {0, 0}, 20, "a00"}, {"alpha", {1, 0}, 10, "a10"}},
+                           {},
+                           {{"alpha", 1, 20, "active", ""}}})
+                  .ok());
+  ASSERT_EQ(store->HistoryRowCount().value(), 4);
+  // The robot disposed tile (0, 0); in the same batch a fused revision arrives.
+  ASSERT_TRUE(store->Write({{Tile(kFleetOwner, 0, 0, 1, 30)}, {}, {{"alpha", {0, 0}}}, {}}).ok());
+  const auto latest = store->LatestTiles();
+  ASSERT_TRUE(latest.ok());
+  std::vector<std::string> keys;
+  for (const TileRecord& tile : *latest) {
+    keys.push_back(tile.owner + " " + std::to_string(tile.tile.x));
+  }
+  EXPECT_THAT(keys, ElementsAre("alpha 1", "beta 0", "fleet 0"));
+  EXPECT_TRUE(store->TileHistory("alpha", {0, 0})->empty());
+  EXPECT_EQ(store->HistoryRowCount().value(), 3);
+  EXPECT_THAT(*store->Evidence(), ElementsAre(EvidenceRecord{"alpha", {1, 0}, 10, "a10"}));
+  EXPECT_EQ(store->Robots()->size(), 1u);
+  // Removing a key the store does not hold is not an error.
+  EXPECT_TRUE(store->Write({{}, {}, {{"gamma", {5, 5}}}, {}}).ok());
+}
+
+TEST_F(MapStoreTest, RemovalsCountTowardsTheHistoryLimit) {
+  StoreOptions options;
+  options.max_history_rows = 3;
+  auto store = OpenOrDie(options);
+  ASSERT_NE(store, nullptr);
+  ASSERT_TRUE(store
+                  ->PutTiles({Tile("alpha", 0, 0, 1, 1), Tile("alpha", 0, 0, 2, 2),
+                              Tile("alpha", 1, 0, 1, 1)})
+                  .ok());
+  ASSERT_TRUE(store->Write({{}, {}, {{"alpha", {0, 0}}}, {}}).ok());
+  // One row left: two more fit without dropping the (1, 0) row.
+  ASSERT_TRUE(store->PutTiles({Tile("alpha", 2, 0, 1, 1), Tile("alpha", 3, 0, 1, 1)}).ok());
+  EXPECT_EQ(store->HistoryRowCount().value(), 3);
+  EXPECT_EQ(store->TileHistory("alpha", {1, 0})->size(), 1u);
+}
+
+TEST_F(MapStoreTest, RefusesAnEmptyFileAndSaysHowToStartFresh) {
+  std::ofstream(path_, std::ios::binary | std::ios::trunc).flush();
+  ASSERT_EQ(std::filesystem::file_size(path_), 0u);
+  const auto store = MapStore::Open(path_);
+  ASSERT_FALSE(store.ok());
+  EXPECT_EQ(store.status().code(), StatusCode::kDataLoss);
+  EXPECT_THAT(store.status().message(), StartsWith(path_ + ": the file is empty (0 bytes)"));
+  EXPECT_THAT(store.status().message(), HasSubstr("To start a new map, delete it"));
+  EXPECT_EQ(std::filesystem::file_size(path_), 0u);  // left alone
+}
+
+TEST_F(MapStoreTest, ReportsANewStoreAndACleanClose) {
+  {
+    auto store = OpenOrDie();
+    ASSERT_NE(store, nullptr);
+    EXPECT_TRUE(store->open_report().created);
+    EXPECT_EQ(store->open_report().Summary(), "created a new store");
+    ASSERT_TRUE(store->PutTiles(testing::WriterBatch(0)).ok());
+  }
+  EXPECT_FALSE(std::filesystem::exists(path_ + "-wal"));  // folded back on close
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  EXPECT_FALSE(report.created);
+  EXPECT_EQ(report.found_version, MapStore::kSchemaVersion);
+  EXPECT_TRUE(report.quick_checked);
+  EXPECT_FALSE(report.unclean_close);
+  EXPECT_FALSE(report.wal_found);
+  EXPECT_TRUE(report.warnings.empty());
+  EXPECT_EQ(report.Summary(), "schema version 3, quick check ok, closed cleanly");
+}
+
+// Runs store_writer_helper until it reported `batches` commits, then SIGKILLs it.
+void KillWriterAfter(const std::string& path, int batches) {
+  fleetmap::process::Subprocess writer({FLEETMAP_STORE_WRITER_HELPER, path});
+  ASSERT_TRUE(writer.started());
+  ASSERT_TRUE(
+      writer.WaitForOutput("committed " + std::to_string(batches) + "\n", std::chrono::seconds(20)))
+      << writer.Output();
+  writer.Signal(SIGKILL);
+  ASSERT_EQ(writer.Wait(std::chrono::seconds(10)), 128 + SIGKILL) << writer.Output();
+}
+
+TEST_F(MapStoreTest, ReportsAKilledWriterAndWhatItsWalGaveBack) {
+  KillWriterAfter(path_, 5);
+  ASSERT_TRUE(std::filesystem::exists(path_ + "-wal"));
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  EXPECT_TRUE(report.unclean_close);
+  EXPECT_TRUE(report.wal_found);
+  EXPECT_GT(report.wal_bytes, 0);
+  EXPECT_GT(report.wal_frames_recovered, 0);
+  EXPECT_TRUE(report.warnings.empty()) << report.Summary();
+  EXPECT_THAT(report.Summary(), HasSubstr("not closed by its last writer (WAL of"));
+  EXPECT_GE(store->LatestTiles(testing::kWriterRobot)->size(), 6u * testing::kWriterTilesPerBatch);
+}
+
+TEST_F(MapStoreTest, WarnsWhenAKilledWritersWalIsMissing) {
+  KillWriterAfter(path_, 5);
+  ASSERT_TRUE(std::filesystem::remove(path_ + "-wal"));
+  std::filesystem::remove(path_ + "-shm");
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  EXPECT_TRUE(report.unclean_close);
+  EXPECT_FALSE(report.wal_found);
+  ASSERT_EQ(report.warnings.size(), 1u) << report.Summary();
+  EXPECT_THAT(report.warnings[0], HasSubstr("its write-ahead log " + path_ + "-wal is missing"));
+  EXPECT_THAT(report.Summary(), HasSubstr("WARNING: "));
+  // Opened (and closed) again, the store is clean: the warning is not repeated for ever.
+  store.reset();
+  EXPECT_TRUE(OpenOrDie()->open_report().warnings.empty());
+}
+
+TEST_F(MapStoreTest, WarnsWhenAKilledWritersWalIsDamaged) {
+  KillWriterAfter(path_, 5);
+  std::string wal = ReadBytes(path_ + "-wal");
+  ASSERT_GT(wal.size(), 32u + 3u * (24u + 4096u));
+  // Scramble the page of the second frame: SQLite stops replaying there.
+  for (size_t i = 32 + (24 + 4096) + 24; i < 32 + 2 * (24 + 4096); i += 7) wal[i] ^= 0x55;
+  std::ofstream(path_ + "-wal", std::ios::binary | std::ios::trunc) << wal;
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  EXPECT_TRUE(report.unclean_close);
+  ASSERT_EQ(report.warnings.size(), 1u) << report.Summary();
+  EXPECT_THAT(report.warnings[0], HasSubstr(path_ + "-wal is damaged: "));
+  EXPECT_THAT(report.warnings[0], HasSubstr(" committed transactions after frame "));
+}
+
+TEST_F(MapStoreTest, FullFileFailsAsDiskFullAndKeepsEarlierCommits) {
+  StoreOptions options;
+  options.max_page_count = 40;
+  auto store = OpenOrDie(options);
+  ASSERT_NE(store, nullptr);
+  Status status;
+  int committed = 0;
+  for (; committed < 100; ++committed) {
+    status = store->PutTiles(testing::WriterBatch(committed));
+    if (!status.ok()) break;
+  }
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.code(), StatusCode::kResourceExhausted) << status;
+  EXPECT_THAT(status.message(), HasSubstr("database or disk is full"));
+  EXPECT_EQ(store->LatestTiles(testing::kWriterRobot)->size(),
+            static_cast<size_t>(committed * testing::kWriterTilesPerBatch));
 }
 
 }  // namespace

@@ -37,6 +37,24 @@ TEST(RasterizerTest, OccupiesCellsWithinHalfEpsilonOfAnEdge) {
   }
 }
 
+TEST(RasterizerTest, GeometryFarOffTheGridMarksNothingAndReturns) {
+  // A tile rasterized under another tile's key lands this far away: cell coordinates beyond the
+  // int range once made the cell walk span all of it (start-up hung on such a stored row).
+  const OccupancyGrid like(40, 40, 0.05);
+  VectorMap map;
+  map.epsilon = 0.0707;
+  for (const double far : {1e9, -1e9, 1e12}) {
+    map.obstacles.push_back(Polyline{{Point2(far, 0.5), Point2(far + 1.0, 0.5)}});
+    map.obstacles.push_back(Polyline{{Point2(0.5, far), Point2(0.5, far + 1.0)}});
+    FreePolygon free;
+    free.outer = {Point2(far, far), Point2(far + 1.0, far), Point2(far + 1.0, far + 1.0)};
+    map.free_space.push_back(free);
+  }
+  const auto out = Rasterizer().Rasterize(map, like);
+  ASSERT_TRUE(out.ok()) << out.status();
+  for (const int8_t value : out->data()) ASSERT_EQ(value, grid::kUnknownValue);
+}
+
 TEST(RasterizerTest, HalfWidthGivesAWallBackItsThickness) {
   const OccupancyGrid like(20, 11, 1.0);
   const CellFrame frame(like);

@@ -1,0 +1,212 @@
+#include "server/store_sync.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+#include "common/fusion/evidence_codec.hpp"
+#include "common/transport/tile_payload.hpp"
+
+namespace fleetmap::server {
+namespace {
+
+std::string Describe(const std::string& owner, const TileId& tile) {
+  return owner + "'s tile (" + std::to_string(tile.x) + ", " + std::to_string(tile.y) + ")";
+}
+
+Timestamp FromNanoseconds(int64_t ns) {
+  return Timestamp(std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(ns)));
+}
+
+int64_t ToNanoseconds(Timestamp stamp) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch()).count();
+}
+
+bool Newer(const store::TileRecord& a, const store::TileRecord& b) {
+  return std::tie(a.revision, a.stamp_ns) > std::tie(b.revision, b.stamp_ns);
+}
+
+}  // namespace
+
+StoreSync::StoreSync(store::MapStore* store, Options options) : store_(store), options_(options) {}
+
+StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
+  Restored restored;
+  if (store_ == nullptr) return restored;
+  const int cells_per_tile = fusion->options().CellsPerTile();
+  std::set<store::TileKey> done;
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::EvidenceRecord> evidence, store_->Evidence());
+  for (const store::EvidenceRecord& record : evidence) {
+    const std::string name =
+        store_->path() + ": evidence of " + Describe(record.owner, record.tile);
+    if (record.owner == store::kFleetOwner) {
+      restored.skipped.push_back(name + ": the fleet owns no evidence");
+      continue;
+    }
+    StatusOr<fusion::ContributionEvidence> decoded =
+        fusion::DecodeEvidence(record.payload, cells_per_tile, name);
+    if (!decoded.ok()) {
+      restored.skipped.push_back(std::string(decoded.status().message()));
+      continue;
+    }
+    const Status imported =
+        fusion->ImportContribution(record.owner, record.tile, std::move(decoded).value());
+    if (!imported.ok()) {
+      restored.skipped.push_back(name + ": " + std::string(imported.message()));
+      continue;
+    }
+    done.insert({record.owner, record.tile});
+    ++restored.from_evidence;
+  }
+
+  // Robot tiles without evidence: a store from before schema version 3. Their revisions, fused
+  // again in order, date each cell's evidence as the live fusion did (as far as the history goes).
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> latest, store_->LatestTiles());
+  for (const store::TileRecord& row : latest) {
+    if (row.owner == store::kFleetOwner) {
+      // Fused tiles are rebuilt, not trusted; their revisions go on from the stored ones.
+      fused_revision_base_[row.tile] = row.revision;
+      continue;
+    }
+    if (done.count({row.owner, row.tile}) > 0) continue;
+    FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> revisions,
+                              store_->TileHistory(row.owner, row.tile));
+    if (revisions.empty()) revisions.push_back(row);  // a store kept without history
+    size_t fused = 0;
+    for (const store::TileRecord& record : revisions) {
+      const std::string name = store_->path() + ": " + Describe(record.owner, record.tile) +
+                               " revision " + std::to_string(record.revision);
+      StatusOr<transport::VectorTileMessage> tile =
+          transport::DecodeTilePayload(record.payload, name);
+      if (!tile.ok()) {
+        restored.skipped.push_back(std::string(tile.status().message()));
+        continue;
+      }
+      // The payload's coordinates are relative to its own tile: fused under another key they
+      // would land far away (and once kept start-up busy for good).
+      if (tile->tile != record.tile || tile->robot_id != record.owner) {
+        restored.skipped.push_back(name + ": its payload is " +
+                                   Describe(tile->robot_id, tile->tile) + ", not the row's key");
+        continue;
+      }
+      const Status updated = fusion->UpdateRobotTile(record.owner, record.tile, tile->map,
+                                                     FromNanoseconds(record.stamp_ns));
+      if (!updated.ok()) {
+        restored.skipped.push_back(name + ": " + std::string(updated.message()));
+        continue;
+      }
+      ++fused;
+    }
+    if (fused == 0) continue;
+    ++restored.from_history;
+    changed_.insert({row.owner, row.tile});  // the store gets its evidence at the next Flush
+  }
+  return restored;
+}
+
+Status StoreSync::AddTile(store::TileRecord record) {
+  if (store_ == nullptr) return Status::Ok();
+  // One bad record must not make every later batch fail: refuse it here, alone.
+  FLEETMAP_RETURN_IF_ERROR(store::ValidateTileRecord(record));
+  if (record.owner == store::kFleetOwner) {
+    // The fusion numbers its revisions from 1 again after a restart.
+    const auto base = fused_revision_base_.find(record.tile);
+    if (base != fused_revision_base_.end()) record.revision += base->second;
+  }
+  if (!behind_) {
+    tiles_.push_back(std::move(record));
+    return Status::Ok();
+  }
+  const store::TileKey key{record.owner, record.tile};
+  const auto [it, inserted] = tile_index_.try_emplace(key, tiles_.size());
+  if (inserted) {
+    tiles_.push_back(std::move(record));
+  } else if (Newer(record, tiles_[it->second])) {
+    tiles_[it->second] = std::move(record);
+  }
+  return Status::Ok();
+}
+
+Status StoreSync::ContributionChanged(const std::string& robot, const TileId& tile) {
+  if (store_ == nullptr) return Status::Ok();
+  FLEETMAP_RETURN_IF_ERROR(store::ValidateEvidenceRecord({robot, tile, 0, ""}));
+  changed_.insert({robot, tile});
+  return Status::Ok();
+}
+
+Status StoreSync::AddRobot(store::RobotRecord robot) {
+  if (store_ == nullptr) return Status::Ok();
+  FLEETMAP_RETURN_IF_ERROR(store::ValidateRobotRecord(robot));
+  const auto [it, inserted] = robots_.try_emplace(robot.robot, robot);
+  if (inserted) return Status::Ok();
+  // What PutRobot would make of both, in one record.
+  store::RobotRecord& queued = it->second;
+  robot.first_seen_ns = std::min(robot.first_seen_ns, queued.first_seen_ns);
+  robot.last_seen_ns = std::max(robot.last_seen_ns, queued.last_seen_ns);
+  queued = std::move(robot);
+  return Status::Ok();
+}
+
+void StoreSync::Coalesce() {
+  std::vector<store::TileRecord> tiles;
+  tile_index_.clear();
+  for (store::TileRecord& record : tiles_) {
+    const auto [it, inserted] = tile_index_.try_emplace({record.owner, record.tile}, tiles.size());
+    if (inserted) {
+      tiles.push_back(std::move(record));
+    } else if (Newer(record, tiles[it->second])) {
+      tiles[it->second] = std::move(record);
+    }
+  }
+  tiles_ = std::move(tiles);
+}
+
+StatusOr<store::StoreBatch> StoreSync::MakeBatch(const fusion::TileFusion& fusion) const {
+  store::StoreBatch batch;
+  std::set<store::TileKey> removed;
+  for (const store::TileKey& key : changed_) {
+    const std::optional<fusion::ContributionEvidence> evidence =
+        fusion.ExportContribution(key.owner, key.tile);
+    if (!evidence.has_value()) {
+      batch.removed.push_back(key);
+      removed.insert(key);
+      continue;
+    }
+    FLEETMAP_ASSIGN_OR_RETURN(std::string payload, fusion::EncodeEvidence(*evidence));
+    batch.evidence.push_back({key.owner, key.tile,
+                              std::max<int64_t>(0, ToNanoseconds(evidence->stamp)),
+                              std::move(payload)});
+  }
+  for (const store::TileRecord& record : tiles_) {
+    // A revision of a tile that is gone since must not bring its rows back.
+    if (removed.count({record.owner, record.tile}) == 0) batch.tiles.push_back(record);
+  }
+  for (const auto& [robot, record] : robots_) batch.robots.push_back(record);
+  return batch;
+}
+
+StoreSync::FlushResult StoreSync::Flush(const fusion::TileFusion& fusion,
+                                        std::chrono::steady_clock::time_point now) {
+  if (store_ == nullptr || pending() == 0) return FlushResult::kIdle;
+  if (behind_ && now < next_attempt_) return FlushResult::kWaiting;
+  StatusOr<store::StoreBatch> batch = MakeBatch(fusion);
+  Status written = batch.ok() ? store_->Write(*batch) : batch.status();
+  if (written.ok()) {
+    tiles_.clear();
+    tile_index_.clear();
+    changed_.clear();
+    robots_.clear();
+    behind_ = false;
+    failed_attempts_ = 0;
+    last_error_ = Status::Ok();
+    return FlushResult::kWritten;
+  }
+  if (!behind_) Coalesce();
+  behind_ = true;
+  ++failed_attempts_;
+  last_error_ = std::move(written);
+  next_attempt_ = now + options_.retry_period;
+  return FlushResult::kFailed;
+}
+
+}  // namespace fleetmap::server

@@ -1,0 +1,97 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/core/ids.hpp"
+#include "common/core/status.hpp"
+#include "common/fusion/tile_fusion.hpp"
+#include "common/store/map_store.hpp"
+
+namespace fleetmap::server {
+
+// Keeps the map store in step with the fusion, and rebuilds the fusion from it at start.
+//
+// The fusion worker queues what changed: tile revisions (the store's latest rows and history),
+// which robot contributions changed or went, and robot records. Flush() writes all of it in one
+// transaction; a changed contribution's evidence (its cells and per-cell dates) is read from the
+// fusion at that moment, and a contribution the fusion no longer has is deleted from the store
+// with its tile rows. A failed write is kept and retried at a later Flush, at most once per
+// `retry_period`; while the store is behind, revisions of one (owner, tile) replace each other
+// (the newest is kept: the history misses those between), so what waits is bounded by the number
+// of tiles and robots, however long the store stays unwritable.
+//
+// Not thread-safe: create and call from the fusion worker's thread.
+class StoreSync {
+ public:
+  struct Options {
+    std::chrono::milliseconds retry_period{1000};
+  };
+  // What Restore() rebuilt.
+  struct Restored {
+    size_t from_evidence = 0;  // contributions read back exactly
+    size_t from_history = 0;   // tiles of an older store, their revisions fused again in order
+    std::vector<std::string> skipped;  // rows that could not be used, each with its reason
+  };
+  enum class FlushResult {
+    kIdle,     // nothing to write
+    kWritten,  // everything queued is in the store
+    kFailed,   // the write failed; everything stays queued
+    kWaiting,  // behind, and the next attempt is not due yet
+  };
+
+  // `store` must outlive this; null keeps nothing.
+  explicit StoreSync(store::MapStore* store, Options options);
+
+  // Rebuilds `fusion` (empty) from the store: each robot contribution from its stored evidence;
+  // a robot tile with no evidence (a store written before schema version 3) by fusing its stored
+  // revisions again, oldest first, and queueing its evidence for the next Flush. Rows whose key
+  // disagrees with their payload, or that do not decode, are skipped with a reason. Fails only
+  // when the store cannot be read.
+  StatusOr<Restored> Restore(fusion::TileFusion* fusion);
+
+  // A tile revision to store (robot or fused; a fused tile's revision is counted on from the
+  // newest one stored before Restore()).
+  // Each of these refuses a record the store would refuse (kInvalidArgument), so that one bad
+  // record cannot hold back every later write.
+  Status AddTile(store::TileRecord record);
+  // A robot's contribution to `tile` changed or was removed from the fusion.
+  Status ContributionChanged(const std::string& robot, const TileId& tile);
+  Status AddRobot(store::RobotRecord robot);
+
+  // Writes what is queued, unless the store is behind and `now` is before the next attempt.
+  FlushResult Flush(const fusion::TileFusion& fusion, std::chrono::steady_clock::time_point now);
+
+  // The last write failed and records wait for the next attempt.
+  bool behind() const { return behind_; }
+  // Records waiting: tile revisions, changed contributions and robots.
+  size_t pending() const { return tiles_.size() + changed_.size() + robots_.size(); }
+  // Failed writes since the last successful one.
+  uint64_t failed_attempts() const { return failed_attempts_; }
+  const Status& last_error() const { return last_error_; }
+
+ private:
+  // Keeps only the newest revision of each (owner, tile) in tiles_, and indexes them.
+  void Coalesce();
+  StatusOr<store::StoreBatch> MakeBatch(const fusion::TileFusion& fusion) const;
+
+  store::MapStore* store_;
+  Options options_;
+  std::vector<store::TileRecord> tiles_;
+  std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
+  std::set<store::TileKey> changed_;
+  std::map<std::string, store::RobotRecord> robots_;
+  // Per fused tile, the newest revision stored before this process: added to the fusion's
+  // revisions, so that the store's latest fused rows stay the newest.
+  std::map<TileId, uint32_t> fused_revision_base_;
+  bool behind_ = false;
+  uint64_t failed_attempts_ = 0;
+  Status last_error_;
+  std::chrono::steady_clock::time_point next_attempt_{};
+};
+
+}  // namespace fleetmap::server
