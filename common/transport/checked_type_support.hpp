@@ -70,18 +70,20 @@ class CheckedPubSubType : public GeneratedPubSubType {
 
   // The generated key serializer writes into a buffer sized for keys of at most 255 characters
   // and throws on a longer one, on a Fast DDS thread where nothing catches it: the process would
-  // abort. A key that cannot be hashed makes Fast DDS drop the sample (or refuse the write).
+  // abort. Fast DDS 2.9 also ignores getKey's result on the receiving side and asserts later on a
+  // sample left without an instance. So a key that cannot be hashed gets one fixed handle of its
+  // own: such samples share one instance, and the reader's checks then refuse them by content
+  // (no valid robot id is that long).
   bool getKey(void* data, eprosima::fastrtps::rtps::InstanceHandle_t* handle,
               bool force_md5) override {
     try {
       return GeneratedPubSubType::getKey(data, handle, force_md5);
-    } catch (const std::exception& error) {
-      if (MalformedSink* sink = ScopedMalformedSink::Current()) {
-        sink->Refuse(InvalidArgumentError(std::string("key cannot be hashed: ") + error.what()));
-      }
-      return false;
     } catch (...) {
-      return false;
+      static constexpr char kUnhashable[] = "fleetmap:unhash";  // 15 characters and a NUL
+      for (size_t i = 0; i < sizeof(kUnhashable); ++i) {
+        handle->value[i] = static_cast<eprosima::fastrtps::rtps::octet>(kUnhashable[i]);
+      }
+      return true;
     }
   }
 

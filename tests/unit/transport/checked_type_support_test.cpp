@@ -10,21 +10,31 @@ namespace {
 
 // Fast DDS computes a sample's key itself when the writer did not send its hash (Cyclone DDS
 // does not): the generated code throws for a key string over 255 characters, on a thread where
-// that aborts the process. The checked type support refuses the sample instead.
-TEST(CheckedTypeSupportTest, AKeyThatCannotBeHashedIsRefusedNotThrown) {
+// that aborts the process, and Fast DDS asserts on a sample left without an instance. The checked
+// type support gives every such key one fixed, defined handle instead.
+TEST(CheckedTypeSupportTest, AKeyThatCannotBeHashedGetsTheUnhashableHandle) {
   eprosima::fastdds::dds::TypeSupport type = VectorTileTypeSupport();
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
   tile.robot_id(std::string(300, 'x'));
-  eprosima::fastrtps::rtps::InstanceHandle_t handle;
-  bool hashed = true;
-  EXPECT_NO_THROW(hashed = type->getKey(&tile, &handle, false));
-  EXPECT_FALSE(hashed);
+  eprosima::fastrtps::rtps::InstanceHandle_t tile_handle;
+  bool hashed = false;
+  EXPECT_NO_THROW(hashed = type->getKey(&tile, &tile_handle, false));
+  EXPECT_TRUE(hashed);
+  EXPECT_TRUE(tile_handle.isDefined());
 
   eprosima::fastdds::dds::TypeSupport status_type = RobotStatusTypeSupport();
   fleetmap_msgs::msg::dds_::RobotStatus_ status;
   status.robot_id(std::string(256, 'y'));
-  EXPECT_NO_THROW(hashed = status_type->getKey(&status, &handle, false));
-  EXPECT_FALSE(hashed);
+  eprosima::fastrtps::rtps::InstanceHandle_t status_handle;
+  EXPECT_NO_THROW(hashed = status_type->getKey(&status, &status_handle, false));
+  EXPECT_TRUE(hashed);
+  EXPECT_EQ(status_handle, tile_handle);
+
+  // An ordinary key never gets it.
+  tile.robot_id("alpha");
+  eprosima::fastrtps::rtps::InstanceHandle_t ordinary;
+  ASSERT_TRUE(type->getKey(&tile, &ordinary, false));
+  EXPECT_NE(ordinary, tile_handle);
 }
 
 TEST(CheckedTypeSupportTest, OrdinaryKeysHashAsTheGeneratedCodeDoes) {
