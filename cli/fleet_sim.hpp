@@ -46,6 +46,8 @@ struct FleetRunResult {
   double server_cpu_seconds = 0.0;
   int64_t server_peak_rss_bytes = 0;
   double seconds = 0.0;  // wall time of the run
+  // Robots the server reported lost while every robot ran (none died: each report is false).
+  int robots_reported_lost = 0;
 };
 
 // Runs the fleet for `options.duration`, then lets the robots leave and stops the server.

@@ -16,6 +16,9 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   # Spatial indexes (Boost.Geometry R-tree, header-only).
   libboost-dev
+  # The lossy-network test and `fleetmap bench loss` (network namespaces, nftables random drop;
+  # they run as root only).
+  iproute2 nftables
 )
 
 missing=()
