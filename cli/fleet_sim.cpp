@@ -176,6 +176,11 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     }
   }
   // The server's resources while it still runs, then an orderly end: robots leave first.
+  const std::string during_run = server.Output();
+  for (size_t at = during_run.find(" lost (no liveliness"); at != std::string::npos;
+       at = during_run.find(" lost (no liveliness", at + 1)) {
+    ++result.robots_reported_lost;
+  }
   if (const auto usage = process::ReadUsage(server.pid())) {
     result.server_cpu_seconds = usage->cpu_seconds;
     result.server_peak_rss_bytes = usage->peak_rss_bytes;

@@ -53,6 +53,8 @@ struct FleetRunResult {
   double seconds = 0.0;  // wall time of the run
   uint64_t hostile_tiles_written = 0;
   std::string server_output;  // what the server printed, its summary table last
+  // Robots the server reported lost while every robot ran (none died: each report is false).
+  int robots_reported_lost = 0;
 };
 
 // Runs the fleet for `options.duration`, then lets the robots leave and stops the server.

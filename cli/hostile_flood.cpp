@@ -97,6 +97,15 @@ void HostileFlood::Run() {
   keep_alive();
   // Give the server time to see the claim, as a peer that knows the protocol would.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const auto heavy_round = [&] {
+    keep_alive();
+    for (int i = 0; i < options_.heavy_tiles; ++i) {
+      write(TileId{options_.first_tile_x + i % 8, i / 8}, 300);
+    }
+  };
+  // The heavy tiles first, so that they hold places in the robot's tile quota and are fused
+  // for the whole run; then the distinct keys, which run into the quota.
+  heavy_round();
   const int side = 64;
   for (int k = 0; k < options_.distinct_keys && !stop_.load(); ++k) {
     write(TileId{options_.first_tile_x + 100 + k % side, k / side}, 4);
@@ -105,10 +114,7 @@ void HostileFlood::Run() {
   const auto period = std::chrono::duration<double>(1.0 / options_.rate_hz);
   auto next = std::chrono::steady_clock::now();
   while (!stop_.load()) {
-    keep_alive();
-    for (int i = 0; i < options_.heavy_tiles; ++i) {
-      write(TileId{options_.first_tile_x + i % 8, i / 8}, 300);
-    }
+    heavy_round();
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
     std::this_thread::sleep_until(next);
   }

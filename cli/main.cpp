@@ -4,6 +4,7 @@
 
 #include "cli/bench_extrapolation_command.hpp"
 #include "cli/bench_fleet_command.hpp"
+#include "cli/bench_loss_command.hpp"
 #include "cli/bench_objects_command.hpp"
 #include "cli/bench_paper_command.hpp"
 #include "cli/bench_vectorize_command.hpp"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddInfoCommand(app, &exit_code);
   fleetmap::cli::AddSimCommand(app, &exit_code);
   fleetmap::cli::AddBenchFleetCommand(app, &exit_code);
+  fleetmap::cli::AddBenchLossCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::cli::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);

@@ -40,7 +40,7 @@ struct AgentOptions {
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
   Pose2 map_from_robot;  // the robot's pose in its map frame
-  std::chrono::milliseconds status_period{500};  // must stay below the 1.5 s liveliness lease
+  std::chrono::milliseconds status_period{500};  // a quarter of the 2 s liveliness lease
   std::chrono::milliseconds map_check_period{200};
   std::chrono::milliseconds duration{0};  // run this long, then leave; 0: until stopped
   // How long the agent listens, before it joins, for another participant already speaking for

@@ -18,6 +18,9 @@ packages=(
   libboost-dev
   # The tests' hostile peer: a DDS participant of another vendor (Cyclone DDS and its idlc).
   cyclonedds-dev cyclonedds-tools
+  # The lossy-network test and `fleetmap bench loss` (network namespaces, nftables random drop;
+  # they run as root only).
+  iproute2 nftables
 )
 
 missing=()

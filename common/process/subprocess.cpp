@@ -142,15 +142,20 @@ int RandomDomainId() {
   // until this process exits. A second claim of the same id, even by this process, fails.
   for (int i = 0; i < kDomains; ++i) {
     const int domain = 1 + (start + i) % kDomains;
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("fleetmap-dds-domain-" + std::to_string(domain) + ".lock"))
-                                 .string();
-    const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-    if (fd < 0) continue;
-    if (flock(fd, LOCK_EX | LOCK_NB) == 0) return domain;
-    close(fd);
+    if (ClaimDomainId(domain)) return domain;
   }
   return 1 + start;  // every id is claimed: fall back to chance
+}
+
+bool ClaimDomainId(int domain) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("fleetmap-dds-domain-" + std::to_string(domain) + ".lock"))
+                               .string();
+  const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) return false;
+  if (flock(fd, LOCK_EX | LOCK_NB) == 0) return true;  // the descriptor stays open: the claim
+  close(fd);
+  return false;
 }
 
 std::optional<ProcessUsage> ReadUsage(pid_t pid) {

@@ -12,8 +12,8 @@
 namespace fleetmap::process {
 
 // A child process (a fleetmap-server, an agent, a tool under test): started with posix_spawn, its
-// stdout and stderr captured in temporary files that the parent can poll. Killed (SIGKILL) on destruction if still
-// running. Use from one thread.
+// stdout and stderr captured in temporary files that the parent can poll. Killed (SIGKILL) on
+// destruction if still running. Use from one thread.
 class Subprocess {
  public:
   // `env` entries are added to (or override) the test's own environment.
@@ -60,6 +60,10 @@ CommandResult RunCommand(std::vector<std::string> argv,
 // lock file in the temp directory until this process exits), starting from a random id, so that
 // runs in parallel never meet.
 int RandomDomainId();
+
+// Claims `domain` as RandomDomainId does (until this process exits); false if another claim holds
+// it. For a test that needs a second, chosen domain, such as the neighbour of a random one.
+bool ClaimDomainId(int domain);
 
 // Resource use of a running process, from /proc: CPU seconds (user + system) and peak resident
 // memory (VmHWM), or nullopt once it is gone.

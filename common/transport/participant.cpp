@@ -1,5 +1,6 @@
 #include "common/transport/participant.hpp"
 
+#include <fastdds/rtps/common/PortParameters.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
@@ -23,9 +24,17 @@ using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 
 constexpr int kMaxDomainId = 232;  // the highest domain whose RTPS ports fit in 16 bits
-// Participants on one host that unicast discovery reaches: each announces to this many
-// participant ids on 127.0.0.1.
-constexpr uint32_t kLocalhostParticipants = 128;
+
+// Localhost-only discovery announces to the metatraffic port of participant ids 0..N-1 on
+// 127.0.0.1, port = 7400 + 250 domain + 10 + 2 id. 128 ids (what we had) reached 7664 + 250 domain:
+// the discovery ports of domain + 1 (its multicast port is id 120's, its participant 0 listens on
+// id 125's), so fleets on adjacent domains found each other and fused. Only the ids whose
+// metatraffic and user ports stay below the next domain's range are announced to: 120 participants
+// per domain and host (DomainIsolationTest).
+uint32_t LocalhostParticipantsPerDomain() {
+  const eprosima::fastrtps::rtps::PortParameters ports;
+  return (ports.domainIDGain - ports.offsetd1) / ports.participantIDGain;
+}
 
 bool EnvironmentFlag(const char* name) {
   const char* value = std::getenv(name);
@@ -47,7 +56,7 @@ dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localh
     // and no multicast is needed (the loopback interface has none).
     auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
     udp->interfaceWhiteList.emplace_back("127.0.0.1");
-    udp->maxInitialPeersRange = kLocalhostParticipants;
+    udp->maxInitialPeersRange = LocalhostParticipantsPerDomain();
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(udp);
 

@@ -5,8 +5,32 @@ namespace {
 
 namespace dds = eprosima::fastdds::dds;
 
-eprosima::fastrtps::Duration_t ToDuration(std::chrono::milliseconds ms) {
+using std::chrono::milliseconds;
+
+eprosima::fastrtps::Duration_t ToDuration(milliseconds ms) {
   return eprosima::fastrtps::Duration_t(static_cast<double>(ms.count()) / 1000.0);
+}
+
+// Reliability timings for lossy Wi-Fi; docs/fleet.md (Reliability on lossy networks) gives the
+// reasons and the measurements. A reader learns that the last sample of a burst was lost only
+// from the writer's next heartbeat, so the heartbeat period bounds how late a lost sample is
+// repaired: Fast DDS's 3 s default made p99 2.5 s at 5 % loss. Periodic heartbeats stop while
+// every reader has acknowledged everything, so a short period costs nothing on an idle topic.
+constexpr milliseconds kHeartbeatPeriod{100};
+// How long a writer waits to gather ACKNACKs before it repairs, and a reader before it answers a
+// heartbeat: short, since with unicast every wait adds straight to the repair time.
+constexpr milliseconds kNackResponseDelay{5};
+constexpr milliseconds kHeartbeatResponseDelay{5};
+
+// Both ends of a topic get the same timings, whatever the topic's other QoS.
+EndpointQos WithLossyNetworkTimings(EndpointQos qos) {
+  auto& writer = qos.writer.reliable_writer_qos().times;
+  writer.heartbeatPeriod = ToDuration(kHeartbeatPeriod);
+  writer.nackResponseDelay = ToDuration(kNackResponseDelay);
+  writer.nackSupressionDuration = ToDuration(milliseconds(0));
+  qos.reader.reliable_reader_qos().times.heartbeatResponseDelay =
+      ToDuration(kHeartbeatResponseDelay);
+  return qos;
 }
 
 // Reliable, transient local, keep last 1 per instance and as many instances as there are: the
@@ -40,7 +64,7 @@ EndpointQos RobotStatusQos() {
   // Keep the instance registered when a robot's writer vanishes, so the reader sees the
   // NOT_ALIVE_NO_WRITERS transition instead of a silent removal.
   qos.writer.writer_data_lifecycle().autodispose_unregistered_instances = false;
-  return qos;
+  return WithLossyNetworkTimings(qos);
 }
 
 EndpointQos OccupancyGridQos() {
@@ -52,7 +76,7 @@ EndpointQos OccupancyGridQos() {
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   qos.reader.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return qos;
+  return WithLossyNetworkTimings(qos);
 }
 
 EndpointQos OccupancyGridUpdateQos() {
@@ -65,7 +89,7 @@ EndpointQos OccupancyGridUpdateQos() {
   qos.reader.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
   qos.writer.durability().kind = dds::VOLATILE_DURABILITY_QOS;
   qos.reader.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-  return qos;
+  return WithLossyNetworkTimings(qos);
 }
 
 EndpointQos KeyedStateQos() {
@@ -76,7 +100,7 @@ EndpointQos KeyedStateQos() {
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   qos.reader.endpoint().history_memory_policy =
       eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return qos;
+  return WithLossyNetworkTimings(qos);
 }
 
 EndpointQos VectorTileQos() { return KeyedStateQos(); }

@@ -17,8 +17,9 @@ struct EndpointQos {
 };
 
 // rt/fleetmap/robot_status: reliable, transient local, keep last 1 per robot, no instance limit,
-// manual-by-topic liveliness with a 1.5 s lease (each status sample renews it), so a dead or
+// manual-by-topic liveliness with a 2 s lease (each status sample renews it), so a dead or
 // hung agent is noticed in about 2 s. Agents must write their status more often than the lease.
+// Every reliable topic uses the same heartbeat and NACK timings, tuned for lossy Wi-Fi.
 EndpointQos RobotStatusQos();
 
 // rt/<robot>/map and rt/fleetmap/map: what nav2's map_server uses for /map (reliable, transient

@@ -13,8 +13,10 @@ namespace fleetmap::transport {
 
 class ReaderEndpoint;
 
-// How long a robot's status writer may stay silent before the robot is reported lost.
-inline constexpr std::chrono::milliseconds kRobotLivelinessLease{1500};
+// How long a robot's status writer may stay silent before the robot is reported lost: four
+// status periods, so a live robot survives three lost statuses in a row plus their repairs on a
+// lossy link, and a dead one is still reported within about 2 s (docs/fleet.md).
+inline constexpr std::chrono::milliseconds kRobotLivelinessLease{2000};
 
 // What the fleet says about its robots.
 struct RobotEvent {
