@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <map>
@@ -14,7 +15,9 @@ namespace fleetmap::server {
 // revision of each tile (a robot that sends the same tiles faster than they are fused costs no
 // memory beyond its tiles), and the robot served next is the one that has used the least fusion
 // time (start-time fair queueing), so one robot's flood cannot delay another's updates by more
-// than one turn. Not thread-safe: the fusion worker owns it.
+// than one turn. A turn is sized by what the robot's tiles have cost so far: as many as fit in a
+// target time, at least one, so a robot whose tiles are expensive (hostile or not) takes short
+// turns. Not thread-safe: the fusion worker owns it.
 template <typename Item>
 class FairTileQueue {
  public:
@@ -34,9 +37,10 @@ class FairTileQueue {
     }
   }
 
-  // The next turn: up to `max_items` of the robot that used the least fusion time, oldest first.
-  // Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
-  std::vector<Item> NextTurn(size_t max_items, std::string* robot) {
+  // The next turn: of the robot that used the least fusion time, oldest first, as many items as
+  // its average cost per item fits in `target` (at least one, at most `max_items`; one while its
+  // cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
+  std::vector<Item> NextTurn(size_t max_items, Duration target, std::string* robot) {
     std::vector<Item> turn;
     auto chosen = robots_.end();
     for (auto it = robots_.begin(); it != robots_.end(); ++it) {
@@ -49,6 +53,12 @@ class FairTileQueue {
     *robot = chosen->first;
     Robot& queue = chosen->second;
     virtual_now_ = std::max(virtual_now_, queue.virtual_time);
+    if (queue.cost_per_item.count() > 0) {
+      max_items = std::clamp<size_t>(static_cast<size_t>(target / queue.cost_per_item), 1,
+                                     max_items);
+    } else {
+      max_items = 1;
+    }
     size_t taken = 0;
     while (taken < queue.order.size() && turn.size() < max_items) {
       const TileId tile = queue.order[taken++];
@@ -61,10 +71,18 @@ class FairTileQueue {
     return turn;
   }
 
-  // Fusion time spent on `robot`'s turn.
-  void Charge(const std::string& robot, Duration used) {
+  // Fusion time spent on `robot`'s turn of `items` items.
+  void Charge(const std::string& robot, Duration used, size_t items) {
     const auto it = robots_.find(robot);
-    if (it != robots_.end()) it->second.virtual_time += used;
+    if (it == robots_.end()) return;
+    Robot& queue = it->second;
+    queue.virtual_time += used;
+    if (items == 0) return;
+    const Duration per_item = used / static_cast<int64_t>(items);
+    // A moving average: a robot's tiles change cost as its map grows.
+    queue.cost_per_item = queue.cost_per_item.count() == 0
+                              ? per_item
+                              : (queue.cost_per_item * 3 + per_item) / 4;
   }
 
   // Drops what waits for `robot`'s `tile` (its robot removed it).
@@ -83,6 +101,7 @@ class FairTileQueue {
     std::map<TileId, Item> pending;
     std::vector<TileId> order;  // arrival order of the pending tiles
     Duration virtual_time{0};   // fusion time used, as seen by the scheduler
+    Duration cost_per_item{0};  // moving average of what one item has cost; 0: unknown
   };
 
   std::map<std::string, Robot> robots_;

@@ -317,12 +317,12 @@ void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
   while (!queue_.empty() && std::chrono::steady_clock::now() - start < budget) {
     std::string robot;
     const auto turn_start = std::chrono::steady_clock::now();
-    for (PendingTile& pending : queue_.NextTurn(kTilesPerTurn, &robot)) {
-      ApplyTile(robot, std::move(pending));
-    }
+    std::vector<PendingTile> turn = queue_.NextTurn(kMaxTilesPerTurn, kTurnTarget, &robot);
+    const size_t tiles = turn.size();
+    for (PendingTile& pending : turn) ApplyTile(robot, std::move(pending));
     // The turn's cost includes vectorizing what it changed: that is what delays the others.
     PublishFused(std::chrono::steady_clock::now());
-    queue_.Charge(robot, std::chrono::steady_clock::now() - turn_start);
+    queue_.Charge(robot, std::chrono::steady_clock::now() - turn_start, tiles);
   }
   std::lock_guard lock(stats_mutex_);
   stats_.tiles_waiting = queue_.size();

@@ -172,9 +172,10 @@ class FusionWorker {
   std::thread thread_;
   bool map_dirty_ = false;  // worker thread only
   size_t tiles_outside_map_ = 0;  // worker thread only
-  // Robot tiles one turn fuses before the next robot's turn, and how long one loop fuses before
-  // it drains the readers again.
-  static constexpr size_t kTilesPerTurn = 8;
+  // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
+  // and how long one loop fuses before it drains the readers again.
+  static constexpr size_t kMaxTilesPerTurn = 16;
+  static constexpr std::chrono::milliseconds kTurnTarget{8};
   static constexpr std::chrono::milliseconds kFusionSlice{50};
   static constexpr size_t kMaxHeldRobots = 64;
   std::chrono::steady_clock::time_point last_map_{};

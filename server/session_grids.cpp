@@ -42,7 +42,11 @@ StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<Mappin
   if (sessions_of.empty()) return std::vector<grid::OccupancyGrid>(sessions.size());
   std::vector<fusion::SourcedTile> tiles;
   tiles.reserve(sessions_of.size());
-  for (auto& [tile, mapped_by] : sessions_of) tiles.push_back({tile, std::move(mapped_by)});
+  for (auto& [tile, mapped_by] : sessions_of) {
+    // Sessions come oldest first: a tile appeared with the first session that mapped it.
+    const auto first = static_cast<uint64_t>(mapped_by.front());
+    tiles.push_back({tile, std::move(mapped_by), first});
+  }
   // One window for all, within the grid budget: sessions kilometres apart (or a peer's tiles far
   // away) must not make every grid span the distance between them.
   const int cells = options.CellsPerTile();

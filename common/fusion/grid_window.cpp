@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <utility>
@@ -77,15 +78,18 @@ GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_t
   GridWindow window;
   window.rect = BoundingRect(keys);
   if (window.rect.area() > max_tiles) {
-    std::map<TileId, const std::vector<int>*> robots_of;
-    for (const SourcedTile& tile : tiles) robots_of[tile.tile] = &tile.robots;
-    // Ranked by (robots that mapped it, tiles).
+    std::map<TileId, const SourcedTile*> source_of;
+    for (const SourcedTile& tile : tiles) source_of[tile.tile] = &tile;
+    // Ranked by the robots that mapped it, then by how early it appeared (larger is better).
     const auto rank = [&](const std::vector<TileId>& group) {
       std::set<int> robots;
+      uint64_t first_seen = UINT64_MAX;
       for (const TileId& tile : group) {
-        robots.insert(robots_of.at(tile)->begin(), robots_of.at(tile)->end());
+        const SourcedTile& source = *source_of.at(tile);
+        robots.insert(source.robots.begin(), source.robots.end());
+        first_seen = std::min(first_seen, source.first_seen);
       }
-      return std::pair{robots.size(), group.size()};
+      return std::pair{robots.size(), UINT64_MAX - first_seen};
     };
     std::vector<std::vector<TileId>> groups = GroupNearbyTiles(keys, gap);
     size_t best = 0;

@@ -28,18 +28,21 @@ struct GridWindow {
   size_t tiles_left_out = 0;
 };
 
-// A fused tile and the robots (any small ids) that contributed to it.
+// A fused tile, the robots (any small ids) that contributed to it, and when it first appeared
+// (any increasing count).
 struct SourcedTile {
   TileId tile;
   std::vector<int> robots;
+  uint64_t first_seen = 0;
 };
 
 // Chooses the rectangle of tiles a dense grid (rt/fleetmap/map) can show with at most
 // `max_tiles` tiles of area. A fleet's tiles usually fit, and then all are shown. When they span
 // more (robots kilometres apart, or a peer's tiles far away) the grid shows one group of nearby
 // tiles (tiles at most `gap` empty tiles apart belong to one group): the one most robots mapped,
-// then the one with most tiles, so that one robot's far-flung tiles cannot take the view from the
-// fleet. It is cut around its median tile if even the group is too large. Memory and time follow
+// then the one that appeared first, so that tiles sent from far away later, however many,
+// cannot take the view from the fleet. It is cut around its median tile if even the group is
+// too large. Memory and time follow
 // the number of tiles, never their bounding box. `tiles` must not be empty; max_tiles >= 1.
 GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_tiles,
                             int gap = 2);

@@ -49,6 +49,15 @@ grid::OccupancyGrid TileFusion::EmptyTileGrid(const TileId& tile) const {
                              kUnknownValue);
 }
 
+TileFusion::TileState& TileFusion::StateOf(const TileId& tile) {
+  const auto [it, created] = tiles_.try_emplace(tile);
+  if (created) {
+    it->second.fused = EmptyTileGrid(tile);
+    it->second.first_seen = ++tiles_created_;
+  }
+  return it->second;
+}
+
 uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
   const auto ticks =
       std::chrono::duration_cast<std::chrono::milliseconds>(stamp - epoch_).count() / 100;
@@ -61,8 +70,7 @@ Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
   const grid::OccupancyGrid geometry = EmptyTileGrid(tile);
   FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid cells,
                             vector_map::Rasterizer().Rasterize(map, geometry));
-  TileState& state = tiles_[tile];
-  if (state.fused.empty()) state.fused = geometry;
+  TileState& state = StateOf(tile);
   Contribution& contribution = state.robots[robot];
   const uint32_t now = Deciseconds(stamp);
   if (contribution.cells.empty()) {
@@ -116,8 +124,7 @@ Status TileFusion::ImportContribution(const std::string& robot, const TileId& ti
     }
   }
   cells.mutable_data() = std::move(evidence.cells);
-  TileState& state = tiles_[tile];
-  if (state.fused.empty()) state.fused = EmptyTileGrid(tile);
+  TileState& state = StateOf(tile);
   Contribution& contribution = state.robots[robot];
   contribution.cells = std::move(cells);
   contribution.changed_at = std::move(evidence.changed_at);
@@ -231,7 +238,7 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
   sourced.reserve(tiles_.size());
   std::map<std::string, int> robot_numbers;
   for (const auto& [tile, state] : tiles_) {
-    SourcedTile& entry = sourced.emplace_back(SourcedTile{tile, {}});
+    SourcedTile& entry = sourced.emplace_back(SourcedTile{tile, {}, state.first_seen});
     for (const auto& [robot, contribution] : state.robots) {
       entry.robots.push_back(
           robot_numbers.emplace(robot, static_cast<int>(robot_numbers.size())).first->second);

@@ -91,11 +91,14 @@ class TileFusion {
     std::map<std::string, Contribution> robots;
     grid::OccupancyGrid fused;  // 3-state
     Timestamp newest_input;     // the latest robot tile stamp received for this tile
+    uint64_t first_seen = 0;    // tiles_created_ when it appeared: the fleet's oldest area first
   };
 
   explicit TileFusion(const FusionOptions& options);
 
   grid::OccupancyGrid EmptyTileGrid(const TileId& tile) const;
+  // The tile's state, created (all unknown) when it is new.
+  TileState& StateOf(const TileId& tile);
   uint32_t Deciseconds(Timestamp stamp) const;
   // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
   // border margin changed.
@@ -106,6 +109,7 @@ class TileFusion {
   vector_map::Vectorizer vectorizer_;
   Timestamp epoch_;
   std::map<TileId, TileState> tiles_;
+  uint64_t tiles_created_ = 0;
   std::set<TileId> to_refuse_;     // robot input changed
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;

@@ -7,10 +7,10 @@
 namespace fleetmap::fusion {
 namespace {
 
-// Tiles all mapped by one robot.
+// Tiles all mapped by one robot, in this order.
 std::vector<SourcedTile> ByOneRobot(const std::vector<TileId>& tiles, int robot = 0) {
   std::vector<SourcedTile> sourced;
-  for (const TileId& tile : tiles) sourced.push_back({tile, {robot}});
+  for (const TileId& tile : tiles) sourced.push_back({tile, {robot}, sourced.size()});
   return sourced;
 }
 
@@ -22,7 +22,7 @@ TEST(GridWindowTest, TilesThatFitAreAllShown) {
   EXPECT_EQ(window.tiles_left_out, 0u);
 }
 
-TEST(GridWindowTest, AFarTileIsLeftOutAndTheLargestGroupShown) {
+TEST(GridWindowTest, AFarTileIsLeftOutAndTheFirstGroupShown) {
   // A 3 x 3 block at the origin and one tile at the far end of the int32 range.
   std::vector<TileId> tiles;
   for (int y = 0; y < 3; ++y) {
@@ -37,7 +37,7 @@ TEST(GridWindowTest, AFarTileIsLeftOutAndTheLargestGroupShown) {
 }
 
 TEST(GridWindowTest, TilesAFewEmptyTilesApartAreOneGroup) {
-  // Two rooms two empty tiles apart, and a lone tile 100 tiles away.
+  // Two rooms two empty tiles apart, and a lone tile 100 tiles away (mapped last).
   const std::vector<TileId> tiles = {{0, 0}, {1, 0}, {4, 0}, {5, 1}, {100, 100}};
   const GridWindow window = ChooseGridWindow(ByOneRobot(tiles), 50);
   EXPECT_EQ(window.rect.min, (TileId{0, 0}));
@@ -67,12 +67,22 @@ TEST(GridWindowTest, ThousandsOfScatteredTilesCostTheirCountNotTheirSpan) {
 
 TEST(GridWindowTest, OneRobotsFarTilesCannotTakeTheViewFromTheFleet) {
   // Two robots share three tiles at the origin; a third robot holds 50 tiles 10 km away.
-  std::vector<SourcedTile> tiles = {{{0, 0}, {0, 1}}, {{1, 0}, {0}}, {{1, 1}, {1}}};
-  for (int i = 0; i < 50; ++i) tiles.push_back({{1000 + i % 10, i / 10}, {2}});
+  std::vector<SourcedTile> tiles = {{{0, 0}, {0, 1}, 1}, {{1, 0}, {0}, 2}, {{1, 1}, {1}, 3}};
+  for (int i = 0; i < 50; ++i) tiles.push_back({{1000 + i % 10, i / 10}, {2}, 4u + i});
   const GridWindow window = ChooseGridWindow(tiles, 400);
   EXPECT_EQ(window.rect.min, (TileId{0, 0}));
   EXPECT_EQ(window.rect.max, (TileId{1, 1}));
   EXPECT_EQ(window.tiles_left_out, 50u);
+}
+
+TEST(GridWindowTest, ALaterRobotsManyFarTilesCannotTakeTheViewFromTheFirst) {
+  // One robot maps three tiles; a second, later, sends 1000 tiles 10 km away.
+  std::vector<SourcedTile> tiles = {{{0, 0}, {0}, 1}, {{1, 0}, {0}, 2}, {{0, 1}, {0}, 3}};
+  for (int i = 0; i < 1000; ++i) tiles.push_back({{1000 + i % 40, i / 40}, {1}, 4u + i});
+  const GridWindow window = ChooseGridWindow(tiles, 400);
+  EXPECT_EQ(window.rect.min, (TileId{0, 0}));
+  EXPECT_EQ(window.rect.max, (TileId{1, 1}));
+  EXPECT_EQ(window.tiles_left_out, 1000u);
 }
 
 }  // namespace

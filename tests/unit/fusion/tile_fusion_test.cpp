@@ -227,7 +227,8 @@ TEST(TileFusionTest, MapsFarFromTheOriginFuseAndTheirGridIsSmall) {
 
   GridWindow shown;
   const OccupancyGrid fused = fusion->FusedGrid(&shown);
-  // The largest group (the far robot's two tiles) is shown; the tile at the origin is left out.
+  // The group that appeared first (the far robot's two tiles) is shown; the tile at the origin
+  // is left out.
   EXPECT_EQ(fused.width(), 80);
   EXPECT_EQ(fused.height(), 40);
   EXPECT_NEAR(fused.origin().x, 1e6, 1e-6);

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 namespace fleetmap::server {
 namespace {
 
 using std::chrono::milliseconds;
+
+// A turn target so long that only max_items bounds a turn (once a robot's cost is known).
+constexpr auto kLong = std::chrono::hours(1);
 
 TEST(FairTileQueueTest, ANewerRevisionOfAQueuedTileReplacesIt) {
   FairTileQueue<int> queue;
@@ -14,8 +19,10 @@ TEST(FairTileQueueTest, ANewerRevisionOfAQueuedTileReplacesIt) {
   queue.Push("alpha", {0, 0}, 3);
   EXPECT_EQ(queue.size(), 2u);
   std::string robot;
-  EXPECT_EQ(queue.NextTurn(10, &robot), (std::vector<int>{3, 2}));
+  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{3}));  // cost unknown: one
   EXPECT_EQ(robot, "alpha");
+  queue.Charge(robot, milliseconds(1), 1);
+  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{2}));
   EXPECT_TRUE(queue.empty());
 }
 
@@ -24,15 +31,15 @@ TEST(FairTileQueueTest, AFloodingRobotDoesNotDelayAnotherBeyondOneTurn) {
   for (int i = 0; i < 1000; ++i) queue.Push("flood", {i, 0}, i);
   std::string robot;
   // The flood's first turn is expensive...
-  ASSERT_EQ(queue.NextTurn(8, &robot).size(), 8u);
-  queue.Charge(robot, milliseconds(400));
+  ASSERT_EQ(queue.NextTurn(8, kLong, &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(400), 1);
   // ...then an honest robot's update arrives: it is served next, not after 992 tiles.
   queue.Push("honest", {5, 5}, -1);
-  EXPECT_EQ(queue.NextTurn(8, &robot), (std::vector<int>{-1}));
+  EXPECT_EQ(queue.NextTurn(8, kLong, &robot), (std::vector<int>{-1}));
   EXPECT_EQ(robot, "honest");
-  queue.Charge(robot, milliseconds(2));
-  // With nobody else waiting the flood goes on.
-  EXPECT_EQ(queue.NextTurn(8, &robot).size(), 8u);
+  queue.Charge(robot, milliseconds(2), 1);
+  // With nobody else waiting the flood goes on, in turns as long as the target allows.
+  EXPECT_EQ(queue.NextTurn(8, kLong, &robot).size(), 8u);
   EXPECT_EQ(robot, "flood");
 }
 
@@ -45,8 +52,8 @@ TEST(FairTileQueueTest, RobotsWithEqualCostsTakeTurns) {
   std::string served;
   for (int turn = 0; turn < 4; ++turn) {
     std::string robot;
-    ASSERT_EQ(queue.NextTurn(1, &robot).size(), 1u);
-    queue.Charge(robot, milliseconds(5));
+    ASSERT_EQ(queue.NextTurn(1, kLong, &robot).size(), 1u);
+    queue.Charge(robot, milliseconds(5), 1);
     served += robot;
   }
   EXPECT_EQ(served, "abab");
@@ -56,16 +63,42 @@ TEST(FairTileQueueTest, IdleTimeIsNotCredit) {
   FairTileQueue<int> queue;
   std::string robot;
   queue.Push("a", {0, 0}, 0);
-  queue.NextTurn(1, &robot);
-  queue.Charge("a", milliseconds(1000));
+  queue.NextTurn(1, kLong, &robot);
+  queue.Charge("a", milliseconds(1000), 1);
   // b arrives late: it starts level with a's progress, not 1000 ms behind it.
   queue.Push("a", {1, 0}, 1);
   queue.Push("b", {0, 0}, 2);
-  queue.NextTurn(1, &robot);
-  queue.Charge(robot, milliseconds(10));
+  queue.NextTurn(1, kLong, &robot);
+  queue.Charge(robot, milliseconds(10), 1);
   const std::string first = robot;
-  queue.NextTurn(1, &robot);
+  queue.NextTurn(1, kLong, &robot);
   EXPECT_NE(first, robot);
+}
+
+TEST(FairTileQueueTest, ExpensiveTilesMakeShortTurns) {
+  FairTileQueue<int> queue;
+  for (int i = 0; i < 100; ++i) {
+    queue.Push("cheap", {i, 0}, i);
+    queue.Push("costly", {i, 0}, i);
+  }
+  std::string robot;
+  // Unknown cost: one item.
+  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(1), 1);
+  const std::string first = robot;
+  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(50), 1);
+  // Known costs: 10 items of 1 ms fit in 10 ms, but never less than one item of 50 ms.
+  const std::string cheap = first == "cheap" ? first : robot;
+  std::map<std::string, size_t> sizes;
+  for (int turn = 0; turn < 6; ++turn) {
+    const auto items = queue.NextTurn(16, milliseconds(10), &robot);
+    sizes[robot] = items.size();
+    queue.Charge(robot, milliseconds(robot == cheap ? 1 : 50) * static_cast<int>(items.size()),
+                 items.size());
+  }
+  EXPECT_EQ(sizes["cheap"], 10u);
+  EXPECT_EQ(sizes["costly"], 1u);
 }
 
 TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
@@ -75,7 +108,7 @@ TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
   queue.Erase("a", {0, 0});
   queue.Erase("a", {7, 7});  // not queued: nothing happens
   std::string robot;
-  EXPECT_EQ(queue.NextTurn(10, &robot), (std::vector<int>{2}));
+  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{2}));
   EXPECT_TRUE(queue.empty());
 }
 
