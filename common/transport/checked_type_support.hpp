@@ -65,7 +65,16 @@ class CheckedPubSubType : public GeneratedPubSubType {
       if (MalformedSink* sink = ScopedMalformedSink::Current()) sink->Refuse(checked);
       return false;
     }
-    return GeneratedPubSubType::deserialize(payload, data);
+    // Fast DDS also decodes on its receive thread (to hash a key the writer did not send), where
+    // no listener's guard is around: nothing may escape from here.
+    try {
+      return GeneratedPubSubType::deserialize(payload, data);
+    } catch (const std::exception& error) {
+      if (MalformedSink* sink = ScopedMalformedSink::Current()) {
+        sink->Refuse(InvalidArgumentError(std::string("payload does not decode: ") + error.what()));
+      }
+      return false;
+    }
   }
 
   // The generated key serializer writes into a buffer sized for keys of at most 255 characters
