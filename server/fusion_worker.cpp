@@ -315,6 +315,9 @@ void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady
 void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
   const auto start = std::chrono::steady_clock::now();
   while (!queue_.empty() && std::chrono::steady_clock::now() - start < budget) {
+    // What arrived during the last turn joins the queue now, not after the slice: an honest
+    // update waits for at most the turn in progress.
+    HandleTileEvents();
     std::string robot;
     const auto turn_start = std::chrono::steady_clock::now();
     std::vector<PendingTile> turn = queue_.NextTurn(kMaxTilesPerTurn, kTurnTarget, &robot);

@@ -24,7 +24,9 @@ TEST(RefusalLogTest, AFloodOfRobotIdsIsCountedInBoundedMemory) {
   RefusalLog log("test");
   const auto t0 = std::chrono::steady_clock::time_point(seconds(100));
   for (int i = 0; i < 10000; ++i) {
-    log.Refuse("r" + std::to_string(i), Refusal::kUnclaimed, "held too long", t0);
+    std::string robot = "r";  // (not "r" + ...: GCC 12 warns a false -Wrestrict on it)
+    robot += std::to_string(i);
+    log.Refuse(robot, Refusal::kUnclaimed, "held too long", t0);
   }
   EXPECT_EQ(log.total(), 10000u);
   EXPECT_LE(log.counts().size(), 4097u);
