@@ -28,7 +28,10 @@ Status FusionOptions::Validate() const {
     return InvalidArgumentError("fusion max_coordinate must be at least one tile");
   }
   if (max_grid_cells < static_cast<int64_t>(CellsPerTile()) * CellsPerTile()) {
-    return InvalidArgumentError("fusion max_grid_cells must hold at least one tile");
+    return InvalidArgumentError("the fused grid's cell budget (--max-map-cells) " +
+                                std::to_string(max_grid_cells) + " must hold at least one tile of " +
+                                std::to_string(CellsPerTile()) + " x " +
+                                std::to_string(CellsPerTile()) + " cells");
   }
   return Status::Ok();
 }
