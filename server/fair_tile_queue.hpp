@@ -38,8 +38,8 @@ class FairTileQueue {
   }
 
   // The next turn: of the robot that used the least fusion time, oldest first, as many items as
-  // its average cost per item fits in `target` (at least one, at most `max_items`; one while its
-  // cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
+  // its average cost per item fits in `target` (at least one, at most `max_items`; a few while
+  // its cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
   std::vector<Item> NextTurn(size_t max_items, Duration target, std::string* robot) {
     std::vector<Item> turn;
     auto chosen = robots_.end();
@@ -57,7 +57,7 @@ class FairTileQueue {
       max_items = std::clamp<size_t>(static_cast<size_t>(target / queue.cost_per_item), 1,
                                      max_items);
     } else {
-      max_items = 1;
+      max_items = std::min<size_t>(max_items, kItemsWhileCostUnknown);
     }
     size_t taken = 0;
     while (taken < queue.order.size() && turn.size() < max_items) {
@@ -97,6 +97,8 @@ class FairTileQueue {
   bool empty() const { return size_ == 0; }
 
  private:
+  static constexpr size_t kItemsWhileCostUnknown = 4;
+
   struct Robot {
     std::map<TileId, Item> pending;
     std::vector<TileId> order;  // arrival order of the pending tiles

@@ -175,7 +175,7 @@ class FusionWorker {
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;
-  static constexpr std::chrono::milliseconds kTurnTarget{8};
+  static constexpr std::chrono::milliseconds kTurnTarget{20};
   static constexpr std::chrono::milliseconds kFusionSlice{50};
   static constexpr size_t kMaxHeldRobots = 64;
   std::chrono::steady_clock::time_point last_map_{};
