@@ -227,6 +227,32 @@ class TileWirePeerTest : public ::testing::Test {
                                 [this] { status_writer_->writer()->write(&gamma_); });
   }
 
+  // Writes `tile` (stamped anew each time, renewing gamma's status too) until the server
+  // publishes the fused tile at its key with obstacles on it.
+  bool WriteUntilFused(transport::WriterEndpoint& writer,
+                       fleetmap_msgs::msg::dds_::VectorTile_& tile) {
+    auto wake_up = std::make_shared<transport::WakeUp>();
+    auto fused =
+        transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
+    EXPECT_TRUE(fused.ok()) << fused.status();
+    if (!fused.ok()) return false;
+    const TileId key{tile.tile_x(), tile.tile_y()};
+    const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+    while (std::chrono::steady_clock::now() < deadline) {
+      tile.stamp(transport::ToIdl(Clock::now()));
+      writer.writer()->write(&tile);
+      status_writer_->writer()->write(&gamma_);
+      wake_up->WaitFor(std::chrono::milliseconds(200));
+      for (const transport::TileEvent& event : (*fused)->Drain()) {
+        if (event.kind == transport::TileEvent::Kind::kTile && event.tile.tile == key &&
+            !event.tile.map.obstacles.empty()) {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   // Stops the server (after the test's own writers are gone) and returns what it printed.
   std::string StopServer() {
     status_writer_.reset();
@@ -302,23 +328,9 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
                                                                    << server_->Output();
   }
   // A sound tile from the same peer is fused as usual: it comes back on the fused tiles.
-  auto wake_up = std::make_shared<transport::WakeUp>();
-  auto fused =
-      transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
-  ASSERT_TRUE(fused.ok()) << fused.status();
   auto good = Tile("gamma");
   good.tile_y(7);
-  bool good_fused = false;
-  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
-  while (!good_fused && std::chrono::steady_clock::now() < deadline) {
-    tile_writer->writer()->write(&good);
-    wake_up->WaitFor(std::chrono::milliseconds(200));
-    for (const transport::TileEvent& event : (*fused)->Drain()) {
-      good_fused |= event.kind == transport::TileEvent::Kind::kTile &&
-                    event.tile.tile == TileId{0, 7} && !event.tile.map.obstacles.empty();
-    }
-  }
-  EXPECT_TRUE(good_fused) << server_->Output();
+  EXPECT_TRUE(WriteUntilFused(*tile_writer, good)) << server_->Output();
 
   tile_writer.reset();
   const std::string output = StopServer();
@@ -384,23 +396,7 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
   // A far but honest place (1000 km out) is fused like any other.
   auto far = Tile("gamma");
   far.tile_x(100000);
-  auto wake_up = std::make_shared<transport::WakeUp>();
-  auto fused =
-      transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
-  ASSERT_TRUE(fused.ok()) << fused.status();
-  bool far_fused = false;
-  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
-  while (!far_fused && std::chrono::steady_clock::now() < deadline) {
-    far.stamp(transport::ToIdl(Clock::now()));
-    tile_writer->writer()->write(&far);
-    status_writer_->writer()->write(&gamma_);
-    wake_up->WaitFor(std::chrono::milliseconds(200));
-    for (const transport::TileEvent& event : (*fused)->Drain()) {
-      far_fused |= event.kind == transport::TileEvent::Kind::kTile &&
-                   event.tile.tile == TileId{100000, 0} && !event.tile.map.obstacles.empty();
-    }
-  }
-  EXPECT_TRUE(far_fused) << server_->Output();
+  EXPECT_TRUE(WriteUntilFused(*tile_writer, far)) << server_->Output();
   // The fused grid cannot span 1000 km: it shows the larger group and says what it left out.
   EXPECT_TRUE(server_->WaitForOutput("leaves 1 out", kDeadline)) << server_->Output();
   tile_writer.reset();
@@ -413,8 +409,8 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
 TEST_F(TileWirePeerTest, APeerCannotDisposeOrOverwriteAnotherAgentsRobot) {
   auto forged = StatusOf("alpha");
   forged.map_topic("rt/fleetmap/robot_tiles");
-  EXPECT_TRUE(SendUntilServerSays(*status_writer_, forged,
-                                  "claims robot id alpha, which participant"))
+  EXPECT_TRUE(
+      SendUntilServerSays(*status_writer_, forged, "claims robot id alpha, which participant"))
       << server_->Output();
   // Its disposal of alpha's status instance is refused: alpha stays active.
   status_writer_->writer()->dispose(&forged, dds::HANDLE_NIL);
@@ -439,9 +435,9 @@ TEST_F(TileWirePeerTest, APeerCannotDisposeOrOverwriteAnotherAgentsRobot) {
       << server_->Output();
   tile_writer.reset();
   // An agent started with the id this peer holds (gamma) is told and exits.
-  process::Subprocess squatted({kAgent, "--robot-id", "gamma", "--map", kMap},
-                               {{"FLEETMAP_DOMAIN", std::to_string(domain_)},
-                                {"FLEETMAP_LOCALHOST_ONLY", "1"}});
+  process::Subprocess squatted(
+      {kAgent, "--robot-id", "gamma", "--map", kMap},
+      {{"FLEETMAP_DOMAIN", std::to_string(domain_)}, {"FLEETMAP_LOCALHOST_ONLY", "1"}});
   status_writer_->writer()->write(&gamma_);
   EXPECT_EQ(squatted.Wait(kDeadline), 2) << squatted.Output();
   EXPECT_NE(squatted.Output().find("robot id gamma is already taken"), std::string::npos)
