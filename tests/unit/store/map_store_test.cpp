@@ -565,9 +565,10 @@ TEST_F(MapStoreTest, ReportsANewStoreAndACleanClose) {
   EXPECT_EQ(report.Summary(), "schema version 3, quick check ok, closed cleanly");
 }
 
-// Runs store_writer_helper until it reported `batches` commits, then SIGKILLs it.
+// Runs store_writer_helper for `batches` commits, then SIGKILLs it with the store open.
 void KillWriterAfter(const std::string& path, int batches) {
-  fleetmap::process::Subprocess writer({FLEETMAP_STORE_WRITER_HELPER, path});
+  fleetmap::process::Subprocess writer(
+      {FLEETMAP_STORE_WRITER_HELPER, path, std::to_string(batches + 1)});
   ASSERT_TRUE(writer.started());
   ASSERT_TRUE(
       writer.WaitForOutput("committed " + std::to_string(batches) + "\n", std::chrono::seconds(20)))

@@ -1,6 +1,10 @@
-// Child process of the crash test: commits WriterBatch(0), WriterBatch(1), ... to a map store and
-// prints "committed <batch>" after each commit returned, until killed or max_batches is reached.
-// Usage: store_writer_helper <database> [max_batches]
+// Child process of the crash tests: commits WriterBatch(0), WriterBatch(1), ... to a map store and
+// prints "committed <batch>" after each commit returned, until killed. With `batches`, it stops
+// after that many and waits to be killed: the write-ahead log then holds exactly those commits,
+// however slowly the test gets round to killing it (no checkpoint can have reset it meanwhile).
+// Usage: store_writer_helper <database> [batches]
+
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +15,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: %s <database> [max_batches]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s <database> [batches]\n", argv[0]);
     return 2;
   }
   const int max_batches = argc == 3 ? std::atoi(argv[2]) : 100000;
@@ -30,5 +34,5 @@ int main(int argc, char** argv) {
     std::printf("committed %d\n", batch);
     std::fflush(stdout);
   }
-  return 0;
+  for (;;) pause();  // until killed, the store left open
 }
