@@ -4,35 +4,35 @@
 
 namespace fleetmap::store {
 
-Status ValidateTileRecord(const TileRecord& record) {
+namespace {
+
+// Refuses a row whose owner is not a robot name or whose stamp is negative; `where` names it.
+Status CheckOwnerAndStamp(const std::string& owner, int64_t stamp_ns, const std::string& where) {
   std::ostringstream what;
-  if (!IsValidRobotName(record.owner)) {
-    what << "owner '" << record.owner
+  if (!IsValidRobotName(owner)) {
+    what << "owner '" << owner
          << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
-  } else if (record.stamp_ns < 0) {
-    what << "stamp_ns " << record.stamp_ns << " is negative";
+  } else if (stamp_ns < 0) {
+    what << "stamp_ns " << stamp_ns << " is negative";
   } else {
     return Status::Ok();
   }
+  return InvalidArgumentError(where + ": " + what.str());
+}
+
+}  // namespace
+
+Status ValidateTileRecord(const TileRecord& record) {
   std::ostringstream where;
   where << "tile record (owner '" << record.owner << "', " << record.tile << ", revision "
         << record.revision << ")";
-  return InvalidArgumentError(where.str() + ": " + what.str());
+  return CheckOwnerAndStamp(record.owner, record.stamp_ns, where.str());
 }
 
 Status ValidateEvidenceRecord(const EvidenceRecord& record) {
-  std::ostringstream what;
-  if (!IsValidRobotName(record.owner)) {
-    what << "owner '" << record.owner
-         << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
-  } else if (record.stamp_ns < 0) {
-    what << "stamp_ns " << record.stamp_ns << " is negative";
-  } else {
-    return Status::Ok();
-  }
   std::ostringstream where;
   where << "evidence record (owner '" << record.owner << "', " << record.tile << ")";
-  return InvalidArgumentError(where.str() + ": " + what.str());
+  return CheckOwnerAndStamp(record.owner, record.stamp_ns, where.str());
 }
 
 Status ValidateRobotRecord(const RobotRecord& record) {
