@@ -33,8 +33,9 @@ std::string ThresholdName(double p_th) {
 }
 
 // Writes everything for one threshold into `dir`; returns the summary line.
-StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::Entities& entities,
-                                     double p_th, const std::string& dir, std::ostream& err) {
+StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map,
+                                     const scene::Entities& entities, double p_th,
+                                     const std::string& dir, std::ostream& err) {
   ex::ExtrapolationOptions options;
   options.p_th = p_th;
   FLEETMAP_ASSIGN_OR_RETURN(const ex::ExtrapolationResult result,
@@ -49,8 +50,8 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map, const ex::E
   std::vector<std::string> grid_files(result.graph.submaps.size());
   size_t observed_submaps = 0;
   for (size_t i = 0; i < result.graph.submaps.size(); ++i) {
-    const ex::Submap& s = result.graph.submaps[i];
-    if (s.kind == ex::SubmapKind::kObserved) {
+    const scene::Submap& s = result.graph.submaps[i];
+    if (s.kind == scene::SubmapKind::kObserved) {
       ++observed_submaps;  // a part of the local map: not written again
       continue;
     }
@@ -122,7 +123,7 @@ int RunExtrapolate(const ExtrapolateCommandOptions& options, std::ostream& out, 
   for (const std::string& warning : parsed->warnings) {
     err << prefix << "warning: " << warning << "\n";
   }
-  ex::Entities entities = parsed->entities;
+  scene::Entities entities = parsed->entities;
 
   if (!options.cloud_ply.empty()) {
     StatusOr<ex::PointCloud> cloud = ex::ReadPly(options.cloud_ply, options.max_points);

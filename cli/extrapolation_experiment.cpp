@@ -36,7 +36,7 @@ ex::PointCloud ToCloud(const std::vector<Eigen::Vector3d>& points) {
   return ex::PointCloud(points.begin(), points.end());
 }
 
-bool SameDoor(const ex::DoorEntity& detected, const sim::SceneDoor& truth) {
+bool SameDoor(const scene::DoorEntity& detected, const sim::SceneDoor& truth) {
   return (detected.center() - truth.center()).norm() < kDoorMatch &&
          std::abs(detected.width() - truth.width()) < kDoorWidthMatch;
 }
@@ -80,7 +80,7 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
 
   FLEETMAP_ASSIGN_OR_RETURN(const sim::DepthSensor camera, sim::DepthSensor::Create({}));
   const std::vector<sim::Box3> boxes = sim::SceneBoxes(scene);
-  ex::Entities entities;
+  scene::Entities entities;
   ex::PointCloud all_views;  // for example_dir
   auto capture = [&](const sim::CameraPose& pose) {
     ex::PointCloud cloud = ToCloud(camera.Capture(boxes, pose, &random));
@@ -89,8 +89,8 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
   };
 
   // Doors: one view of each closed door whose leaf the robot mapped.
-  auto add_door = [&](const ex::DoorEntity& door) {
-    for (const ex::DoorEntity& known : entities.doors) {
+  auto add_door = [&](const scene::DoorEntity& door) {
+    for (const scene::DoorEntity& known : entities.doors) {
       if ((known.center() - door.center()).norm() < kDoorMatch) return;
     }
     entities.doors.push_back(door);
@@ -168,7 +168,7 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     const std::optional<sim::ObservedWalk> observed =
         sim::ObserveWalk(walk, as_set, robot, options.person_view_range, 0.03, &random);
     if (!observed) continue;
-    ex::PersonTrack track;
+    scene::PersonTrack track;
     track.id = observed->id;
     track.entered_view = observed->entered_view;
     track.left_view = observed->left_view;
@@ -199,10 +199,10 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
     FLEETMAP_ASSIGN_OR_RETURN(ex::ExtrapolationResult predicted,
                               ex::Extrapolate(local, entities, extrapolation));
     ThresholdScores scores;
-    for (const ex::Submap& s : predicted.graph.submaps) {
-      if (s.kind == ex::SubmapKind::kPredictedStairs)
+    for (const scene::Submap& s : predicted.graph.submaps) {
+      if (s.kind == scene::SubmapKind::kPredictedStairs)
         scores.stairs += ex::CheckPrediction(s, upper);
-      if (s.kind == ex::SubmapKind::kPredictedDoor) {
+      if (s.kind == scene::SubmapKind::kPredictedDoor) {
         scores.doors += ex::CheckPredictedGrid(ex::SubmapGridInMapFrame(s), truth, &local);
       }
     }

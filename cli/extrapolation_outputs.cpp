@@ -11,8 +11,8 @@
 namespace fleetmap::cli {
 namespace {
 
-using extrapolation::Submap;
-using extrapolation::SubmapKind;
+using scene::Submap;
+using scene::SubmapKind;
 
 const char* ClassOf(SubmapKind kind) {
   switch (kind) {
@@ -74,7 +74,7 @@ nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& re
     if (s.kind != SubmapKind::kObserved) {
       add(FreePolygons(s.navigable, s.map_from_submap.ToTransform()),
           {{"submap", s.id},
-           {"kind", extrapolation::SubmapKindName(s.kind)},
+           {"kind", scene::SubmapKindName(s.kind)},
            {"class", ClassOf(s.kind)},
            {"entities", s.entity_ids},
            {"elevation", s.elevation}});
@@ -106,8 +106,8 @@ nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& re
 }
 
 Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,
-                       const extrapolation::FloorGrids& floor,
-                       const extrapolation::Entities& entities, const std::string& path) {
+                       const extrapolation::FloorGrids& floor, const scene::Entities& entities,
+                       const std::string& path) {
   const grid::OccupancyGrid& g = floor.extrapolated;
   const int scale = std::clamp(1600 / std::max(1, std::max(g.width(), g.height())), 1, 4);
   cv::Mat image(g.height() * scale, g.width() * scale, CV_8UC3);
@@ -161,13 +161,13 @@ Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,
       }
     }
   }
-  for (const extrapolation::PersonTrack& person : entities.people) {
+  for (const scene::PersonTrack& person : entities.people) {
     for (size_t i = 1; i < person.points.size(); ++i) {
       cv::line(image, pixel(person.points[i - 1].position), pixel(person.points[i].position),
                cv::Scalar(200, 80, 0), std::max(1, scale));
     }
   }
-  for (const extrapolation::DoorEntity& door : entities.doors) {
+  for (const scene::DoorEntity& door : entities.doors) {
     cv::line(image, pixel(door.hinge), pixel(door.latch), cv::Scalar(160, 40, 160),
              std::max(2, scale + 1));
     cv::circle(image, pixel(door.hinge), 2 * scale + 1, cv::Scalar(160, 40, 160), -1);

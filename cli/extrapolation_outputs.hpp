@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "common/core/status.hpp"
-#include "common/extrapolation/entities.hpp"
 #include "common/extrapolation/extrapolator.hpp"
 #include "common/extrapolation/predicted_free_grid.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::cli {
 
@@ -25,7 +25,7 @@ nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& re
 // people's conditionally free space (orange), the tracks (blue), the doors (purple, hinge dot) and
 // the stairs' predicted landing on the floor above (red outline). Upright (north up).
 Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,
-                       const extrapolation::FloorGrids& floor,
-                       const extrapolation::Entities& entities, const std::string& path);
+                       const extrapolation::FloorGrids& floor, const scene::Entities& entities,
+                       const std::string& path);
 
 }  // namespace fleetmap::cli

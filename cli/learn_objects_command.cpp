@@ -23,7 +23,7 @@ namespace {
 namespace ol = object_learning;
 
 // Occupied dark, free white, as maps are drawn; image row 0 is the patch's top (highest y).
-cv::Mat PatchImage(const ol::Patch& patch) {
+cv::Mat PatchImage(const scene::Patch& patch) {
   cv::Mat image(patch.height, patch.width, CV_8UC1);
   for (int y = 0; y < patch.height; ++y) {
     for (int x = 0; x < patch.width; ++x) {
@@ -38,14 +38,14 @@ cv::Mat PatchImage(const ol::Patch& patch) {
 cv::Mat Montage(const ol::LearnedModel& model) {
   constexpr int kScale = 4;
   constexpr int kGap = 4;
-  const ol::Patch& shape = model.objects.front();
+  const scene::Patch& shape = model.objects.front();
   const int cell_w = shape.width * kScale, cell_h = shape.height * kScale;
   const int columns =
       std::max<int>(model.objects.size(), std::max<size_t>(1, model.templates.size()));
   const int rows = model.templates.empty() ? 1 : 2;
   cv::Mat montage(rows * cell_h + (rows + 1) * kGap, columns * cell_w + (columns + 1) * kGap,
                   CV_8UC1, cv::Scalar(128));
-  auto place = [&](const ol::Patch& patch, int row, int column) {
+  auto place = [&](const scene::Patch& patch, int row, int column) {
     cv::Mat big;
     cv::resize(PatchImage(patch), big, cv::Size(cell_w, cell_h), 0, 0, cv::INTER_NEAREST);
     big.copyTo(montage(

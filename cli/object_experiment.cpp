@@ -161,7 +161,7 @@ ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts
       const ol::EmProblem train = WithoutMap(problem, static_cast<int>(t));
       if (train.snapshots.size() < static_cast<size_t>(n)) continue;
       const ol::EmResult model = ol::BestOfRestarts(train, n, m, run_options);
-      std::vector<ol::Patch> held_out;
+      std::vector<scene::Patch> held_out;
       for (int s : problem.maps[t]) held_out.push_back(problem.snapshots[s]);
       c.test_log_likelihood += ol::HeldOutLogLikelihood(held_out, model.objects, options.em);
     }

@@ -12,7 +12,7 @@ namespace {
 
 // Every entity of the file as one message each, by id.
 std::map<std::string, transport::EntityMessage> Messages(const RobotId& robot,
-                                                         const extrapolation::Entities& entities) {
+                                                         const scene::Entities& entities) {
   std::map<std::string, transport::EntityMessage> messages;
   const auto add = [&](const auto& entity) {
     transport::EntityMessage message;

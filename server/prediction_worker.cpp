@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "common/extrapolation/prediction_check.hpp"
-#include "server/entity_frames.hpp"
+#include "common/scene/entity_frames.hpp"
 
 namespace fleetmap::server {
 namespace {
@@ -15,17 +15,17 @@ std::string KeyOf(const RobotId& robot, const std::string& entity_id) {
 }
 
 bool PredictsASubmap(const transport::EntityMessage& entity) {
-  return !std::holds_alternative<extrapolation::PersonTrack>(entity.entity);
+  return !std::holds_alternative<scene::PersonTrack>(entity.entity);
 }
 
-extrapolation::Entities Single(const transport::EntityMessage& message) {
-  extrapolation::Entities entities;
+scene::Entities Single(const transport::EntityMessage& message) {
+  scene::Entities entities;
   std::visit(
       [&entities](const auto& entity) {
         using T = std::decay_t<decltype(entity)>;
-        if constexpr (std::is_same_v<T, extrapolation::DoorEntity>) {
+        if constexpr (std::is_same_v<T, scene::DoorEntity>) {
           entities.doors.push_back(entity);
-        } else if constexpr (std::is_same_v<T, extrapolation::StairsEntity>) {
+        } else if constexpr (std::is_same_v<T, scene::StairsEntity>) {
           entities.stairs.push_back(entity);
         } else {
           entities.people.push_back(entity);
@@ -36,9 +36,8 @@ extrapolation::Entities Single(const transport::EntityMessage& message) {
 }
 
 // The sub-map with only the free cells that `known` did not already show free or occupied.
-extrapolation::Submap AddedCells(const extrapolation::Submap& submap,
-                                 const grid::OccupancyGrid& known) {
-  extrapolation::Submap added = submap;
+scene::Submap AddedCells(const scene::Submap& submap, const grid::OccupancyGrid& known) {
+  scene::Submap added = submap;
   const Transform2 map_from_submap = submap.map_from_submap.ToTransform();
   grid::OccupancyGrid& cells = added.navigable;
   for (int y = 0; y < cells.height(); ++y) {
@@ -103,7 +102,7 @@ void PredictionWorker::RemoveEntity(const RobotId& robot, const std::string& ent
   Input input;
   input.kind = Input::Kind::kRemoved;
   input.entity.robot = robot;
-  extrapolation::DoorEntity key_only;
+  scene::DoorEntity key_only;
   key_only.id = entity_id;
   input.entity.entity = key_only;
   inputs_.Push(std::move(input));
@@ -185,10 +184,9 @@ void PredictionWorker::Predict(const std::string& key, const transport::EntityMe
   for (const std::string& warning : result->warnings) {
     spdlog::info("server: extrapolation of {}: {}", key, warning);
   }
-  const auto predicted = std::find_if(result->graph.submaps.begin(), result->graph.submaps.end(),
-                                      [](const extrapolation::Submap& submap) {
-                                        return submap.kind != extrapolation::SubmapKind::kObserved;
-                                      });
+  const auto predicted = std::find_if(
+      result->graph.submaps.begin(), result->graph.submaps.end(),
+      [](const scene::Submap& submap) { return submap.kind != scene::SubmapKind::kObserved; });
   if (predicted == result->graph.submaps.end()) {
     Withdraw(key);  // e.g. the door is open now: nothing behind it to predict
     return;
@@ -202,7 +200,7 @@ void PredictionWorker::Predict(const std::string& key, const transport::EntityMe
   message.submap.id = id->second;
   message.submap.place = id->second;  // behind a door or up the stairs: a place of its own
   message.submap.confidence.clear();  // the wire carries the thresholded cells only
-  message.state = transport::SubmapState::kPredicted;
+  message.state = scene::SubmapState::kPredicted;
   message.source_robot = entity.robot.value;
   message.source_entity = entity.entity_id();
   message.stamp = Clock::now();
@@ -226,21 +224,21 @@ void PredictionWorker::UpdatePlaces() {
   if (entities_.empty()) {
     // Nothing splits the map and nobody walks in it: the one place would be rt/fleetmap/map
     // again, so none is published (and those published before are withdrawn).
-    places_ = extrapolation::SubmapGraph();
+    places_ = scene::SubmapGraph();
     place_of_.clear();
     PublishPlaces();
     return;
   }
   // Every entity at once, under its server key (two robots may both have a "door_1").
-  extrapolation::Entities all;
+  scene::Entities all;
   for (const auto& [key, message] : entities_) {
     std::visit(
         [&all, &key](auto entity) {
           entity.id = key;
           using T = std::decay_t<decltype(entity)>;
-          if constexpr (std::is_same_v<T, extrapolation::DoorEntity>) {
+          if constexpr (std::is_same_v<T, scene::DoorEntity>) {
             all.doors.push_back(std::move(entity));
-          } else if constexpr (std::is_same_v<T, extrapolation::StairsEntity>) {
+          } else if constexpr (std::is_same_v<T, scene::StairsEntity>) {
             all.stairs.push_back(std::move(entity));
           } else {
             all.people.push_back(std::move(entity));
@@ -254,12 +252,12 @@ void PredictionWorker::UpdatePlaces() {
     spdlog::warn("server: cannot split the fused map into places: {}", result.status().message());
     return;
   }
-  places_ = extrapolation::SubmapGraph();
+  places_ = scene::SubmapGraph();
   place_of_.clear();
-  const extrapolation::SubmapGraph& graph = result->graph;
-  for (const extrapolation::Submap& submap : graph.submaps) {
-    if (submap.kind != extrapolation::SubmapKind::kObserved) continue;
-    extrapolation::Submap place = submap;
+  const scene::SubmapGraph& graph = result->graph;
+  for (const scene::Submap& submap : graph.submaps) {
+    if (submap.kind != scene::SubmapKind::kObserved) continue;
+    scene::Submap place = submap;
     // Cells free only because people walk there are marked, not plain free.
     grid::OccupancyGrid& cells = place.navigable;
     for (int y = 0; y < cells.height(); ++y) {
@@ -274,27 +272,26 @@ void PredictionWorker::UpdatePlaces() {
     }
     places_.submaps.push_back(std::move(place));
   }
-  for (const extrapolation::SubmapEdge& edge : graph.edges) {
-    const extrapolation::Submap* from = graph.Find(edge.from);
-    const extrapolation::Submap* to = graph.Find(edge.to);
+  for (const scene::SubmapEdge& edge : graph.edges) {
+    const scene::Submap* from = graph.Find(edge.from);
+    const scene::Submap* to = graph.Find(edge.to);
     if (from == nullptr || to == nullptr) continue;
-    if (to->kind == extrapolation::SubmapKind::kObserved &&
-        from->kind == extrapolation::SubmapKind::kObserved) {
+    if (to->kind == scene::SubmapKind::kObserved && from->kind == scene::SubmapKind::kObserved) {
       places_.edges.push_back(edge);
-    } else if (from->kind == extrapolation::SubmapKind::kObserved) {
+    } else if (from->kind == scene::SubmapKind::kObserved) {
       place_of_[edge.entity_id] = edge.from;  // the place this door or stairs opens from
     }
   }
   // Each prediction joins the place its entity opens from now (the map may have grown).
   for (auto& [key, prediction] : predictions_) {
     const auto place = place_of_.find(key);
-    extrapolation::SubmapEdge to_place;
+    scene::SubmapEdge to_place;
     to_place.from = prediction.message.submap.id;
     to_place.to = place != place_of_.end() ? place->second : 0;
-    const extrapolation::Submap* observed = places_.Find(to_place.to);
+    const scene::Submap* observed = places_.Find(to_place.to);
     to_place.from_T_to =
-        extrapolation::RelativePose(prediction.message.submap.map_from_submap,
-                                    observed != nullptr ? observed->map_from_submap : Pose2{});
+        scene::RelativePose(prediction.message.submap.map_from_submap,
+                            observed != nullptr ? observed->map_from_submap : Pose2{});
     to_place.entity_id = prediction.message.source_entity;
     if (prediction.message.edges.size() == 1 && prediction.message.edges[0].to == to_place.to) {
       continue;
@@ -326,11 +323,10 @@ void PredictionWorker::CheckPredictions() {
       prediction.judged = true;
       changed = true;
       const bool right = check.precision >= options_.confirm_precision;
-      message.state =
-          right ? transport::SubmapState::kConfirmed : transport::SubmapState::kRetracted;
+      message.state = right ? scene::SubmapState::kConfirmed : scene::SubmapState::kRetracted;
       spdlog::info("server: prediction {} from {} {}: precision {:.3f} over {} observed cells",
-                   message.submap.id, key, transport::SubmapStateName(message.state),
-                   check.precision, observed);
+                   message.submap.id, key, scene::SubmapStateName(message.state), check.precision,
+                   observed);
       std::lock_guard lock(stats_mutex_);
       ++(right ? stats_.confirmed : stats_.retracted);
     }
@@ -343,15 +339,15 @@ void PredictionWorker::CheckPredictions() {
 
 void PredictionWorker::PublishPlaces() {
   std::vector<transport::SubmapMessage> places;
-  for (const extrapolation::Submap& place : places_.submaps) {
+  for (const scene::Submap& place : places_.submaps) {
     transport::SubmapMessage message;
     message.submap = place;
     message.submap.confidence.clear();
-    message.state = transport::SubmapState::kObserved;
+    message.state = scene::SubmapState::kObserved;
     message.stamp = Clock::now();
-    for (const extrapolation::SubmapEdge& edge : places_.edges) {
+    for (const scene::SubmapEdge& edge : places_.edges) {
       if (edge.from == place.id || edge.to == place.id) {
-        extrapolation::SubmapEdge out = edge;
+        scene::SubmapEdge out = edge;
         if (edge.to == place.id) std::swap(out.from, out.to);  // edges start at this node
         out.from_T_to = Pose2{};                               // places share the fleet frame
         message.edges.push_back(out);
@@ -360,11 +356,10 @@ void PredictionWorker::PublishPlaces() {
     for (const auto& [key, prediction] : predictions_) {
       const transport::SubmapMessage& predicted = prediction.message;
       if (predicted.edges.empty() || predicted.edges[0].to != place.id) continue;
-      extrapolation::SubmapEdge edge;
+      scene::SubmapEdge edge;
       edge.from = place.id;
       edge.to = predicted.submap.id;
-      edge.from_T_to =
-          extrapolation::RelativePose(place.map_from_submap, predicted.submap.map_from_submap);
+      edge.from_T_to = scene::RelativePose(place.map_from_submap, predicted.submap.map_from_submap);
       edge.entity_id = predicted.source_entity;
       message.edges.push_back(edge);
     }
@@ -372,16 +367,15 @@ void PredictionWorker::PublishPlaces() {
   }
   // Only what changed goes out again; places the map no longer has are withdrawn.
   for (size_t k = 0; k < places.size(); ++k) {
-    const bool same =
-        k < published_places_.size() &&
-        published_places_[k].submap.navigable == places[k].submap.navigable &&
-        published_places_[k].submap.entity_ids == places[k].submap.entity_ids &&
-        published_places_[k].edges.size() == places[k].edges.size() &&
-        std::equal(places[k].edges.begin(), places[k].edges.end(),
-                   published_places_[k].edges.begin(),
-                   [](const extrapolation::SubmapEdge& a, const extrapolation::SubmapEdge& b) {
-                     return a.to == b.to && a.entity_id == b.entity_id;
-                   });
+    const bool same = k < published_places_.size() &&
+                      published_places_[k].submap.navigable == places[k].submap.navigable &&
+                      published_places_[k].submap.entity_ids == places[k].submap.entity_ids &&
+                      published_places_[k].edges.size() == places[k].edges.size() &&
+                      std::equal(places[k].edges.begin(), places[k].edges.end(),
+                                 published_places_[k].edges.begin(),
+                                 [](const scene::SubmapEdge& a, const scene::SubmapEdge& b) {
+                                   return a.to == b.to && a.entity_id == b.entity_id;
+                                 });
     if (!same) Publish(places[k]);
   }
   for (size_t k = places.size(); k < published_places_.size(); ++k) {

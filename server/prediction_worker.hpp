@@ -88,7 +88,7 @@ class PredictionWorker {
   struct Prediction {
     transport::SubmapMessage message;
     // What the prediction added: its free cells that were unknown when it was made.
-    extrapolation::Submap added;
+    scene::Submap added;
     bool judged = false;
   };
 
@@ -118,7 +118,7 @@ class PredictionWorker {
   std::map<std::string, transport::EntityMessage> entities_;  // by "robot/entity"
   std::map<std::string, Prediction> predictions_;             // by "robot/entity"
   std::vector<std::string> unpredicted_;                      // doors and stairs waiting for a map
-  extrapolation::SubmapGraph places_;         // observed places and their edges, fleet frame
+  scene::SubmapGraph places_;                 // observed places and their edges, fleet frame
   std::map<std::string, uint32_t> place_of_;  // the place each door or stairs opens from
   std::vector<transport::SubmapMessage> published_places_;
   uint32_t next_submap_id_ = kFirstPredictedSubmap;

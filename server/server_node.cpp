@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "common/scene/entity_frames.hpp"
 #include "common/transport/topics.hpp"
-#include "server/entity_frames.hpp"
 
 namespace fleetmap::server {
 

@@ -17,8 +17,8 @@
 #include <optional>
 #include <vector>
 
-#include "common/extrapolation/entities.hpp"
 #include "common/extrapolation/point_cloud.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -57,7 +57,7 @@ struct DoorDetectorOptions {
 };
 
 struct DetectedDoor {
-  DoorEntity entity;
+  scene::DoorEntity entity;
   double height = 0;  // m, top of the leaf
   int handle_points_latch = 0;
   int handle_points_hinge = 0;

@@ -84,9 +84,9 @@ std::string Metres(double value) {
   return buffer;
 }
 
-std::optional<DoorEntity> ParseDoor(const json& entry, EntryReader& reader,
-                                    std::vector<std::string>* notes) {
-  DoorEntity door;
+std::optional<scene::DoorEntity> ParseDoor(const json& entry, EntryReader& reader,
+                                           std::vector<std::string>* notes) {
+  scene::DoorEntity door;
   door.hinge = reader.Vector("hinge");
   door.latch = reader.Vector("latch");
   // A zero opening direction asks the extrapolator to orient the door from the map.
@@ -116,8 +116,8 @@ std::optional<DoorEntity> ParseDoor(const json& entry, EntryReader& reader,
   return door;
 }
 
-std::optional<StairsEntity> ParseStairs(EntryReader& reader) {
-  StairsEntity stairs;
+std::optional<scene::StairsEntity> ParseStairs(EntryReader& reader) {
+  scene::StairsEntity stairs;
   stairs.position = reader.Vector("position");
   stairs.ascending = reader.Vector("ascending");
   stairs.step_width = reader.Number("step_width");
@@ -138,9 +138,9 @@ std::optional<StairsEntity> ParseStairs(EntryReader& reader) {
   return stairs;
 }
 
-std::optional<PersonTrack> ParsePerson(const json& entry, EntryReader& reader,
-                                       std::vector<std::string>* notes) {
-  PersonTrack track;
+std::optional<scene::PersonTrack> ParsePerson(const json& entry, EntryReader& reader,
+                                              std::vector<std::string>* notes) {
+  scene::PersonTrack track;
   track.dominant_side = static_cast<int>(reader.Number("dominant_side", 0.0));
   track.left_view = reader.Bool("left_view", false);
   track.entered_view = reader.Bool("entered_view", false);
@@ -162,7 +162,7 @@ std::optional<PersonTrack> ParsePerson(const json& entry, EntryReader& reader,
       continue;
     }
     EntryReader point_reader(point);
-    TrackPoint p;
+    scene::TrackPoint p;
     p.stamp = point_reader.Number("stamp");
     p.position = point_reader.Vector("position");
     p.heading = point_reader.Number("heading", 0.0);
@@ -240,17 +240,17 @@ StatusOr<ParsedEntities> ParseEntitiesJson(std::string_view text, std::string_vi
     std::vector<std::string> notes;
     bool known = true;
     if (cls == "door") {
-      if (std::optional<DoorEntity> door = ParseDoor(entry, reader, &notes)) {
+      if (std::optional<scene::DoorEntity> door = ParseDoor(entry, reader, &notes)) {
         door->id = id;
         parsed.entities.doors.push_back(*door);
       }
     } else if (cls == "stairs") {
-      if (std::optional<StairsEntity> stairs = ParseStairs(reader)) {
+      if (std::optional<scene::StairsEntity> stairs = ParseStairs(reader)) {
         stairs->id = id;
         parsed.entities.stairs.push_back(*stairs);
       }
     } else if (cls == "person") {
-      if (std::optional<PersonTrack> track = ParsePerson(entry, reader, &notes)) {
+      if (std::optional<scene::PersonTrack> track = ParsePerson(entry, reader, &notes)) {
         track->id = id;
         parsed.entities.people.push_back(std::move(*track));
       }
@@ -270,9 +270,9 @@ StatusOr<ParsedEntities> ParseEntitiesJson(std::string_view text, std::string_vi
   return parsed;
 }
 
-std::string EntitiesToJson(const Entities& entities) {
+std::string EntitiesToJson(const scene::Entities& entities) {
   json list = json::array();
-  for (const DoorEntity& door : entities.doors) {
+  for (const scene::DoorEntity& door : entities.doors) {
     list.push_back({{"class", "door"},
                     {"id", door.id},
                     {"hinge", ToJson(door.hinge)},
@@ -280,7 +280,7 @@ std::string EntitiesToJson(const Entities& entities) {
                     {"opening_direction", ToJson(door.opening_direction)},
                     {"open", door.open}});
   }
-  for (const StairsEntity& stairs : entities.stairs) {
+  for (const scene::StairsEntity& stairs : entities.stairs) {
     list.push_back({{"class", "stairs"},
                     {"id", stairs.id},
                     {"position", ToJson(stairs.position)},
@@ -289,9 +289,9 @@ std::string EntitiesToJson(const Entities& entities) {
                     {"next_floor_height", stairs.next_floor_height},
                     {"run_length", stairs.run_length}});
   }
-  for (const PersonTrack& person : entities.people) {
+  for (const scene::PersonTrack& person : entities.people) {
     json track = json::array();
-    for (const TrackPoint& p : person.points) {
+    for (const scene::TrackPoint& p : person.points) {
       track.push_back(
           {{"stamp", p.stamp}, {"position", ToJson(p.position)}, {"heading", p.heading}});
     }

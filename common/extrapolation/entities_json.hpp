@@ -15,12 +15,12 @@
 #include <vector>
 
 #include "common/core/status.hpp"
-#include "common/extrapolation/entities.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::extrapolation {
 
 struct ParsedEntities {
-  Entities entities;
+  scene::Entities entities;
   std::vector<std::string> warnings;  // one per skipped entry or ignored key, naming it
 };
 
@@ -29,6 +29,6 @@ struct ParsedEntities {
 StatusOr<ParsedEntities> ParseEntitiesJson(std::string_view text, std::string_view source_name);
 
 // The JSON text of `entities` (reads back with ParseEntitiesJson to the same entities).
-std::string EntitiesToJson(const Entities& entities);
+std::string EntitiesToJson(const scene::Entities& entities);
 
 }  // namespace fleetmap::extrapolation

@@ -40,9 +40,9 @@ LatticeWindow WindowAround(const grid::OccupancyGrid& map, const Point2& centre,
 
 // An empty predicted sub-map whose grid is `window` of the local lattice, in the frame
 // `map_from_submap`.
-Submap MakePredictedSubmap(const grid::OccupancyGrid& map, const LatticeWindow& window,
-                           const Pose2& map_from_submap) {
-  Submap submap;
+scene::Submap MakePredictedSubmap(const grid::OccupancyGrid& map, const LatticeWindow& window,
+                                  const Pose2& map_from_submap) {
+  scene::Submap submap;
   submap.map_from_submap = map_from_submap;
   Transform2 map_from_window = map.origin().ToTransform();
   map_from_window.translate(Vector2(window.x0 * map.resolution(), window.y0 * map.resolution()));
@@ -96,12 +96,12 @@ class Extrapolator {
   Extrapolator(const grid::OccupancyGrid& map, const ExtrapolationOptions& options)
       : map_(map), options_(options) {}
 
-  ExtrapolationResult Run(const Entities& entities) {
+  ExtrapolationResult Run(const scene::Entities& entities) {
     result_.conditionally_free =
         grid::OccupancyGrid(map_.width(), map_.height(), map_.resolution(), map_.origin());
-    for (const PersonTrack& person : entities.people) AddPerson(person);
-    for (const DoorEntity& door : entities.doors) AddDoor(door);
-    for (const StairsEntity& stairs : entities.stairs) AddStairs(stairs);
+    for (const scene::PersonTrack& person : entities.people) AddPerson(person);
+    for (const scene::DoorEntity& door : entities.doors) AddDoor(door);
+    for (const scene::StairsEntity& stairs : entities.stairs) AddStairs(stairs);
     AddObservedSubmaps();
     for (Separator& separator : separators_) Connect(separator);
     return std::move(result_);
@@ -114,7 +114,7 @@ class Extrapolator {
     std::string id;
     PlaceCut cut;
     Vector2 from_side = Vector2::Zero();  // towards the side it opens from (the robot's)
-    std::optional<Submap> predicted;
+    std::optional<scene::Submap> predicted;
   };
 
   // A person who passed the checks: who they are and where they were last seen.
@@ -170,9 +170,9 @@ class Extrapolator {
         window.width = std::min(map_.width() - 1, b.x1 + 1) - window.x0 + 1;
         window.height = std::min(map_.height() - 1, b.y1 + 1) - window.y0 + 1;
       }
-      Submap submap;
+      scene::Submap submap;
       submap.id = static_cast<uint32_t>(k);
-      submap.kind = SubmapKind::kObserved;
+      submap.kind = scene::SubmapKind::kObserved;
       submap.place = submap.id;
       Transform2 map_from_window = map_.origin().ToTransform();
       map_from_window.translate(
@@ -232,26 +232,26 @@ class Extrapolator {
     if (!separator.predicted) return;
     const Point2 centre = 0.5 * (separator.cut.a + separator.cut.b);
     const int32_t joined = from ? *from : NearestPlace(map_, places_, centre).value_or(0);
-    Submap submap = std::move(*separator.predicted);
+    scene::Submap submap = std::move(*separator.predicted);
     const auto id = static_cast<uint32_t>(result_.graph.submaps.size());
     submap.id = id;
     submap.place = id;  // a predicted sub-map is a place of its own
     submap.entity_ids.push_back(separator.id);
-    const Submap& observed = result_.graph.submaps[joined];
-    result_.graph.edges.push_back({observed.id, id,
-                                   RelativePose(observed.map_from_submap, submap.map_from_submap),
-                                   separator.id});
+    const scene::Submap& observed = result_.graph.submaps[joined];
+    result_.graph.edges.push_back(
+        {observed.id, id, scene::RelativePose(observed.map_from_submap, submap.map_from_submap),
+         separator.id});
     result_.graph.submaps.push_back(std::move(submap));
   }
 
-  void AddPerson(const PersonTrack& person) {
+  void AddPerson(const scene::PersonTrack& person) {
     const std::string name = "person '" + person.id + "'";
     if (person.points.size() < 2) {
       Warn(name + " skipped: a track needs at least two points");
       return;
     }
     for (size_t i = 0; i < person.points.size(); ++i) {
-      const TrackPoint& p = person.points[i];
+      const scene::TrackPoint& p = person.points[i];
       if (!Finite(p.position) || !std::isfinite(p.stamp) || !std::isfinite(p.heading) ||
           (i > 0 && !(p.stamp > person.points[i - 1].stamp))) {
         Warn(name + " skipped: point " + std::to_string(i) +
@@ -313,7 +313,7 @@ class Extrapolator {
     if (claimed == 0) Warn(name + ": no cell of the local map could be claimed free");
   }
 
-  void AddDoor(const DoorEntity& door) {
+  void AddDoor(const scene::DoorEntity& door) {
     const std::string name = "door '" + door.id + "'";
     const double w = door.width();
     if (!Finite(door.hinge) || !Finite(door.latch) || !door.opening_direction.allFinite()) {
@@ -365,8 +365,8 @@ class Extrapolator {
     const double reach =
         std::min(options_.door_max_range, kernel.SupportRadius(options_.p_th) + 0.5 * w);
     const LatticeWindow window = WindowAround(map_, centre, reach, options_.max_submap_cells_side);
-    Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
-    submap.kind = SubmapKind::kPredictedDoor;
+    scene::Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
+    submap.kind = scene::SubmapKind::kPredictedDoor;
 
     std::vector<uint8_t> candidate(submap.confidence.size(), 0);
     for (int y = 0; y < window.height; ++y) {
@@ -409,7 +409,7 @@ class Extrapolator {
     separator.predicted = std::move(submap);
   }
 
-  void AddStairs(const StairsEntity& stairs) {
+  void AddStairs(const scene::StairsEntity& stairs) {
     const std::string name = "stairs '" + stairs.id + "'";
     if (!Finite(stairs.position) || !stairs.ascending.allFinite() ||
         !std::isfinite(stairs.step_width) || !std::isfinite(stairs.next_floor_height) ||
@@ -439,8 +439,8 @@ class Extrapolator {
     const double sigma = options_.stairs_sigma_per_width * stairs.step_width;
     const double radius = sigma * std::sqrt(-2.0 * std::log(options_.p_th));
     const LatticeWindow window = WindowAround(map_, top, radius, options_.max_submap_cells_side);
-    Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
-    submap.kind = SubmapKind::kPredictedStairs;
+    scene::Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
+    submap.kind = scene::SubmapKind::kPredictedStairs;
     submap.elevation = stairs.next_floor_height;
     // The floor above is not this map's: only the half-plane beyond the top edge is predicted
     // (behind it is the stairwell).
@@ -517,7 +517,7 @@ Status ValidateOptions(const ExtrapolationOptions& o) {
 }
 
 StatusOr<ExtrapolationResult> Extrapolate(const grid::OccupancyGrid& local_map,
-                                          const Entities& entities,
+                                          const scene::Entities& entities,
                                           const ExtrapolationOptions& options) {
   FLEETMAP_RETURN_IF_ERROR(ValidateOptions(options));
   if (local_map.empty()) return InvalidArgumentError("the local map is empty");

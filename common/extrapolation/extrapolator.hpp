@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "common/core/status.hpp"
-#include "common/extrapolation/entities.hpp"
-#include "common/extrapolation/submap_graph.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/scene/entities.hpp"
+#include "common/scene/submap_graph.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -87,7 +87,7 @@ struct ExtrapolationOptions {
 Status ValidateOptions(const ExtrapolationOptions& options);
 
 struct ExtrapolationResult {
-  SubmapGraph graph;
+  scene::SubmapGraph graph;
   // The free space people's tracks imply (0 where conditionally free, -1 elsewhere), with the
   // local map's geometry. These cells are also free in the observed sub-maps of the places they
   // fall in (U' = U + U_i).
@@ -100,7 +100,7 @@ struct ExtrapolationResult {
 // Errors (kInvalidArgument): bad options, an empty local map. Unusable entities are skipped with
 // a warning, never an error.
 StatusOr<ExtrapolationResult> Extrapolate(const grid::OccupancyGrid& local_map,
-                                          const Entities& entities,
+                                          const scene::Entities& entities,
                                           const ExtrapolationOptions& options = {});
 
 }  // namespace fleetmap::extrapolation

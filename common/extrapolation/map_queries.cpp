@@ -44,8 +44,8 @@ std::optional<double> DistanceToObstacle(const grid::OccupancyGrid& map, const P
   return std::nullopt;
 }
 
-std::optional<int> InferDominantSide(const grid::OccupancyGrid& map, const PersonTrack& track,
-                                     double search) {
+std::optional<int> InferDominantSide(const grid::OccupancyGrid& map,
+                                     const scene::PersonTrack& track, double search) {
   double left_sum = 0, right_sum = 0;
   int left_n = 0, right_n = 0;
   for (size_t i = 0; i < track.points.size(); ++i) {
@@ -69,7 +69,7 @@ std::optional<int> InferDominantSide(const grid::OccupancyGrid& map, const Perso
 }
 
 std::optional<Vector2> InferOpeningDirection(const grid::OccupancyGrid& map,
-                                             const DoorEntity& door) {
+                                             const scene::DoorEntity& door) {
   const double width = door.width();
   if (!(width > 0.0)) return std::nullopt;
   const Vector2 along = (door.latch - door.hinge) / width;

@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "common/core/types.hpp"
-#include "common/extrapolation/entities.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -29,13 +29,13 @@ std::optional<double> DistanceToObstacle(const grid::OccupancyGrid& map, const P
 // The dominant side of a person (-1 left, +1 right): the side where obstacles are nearer on
 // average along the track, searched up to `search` metres sideways. Nothing if no obstacle is
 // found on either side.
-std::optional<int> InferDominantSide(const grid::OccupancyGrid& map, const PersonTrack& track,
-                                     double search);
+std::optional<int> InferDominantSide(const grid::OccupancyGrid& map,
+                                     const scene::PersonTrack& track, double search);
 
 // The unit normal of a door line pointing to the side the map has seen less of (fewer free
 // cells in a box one door width deep): the side behind a closed door. Nothing if both sides look
 // the same.
 std::optional<Vector2> InferOpeningDirection(const grid::OccupancyGrid& map,
-                                             const DoorEntity& door);
+                                             const scene::DoorEntity& door);
 
 }  // namespace fleetmap::extrapolation

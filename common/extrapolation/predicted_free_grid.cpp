@@ -5,7 +5,7 @@
 
 namespace fleetmap::extrapolation {
 
-grid::OccupancyGrid SubmapGridInMapFrame(const Submap& submap) {
+grid::OccupancyGrid SubmapGridInMapFrame(const scene::Submap& submap) {
   const grid::OccupancyGrid& g = submap.navigable;
   grid::OccupancyGrid out(
       g.width(), g.height(), g.resolution(),
@@ -20,8 +20,8 @@ FloorGrids ComposeFloorGrids(const grid::OccupancyGrid& local_map,
   const Transform2 grid_from_map = local_map.origin().ToTransform().inverse();
   int x0 = 0, y0 = 0, x1 = local_map.width(), y1 = local_map.height();
   std::vector<grid::OccupancyGrid> doors;
-  for (const Submap& s : result.graph.submaps) {
-    if (s.kind != SubmapKind::kPredictedDoor) continue;
+  for (const scene::Submap& s : result.graph.submaps) {
+    if (s.kind != scene::SubmapKind::kPredictedDoor) continue;
     doors.push_back(SubmapGridInMapFrame(s));
     const Point2 corner = grid_from_map * doors.back().CellCenter(0, 0) / r;
     const int cx = static_cast<int>(std::floor(corner.x()));

@@ -7,13 +7,13 @@
 // Thread-safety: stateless.
 
 #include "common/extrapolation/extrapolator.hpp"
-#include "common/extrapolation/submap_graph.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/scene/submap_graph.hpp"
 
 namespace fleetmap::extrapolation {
 
 // `submap.navigable` with its origin expressed in the map frame.
-grid::OccupancyGrid SubmapGridInMapFrame(const Submap& submap);
+grid::OccupancyGrid SubmapGridInMapFrame(const scene::Submap& submap);
 
 struct FloorGrids {
   // The local map's lattice, grown to cover the door sub-maps: 0 where the extrapolation predicts

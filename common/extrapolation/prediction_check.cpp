@@ -45,7 +45,8 @@ PredictionCheck& PredictionCheck::operator+=(const PredictionCheck& other) {
   return *this;
 }
 
-PredictionCheck CheckPrediction(const Submap& predicted, const grid::OccupancyGrid& observed) {
+PredictionCheck CheckPrediction(const scene::Submap& predicted,
+                                const grid::OccupancyGrid& observed) {
   PredictionCheck check;
   const Transform2 map_from_submap = predicted.map_from_submap.ToTransform();
   const grid::OccupancyGrid& grid = predicted.navigable;

@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#include "common/extrapolation/submap_graph.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/scene/submap_graph.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -23,7 +23,8 @@ struct PredictionCheck {
 };
 
 // `observed` is in the map frame with any geometry.
-PredictionCheck CheckPrediction(const Submap& predicted, const grid::OccupancyGrid& observed);
+PredictionCheck CheckPrediction(const scene::Submap& predicted,
+                                const grid::OccupancyGrid& observed);
 
 // The same for a grid in the map frame (e.g. ExtrapolationResult::conditionally_free). Cells that
 // `already_known` (if given, any geometry) shows free or occupied are not counted: only what the

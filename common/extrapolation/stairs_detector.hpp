@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "common/extrapolation/entities.hpp"
 #include "common/extrapolation/point_cloud.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -44,7 +44,7 @@ struct StairsDetectorOptions {
 };
 
 struct DetectedStairs {
-  StairsEntity entity;
+  scene::StairsEntity entity;
   double area = 0;  // m^2 of the patch
   int inliers = 0;
 };

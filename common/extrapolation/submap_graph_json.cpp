@@ -11,15 +11,15 @@ nlohmann::json PoseJson(const Pose2& pose) {
 
 }  // namespace
 
-nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
+nlohmann::json SubmapGraphToJson(const scene::SubmapGraph& graph,
                                  const std::vector<std::string>& grid_files) {
   nlohmann::json submaps = nlohmann::json::array();
   for (size_t i = 0; i < graph.submaps.size(); ++i) {
-    const Submap& s = graph.submaps[i];
+    const scene::Submap& s = graph.submaps[i];
     const grid::StateCounts counts = s.navigable.CountStates();
     nlohmann::json j = {
         {"id", s.id},
-        {"kind", SubmapKindName(s.kind)},
+        {"kind", scene::SubmapKindName(s.kind)},
         {"place", s.place},
         {"map_from_submap", PoseJson(s.map_from_submap)},
         {"elevation", s.elevation},
@@ -38,7 +38,7 @@ nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
     submaps.push_back(std::move(j));
   }
   nlohmann::json edges = nlohmann::json::array();
-  for (const SubmapEdge& e : graph.edges) {
+  for (const scene::SubmapEdge& e : graph.edges) {
     edges.push_back({{"from", e.from},
                      {"to", e.to},
                      {"from_T_to", PoseJson(e.from_T_to)},
@@ -48,11 +48,11 @@ nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
   // predicted place one predicted sub-map), in the order of their first sub-map.
   nlohmann::json places = nlohmann::json::array();
   std::map<uint32_t, size_t> place_index;
-  for (const Submap& s : graph.submaps) {
+  for (const scene::Submap& s : graph.submaps) {
     const auto [it, inserted] = place_index.try_emplace(s.place, places.size());
     if (inserted) {
       places.push_back({{"place", s.place},
-                        {"observed", s.kind == SubmapKind::kObserved},
+                        {"observed", s.kind == scene::SubmapKind::kObserved},
                         {"submaps", nlohmann::json::array()}});
     }
     places[it->second]["submaps"].push_back(s.id);

@@ -9,12 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/extrapolation/submap_graph.hpp"
+#include "common/scene/submap_graph.hpp"
 
 namespace fleetmap::extrapolation {
 
 // `grid_files[i]`, if given, names the map YAML written for sub-map i.
-nlohmann::json SubmapGraphToJson(const SubmapGraph& graph,
+nlohmann::json SubmapGraphToJson(const scene::SubmapGraph& graph,
                                  const std::vector<std::string>& grid_files = {});
 
 }  // namespace fleetmap::extrapolation

@@ -8,12 +8,12 @@ namespace {
 
 // Least-squares velocity (m/s) of the points whose stamps lie within `window` of `points[anchor]`,
 // taken from the anchor's end of the track; zero if they span no time.
-Vector2 FitVelocity(const std::vector<TrackPoint>& points, bool at_end, double window) {
+Vector2 FitVelocity(const std::vector<scene::TrackPoint>& points, bool at_end, double window) {
   const double t0 = at_end ? points.back().stamp : points.front().stamp;
   double st = 0, stt = 0;
   Vector2 sp = Vector2::Zero(), stp = Vector2::Zero();
   int n = 0;
-  for (const TrackPoint& p : points) {
+  for (const scene::TrackPoint& p : points) {
     if (std::abs(p.stamp - t0) > window) continue;
     const double t = p.stamp - t0;
     st += t;
@@ -24,8 +24,8 @@ Vector2 FitVelocity(const std::vector<TrackPoint>& points, bool at_end, double w
   }
   if (n < 2) {
     // The window holds one point: use the nearest pair.
-    const TrackPoint& a = at_end ? points[points.size() - 2] : points[0];
-    const TrackPoint& b = at_end ? points.back() : points[1];
+    const scene::TrackPoint& a = at_end ? points[points.size() - 2] : points[0];
+    const scene::TrackPoint& b = at_end ? points.back() : points[1];
     return (b.position - a.position) / (b.stamp - a.stamp);
   }
   const double denominator = n * stt - st * st;
@@ -52,9 +52,10 @@ double LimitSpeed(Vector2* velocity, double max_speed) {
 
 }  // namespace
 
-std::vector<SweptPose> SweepTrack(const PersonTrack& track, const TrackPredictorOptions& options) {
+std::vector<SweptPose> SweepTrack(const scene::PersonTrack& track,
+                                  const TrackPredictorOptions& options) {
   std::vector<SweptPose> out;
-  const std::vector<TrackPoint>& points = track.points;
+  const std::vector<scene::TrackPoint>& points = track.points;
   if (points.size() < 2) return out;
   const double spacing = std::max(1e-3, options.sample_spacing);
   constexpr double kStill = 0.05;  // m/s: slower is standing still, nothing to extrapolate

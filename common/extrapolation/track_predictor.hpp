@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "common/extrapolation/entities.hpp"
+#include "common/scene/entities.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -29,6 +29,7 @@ struct SweptPose {
 // The track (>= 2 points, stamps increasing) densified to `sample_spacing`, plus the predicted
 // parts. Headings of predicted poses follow the fitted velocity; if the person stands still,
 // nothing is predicted.
-std::vector<SweptPose> SweepTrack(const PersonTrack& track, const TrackPredictorOptions& options);
+std::vector<SweptPose> SweepTrack(const scene::PersonTrack& track,
+                                  const TrackPredictorOptions& options);
 
 }  // namespace fleetmap::extrapolation

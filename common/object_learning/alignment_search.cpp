@@ -13,7 +13,7 @@ namespace fleetmap::object_learning {
 namespace {
 
 // Occupancy-weighted centroid of a row-major grid of the patch's size, metres from its centre.
-Point2 Centroid(const float* values, const Patch& shape) {
+Point2 Centroid(const float* values, const scene::Patch& shape) {
   double sum = 0.0, sx = 0.0, sy = 0.0;
   for (int y = 0; y < shape.height; ++y) {
     for (int x = 0; x < shape.width; ++x) {
@@ -30,8 +30,9 @@ Point2 Centroid(const float* values, const Patch& shape) {
 
 }  // namespace
 
-AlignmentResult AlignSnapshot(const Patch& snapshot, const float* target, const Alignment& start,
-                              bool scan_rotations, double fine_factor, const EmOptions& options) {
+AlignmentResult AlignSnapshot(const scene::Patch& snapshot, const float* target,
+                              const Alignment& start, bool scan_rotations, double fine_factor,
+                              const EmOptions& options) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const PatchSampler sampler(snapshot);
   const CellBox target_box = NonZeroBox(target, snapshot.width, snapshot.height);

@@ -10,8 +10,8 @@
 //
 // Thread-safety: stateless.
 
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/learn_options.hpp"
-#include "common/object_learning/patch.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -23,7 +23,8 @@ struct AlignmentResult {
 // `target` is row-major with the snapshot's size. `scan_rotations`: first try every rotation of
 // the scan (at start's shift and at the shift that matches the centroids) and climb from the best;
 // otherwise climb from `start` with steps `fine_factor` times the initial ones.
-AlignmentResult AlignSnapshot(const Patch& snapshot, const float* target, const Alignment& start,
-                              bool scan_rotations, double fine_factor, const EmOptions& options);
+AlignmentResult AlignSnapshot(const scene::Patch& snapshot, const float* target,
+                              const Alignment& start, bool scan_rotations, double fine_factor,
+                              const EmOptions& options);
 
 }  // namespace fleetmap::object_learning

@@ -36,7 +36,7 @@ AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(count, cells);
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights(count, cells);
   std::vector<PatchSampler> samplers;
-  for (const Patch& snapshot : problem.snapshots) samplers.emplace_back(snapshot);
+  for (const scene::Patch& snapshot : problem.snapshots) samplers.emplace_back(snapshot);
   for (size_t n = 0; n < objects; ++n) {
     for (size_t s = 0; s < count; ++s) {
       samplers[s].Sample(alignments[s][n], rows.row(s).data(), weights.row(s).data());
@@ -76,7 +76,7 @@ Eigen::MatrixXd WeightedSnapshotSums(const AlignedSnapshots& aligned,
 
 double ObservedCells(const EmProblem& problem) {
   double total = 0.0;
-  for (const Patch& p : problem.snapshots) {
+  for (const scene::Patch& p : problem.snapshots) {
     if (p.weight.empty()) {
       total += static_cast<double>(p.occupancy.size());
     } else {
@@ -155,7 +155,7 @@ void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& opt
   const int cells = problem.cells();
   *objects = Eigen::MatrixXd::Zero(num_objects, cells);
   for (int n = 0; n < num_objects; ++n) {
-    const Patch& seed = problem.snapshots[order[n % count]];
+    const scene::Patch& seed = problem.snapshots[order[n % count]];
     for (int i = 0; i < cells; ++i) (*objects)(n, i) = seed.occupancy[i];
   }
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =

@@ -18,15 +18,15 @@
 #include <random>
 #include <vector>
 
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/learn_options.hpp"
-#include "common/object_learning/patch.hpp"
 #include "common/object_learning/snapshot_extractor.hpp"
 
 namespace fleetmap::object_learning {
 
 struct EmProblem {
-  std::vector<Patch> snapshots;        // all of one size
-  std::vector<std::vector<int>> maps;  // snapshot indices of each map (K_t = maps[t].size())
+  std::vector<scene::Patch> snapshots;  // all of one size
+  std::vector<std::vector<int>> maps;   // snapshot indices of each map (K_t = maps[t].size())
   int cells() const { return snapshots.empty() ? 0 : snapshots[0].width * snapshots[0].height; }
   int max_per_map() const;
 };

@@ -8,8 +8,8 @@
 
 namespace fleetmap::object_learning {
 
-double HeldOutLogLikelihood(const std::vector<Patch>& snapshots, const Eigen::MatrixXd& objects,
-                            const EmOptions& options) {
+double HeldOutLogLikelihood(const std::vector<scene::Patch>& snapshots,
+                            const Eigen::MatrixXd& objects, const EmOptions& options) {
   const int k_count = static_cast<int>(snapshots.size());
   const int n_count = static_cast<int>(objects.rows());
   assert(n_count >= k_count);

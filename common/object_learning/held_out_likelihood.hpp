@@ -12,14 +12,14 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/learn_options.hpp"
-#include "common/object_learning/patch.hpp"
 
 namespace fleetmap::object_learning {
 
 // `snapshots` are one map's (all of the objects' patch size); `objects` is N x cells with
 // N >= snapshots.size(). Uses options.sigma (the final noise level).
-double HeldOutLogLikelihood(const std::vector<Patch>& snapshots, const Eigen::MatrixXd& objects,
-                            const EmOptions& options);
+double HeldOutLogLikelihood(const std::vector<scene::Patch>& snapshots,
+                            const Eigen::MatrixXd& objects, const EmOptions& options);
 
 }  // namespace fleetmap::object_learning

@@ -14,8 +14,8 @@
 namespace fleetmap::object_learning {
 namespace {
 
-Patch RowPatch(const Eigen::MatrixXd& rows, Eigen::Index row, const Patch& shape) {
-  Patch patch = ZeroPatch(shape.width, shape.height, shape.resolution);
+scene::Patch RowPatch(const Eigen::MatrixXd& rows, Eigen::Index row, const scene::Patch& shape) {
+  scene::Patch patch = ZeroPatch(shape.width, shape.height, shape.resolution);
   for (Eigen::Index i = 0; i < rows.cols(); ++i)
     patch.occupancy[i] = static_cast<float>(rows(row, i));
   return patch;
@@ -38,12 +38,12 @@ Eigen::MatrixXd TemplateStep(const EmProblem& problem, const Eigen::MatrixXd& te
                              PairAlignments* object_to_template,
                              PairAlignments* snapshot_to_object) {
   const Eigen::Index n_count = objects->rows(), m_count = templates.rows();
-  const Patch& shape = problem.snapshots.front();
+  const scene::Patch& shape = problem.snapshots.front();
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       templates.cast<float>();
   Eigen::MatrixXd log_weights(n_count, m_count);
   for (Eigen::Index n = 0; n < n_count; ++n) {
-    const Patch object = RowPatch(*objects, n, shape);
+    const scene::Patch object = RowPatch(*objects, n, shape);
     for (Eigen::Index m = 0; m < m_count; ++m) {
       const AlignmentResult r = AlignSnapshot(object, targets.row(m).data(),
                                               (*object_to_template)[n][m], scan, 0.25, options);
@@ -54,7 +54,7 @@ Eigen::MatrixXd TemplateStep(const EmProblem& problem, const Eigen::MatrixXd& te
     log_weights.row(n).maxCoeff(&best);
     const Alignment move = (*object_to_template)[n][best];
     if (Negligible(move, shape.resolution)) continue;
-    Patch moved;
+    scene::Patch moved;
     TransformPatch(object, move, &moved);
     for (Eigen::Index i = 0; i < objects->cols(); ++i) (*objects)(n, i) = moved.occupancy[i];
     for (std::vector<Alignment>& pairs : *snapshot_to_object) pairs[n] = Compose(move, pairs[n]);
@@ -79,14 +79,14 @@ bool RegroupTemplates(const EmProblem& problem, const Eigen::MatrixXd& responsib
   const int n_count = static_cast<int>(objects.rows());
   const int m_count = static_cast<int>(templates->rows());
   if (m_count < 2 || m_count >= n_count) return false;
-  const Patch& shape = problem.snapshots.front();
+  const scene::Patch& shape = problem.snapshots.front();
   // distance(n, k): object n aligned onto object k.
   Eigen::MatrixXd distance = Eigen::MatrixXd::Zero(n_count, n_count);
   PairAlignments onto(n_count, std::vector<Alignment>(n_count));
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();
   for (int n = 0; n < n_count; ++n) {
-    const Patch object = RowPatch(objects, n, shape);
+    const scene::Patch object = RowPatch(objects, n, shape);
     for (int k = 0; k < n_count; ++k) {
       if (k == n) continue;
       const AlignmentResult r =
@@ -210,7 +210,7 @@ EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_te
   // already drawn.
   r.templates.resize(num_templates, problem.cells());
   {
-    const Patch& shape = problem.snapshots.front();
+    const scene::Patch& shape = problem.snapshots.front();
     std::vector<int> chosen = {
         std::min(num_objects - 1, static_cast<int>(UniformDouble(&random) * num_objects))};
     std::vector<double> nearest(num_objects, std::numeric_limits<double>::infinity());

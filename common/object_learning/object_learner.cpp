@@ -10,8 +10,8 @@
 namespace fleetmap::object_learning {
 namespace {
 
-Patch RowToPatch(const Eigen::MatrixXd& rows, Eigen::Index row, const Patch& shape) {
-  Patch patch;
+scene::Patch RowToPatch(const Eigen::MatrixXd& rows, Eigen::Index row, const scene::Patch& shape) {
+  scene::Patch patch;
   patch.width = shape.width;
   patch.height = shape.height;
   patch.resolution = shape.resolution;
@@ -49,7 +49,7 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
   model.num_templates = selection.num_templates;
   model.log_posterior = selection.log_posterior;
   model.searched = std::move(selection.searched);
-  const Patch& shape = problem.snapshots.front();
+  const scene::Patch& shape = problem.snapshots.front();
   for (Eigen::Index n = 0; n < best.objects.rows(); ++n) {
     model.objects.push_back(RowToPatch(best.objects, n, shape));
   }

@@ -17,8 +17,8 @@
 
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/learn_options.hpp"
-#include "common/object_learning/patch.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -48,8 +48,8 @@ struct LearnedModel {
   int num_objects = 0;
   int num_templates = 0;
   double log_posterior = 0.0;
-  std::vector<Patch> templates;               // alpha_1..alpha_M
-  std::vector<Patch> objects;                 // theta_1..theta_N
+  std::vector<scene::Patch> templates;        // alpha_1..alpha_M
+  std::vector<scene::Patch> objects;          // theta_1..theta_N
   std::vector<int> object_template;           // z_n: template of each object (MAP)
   std::vector<SnapshotAssignment> snapshots;  // every snapshot, in extraction order
   std::vector<ModelScore> searched;           // the (N, M) grid, in search order

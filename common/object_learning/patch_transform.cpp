@@ -8,12 +8,12 @@
 namespace fleetmap::object_learning {
 namespace {
 
-CellBox WholePatch(const Patch& patch) { return {0, 0, patch.width - 1, patch.height - 1}; }
+CellBox WholePatch(const scene::Patch& patch) { return {0, 0, patch.width - 1, patch.height - 1}; }
 
 // Walks the destination cells and hands each one's bilinear samples of the source (value and
 // weight) to `visit`, which returns false to stop early.
 template <typename Visit>
-void ForEachSample(const Patch& source, const Alignment& alignment, const CellBox& box,
+void ForEachSample(const scene::Patch& source, const Alignment& alignment, const CellBox& box,
                    Visit&& visit) {
   assert(!source.empty());
   const int w = source.width;
@@ -72,8 +72,8 @@ Alignment Inverse(const Alignment& a) {
   return {-(c * a.dx + s * a.dy), -(-s * a.dx + c * a.dy), -a.dphi};
 }
 
-Patch ZeroPatch(int width, int height, double resolution) {
-  Patch patch;
+scene::Patch ZeroPatch(int width, int height, double resolution) {
+  scene::Patch patch;
   patch.width = width;
   patch.height = height;
   patch.resolution = resolution;
@@ -81,7 +81,7 @@ Patch ZeroPatch(int width, int height, double resolution) {
   return patch;
 }
 
-void TransformPatchInto(const Patch& source, const Alignment& alignment, float* out,
+void TransformPatchInto(const scene::Patch& source, const Alignment& alignment, float* out,
                         float* out_weight) {
   ForEachSample(source, alignment, WholePatch(source),
                 [out, out_weight](size_t i, float value, float weight) {
@@ -91,7 +91,7 @@ void TransformPatchInto(const Patch& source, const Alignment& alignment, float* 
                 });
 }
 
-void TransformPatch(const Patch& source, const Alignment& alignment, Patch* out) {
+void TransformPatch(const scene::Patch& source, const Alignment& alignment, scene::Patch* out) {
   *out = ZeroPatch(source.width, source.height, source.resolution);
   if (!source.weight.empty()) out->weight.assign(out->occupancy.size(), 0.0f);
   TransformPatchInto(source, alignment, out->occupancy.data(),
@@ -144,14 +144,14 @@ CellBox NonZeroBox(const float* values, int width, int height) {
   return box;
 }
 
-double AlignedSquaredDistance(const Patch& source, const Alignment& alignment, const float* target,
-                              double bound) {
+double AlignedSquaredDistance(const scene::Patch& source, const Alignment& alignment,
+                              const float* target, double bound) {
   return AlignedSquaredDistance(
       source, NonZeroBox(source.occupancy.data(), source.width, source.height), alignment, target,
       NonZeroBox(target, source.width, source.height), bound);
 }
 
-double AlignedSquaredDistance(const Patch& source, const CellBox& source_box,
+double AlignedSquaredDistance(const scene::Patch& source, const CellBox& source_box,
                               const Alignment& alignment, const float* target,
                               const CellBox& target_box, double bound) {
   // Cells where both the moved source and the target are 0 add nothing: visit only the union of
@@ -171,7 +171,7 @@ double AlignedSquaredDistance(const Patch& source, const CellBox& source_box,
   return sum;
 }
 
-PatchSampler::PatchSampler(const Patch& source)
+PatchSampler::PatchSampler(const scene::Patch& source)
     : width_(source.width),
       height_(source.height),
       resolution_(source.resolution),

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "common/object_learning/patch.hpp"
+#include "common/object_learning/alignment.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -17,18 +17,18 @@ namespace fleetmap::object_learning {
 // source's size and resolution. The weights (observed cells) move with it: outside the source, a
 // patch with weights reads as unobserved (weight 0), one without as observed and empty.
 // Requires a non-empty source.
-void TransformPatch(const Patch& source, const Alignment& alignment, Patch* out);
+void TransformPatch(const scene::Patch& source, const Alignment& alignment, scene::Patch* out);
 
 // The same, written into row vectors of width * height values (row-major), for the EM's
 // matrices. `out_weight` may be null.
-void TransformPatchInto(const Patch& source, const Alignment& alignment, float* out,
+void TransformPatchInto(const scene::Patch& source, const Alignment& alignment, float* out,
                         float* out_weight);
 
 // Sum over cells of w[x] (f(source, alignment)[x] - target[x])^2, w the moved weights; target is
 // row-major with the source's size. Stops early (returning a value >= bound) once the partial
 // sum exceeds `bound`.
-double AlignedSquaredDistance(const Patch& source, const Alignment& alignment, const float* target,
-                              double bound);
+double AlignedSquaredDistance(const scene::Patch& source, const Alignment& alignment,
+                              const float* target, double bound);
 
 // `inner` then `outer`: f(f(p, inner), outer) = f(p, Compose(outer, inner)) (up to resampling).
 Alignment Compose(const Alignment& outer, const Alignment& inner);
@@ -56,7 +56,7 @@ CellBox NonZeroBox(const float* values, int width, int height);
 // AlignedSquaredDistance with the non-zero boxes of the source's occupancy and of the target
 // given (a caller that scores many alignments computes them once); only their union (the
 // source's moved) is visited, since cells where both are 0 add nothing.
-double AlignedSquaredDistance(const Patch& source, const CellBox& source_box,
+double AlignedSquaredDistance(const scene::Patch& source, const CellBox& source_box,
                               const Alignment& alignment, const float* target,
                               const CellBox& target_box, double bound);
 
@@ -65,7 +65,7 @@ double AlignedSquaredDistance(const Patch& source, const CellBox& source_box,
 // incrementally. Same results as AlignedSquaredDistance up to float rounding.
 class PatchSampler {
  public:
-  explicit PatchSampler(const Patch& source);
+  explicit PatchSampler(const scene::Patch& source);
   const CellBox& box() const { return box_; }  // the source's non-negligible cells
   double SquaredDistance(const Alignment& alignment, const float* target, const CellBox& target_box,
                          double bound) const;
@@ -87,6 +87,6 @@ class PatchSampler {
 };
 
 // A patch of the given size filled with zeros.
-Patch ZeroPatch(int width, int height, double resolution);
+scene::Patch ZeroPatch(int width, int height, double resolution);
 
 }  // namespace fleetmap::object_learning

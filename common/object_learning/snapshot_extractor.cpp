@@ -70,7 +70,7 @@ Mask LowPass(const Mask& mask, int width, int height, int r, double threshold) {
 
 // Separable Gaussian smoothing (standard deviation `sigma` cells, kernel to 3 sigma); outside
 // the patch reads as 0.
-void Blur(double sigma, Patch* patch) {
+void Blur(double sigma, scene::Patch* patch) {
   if (sigma <= 0.0) return;
   const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
   std::vector<float> kernel(2 * r + 1);

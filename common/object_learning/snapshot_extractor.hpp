@@ -18,8 +18,8 @@
 
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/learn_options.hpp"
-#include "common/object_learning/patch.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -29,7 +29,7 @@ struct Snapshot {
   int cells = 0;                   // cells in the region
   // 1 on the region's cells, 0 elsewhere, smoothed (SnapshotOptions::blur_cells); weight 1 where
   // the map saw the cell free or it is the region's, 0 where it is unknown or another obstacle.
-  Patch patch;
+  scene::Patch patch;
 };
 
 struct SnapshotSet {

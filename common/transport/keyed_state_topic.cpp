@@ -29,7 +29,7 @@ struct TopicTraits<EntityMessage> {
   static constexpr const char* kTopic = kEntitiesTopic;
   static dds::TypeSupport Type() { return EntityTypeSupport(); }
   static EntityMessage KeyOf(const EntityMessage& message) {
-    extrapolation::DoorEntity key_only;  // any alternative carries the id
+    scene::DoorEntity key_only;  // any alternative carries the id
     key_only.id = message.entity_id();
     EntityMessage key;
     key.robot = message.robot;

@@ -64,7 +64,7 @@ std::vector<int8_t> ToPercent(const std::vector<float>& occupancy) {
 
 // ObjectTemplate_ and ObjectModel_ carry a patch in the same fields.
 template <typename Sample>
-void SetPatch(const object_learning::Patch& patch, Sample& sample) {
+void SetPatch(const scene::Patch& patch, Sample& sample) {
   sample.resolution(static_cast<float>(patch.resolution));
   sample.width(static_cast<uint32_t>(patch.width));
   sample.height(static_cast<uint32_t>(patch.height));
@@ -72,13 +72,13 @@ void SetPatch(const object_learning::Patch& patch, Sample& sample) {
 }
 
 template <typename Sample>
-StatusOr<object_learning::Patch> PatchOf(const Sample& sample) {
+StatusOr<scene::Patch> PatchOf(const Sample& sample) {
   const float resolution = sample.resolution();
   const uint32_t width = sample.width();
   const uint32_t height = sample.height();
   const std::vector<int8_t>& data = sample.data();
   FLEETMAP_RETURN_IF_ERROR(CheckGrid(resolution, width, height, data.size()));
-  object_learning::Patch patch;
+  scene::Patch patch;
   patch.width = static_cast<int>(width);
   patch.height = static_cast<int>(height);
   patch.resolution = resolution;
@@ -106,13 +106,13 @@ void SetPoints(Entity_& sample, const std::vector<Point2>& points) {
 struct EntityToIdl {
   Entity_& sample;
 
-  void operator()(const extrapolation::DoorEntity& door) const {
+  void operator()(const scene::DoorEntity& door) const {
     sample.entity_class(kEntityDoor);
     SetPoints(sample, {door.hinge, door.latch});
     sample.direction(Angle(door.opening_direction));
     sample.open(door.open);
   }
-  void operator()(const extrapolation::StairsEntity& stairs) const {
+  void operator()(const scene::StairsEntity& stairs) const {
     sample.entity_class(kEntityStairs);
     SetPoints(sample, {stairs.position});
     sample.direction(Angle(stairs.ascending));
@@ -120,12 +120,12 @@ struct EntityToIdl {
     sample.next_floor_height(stairs.next_floor_height);
     sample.run_length(stairs.run_length);
   }
-  void operator()(const extrapolation::PersonTrack& track) const {
+  void operator()(const scene::PersonTrack& track) const {
     sample.entity_class(kEntityPerson);
     std::vector<Point2> points;
     std::vector<double> stamps;
     std::vector<double> headings;
-    for (const extrapolation::TrackPoint& point : track.points) {
+    for (const scene::TrackPoint& point : track.points) {
       points.push_back(point.position);
       stamps.push_back(point.stamp);
       headings.push_back(point.heading);
@@ -139,7 +139,7 @@ struct EntityToIdl {
   }
 };
 
-StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
+StatusOr<scene::Entity> EntityFromIdl(const Entity_& sample) {
   const std::vector<double>& x = sample.x();
   const std::vector<double>& y = sample.y();
   if (x.size() != y.size()) {
@@ -155,7 +155,7 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
         return InvalidArgumentError("a door needs 2 points (hinge, latch), got " +
                                     std::to_string(x.size()));
       }
-      extrapolation::DoorEntity door;
+      scene::DoorEntity door;
       door.id = sample.entity_id();
       door.hinge = {x[0], y[0]};
       door.latch = {x[1], y[1]};
@@ -164,7 +164,7 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
       }
       door.opening_direction = Direction(sample.direction());
       door.open = sample.open();
-      return EntityMessage::Entity(door);
+      return scene::Entity(door);
     }
     case kEntityStairs: {
       if (x.size() != 1) {
@@ -176,14 +176,14 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
         return InvalidArgumentError(
             "stairs need a positive step width, a finite height and a run length >= 0");
       }
-      extrapolation::StairsEntity stairs;
+      scene::StairsEntity stairs;
       stairs.id = sample.entity_id();
       stairs.position = {x[0], y[0]};
       stairs.ascending = Direction(sample.direction());
       stairs.step_width = sample.step_width();
       stairs.next_floor_height = sample.next_floor_height();
       stairs.run_length = sample.run_length();
-      return EntityMessage::Entity(stairs);
+      return scene::Entity(stairs);
     }
     case kEntityPerson: {
       const std::vector<double>& stamps = sample.track_stamps();
@@ -204,7 +204,7 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
         return InvalidArgumentError("dominant side " + std::to_string(sample.dominant_side()) +
                                     " is not -1, 0 or +1");
       }
-      extrapolation::PersonTrack track;
+      scene::PersonTrack track;
       track.id = sample.entity_id();
       for (size_t i = 0; i < x.size(); ++i) {
         track.points.push_back({stamps[i], Point2(x[i], y[i]), headings[i]});
@@ -212,7 +212,7 @@ StatusOr<EntityMessage::Entity> EntityFromIdl(const Entity_& sample) {
       track.dominant_side = sample.dominant_side();
       track.left_view = sample.left_view();
       track.entered_view = sample.entered_view();
-      return EntityMessage::Entity(track);
+      return scene::Entity(track);
     }
     default:
       return InvalidArgumentError("unknown entity class " +
@@ -238,7 +238,7 @@ StatusOr<EntityMessage> FromIdl(const Entity_& sample) {
                                 "\" is not a ROS 2 name");
   }
   FLEETMAP_RETURN_IF_ERROR(CheckId(sample.entity_id(), "entity id"));
-  StatusOr<EntityMessage::Entity> entity = EntityFromIdl(sample);
+  StatusOr<scene::Entity> entity = EntityFromIdl(sample);
   if (!entity.ok()) {
     return entity.status().WithContext("entity " + sample.entity_id() + " of " + sample.robot_id());
   }
@@ -251,7 +251,7 @@ StatusOr<EntityMessage> FromIdl(const Entity_& sample) {
 }
 
 StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
-  const extrapolation::Submap& submap = message.submap;
+  const scene::Submap& submap = message.submap;
   Submap_ sample;
   sample.submap_id(submap.id);
   sample.stamp(ToIdl(message.stamp));
@@ -276,7 +276,7 @@ StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
   std::vector<double> y;
   std::vector<double> theta;
   std::vector<std::string> entity;
-  for (const extrapolation::SubmapEdge& edge : message.edges) {
+  for (const scene::SubmapEdge& edge : message.edges) {
     to.push_back(edge.to);
     x.push_back(edge.from_T_to.x);
     y.push_back(edge.from_T_to.y);
@@ -293,10 +293,10 @@ StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
 
 StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   const std::string name = "sub-map " + std::to_string(sample.submap_id());
-  if (sample.kind() > static_cast<uint8_t>(extrapolation::SubmapKind::kPredictedDoor)) {
+  if (sample.kind() > static_cast<uint8_t>(scene::SubmapKind::kPredictedDoor)) {
     return InvalidArgumentError(name + ": unknown kind " + std::to_string(sample.kind()));
   }
-  if (sample.state() > static_cast<uint8_t>(SubmapState::kRetracted)) {
+  if (sample.state() > static_cast<uint8_t>(scene::SubmapState::kRetracted)) {
     return InvalidArgumentError(name + ": unknown state " + std::to_string(sample.state()));
   }
   if (Status grid =
@@ -318,9 +318,9 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
     return InvalidArgumentError(name + ": a pose is not finite");
   }
   SubmapMessage message;
-  extrapolation::Submap& submap = message.submap;
+  scene::Submap& submap = message.submap;
   submap.id = sample.submap_id();
-  submap.kind = static_cast<extrapolation::SubmapKind>(sample.kind());
+  submap.kind = static_cast<scene::SubmapKind>(sample.kind());
   submap.place = sample.place();
   submap.elevation = sample.elevation();
   submap.map_from_submap = fleet_from_submap;
@@ -329,13 +329,13 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
                           sample.resolution(), origin);
   submap.navigable.mutable_data() = sample.data();
   if (!sample.source_entity().empty()) submap.entity_ids.push_back(sample.source_entity());
-  message.state = static_cast<SubmapState>(sample.state());
+  message.state = static_cast<scene::SubmapState>(sample.state());
   message.source_robot = sample.source_robot();
   message.source_entity = sample.source_entity();
   message.precision = sample.precision();
   message.observed_fraction = sample.observed_fraction();
   for (size_t k = 0; k < edges; ++k) {
-    extrapolation::SubmapEdge edge;
+    scene::SubmapEdge edge;
     edge.from = submap.id;
     edge.to = sample.edge_to()[k];
     edge.from_T_to = Pose2{sample.edge_x()[k], sample.edge_y()[k], sample.edge_theta()[k]};
@@ -357,7 +357,7 @@ StatusOr<ObjectTemplate_> ToIdl(const ObjectTemplateMessage& message) {
 }
 
 StatusOr<ObjectTemplateMessage> FromIdl(const ObjectTemplate_& sample) {
-  StatusOr<object_learning::Patch> patch = PatchOf(sample);
+  StatusOr<scene::Patch> patch = PatchOf(sample);
   if (!patch.ok()) {
     return patch.status().WithContext("template " + std::to_string(sample.template_id()));
   }
@@ -388,7 +388,7 @@ StatusOr<ObjectModel_> ToIdl(const ObjectModelMessage& message) {
 
 StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
   const std::string name = "object " + std::to_string(sample.object_id());
-  StatusOr<object_learning::Patch> patch = PatchOf(sample);
+  StatusOr<scene::Patch> patch = PatchOf(sample);
   if (!patch.ok()) return patch.status().WithContext(name);
   const size_t sightings = sample.sighting_session().size();
   if (sample.sighting_x().size() != sightings || sample.sighting_y().size() != sightings ||

@@ -5,47 +5,39 @@
 
 #include <cstdint>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "common/core/ids.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/types.hpp"
-#include "common/extrapolation/entities.hpp"
-#include "common/extrapolation/submap_graph.hpp"
-#include "common/object_learning/object_learner.hpp"
+#include "common/scene/entities.hpp"
+#include "common/scene/patch.hpp"
+#include "common/scene/submap_graph.hpp"
 
 namespace fleetmap::transport {
 
 // One entity a robot recognised (rt/fleetmap/entities), in the robot's map frame. The entity's
 // own id is the instance key beside the robot's.
 struct EntityMessage {
-  using Entity = std::variant<extrapolation::DoorEntity, extrapolation::StairsEntity,
-                              extrapolation::PersonTrack>;
   RobotId robot;
   Timestamp stamp{};
   std::string frame_id = "map";
-  Entity entity;
+  scene::Entity entity;
 
   const std::string& entity_id() const;
 };
-
-// Where a sub-map stands: observed by the robots, predicted, or a prediction that robots have
-// since observed and found right (confirmed) or wrong (retracted).
-enum class SubmapState : uint8_t { kObserved = 0, kPredicted = 1, kConfirmed = 2, kRetracted = 3 };
-const char* SubmapStateName(SubmapState state);
 
 // One node of the sub-map graph (rt/fleetmap/submap_graph), in the fleet frame, with the edges
 // that start from it. `submap.navigable` is empty for observed sub-maps (their cells are the
 // fused map).
 struct SubmapMessage {
-  extrapolation::Submap submap;
-  SubmapState state = SubmapState::kPredicted;
+  scene::Submap submap;
+  scene::SubmapState state = scene::SubmapState::kPredicted;
   std::string source_robot;
   std::string source_entity;
   float precision = -1.0F;  // measured against later observation; -1 before any
   float observed_fraction = -1.0F;
-  std::vector<extrapolation::SubmapEdge> edges;  // each edge's `from` is this sub-map
+  std::vector<scene::SubmapEdge> edges;  // each edge's `from` is this sub-map
   Timestamp stamp{};
 };
 
@@ -54,7 +46,7 @@ struct ObjectTemplateMessage {
   uint32_t template_id = 0;
   uint32_t learning_run = 0;
   uint32_t object_count = 0;
-  object_learning::Patch patch;
+  scene::Patch patch;
   Timestamp stamp{};
 };
 
@@ -69,7 +61,7 @@ struct ObjectModelMessage {
   uint32_t object_id = 0;
   uint32_t learning_run = 0;
   uint32_t template_id = 0;
-  object_learning::Patch patch;
+  scene::Patch patch;
   std::vector<ObjectSighting> sightings;
   Timestamp stamp{};
 };

@@ -76,8 +76,8 @@ grid::OccupancyGrid TwoRooms(bool after, bool shelves = false) {
 }
 
 std::string WriteDoorEntities() {
-  extrapolation::Entities entities;
-  extrapolation::DoorEntity door;
+  scene::Entities entities;
+  scene::DoorEntity door;
   door.id = "door_east";
   door.hinge = {4.0, 1.5};
   door.latch = {4.0, 2.4};
@@ -119,7 +119,7 @@ class ServerModelsTest : public ::testing::Test {
         EXPECT_NE(event.kind, decltype(event.kind)::kRejected) << event.error;
         if (event.kind != decltype(event.kind)::kSample) continue;
         if constexpr (std::is_same_v<Message, transport::SubmapMessage>) {
-          if (event.message.state == transport::SubmapState::kObserved) {
+          if (event.message.state == scene::SubmapState::kObserved) {
             observed_[event.message.submap.id] = event.message;
           }
         }
@@ -141,11 +141,11 @@ class ServerModelsTest : public ::testing::Test {
                         "--entities", WriteDoorEntities()});
     const auto predicted = WaitFor<transport::SubmapReader, transport::SubmapMessage>(
         **reader, *wake_up, [](const transport::SubmapMessage& message) {
-          return message.submap.kind == extrapolation::SubmapKind::kPredictedDoor;
+          return message.submap.kind == scene::SubmapKind::kPredictedDoor;
         });
     EXPECT_TRUE(predicted.has_value()) << server->Output();
     if (!predicted) return std::nullopt;
-    EXPECT_EQ(predicted->state, transport::SubmapState::kPredicted);
+    EXPECT_EQ(predicted->state, scene::SubmapState::kPredicted);
     EXPECT_EQ(predicted->source_robot, "alpha");
     EXPECT_EQ(predicted->source_entity, "door_east");
     // Behind the door: the sub-map's frame is east of the door, and it predicts free cells.
@@ -161,7 +161,7 @@ class ServerModelsTest : public ::testing::Test {
     const uint32_t id = predicted->submap.id;
     auto judged = WaitFor<transport::SubmapReader, transport::SubmapMessage>(
         **reader, *wake_up, [id](const transport::SubmapMessage& message) {
-          return message.submap.id == id && message.state != transport::SubmapState::kPredicted;
+          return message.submap.id == id && message.state != scene::SubmapState::kPredicted;
         });
     EXPECT_TRUE(judged.has_value()) << server->Output();
     server->Signal(SIGINT);
@@ -180,7 +180,7 @@ class ServerModelsTest : public ::testing::Test {
 TEST_F(ServerModelsTest, DoorPredictionIsConfirmedWhenTheRoomBehindIsSeenFree) {
   const auto judged = JudgedDoorPrediction(/*shelves=*/false);
   ASSERT_TRUE(judged.has_value());
-  EXPECT_EQ(judged->state, transport::SubmapState::kConfirmed);
+  EXPECT_EQ(judged->state, scene::SubmapState::kConfirmed);
   EXPECT_GE(judged->precision, 0.9F);
   EXPECT_GE(judged->observed_fraction, 0.5F);
   // Once both rooms are mapped, the door splits the fleet map into two places joined through it.
@@ -188,14 +188,14 @@ TEST_F(ServerModelsTest, DoorPredictionIsConfirmedWhenTheRoomBehindIsSeenFree) {
   const uint32_t first_room = judged->edges[0].to;
   bool rooms_joined = false;
   for (const auto& [id, place] : observed_) {
-    for (const extrapolation::SubmapEdge& edge : place.edges) {
+    for (const scene::SubmapEdge& edge : place.edges) {
       rooms_joined |= id == first_room && edge.to != id && edge.to < judged->submap.id &&
                       edge.entity_id == "alpha/door_east";
     }
   }
   std::ostringstream seen;
   for (const auto& [id, place] : observed_) {
-    for (const extrapolation::SubmapEdge& edge : place.edges) {
+    for (const scene::SubmapEdge& edge : place.edges) {
       seen << " " << id << "->" << edge.to << " (" << edge.entity_id << ")";
     }
   }
@@ -206,7 +206,7 @@ TEST_F(ServerModelsTest, DoorPredictionIsConfirmedWhenTheRoomBehindIsSeenFree) {
 TEST_F(ServerModelsTest, DoorPredictionIsRetractedWhenShelvesFillTheRoomBehind) {
   const auto judged = JudgedDoorPrediction(/*shelves=*/true);
   ASSERT_TRUE(judged.has_value());
-  EXPECT_EQ(judged->state, transport::SubmapState::kRetracted);
+  EXPECT_EQ(judged->state, scene::SubmapState::kRetracted);
   EXPECT_LT(judged->precision, 0.9F);
 }
 

@@ -30,7 +30,7 @@ TEST(StairsDetectorTest, RecoversFootDirectionAndWidthFromSimulatedPoints) {
     camera.pose = Pose2{truth.foot.x() - 2.5, truth.foot.y() + 0.2, 0.1};
     const std::vector<DetectedStairs> found = DetectStairs(Capture(scene, camera, seed));
     ASSERT_EQ(found.size(), 1u) << "seed " << seed;
-    const StairsEntity& s = found[0].entity;
+    const scene::StairsEntity& s = found[0].entity;
     EXPECT_LT((s.position - truth.foot).norm(), 0.25) << "seed " << seed;
     EXPECT_GT(s.ascending.dot(truth.ascending), std::cos(5.0 * std::numbers::pi / 180.0))
         << "seed " << seed;

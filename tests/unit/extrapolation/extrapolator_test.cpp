@@ -35,8 +35,8 @@ grid::OccupancyGrid Corridor() {
   return map;
 }
 
-DoorEntity Door() {
-  DoorEntity door;
+scene::DoorEntity Door() {
+  scene::DoorEntity door;
   door.id = "door_1";
   door.hinge = Point2(4.0, 2.075);
   door.latch = Point2(5.0, 2.075);
@@ -44,7 +44,7 @@ DoorEntity Door() {
   return door;
 }
 
-std::vector<Point2> FreeCellsInMap(const Submap& submap) {
+std::vector<Point2> FreeCellsInMap(const scene::Submap& submap) {
   std::vector<Point2> out;
   for (int y = 0; y < submap.navigable.height(); ++y) {
     for (int x = 0; x < submap.navigable.width(); ++x) {
@@ -57,7 +57,7 @@ std::vector<Point2> FreeCellsInMap(const Submap& submap) {
 }
 
 // Whether the sub-map's grid is free at a map-frame point.
-bool FreeAt(const Submap& submap, const Point2& map_point) {
+bool FreeAt(const scene::Submap& submap, const Point2& map_point) {
   const auto cell =
       submap.navigable.CellAt(submap.map_from_submap.ToTransform().inverse() * map_point);
   return cell && submap.navigable.StateAt(cell->x, cell->y) == grid::CellState::kFree;
@@ -77,8 +77,8 @@ grid::OccupancyGrid CorridorWithRooms() {
   return map;
 }
 
-DoorEntity DoorAt(const std::string& id, double x0, double x1, double y, bool open) {
-  DoorEntity door;
+scene::DoorEntity DoorAt(const std::string& id, double x0, double x1, double y, bool open) {
+  scene::DoorEntity door;
   door.id = id;
   door.hinge = Point2(x0, y);
   door.latch = Point2(x1, y);
@@ -93,33 +93,33 @@ TEST(ExtrapolatorTest, NoDoorGivesOnePlace) {
   ASSERT_TRUE(result.ok());
   ASSERT_EQ(result->graph.submaps.size(), 1u);
   EXPECT_TRUE(result->graph.edges.empty());
-  const Submap& observed = result->graph.submaps[0];
-  EXPECT_EQ(observed.kind, SubmapKind::kObserved);
+  const scene::Submap& observed = result->graph.submaps[0];
+  EXPECT_EQ(observed.kind, scene::SubmapKind::kObserved);
   EXPECT_EQ(observed.place, 0u);
   EXPECT_EQ(FreeCount(observed.navigable), FreeCount(map));
   // A map without free cells still has its observed sub-map.
   const auto unknown = Extrapolate(grid::OccupancyGrid(20, 10, kRes), {});
   ASSERT_TRUE(unknown.ok());
   ASSERT_EQ(unknown->graph.submaps.size(), 1u);
-  EXPECT_EQ(unknown->graph.submaps[0].kind, SubmapKind::kObserved);
+  EXPECT_EQ(unknown->graph.submaps[0].kind, scene::SubmapKind::kObserved);
   EXPECT_EQ(FreeCount(unknown->graph.submaps[0].navigable), 0);
 }
 
 TEST(ExtrapolatorTest, OpenDoorsSplitTheObservedMapIntoPlaces) {
   const grid::OccupancyGrid map = CorridorWithRooms();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_b", 7.0, 6.0, 2.075, true));
   const auto result = Extrapolate(map, entities);
   ASSERT_TRUE(result.ok()) << result.status();
-  const SubmapGraph& graph = result->graph;
+  const scene::SubmapGraph& graph = result->graph;
   ASSERT_EQ(graph.submaps.size(), 3u);
   int64_t free = 0;
   for (uint32_t id = 0; id < 3; ++id) {
-    const Submap& s = graph.submaps[id];
+    const scene::Submap& s = graph.submaps[id];
     EXPECT_EQ(s.id, id);
     EXPECT_EQ(s.place, id);
-    EXPECT_EQ(s.kind, SubmapKind::kObserved);
+    EXPECT_EQ(s.kind, scene::SubmapKind::kObserved);
     EXPECT_TRUE(s.map_from_submap.ToTransform().isApprox(Transform2::Identity()));
     free += FreeCount(s.navigable);
   }
@@ -148,15 +148,15 @@ TEST(ExtrapolatorTest, OpenDoorsSplitTheObservedMapIntoPlaces) {
 
 TEST(ExtrapolatorTest, ClosedDoorSeparatesPlacesToo) {
   const grid::OccupancyGrid map = CorridorWithRooms();  // room b mapped before the door shut
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, false));
   const auto result = Extrapolate(map, entities);
   ASSERT_TRUE(result.ok()) << result.status();
-  const SubmapGraph& graph = result->graph;
+  const scene::SubmapGraph& graph = result->graph;
   ASSERT_EQ(graph.submaps.size(), 4u);
-  EXPECT_EQ(graph.submaps[2].kind, SubmapKind::kObserved);
-  EXPECT_EQ(graph.submaps[3].kind, SubmapKind::kPredictedDoor);
+  EXPECT_EQ(graph.submaps[2].kind, scene::SubmapKind::kObserved);
+  EXPECT_EQ(graph.submaps[3].kind, scene::SubmapKind::kPredictedDoor);
   EXPECT_EQ(graph.submaps[3].place, 3u);
   ASSERT_EQ(graph.edges.size(), 3u);
   EXPECT_EQ(graph.edges[1].from, 0u);  // corridor - room b, through the closed door
@@ -170,16 +170,16 @@ TEST(ExtrapolatorTest, ClosedDoorSeparatesPlacesToo) {
 TEST(ExtrapolatorTest, PredictedSubmapJoinsThePlaceItsDoorOpensFrom) {
   // A closed door in room b's far wall, opening north into the unseen.
   const grid::OccupancyGrid map = CorridorWithRooms();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_c", 7.0, 8.0, 6.075, false));
   const auto result = Extrapolate(map, entities);
   ASSERT_TRUE(result.ok()) << result.status();
-  const SubmapGraph& graph = result->graph;
+  const scene::SubmapGraph& graph = result->graph;
   ASSERT_EQ(graph.submaps.size(), 4u);
-  const Submap& predicted = graph.submaps[3];
-  EXPECT_EQ(predicted.kind, SubmapKind::kPredictedDoor);
+  const scene::Submap& predicted = graph.submaps[3];
+  EXPECT_EQ(predicted.kind, scene::SubmapKind::kPredictedDoor);
   EXPECT_NE(predicted.place, graph.submaps[2].place);
   ASSERT_EQ(graph.edges.size(), 3u);
   EXPECT_EQ(graph.edges[2].from, 2u);  // room b
@@ -189,7 +189,7 @@ TEST(ExtrapolatorTest, PredictedSubmapJoinsThePlaceItsDoorOpensFrom) {
 }
 
 TEST(ExtrapolatorTest, GraphJsonListsPlacesAndObservedEdges) {
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, false));
   const auto result = Extrapolate(CorridorWithRooms(), entities);
@@ -207,21 +207,21 @@ TEST(ExtrapolatorTest, GraphJsonListsPlacesAndObservedEdges) {
 
 TEST(ExtrapolatorTest, FootOfStairsSeparatesPlaces) {
   // The corridor's free cells run on past the foot of a flight at x = 6 (the steps).
-  StairsEntity stairs;
+  scene::StairsEntity stairs;
   stairs.id = "stairs_1";
   stairs.position = Point2(6.0, 1.075);
   stairs.ascending = Vector2(1, 0);
   stairs.step_width = 1.85;
   stairs.run_length = 3.0;
-  Entities entities;
+  scene::Entities entities;
   entities.stairs.push_back(stairs);
   const auto result = Extrapolate(Corridor(), entities);
   ASSERT_TRUE(result.ok()) << result.status();
-  const SubmapGraph& graph = result->graph;
+  const scene::SubmapGraph& graph = result->graph;
   ASSERT_EQ(graph.submaps.size(), 3u);
   EXPECT_TRUE(FreeAt(graph.submaps[0], Point2(2.0, 1.0)));
   EXPECT_TRUE(FreeAt(graph.submaps[1], Point2(8.0, 1.0)));
-  EXPECT_EQ(graph.submaps[2].kind, SubmapKind::kPredictedStairs);
+  EXPECT_EQ(graph.submaps[2].kind, scene::SubmapKind::kPredictedStairs);
   ASSERT_EQ(graph.edges.size(), 2u);
   EXPECT_EQ(graph.edges[0].from, 0u);
   EXPECT_EQ(graph.edges[0].to, 1u);
@@ -241,7 +241,7 @@ TEST(ExtrapolatorTest, SpeckleDoesNotMakePlaces) {
     Fill(&map, x, y, x + 0.05, y + 0.05, grid::kFreeValue);
   }
   Fill(&map, 4.95, 3.0, 5.0, 3.05, grid::kFreeValue);
-  Entities entities;
+  scene::Entities entities;
   for (double x : {1.0, 3.5, 6.5}) {
     const std::string id = "door_" + std::to_string(static_cast<int>(x * 10));
     entities.doors.push_back(DoorAt(id, x, x + 0.3, 6.075, true));
@@ -262,10 +262,10 @@ TEST(ExtrapolatorTest, SpeckleDoesNotMakePlaces) {
 
 TEST(ExtrapolatorTest, PeoplesCellsJoinThePlaceTheyFallIn) {
   const grid::OccupancyGrid map = CorridorWithRooms();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(DoorAt("door_a", 2.0, 3.0, 2.075, true));
   entities.doors.push_back(DoorAt("door_b", 6.0, 7.0, 2.075, true));
-  PersonTrack person;
+  scene::PersonTrack person;
   person.id = "p1";
   for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(6.0 + 0.2 * i, 4.0), 0});
   entities.people.push_back(person);
@@ -288,18 +288,18 @@ TEST(ExtrapolatorTest, PeoplesCellsJoinThePlaceTheyFallIn) {
 
 TEST(ExtrapolatorTest, ClosedDoorMakesAPredictedSubmapBehindIt) {
   const grid::OccupancyGrid map = Corridor();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
   ExtrapolationOptions options;
   const auto result = Extrapolate(map, entities, options);
   ASSERT_TRUE(result.ok()) << result.status();
-  const SubmapGraph& graph = result->graph;
+  const scene::SubmapGraph& graph = result->graph;
   ASSERT_EQ(graph.submaps.size(), 2u);
   ASSERT_EQ(graph.edges.size(), 1u);
-  const Submap& observed = graph.submaps[0];
-  const Submap& predicted = graph.submaps[1];
-  EXPECT_EQ(observed.kind, SubmapKind::kObserved);
-  EXPECT_EQ(predicted.kind, SubmapKind::kPredictedDoor);
+  const scene::Submap& observed = graph.submaps[0];
+  const scene::Submap& predicted = graph.submaps[1];
+  EXPECT_EQ(observed.kind, scene::SubmapKind::kObserved);
+  EXPECT_EQ(predicted.kind, scene::SubmapKind::kPredictedDoor);
   EXPECT_NE(predicted.place, observed.place);
   EXPECT_EQ(predicted.entity_ids, std::vector<std::string>{"door_1"});
   EXPECT_EQ(graph.edges[0].from, 0u);
@@ -328,9 +328,9 @@ TEST(ExtrapolatorTest, ClosedDoorMakesAPredictedSubmapBehindIt) {
 
 TEST(ExtrapolatorTest, KnownWallStopsTheDoorPrediction) {
   grid::OccupancyGrid map = Corridor();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
-  auto beyond_wall = [](const Submap& s) {
+  auto beyond_wall = [](const scene::Submap& s) {
     int n = 0;
     for (const Point2& p : FreeCellsInMap(s)) n += p.x() < 3.25;
     return n;
@@ -346,7 +346,7 @@ TEST(ExtrapolatorTest, KnownWallStopsTheDoorPrediction) {
 
 TEST(ExtrapolatorTest, HigherThresholdPredictsLess) {
   const grid::OccupancyGrid map = Corridor();
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
   size_t previous = std::numeric_limits<size_t>::max();
   for (double p_th : {0.5, 0.6, 0.7}) {
@@ -362,7 +362,7 @@ TEST(ExtrapolatorTest, HigherThresholdPredictsLess) {
 }
 
 TEST(ExtrapolatorTest, OpenDoorPredictsNothing) {
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
   entities.doors[0].open = true;
   const auto result = Extrapolate(Corridor(), entities);
@@ -372,7 +372,7 @@ TEST(ExtrapolatorTest, OpenDoorPredictsNothing) {
 }
 
 TEST(ExtrapolatorTest, OpeningDirectionInferredFromTheMap) {
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
   entities.doors[0].opening_direction = Vector2::Zero();
   const auto result = Extrapolate(Corridor(), entities);
@@ -385,14 +385,14 @@ TEST(ExtrapolatorTest, PersonFreeSpaceFollowsTheTrackAndExtendsForwardOnLeaving)
   // The robot saw only x < 3 of the corridor; a person walks along y = 1 from x = 0.5 to 2.5.
   grid::OccupancyGrid map = Corridor();
   Fill(&map, 3.0, 0.15, 10.0, 2.0, grid::kUnknownValue);
-  PersonTrack person;
+  scene::PersonTrack person;
   person.id = "p1";
   for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(0.5 + 0.2 * i, 1.0), 0});
   auto free_at = [](const ExtrapolationResult& r, const Point2& p) {
     const auto cell = r.conditionally_free.CellAt(p);
     return cell && r.conditionally_free.StateAt(cell->x, cell->y) == grid::CellState::kFree;
   };
-  Entities entities;
+  scene::Entities entities;
   entities.people.push_back(person);
   const auto stays = Extrapolate(map, entities);
   ASSERT_TRUE(stays.ok());
@@ -423,11 +423,11 @@ TEST(ExtrapolatorTest, PredictedWalkStopsAtAKnownWall) {
   grid::OccupancyGrid map = Corridor();
   Fill(&map, 3.0, 0.15, 3.15, 2.0, grid::kOccupiedValue);  // the corridor ends at x = 3
   Fill(&map, 3.15, 0.15, 10.0, 2.0, grid::kUnknownValue);
-  PersonTrack person;
+  scene::PersonTrack person;
   person.id = "p1";
   person.left_view = true;
   for (int i = 0; i <= 10; ++i) person.points.push_back({0.2 * i, Point2(0.5 + 0.2 * i, 1.0), 0});
-  Entities entities;
+  scene::Entities entities;
   entities.people.push_back(person);
   const auto result = Extrapolate(map, entities);
   ASSERT_TRUE(result.ok());
@@ -442,21 +442,21 @@ TEST(ExtrapolatorTest, PredictedWalkStopsAtAKnownWall) {
 }
 
 TEST(ExtrapolatorTest, StairsMakeASubmapAtTheTopOnTheNextFloor) {
-  StairsEntity stairs;
+  scene::StairsEntity stairs;
   stairs.id = "stairs_1";
   stairs.position = Point2(6.0, 1.0);
   stairs.ascending = Vector2(1, 0);
   stairs.step_width = 1.0;
   stairs.next_floor_height = 3.0;
   stairs.run_length = 2.0;
-  Entities entities;
+  scene::Entities entities;
   entities.stairs.push_back(stairs);
   ExtrapolationOptions options;
   const auto result = Extrapolate(Corridor(), entities, options);
   ASSERT_TRUE(result.ok());
   ASSERT_EQ(result->graph.submaps.size(), 2u);
-  const Submap& top = result->graph.submaps[1];
-  EXPECT_EQ(top.kind, SubmapKind::kPredictedStairs);
+  const scene::Submap& top = result->graph.submaps[1];
+  EXPECT_EQ(top.kind, scene::SubmapKind::kPredictedStairs);
   EXPECT_DOUBLE_EQ(top.elevation, 3.0);
   EXPECT_NEAR(top.map_from_submap.x, 8.0, 1e-9);
   EXPECT_NEAR(top.map_from_submap.y, 1.0, 1e-9);
@@ -471,17 +471,17 @@ TEST(ExtrapolatorTest, StairsMakeASubmapAtTheTopOnTheNextFloor) {
 }
 
 TEST(ExtrapolatorTest, UnusableEntitiesAreSkippedWithWarnings) {
-  Entities entities;
+  scene::Entities entities;
   entities.doors.push_back(Door());
-  DoorEntity zero = Door();
+  scene::DoorEntity zero = Door();
   zero.id = "flat";
   zero.latch = zero.hinge;
   entities.doors.push_back(zero);
-  PersonTrack lonely;
+  scene::PersonTrack lonely;
   lonely.id = "lonely";
   lonely.points.push_back({0.0, Point2(1, 1), 0.0});
   entities.people.push_back(lonely);
-  StairsEntity nan_stairs;
+  scene::StairsEntity nan_stairs;
   nan_stairs.id = "nan";
   nan_stairs.position = Point2(std::nan(""), 0.0);
   entities.stairs.push_back(nan_stairs);
@@ -495,12 +495,12 @@ TEST(ExtrapolatorTest, UnusableEntitiesAreSkippedWithWarnings) {
 }
 
 TEST(ExtrapolatorTest, GarbageCoordinatesAndTrackingJumpsAreSkipped) {
-  Entities entities;
-  StairsEntity far;
+  scene::Entities entities;
+  scene::StairsEntity far;
   far.id = "far";
   far.position = Point2(1e300, 0.0);
   entities.stairs.push_back(far);
-  PersonTrack jumpy;
+  scene::PersonTrack jumpy;
   jumpy.id = "jumpy";
   jumpy.points = {{0.0, Point2(1, 1), 0.0}, {0.1, Point2(1e5, 1), 0.0}};
   entities.people.push_back(jumpy);
@@ -527,7 +527,7 @@ TEST(ExtrapolatorTest, BadOptionsAndEmptyMapAreErrors) {
 }
 
 TEST(PredictionCheckTest, CountsAgainstAnObservation) {
-  Submap predicted;
+  scene::Submap predicted;
   predicted.map_from_submap = Pose2{1.0, 0.0, 0.0};
   predicted.navigable = grid::OccupancyGrid(4, 1, 1.0);  // cells at x = 1.5 .. 4.5 in the map
   for (int x = 0; x < 4; ++x) predicted.navigable.at(x, 0) = grid::kFreeValue;

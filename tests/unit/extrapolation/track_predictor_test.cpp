@@ -5,8 +5,8 @@
 namespace fleetmap::extrapolation {
 namespace {
 
-PersonTrack Walk(bool left, bool entered) {
-  PersonTrack track;
+scene::PersonTrack Walk(bool left, bool entered) {
+  scene::PersonTrack track;
 
   for (int i = 0; i <= 10; ++i) track.points.push_back({0.2 * i, Point2(0.2 * i, 1.0), 0.0});
   track.left_view = left;
@@ -46,14 +46,14 @@ TEST(TrackPredictorTest, ExtendsBackwardOnEntering) {
 }
 
 TEST(TrackPredictorTest, StandingStillPredictsNothing) {
-  PersonTrack track;
+  scene::PersonTrack track;
   track.left_view = true;
   track.points = {{0.0, Point2(1, 1), 0.0}, {1.0, Point2(1, 1), 0.0}};
   for (const SweptPose& pose : SweepTrack(track, {})) EXPECT_FALSE(pose.predicted);
 }
 
 TEST(TrackPredictorTest, OnePointGivesNothing) {
-  PersonTrack track;
+  scene::PersonTrack track;
   track.points = {{0.0, Point2(1, 1), 0.0}};
   EXPECT_TRUE(SweepTrack(track, {}).empty());
 }

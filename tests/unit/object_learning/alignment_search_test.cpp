@@ -15,10 +15,10 @@ using testing::ShapePatch;
 using testing::TestShape;
 
 TEST(AlignmentSearchTest, RecoversAKnownRotationAndShift) {
-  const Patch l = ShapePatch(TestShape::kL, 31);
+  const scene::Patch l = ShapePatch(TestShape::kL, 31);
   for (const Alignment truth : {Alignment{0.10, -0.05, 2.0}, Alignment{-0.07, 0.12, -0.6},
                                 Alignment{0.0, 0.0, std::numbers::pi}}) {
-    Patch target;
+    scene::Patch target;
     TransformPatch(l, truth, &target);
     const AlignmentResult r =
         AlignSnapshot(l, target.occupancy.data(), Alignment{}, true, 1.0, EmOptions{});
@@ -30,8 +30,8 @@ TEST(AlignmentSearchTest, RecoversAKnownRotationAndShift) {
 }
 
 TEST(AlignmentSearchTest, ClimbWithoutScanStaysLocal) {
-  const Patch bar = ShapePatch(TestShape::kBar, 31);
-  Patch target;
+  const scene::Patch bar = ShapePatch(TestShape::kBar, 31);
+  scene::Patch target;
   const Alignment truth{0.03, 0.02, 0.1};
   TransformPatch(bar, truth, &target);
   const AlignmentResult r =
@@ -42,8 +42,8 @@ TEST(AlignmentSearchTest, ClimbWithoutScanStaysLocal) {
 }
 
 TEST(AlignmentSearchTest, NeverWorseThanTheStart) {
-  const Patch l = ShapePatch(TestShape::kL);
-  const Patch ring = ShapePatch(TestShape::kRing);
+  const scene::Patch l = ShapePatch(TestShape::kL);
+  const scene::Patch ring = ShapePatch(TestShape::kRing);
   const Alignment start{0.05, 0.0, 0.7};
   const double at_start = AlignedSquaredDistance(l, start, ring.occupancy.data(), 1e300);
   const AlignmentResult r = AlignSnapshot(l, ring.occupancy.data(), start, false, 1.0, EmOptions{});

@@ -39,7 +39,7 @@ TEST(ObjectLearnerTest, LearnsBoxesWithAssignmentsForEverySnapshot) {
   EXPECT_EQ(model->object_template.size(), model->objects.size());
   // Mutual exclusion: the two boxes of map 0 are two objects.
   EXPECT_NE(model->snapshots[0].object, model->snapshots[1].object);
-  for (const Patch& p : model->objects) {
+  for (const scene::Patch& p : model->objects) {
     for (float v : p.occupancy) {
       EXPECT_GE(v, 0.0f);
       EXPECT_LE(v, 1.0f);

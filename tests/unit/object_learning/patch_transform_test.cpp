@@ -14,15 +14,15 @@ using testing::ShapePatch;
 using testing::TestShape;
 
 TEST(PatchTransformTest, IdentityKeepsThePatch) {
-  const Patch p = ShapePatch(TestShape::kL);
-  Patch out;
+  const scene::Patch p = ShapePatch(TestShape::kL);
+  scene::Patch out;
   TransformPatch(p, Alignment{}, &out);
   EXPECT_EQ(out.occupancy, p.occupancy);
 }
 
 TEST(PatchTransformTest, QuarterTurnPermutesCells) {
-  const Patch p = ShapePatch(TestShape::kL);
-  Patch out;
+  const scene::Patch p = ShapePatch(TestShape::kL);
+  scene::Patch out;
   TransformPatch(p, Alignment{0.0, 0.0, std::numbers::pi / 2.0}, &out);
   const int c = p.width / 2;
   // Counter-clockwise by 90 degrees: the content at (x, y) moves to (c - (y - c), c + (x - c)).
@@ -34,8 +34,8 @@ TEST(PatchTransformTest, QuarterTurnPermutesCells) {
 }
 
 TEST(PatchTransformTest, ShiftMovesByWholeCells) {
-  const Patch p = ShapePatch(TestShape::kBar);
-  Patch out;
+  const scene::Patch p = ShapePatch(TestShape::kBar);
+  scene::Patch out;
   TransformPatch(p, Alignment{0.10, -0.05, 0.0}, &out);  // +2 cells in x, -1 in y
   for (int y = 1; y < p.height; ++y) {
     for (int x = 0; x + 2 < p.width; ++x) {
@@ -45,9 +45,9 @@ TEST(PatchTransformTest, ShiftMovesByWholeCells) {
 }
 
 TEST(PatchTransformTest, ComposeAndInverse) {
-  const Patch p = ShapePatch(TestShape::kL);
+  const scene::Patch p = ShapePatch(TestShape::kL);
   const Alignment a{0.05, 0.1, 0.3}, b{-0.1, 0.02, -1.1};
-  Patch ab, a_then_b, tmp, back;
+  scene::Patch ab, a_then_b, tmp, back;
   TransformPatch(p, a, &tmp);
   TransformPatch(tmp, b, &a_then_b);
   TransformPatch(p, Compose(b, a), &ab);
@@ -62,10 +62,10 @@ TEST(PatchTransformTest, ComposeAndInverse) {
 }
 
 TEST(PatchTransformTest, SamplerMatchesReferenceDistance) {
-  Patch p = ShapePatch(TestShape::kL);
+  scene::Patch p = ShapePatch(TestShape::kL);
   p.weight.assign(p.occupancy.size(), 1.0f);
   for (int x = 0; x < p.width; ++x) p.weight[x] = 0.0f;  // an unobserved row
-  const Patch target = ShapePatch(TestShape::kRing);
+  const scene::Patch target = ShapePatch(TestShape::kRing);
   const PatchSampler sampler(p);
   const CellBox box = NonZeroBox(target.occupancy.data(), target.width, target.height);
   for (const Alignment& a : {Alignment{}, Alignment{0.07, -0.03, 0.4}, Alignment{-0.2, 0.1, 2.5}}) {
@@ -78,8 +78,8 @@ TEST(PatchTransformTest, SamplerMatchesReferenceDistance) {
 }
 
 TEST(PatchTransformTest, UnobservedCellsDoNotCount) {
-  Patch p = ShapePatch(TestShape::kBar);
-  const Patch target = ShapePatch(TestShape::kRing);
+  scene::Patch p = ShapePatch(TestShape::kBar);
+  const scene::Patch target = ShapePatch(TestShape::kRing);
   const double inf = std::numeric_limits<double>::infinity();
   const double all = AlignedSquaredDistance(p, Alignment{}, target.occupancy.data(), inf);
   p.weight.assign(p.occupancy.size(), 0.0f);

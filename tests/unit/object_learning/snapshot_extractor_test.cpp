@@ -49,7 +49,7 @@ TEST(SnapshotExtractorTest, FindsExactlyTheMovedObjects) {
   EXPECT_NEAR(set->snapshots[1].centre.x(), 75.5 * 0.05, 0.06);
   EXPECT_EQ(set->snapshots[0].cells, 36);  // the outline
   // One common patch size; the box's inside is unobserved, the floor around it observed.
-  const Patch& p = set->snapshots[0].patch;
+  const scene::Patch& p = set->snapshots[0].patch;
   EXPECT_EQ(p.width, set->snapshots[1].patch.width);
   EXPECT_EQ(p.weight.size(), p.occupancy.size());
   EXPECT_EQ(p.WeightAt(p.width / 2, p.height / 2), 0.0f);

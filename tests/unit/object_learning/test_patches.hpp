@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "common/object_learning/patch.hpp"
+#include "common/object_learning/alignment.hpp"
 #include "common/object_learning/patch_transform.hpp"
 
 namespace fleetmap::object_learning::testing {
@@ -13,8 +13,8 @@ namespace fleetmap::object_learning::testing {
 enum class TestShape { kL, kRing, kBar };
 
 // A `side` x `side` patch with the shape's outline (one cell thick, value 1) centred.
-inline Patch ShapePatch(TestShape shape, int side = 25) {
-  Patch p = ZeroPatch(side, side, 0.05);
+inline scene::Patch ShapePatch(TestShape shape, int side = 25) {
+  scene::Patch p = ZeroPatch(side, side, 0.05);
   const int c = side / 2;
   for (int y = 0; y < side; ++y) {
     for (int x = 0; x < side; ++x) {

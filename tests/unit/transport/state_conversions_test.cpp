@@ -9,7 +9,7 @@ namespace fleetmap::transport {
 namespace {
 
 EntityMessage Door() {
-  extrapolation::DoorEntity door;
+  scene::DoorEntity door;
   door.id = "door_3";
   door.hinge = {1.0, 2.0};
   door.latch = {1.9, 2.0};
@@ -22,7 +22,7 @@ EntityMessage Door() {
 }
 
 EntityMessage Person() {
-  extrapolation::PersonTrack track;
+  scene::PersonTrack track;
   track.id = "person_1";
   track.points = {{0.0, {1.0, 1.0}, 0.0}, {0.5, {1.5, 1.0}, 0.1}};
   track.dominant_side = -1;
@@ -41,7 +41,7 @@ TEST(StateConversionsTest, DoorRoundTrips) {
   ASSERT_TRUE(back.ok()) << back.status();
   EXPECT_EQ(back->robot.value, "alpha");
   EXPECT_EQ(back->entity_id(), "door_3");
-  const auto* door = std::get_if<extrapolation::DoorEntity>(&back->entity);
+  const auto* door = std::get_if<scene::DoorEntity>(&back->entity);
   ASSERT_NE(door, nullptr);
   EXPECT_NEAR(door->width(), 0.9, 1e-12);
   EXPECT_NEAR(door->opening_direction.y(), 1.0, 1e-12);
@@ -49,7 +49,7 @@ TEST(StateConversionsTest, DoorRoundTrips) {
 }
 
 TEST(StateConversionsTest, StairsRoundTripAndRefuseANegativeRun) {
-  extrapolation::StairsEntity stairs;
+  scene::StairsEntity stairs;
   stairs.id = "stairs_1";
   stairs.position = {4.0, -1.0};
   stairs.ascending = {-1.0, 0.0};
@@ -62,7 +62,7 @@ TEST(StateConversionsTest, StairsRoundTripAndRefuseANegativeRun) {
   auto sample = *ToIdl(message);
   StatusOr<EntityMessage> back = FromIdl(sample);
   ASSERT_TRUE(back.ok()) << back.status();
-  const auto* got = std::get_if<extrapolation::StairsEntity>(&back->entity);
+  const auto* got = std::get_if<scene::StairsEntity>(&back->entity);
   ASSERT_NE(got, nullptr);
   EXPECT_NEAR(got->ascending.x(), -1.0, 1e-12);
   EXPECT_DOUBLE_EQ(got->run_length, 3.5);
@@ -77,7 +77,7 @@ TEST(StateConversionsTest, StairsRoundTripAndRefuseANegativeRun) {
 TEST(StateConversionsTest, PersonTrackRoundTrips) {
   StatusOr<EntityMessage> back = FromIdl(*ToIdl(Person()));
   ASSERT_TRUE(back.ok()) << back.status();
-  const auto* track = std::get_if<extrapolation::PersonTrack>(&back->entity);
+  const auto* track = std::get_if<scene::PersonTrack>(&back->entity);
   ASSERT_NE(track, nullptr);
   ASSERT_EQ(track->points.size(), 2u);
   EXPECT_DOUBLE_EQ(track->points[1].position.x(), 1.5);
@@ -122,13 +122,13 @@ TEST(StateConversionsTest, RefusesBrokenEntities) {
 TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   SubmapMessage message;
   message.submap.id = 4;
-  message.submap.kind = extrapolation::SubmapKind::kPredictedDoor;
+  message.submap.kind = scene::SubmapKind::kPredictedDoor;
   message.submap.place = 2;
   message.submap.elevation = 2.75;
   message.submap.map_from_submap = {3.0, 1.0, 0.5};
   message.submap.navigable = grid::OccupancyGrid(3, 2, 0.1, Pose2{-0.15, -0.1, 0.0});
   message.submap.navigable.at(1, 1) = 0;
-  message.state = SubmapState::kConfirmed;
+  message.state = scene::SubmapState::kConfirmed;
   message.precision = 0.97F;
   message.observed_fraction = 0.6F;
   message.source_robot = "alpha";
@@ -137,8 +137,8 @@ TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   StatusOr<SubmapMessage> back = FromIdl(*ToIdl(message));
   ASSERT_TRUE(back.ok()) << back.status();
   EXPECT_EQ(back->submap.id, 4u);
-  EXPECT_EQ(back->submap.kind, extrapolation::SubmapKind::kPredictedDoor);
-  EXPECT_EQ(back->state, SubmapState::kConfirmed);
+  EXPECT_EQ(back->submap.kind, scene::SubmapKind::kPredictedDoor);
+  EXPECT_EQ(back->state, scene::SubmapState::kConfirmed);
   EXPECT_DOUBLE_EQ(back->submap.elevation, 2.75);
   EXPECT_EQ(back->submap.navigable.width(), 3);
   EXPECT_EQ(back->submap.navigable.at(1, 1), 0);

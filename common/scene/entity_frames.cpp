@@ -1,8 +1,8 @@
-#include "server/entity_frames.hpp"
+#include "common/scene/entity_frames.hpp"
 
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::scene {
 namespace {
 
 struct ToFleet {
@@ -14,19 +14,19 @@ struct ToFleet {
     return std::atan2(direction.y(), direction.x());
   }
 
-  transport::EntityMessage::Entity operator()(extrapolation::DoorEntity door) const {
+  Entity operator()(DoorEntity door) const {
     door.hinge = fleet_from_map * door.hinge;
     door.latch = fleet_from_map * door.latch;
     door.opening_direction = Direction(door.opening_direction);
     return door;
   }
-  transport::EntityMessage::Entity operator()(extrapolation::StairsEntity stairs) const {
+  Entity operator()(StairsEntity stairs) const {
     stairs.position = fleet_from_map * stairs.position;
     stairs.ascending = Direction(stairs.ascending);
     return stairs;
   }
-  transport::EntityMessage::Entity operator()(extrapolation::PersonTrack track) const {
-    for (extrapolation::TrackPoint& point : track.points) {
+  Entity operator()(PersonTrack track) const {
+    for (TrackPoint& point : track.points) {
       point.position = fleet_from_map * point.position;
       point.heading = Heading(point.heading);
     }
@@ -34,18 +34,18 @@ struct ToFleet {
   }
 };
 
-bool Same(const extrapolation::DoorEntity& a, const extrapolation::DoorEntity& b) {
+bool Same(const DoorEntity& a, const DoorEntity& b) {
   return a.id == b.id && a.hinge == b.hinge && a.latch == b.latch &&
          a.opening_direction == b.opening_direction && a.open == b.open;
 }
 
-bool Same(const extrapolation::StairsEntity& a, const extrapolation::StairsEntity& b) {
+bool Same(const StairsEntity& a, const StairsEntity& b) {
   return a.id == b.id && a.position == b.position && a.ascending == b.ascending &&
          a.step_width == b.step_width && a.next_floor_height == b.next_floor_height &&
          a.run_length == b.run_length;
 }
 
-bool Same(const extrapolation::PersonTrack& a, const extrapolation::PersonTrack& b) {
+bool Same(const PersonTrack& a, const PersonTrack& b) {
   if (a.id != b.id || a.dominant_side != b.dominant_side || a.left_view != b.left_view ||
       a.entered_view != b.entered_view || a.points.size() != b.points.size()) {
     return false;
@@ -61,13 +61,15 @@ bool Same(const extrapolation::PersonTrack& a, const extrapolation::PersonTrack&
 
 }  // namespace
 
-transport::EntityMessage::Entity ToFleetFrame(const transport::EntityMessage::Entity& entity,
-                                              const Transform2& fleet_from_map) {
+const std::string& EntityId(const Entity& entity) {
+  return std::visit([](const auto& kind) -> const std::string& { return kind.id; }, entity);
+}
+
+Entity ToFleetFrame(const Entity& entity, const Transform2& fleet_from_map) {
   return std::visit(ToFleet{fleet_from_map}, entity);
 }
 
-bool SameEntity(const transport::EntityMessage::Entity& a,
-                const transport::EntityMessage::Entity& b) {
+bool SameEntity(const Entity& a, const Entity& b) {
   if (a.index() != b.index()) return false;
   return std::visit(
       [&b](const auto& entity) {
@@ -76,4 +78,4 @@ bool SameEntity(const transport::EntityMessage::Entity& a,
       a);
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::scene

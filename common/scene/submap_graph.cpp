@@ -1,6 +1,6 @@
-#include "common/extrapolation/submap_graph.hpp"
+#include "common/scene/submap_graph.hpp"
 
-namespace fleetmap::extrapolation {
+namespace fleetmap::scene {
 
 std::string_view SubmapKindName(SubmapKind kind) {
   switch (kind) {
@@ -25,4 +25,18 @@ Pose2 RelativePose(const Pose2& map_from_from, const Pose2& map_from_to) {
   return Pose2::FromTransform(map_from_from.ToTransform().inverse() * map_from_to.ToTransform());
 }
 
-}  // namespace fleetmap::extrapolation
+const char* SubmapStateName(SubmapState state) {
+  switch (state) {
+    case SubmapState::kObserved:
+      return "observed";
+    case SubmapState::kPredicted:
+      return "predicted";
+    case SubmapState::kConfirmed:
+      return "confirmed";
+    case SubmapState::kRetracted:
+      return "retracted";
+  }
+  return "unknown";
+}
+
+}  // namespace fleetmap::scene

@@ -1,15 +1,18 @@
 #pragma once
 
 // The entities a robot recognises and the extrapolation uses (ALGORITHMS.md 3): doors
-// (quasi-static), stairs (static) and people tracks (dynamic). All positions are in the local
-// map's frame, metres; docs/extrapolation.md describes their JSON form.
+// (quasi-static), stairs (static) and people tracks (dynamic). Plain data shared by the agent's
+// detectors, the DDS edge and the server's extrapolation. Positions are in the frame of the map
+// they were seen in (the robot's map frame unless ToFleetFrame moved them), metres;
+// docs/extrapolation.md describes their JSON form.
 
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "common/core/types.hpp"
 
-namespace fleetmap::extrapolation {
+namespace fleetmap::scene {
 
 // A door in a wall: its two jamb points on the floor. The hinge jamb holds the rotation axis; the
 // latch jamb the handle side. `opening_direction` is the unit normal of the door line pointing
@@ -30,7 +33,7 @@ struct DoorEntity {
 // direction going up; `step_width` the width of the steps across the flight (metres);
 // `next_floor_height` the rise from this floor to the floor at the top. `run_length` is the
 // horizontal distance from the foot to the top edge; 0 means unknown (the extrapolator then
-// assumes a standard pitch, ExtrapolationOptions::stairs_default_pitch).
+// assumes a standard pitch, extrapolation::ExtrapolationOptions::stairs_default_pitch).
 struct StairsEntity {
   std::string id;
   Point2 position = Point2::Zero();
@@ -66,4 +69,10 @@ struct Entities {
   std::vector<PersonTrack> people;
 };
 
-}  // namespace fleetmap::extrapolation
+// Any one entity, as one sample of rt/fleetmap/entities carries it.
+using Entity = std::variant<DoorEntity, StairsEntity, PersonTrack>;
+
+// The entity's own id (unique per robot).
+const std::string& EntityId(const Entity& entity);
+
+}  // namespace fleetmap::scene

@@ -1,13 +1,12 @@
 #pragma once
 
-// The small occupancy grids object learning works on: snapshots, objects and templates, all of one
-// common size, centred on the patch centre, and the rigid alignment that maps one onto another.
+// A small occupancy grid centred on its own centre: what object learning works on (snapshots,
+// objects, templates) and what the object-model topics carry.
 
+#include <cstddef>
 #include <vector>
 
-#include "common/core/types.hpp"
-
-namespace fleetmap::object_learning {
+namespace fleetmap::scene {
 
 // A square or rectangular occupancy patch, row-major, values in [0, 1] (probability of
 // occupancy). Cell (x, y) has its centre at ((x - (width - 1) / 2) * resolution,
@@ -30,11 +29,4 @@ struct Patch {
   bool empty() const { return occupancy.empty(); }
 };
 
-// A rigid transform of a patch about its centre: rotate by dphi, then shift by (dx, dy).
-struct Alignment {
-  double dx = 0.0;    // metres
-  double dy = 0.0;    // metres
-  double dphi = 0.0;  // radians, counter-clockwise
-};
-
-}  // namespace fleetmap::object_learning
+}  // namespace fleetmap::scene

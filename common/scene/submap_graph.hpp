@@ -14,7 +14,7 @@
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
 
-namespace fleetmap::extrapolation {
+namespace fleetmap::scene {
 
 enum class SubmapKind : uint8_t { kObserved, kPredictedStairs, kPredictedDoor };
 
@@ -61,4 +61,11 @@ struct SubmapGraph {
 // from_T_to of two sub-map poses in the map frame.
 Pose2 RelativePose(const Pose2& map_from_from, const Pose2& map_from_to);
 
-}  // namespace fleetmap::extrapolation
+// Where a sub-map stands in the fleet: observed by the robots, predicted, or a prediction that
+// robots have since observed and found right (confirmed) or wrong (retracted).
+enum class SubmapState : uint8_t { kObserved = 0, kPredicted = 1, kConfirmed = 2, kRetracted = 3 };
+
+// "observed", "predicted", "confirmed", "retracted".
+const char* SubmapStateName(SubmapState state);
+
+}  // namespace fleetmap::scene
