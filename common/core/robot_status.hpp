@@ -1,6 +1,5 @@
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <string>
 
@@ -8,9 +7,6 @@
 #include "common/core/types.hpp"
 
 namespace fleetmap {
-
-using Clock = std::chrono::system_clock;
-using Timestamp = Clock::time_point;
 
 // What an agent reports about its robot: where it is, where its map sits in the fleet frame,
 // what it has published. Plain data; the wire form is fleetmap_msgs/msg/RobotStatus.

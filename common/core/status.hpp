@@ -1,11 +1,12 @@
 #pragma once
 
-#include <cassert>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
 #include <variant>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap {
 
@@ -74,7 +75,7 @@ class [[nodiscard]] StatusOr {
   StatusOr(const T& value) : value_(value) {}        // NOLINT: implicit by design
   StatusOr(T&& value) : value_(std::move(value)) {}  // NOLINT: implicit by design
   StatusOr(const Status& status) : value_(status) {  // NOLINT: implicit by design
-    assert(!status.ok() && "StatusOr needs a value or an error");
+    FLEETMAP_CHECK(!status.ok(), "StatusOr needs a value or an error");
   }
 
   bool ok() const { return std::holds_alternative<T>(value_); }
@@ -89,7 +90,7 @@ class [[nodiscard]] StatusOr {
   T* operator->() { return &value(); }
 
  private:
-  void Checked() const { assert(ok() && "value() of an error StatusOr"); }
+  void Checked() const { FLEETMAP_CHECK(ok(), "value() of an error StatusOr"); }
 
   std::variant<T, Status> value_;
 };

@@ -1,13 +1,18 @@
 #pragma once
 
-// The vocabulary of fleetmap: points, poses and rigid transforms in the plane.
+// The vocabulary of fleetmap: points, poses and rigid transforms in the plane, and time stamps.
 // Frames are named in variables (`fleet_from_map`, `map_from_robot`); see docs/frames.md.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <chrono>
 #include <ostream>
 
 namespace fleetmap {
+
+// Wall-clock time, as DDS and ROS 2 stamp messages (builtin_interfaces/Time: since the Unix epoch).
+using Clock = std::chrono::system_clock;
+using Timestamp = Clock::time_point;
 
 using Point2 = Eigen::Vector2d;
 using Point2f = Eigen::Vector2f;

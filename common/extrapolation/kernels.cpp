@@ -1,9 +1,10 @@
 #include "common/extrapolation/kernels.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <numbers>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::extrapolation {
 
@@ -15,7 +16,7 @@ double NormalizedGaussian(const Vector2& u, double sigma) {
 
 SkewNormalKernel::SkewNormalKernel(double sigma_x, double sigma_y, const Vector2& alpha)
     : sigma_x_(sigma_x), sigma_y_(sigma_y), alpha_(alpha) {
-  assert(sigma_x > 0.0 && sigma_y > 0.0);
+  FLEETMAP_CHECK(sigma_x > 0.0 && sigma_y > 0.0);
   // In standardised coordinates z = omega^-1 u the density is 2 phi(z) Phi(alpha^T z), whose mode
   // lies on the ray along alpha: maximise g(t) = phi(t) Phi(|alpha| t) over t >= 0 by golden
   // section (g is unimodal there).

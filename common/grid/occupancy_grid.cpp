@@ -1,7 +1,8 @@
 #include "common/grid/occupancy_grid.hpp"
 
-#include <cassert>
 #include <cmath>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::grid {
 
@@ -19,7 +20,7 @@ OccupancyGrid::OccupancyGrid(int width, int height, double resolution, Pose2 ori
       resolution_(resolution),
       origin_(origin),
       data_(static_cast<size_t>(width) * static_cast<size_t>(height), fill) {
-  assert(width >= 0 && height >= 0 && resolution > 0.0);
+  FLEETMAP_CHECK(width >= 0 && height >= 0 && resolution > 0.0);
 }
 
 Point2 OccupancyGrid::CellCenter(int x, int y) const {

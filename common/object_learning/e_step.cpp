@@ -1,12 +1,13 @@
 #include "common/object_learning/e_step.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
 #include <vector>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::object_learning {
 namespace {
@@ -42,7 +43,7 @@ double UniformDouble(std::mt19937_64* random) {
 CorrespondenceExpectations ExactCorrespondences(const Eigen::MatrixXd& log_likelihood) {
   const int k_count = static_cast<int>(log_likelihood.rows());
   const int n_count = static_cast<int>(log_likelihood.cols());
-  assert(k_count <= 20);
+  FLEETMAP_CHECK(k_count <= 20);
   CorrespondenceExpectations result;
   result.expectations = Eigen::MatrixXd::Zero(k_count, n_count);
   if (k_count == 0) return result;
@@ -146,7 +147,7 @@ CorrespondenceExpectations SampledCorrespondences(const Eigen::MatrixXd& log_lik
                                                   int burn_in, std::mt19937_64* random) {
   const int k_count = static_cast<int>(log_likelihood.rows());
   const int n_count = static_cast<int>(log_likelihood.cols());
-  assert(n_count >= k_count);
+  FLEETMAP_CHECK(n_count >= k_count);
   CorrespondenceExpectations result;
   result.expectations = Eigen::MatrixXd::Zero(k_count, n_count);
   if (k_count == 0) return result;
@@ -197,7 +198,7 @@ CorrespondenceExpectations SampledCorrespondences(const Eigen::MatrixXd& log_lik
 std::vector<int> GreedyAssignment(const Eigen::MatrixXd& log_likelihood) {
   const int k_count = static_cast<int>(log_likelihood.rows());
   const int n_count = static_cast<int>(log_likelihood.cols());
-  assert(n_count >= k_count);
+  FLEETMAP_CHECK(n_count >= k_count);
   std::vector<int> assignment(k_count, -1);
   std::vector<bool> used(n_count, false);
   std::vector<std::pair<double, std::pair<int, int>>> pairs;
@@ -217,7 +218,7 @@ std::vector<int> GreedyAssignment(const Eigen::MatrixXd& log_likelihood) {
 std::vector<int> BestAssignment(const Eigen::MatrixXd& log_likelihood) {
   const int k_count = static_cast<int>(log_likelihood.rows());
   const int n_count = static_cast<int>(log_likelihood.cols());
-  assert(k_count <= 20 && n_count >= k_count);
+  FLEETMAP_CHECK(k_count <= 20 && n_count >= k_count);
   if (k_count == 0) return {};
   const size_t subsets = size_t{1} << k_count;
   // best[n][S]: the best log weight of an injective map of S into objects 0..n-1; choice[n][S]:

@@ -1,8 +1,8 @@
 #include "common/object_learning/flat_em.hpp"
 
-#include <cassert>
 #include <random>
 
+#include "common/core/check.hpp"
 #include "common/object_learning/m_step.hpp"
 
 namespace fleetmap::object_learning {
@@ -15,7 +15,7 @@ constexpr double kModelTolerance = 1e-2;  // occupancy: a percent
 
 EmResult RunFlatEm(const EmProblem& problem, int num_objects, const EmOptions& options,
                    uint64_t seed) {
-  assert(num_objects >= problem.max_per_map());
+  FLEETMAP_CHECK(num_objects >= problem.max_per_map());
   std::mt19937_64 random(seed);
   EmResult r;
   RandomStart(problem, num_objects, options, &random, &r.objects, &r.alignments);

@@ -1,7 +1,6 @@
 #include "common/object_learning/held_out_likelihood.hpp"
 
-#include <cassert>
-
+#include "common/core/check.hpp"
 #include "common/object_learning/alignment_search.hpp"
 #include "common/object_learning/e_step.hpp"
 #include "common/object_learning/em_problem.hpp"
@@ -12,7 +11,7 @@ double HeldOutLogLikelihood(const std::vector<scene::Patch>& snapshots,
                             const Eigen::MatrixXd& objects, const EmOptions& options) {
   const int k_count = static_cast<int>(snapshots.size());
   const int n_count = static_cast<int>(objects.rows());
-  assert(n_count >= k_count);
+  FLEETMAP_CHECK(n_count >= k_count);
   if (k_count == 0) return 0.0;
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();

@@ -1,11 +1,11 @@
 #include "common/object_learning/hierarchical_em.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <limits>
 #include <random>
 
+#include "common/core/check.hpp"
 #include "common/object_learning/alignment_search.hpp"
 #include "common/object_learning/e_step.hpp"
 #include "common/object_learning/m_step.hpp"
@@ -200,8 +200,8 @@ double ObjectLevelLogLikelihood(const Eigen::MatrixXd& log_weights, Eigen::Index
 
 EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_templates,
                            const EmOptions& options, uint64_t seed) {
-  assert(num_templates >= 1 && num_templates <= num_objects);
-  assert(num_objects >= problem.max_per_map());
+  FLEETMAP_CHECK(num_templates >= 1 && num_templates <= num_objects);
+  FLEETMAP_CHECK(num_objects >= problem.max_per_map());
   std::mt19937_64 random(seed);
   EmResult r;
   RandomStart(problem, num_objects, options, &random, &r.objects, &r.alignments);

@@ -1,7 +1,8 @@
 #include "common/object_learning/m_step.hpp"
 
 #include <Eigen/Cholesky>
-#include <cassert>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::object_learning {
 namespace {
@@ -37,8 +38,9 @@ HierarchicalParameters HierarchicalMStep(const Eigen::MatrixXd& snapshot_sums,
                                          double tau, const Eigen::MatrixXd& previous_templates) {
   const Eigen::Index n = responsibilities.rows();
   const Eigen::Index m = responsibilities.cols();
-  assert(correspondences.cols() == n && snapshot_sums.rows() == n);
-  assert(previous_templates.rows() == m && previous_templates.cols() == snapshot_sums.cols());
+  FLEETMAP_CHECK(correspondences.cols() == n && snapshot_sums.rows() == n);
+  FLEETMAP_CHECK(previous_templates.rows() == m &&
+                 previous_templates.cols() == snapshot_sums.cols());
   const double ridge = kRidge / (tau * tau);
   const Eigen::MatrixXd a = NormalMatrix(correspondences, responsibilities, sigma, tau, ridge);
   // Right-hand sides, one column per cell.

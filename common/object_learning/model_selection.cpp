@@ -1,9 +1,9 @@
 #include "common/object_learning/model_selection.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <limits>
 
+#include "common/core/check.hpp"
 #include "common/object_learning/flat_em.hpp"
 #include "common/object_learning/hierarchical_em.hpp"
 
@@ -41,7 +41,7 @@ double LogPosterior(const EmResult& result, int num_objects, int num_templates,
 
 SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& options) {
   const int total = static_cast<int>(problem.snapshots.size());
-  assert(total > 0);
+  FLEETMAP_CHECK(total > 0);
   const int lowest = std::max(1, problem.max_per_map());
   int highest = total;
   SelectionResult result;

@@ -1,9 +1,10 @@
 #include "common/object_learning/patch_transform.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <limits>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::object_learning {
 namespace {
@@ -15,7 +16,7 @@ CellBox WholePatch(const scene::Patch& patch) { return {0, 0, patch.width - 1, p
 template <typename Visit>
 void ForEachSample(const scene::Patch& source, const Alignment& alignment, const CellBox& box,
                    Visit&& visit) {
-  assert(!source.empty());
+  FLEETMAP_CHECK(!source.empty());
   const int w = source.width;
   const int h = source.height;
   const double cx = 0.5 * (w - 1);

@@ -1,8 +1,9 @@
 #include "common/sim/random.hpp"
 
-#include <cassert>
 #include <cmath>
 #include <numbers>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::sim {
 
@@ -13,7 +14,7 @@ double Random::Uniform() {
 }
 
 int Random::UniformInt(int lo, int hi) {
-  assert(lo <= hi);
+  FLEETMAP_CHECK(lo <= hi);
   const uint64_t span = static_cast<uint64_t>(static_cast<int64_t>(hi) - lo) + 1;
   if (span > 0xFFFFFFFFull) return static_cast<int>(lo + static_cast<int64_t>(Next()));
   // Reject the top partial bucket so every value is equally likely.

@@ -2,7 +2,7 @@
 
 #include <sqlite3.h>
 
-#include <cassert>
+#include "common/core/check.hpp"
 
 namespace fleetmap::store {
 
@@ -15,14 +15,14 @@ SqliteTransaction::~SqliteTransaction() {
 }
 
 Status SqliteTransaction::Begin() {
-  assert(!open_ && "SqliteTransaction::Begin called twice");
+  FLEETMAP_CHECK(!open_, "SqliteTransaction::Begin called twice");
   FLEETMAP_RETURN_IF_ERROR(db_.Exec("BEGIN IMMEDIATE", "beginning a write transaction"));
   open_ = true;
   return Status::Ok();
 }
 
 Status SqliteTransaction::Commit() {
-  assert(open_ && "SqliteTransaction::Commit without Begin");
+  FLEETMAP_CHECK(open_, "SqliteTransaction::Commit without Begin");
   FLEETMAP_RETURN_IF_ERROR(db_.Exec("COMMIT", "committing"));
   open_ = false;
   return Status::Ok();

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <cassert>
 #include <cstring>
+
+#include "common/core/check.hpp"
 
 namespace fleetmap::vector_map {
 namespace {
@@ -67,7 +68,7 @@ CellRaster::~CellRaster() {
 CellRaster::CellRaster(const grid::OccupancyGrid& grid, const CellRect& rect, int margin,
                        const grid::StateThresholds& thresholds)
     : rect_(rect) {
-  assert(margin >= 1);  // the rectangle grown by one then lies inside the scan for P below
+  FLEETMAP_CHECK(margin >= 1);  // the rectangle grown by one then lies inside the scan for P below
   const int pad = margin + 1;
   x0_ = rect.x0 - pad;
   y0_ = rect.y0 - pad;
