@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "common/grid/line_iterator.hpp"
+
 namespace fleetmap::extrapolation {
 
 grid::CellState StateAtPoint(const grid::OccupancyGrid& map, const Point2& map_point) {
@@ -15,24 +17,16 @@ bool LineOfSight(const grid::OccupancyGrid& map, const Point2& a, const Point2& 
   const Transform2 grid_from_map = map.origin().ToTransform().inverse();
   const Point2 ga = grid_from_map * a / map.resolution();
   const Point2 gb = grid_from_map * b / map.resolution();
-  int x0 = static_cast<int>(std::floor(ga.x())), y0 = static_cast<int>(std::floor(ga.y()));
-  const int x1 = static_cast<int>(std::floor(gb.x())), y1 = static_cast<int>(std::floor(gb.y()));
-  const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
-  const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
-  int error = dx + dy;
-  while (true) {
-    if (map.Contains(x0, y0) && map.StateAt(x0, y0) == grid::CellState::kOccupied) return false;
-    if (x0 == x1 && y0 == y1) return true;
-    const int e2 = 2 * error;
-    if (e2 >= dy) {
-      error += dy;
-      x0 += sx;
-    }
-    if (e2 <= dx) {
-      error += dx;
-      y0 += sy;
+  const grid::CellIndex from{static_cast<int>(std::floor(ga.x())),
+                             static_cast<int>(std::floor(ga.y()))};
+  const grid::CellIndex to{static_cast<int>(std::floor(gb.x())),
+                           static_cast<int>(std::floor(gb.y()))};
+  for (const grid::CellIndex cell : grid::GridLine(from, to)) {
+    if (map.Contains(cell.x, cell.y) && map.StateAt(cell.x, cell.y) == grid::CellState::kOccupied) {
+      return false;
     }
   }
+  return true;
 }
 
 std::optional<double> DistanceToObstacle(const grid::OccupancyGrid& map, const Point2& origin,

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <deque>
+#include <optional>
+
+#include "common/grid/line_iterator.hpp"
 
 namespace fleetmap::sim {
 namespace {}  // namespace
@@ -95,31 +98,18 @@ void FrontierPlanner::Classify(const OccupancyMapper& map) {
 }
 
 bool FrontierPlanner::LineOfSight(int x0, int y0, int x1, int y1) const {
-  const int dx = std::abs(x1 - x0);
-  const int dy = -std::abs(y1 - y0);
-  const int sx = x0 < x1 ? 1 : -1;
-  const int sy = y0 < y1 ? 1 : -1;
-  int error = dx + dy;
-  while (true) {
-    if (!Passable(static_cast<size_t>(y0) * bw_ + x0)) return false;
-    if (x0 == x1 && y0 == y1) return true;
-    const int e2 = 2 * error;
+  const auto index = [this](int x, int y) { return static_cast<size_t>(y) * bw_ + x; };
+  std::optional<grid::CellIndex> previous;
+  for (const grid::CellIndex cell : grid::GridLine({x0, y0}, {x1, y1})) {
     // Moving diagonally, both side blocks must be passable too (no corner cutting).
-    if (e2 >= dy && e2 <= dx) {
-      if (!Passable(static_cast<size_t>(y0) * bw_ + x0 + sx) ||
-          !Passable(static_cast<size_t>(y0 + sy) * bw_ + x0)) {
-        return false;
-      }
+    if (previous && cell.x != previous->x && cell.y != previous->y &&
+        (!Passable(index(cell.x, previous->y)) || !Passable(index(previous->x, cell.y)))) {
+      return false;
     }
-    if (e2 >= dy) {
-      error += dy;
-      x0 += sx;
-    }
-    if (e2 <= dx) {
-      error += dx;
-      y0 += sy;
-    }
+    if (!Passable(index(cell.x, cell.y))) return false;
+    previous = cell;
   }
+  return true;
 }
 
 std::vector<Point2> FrontierPlanner::Plan(const OccupancyMapper& map, const Point2& robot) {

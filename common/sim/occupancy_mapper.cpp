@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "common/grid/line_iterator.hpp"
+
 namespace fleetmap::sim {
 namespace {
 
@@ -60,33 +62,15 @@ void OccupancyMapper::Update(int x, int y, float delta) {
   if (after == MappedState::kFree) ++block_free_[block];
 }
 
-// Bresenham from (x0, y0) to (x1, y1): misses on every cell before the end, a hit or a miss on
+// Misses on every cell of the line from (x0, y0) to (x1, y1) before its end, a hit or a miss on
 // the end cell. Cells outside the grid are skipped (a drifted pose can look past the border).
 void OccupancyMapper::TraceBeam(int x0, int y0, int x1, int y1, bool hit) {
-  const int dx = std::abs(x1 - x0);
-  const int dy = -std::abs(y1 - y0);
-  const int sx = x0 < x1 ? 1 : -1;
-  const int sy = y0 < y1 ? 1 : -1;
-  int error = dx + dy;
-  int x = x0;
-  int y = y0;
+  const grid::CellIndex end{x1, y1};
   const float miss = options_.log_odds_miss;
-  while (true) {
-    const bool inside = x >= 0 && y >= 0 && x < width_ && y < height_;
-    if (x == x1 && y == y1) {
-      if (inside) Update(x, y, hit ? options_.log_odds_hit : miss);
-      return;
-    }
-    if (inside) Update(x, y, miss);
-    const int e2 = 2 * error;
-    if (e2 >= dy) {
-      error += dy;
-      x += sx;
-    }
-    if (e2 <= dx) {
-      error += dx;
-      y += sy;
-    }
+  for (const grid::CellIndex cell : grid::GridLine({x0, y0}, end)) {
+    const bool inside = cell.x >= 0 && cell.y >= 0 && cell.x < width_ && cell.y < height_;
+    if (!inside) continue;
+    Update(cell.x, cell.y, cell == end && hit ? options_.log_odds_hit : miss);
   }
 }
 

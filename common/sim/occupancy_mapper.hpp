@@ -5,8 +5,8 @@
 // end point get `log_odds_miss`, the end cell `log_odds_hit` (beams without a return clear up to
 // max range). A beam's end point is taken half a cell behind the measured range, so that a return
 // from a surface lands in the surface's own cell rather than, by rounding, in the free cell before
-// it. Cells are walked with an integer Bresenham line. Values are clamped so that a cell
-// can change its mind (a moved object, a speckle cleared later).
+// it. Cells are walked with an integer Bresenham line (grid::GridLine). Values are clamped so that
+// a cell can change its mind (a moved object, a speckle cleared later).
 //
 // It also keeps, per square block of `block_size` cells, how many cells are occupied and free, up
 // to date on every change of a cell's state: the frontier planner reads those counts instead of

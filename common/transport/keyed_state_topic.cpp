@@ -6,13 +6,13 @@
 #include <map>
 #include <mutex>
 
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
-#include "common/transport/qos.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
+#include "common/transport/internal/writer_id.hpp"
 #include "common/transport/state_conversions.hpp"
 #include "common/transport/topics.hpp"
-#include "common/transport/writer_id.hpp"
 
 namespace fleetmap::transport {
 namespace {

@@ -3,10 +3,10 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
-#include "common/transport/qos.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
 #include "nav_msgs/msg/OccupancyGrid.h"
 
 namespace fleetmap::transport {

@@ -14,7 +14,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <string>
 
-#include "common/transport/writer_id.hpp"
+#include "common/transport/internal/writer_id.hpp"
 
 namespace fleetmap::transport {
 namespace {

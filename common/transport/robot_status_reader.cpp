@@ -7,12 +7,12 @@
 #include <mutex>
 #include <set>
 
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
-#include "common/transport/qos.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
+#include "common/transport/internal/writer_id.hpp"
 #include "common/transport/topics.hpp"
-#include "common/transport/writer_id.hpp"
 #include "fleetmap_msgs/msg/RobotStatus.h"
 
 namespace fleetmap::transport {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "common/transport/conversions.hpp"
+#include "common/transport/internal/conversions.hpp"
 
 namespace fleetmap::transport {
 namespace {

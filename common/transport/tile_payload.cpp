@@ -1,8 +1,8 @@
 #include "common/transport/tile_payload.hpp"
 
-#include "common/transport/cdr_codec.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/idl_shapes.hpp"
+#include "common/transport/internal/cdr_codec.hpp"
+#include "common/transport/internal/idl_shapes.hpp"
+#include "common/transport/internal/vector_tile_codec.hpp"
 
 namespace fleetmap::transport {
 

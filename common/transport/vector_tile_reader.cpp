@@ -5,11 +5,11 @@
 #include <map>
 #include <mutex>
 
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
-#include "common/transport/qos.hpp"
-#include "common/transport/writer_id.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
+#include "common/transport/internal/vector_tile_codec.hpp"
+#include "common/transport/internal/writer_id.hpp"
 #include "fleetmap_msgs/msg/VectorTile.h"
 
 namespace fleetmap::transport {

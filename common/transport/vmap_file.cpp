@@ -5,9 +5,9 @@
 #include <fstream>
 
 #include "common/core/file_io.hpp"
-#include "common/transport/cdr_codec.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/idl_shapes.hpp"
+#include "common/transport/internal/cdr_codec.hpp"
+#include "common/transport/internal/idl_shapes.hpp"
+#include "common/transport/internal/vector_tile_codec.hpp"
 #include "fleetmap_msgs/msg/VectorMap.h"
 
 namespace fleetmap::transport {

@@ -14,11 +14,11 @@
 #include <thread>
 
 #include "common/process/subprocess.hpp"
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
 #include "common/transport/participant.hpp"
-#include "common/transport/qos.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"

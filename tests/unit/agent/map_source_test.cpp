@@ -14,11 +14,8 @@
 #include "common/grid/map_io.hpp"
 #include "common/grid/pgm.hpp"
 #include "common/process/subprocess.hpp"
-#include "common/transport/checked_type_support.hpp"
-#include "common/transport/conversions.hpp"
-#include "common/transport/endpoint.hpp"
+#include "common/transport/map_update_writer.hpp"
 #include "common/transport/occupancy_grid_writer.hpp"
-#include "common/transport/qos.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace fleetmap::agent {
@@ -284,9 +281,7 @@ TEST(TopicMapSourceTest, FollowsFullMapsAndTheirUpdates) {
   auto source = TopicMapSource::Create(**agent, "rt/map");
   ASSERT_TRUE(source.ok()) << source.status();
   auto map_writer = transport::OccupancyGridWriter::Create(**slam, "rt/map");
-  auto update_writer = transport::WriterEndpoint::Create(
-      **slam, "rt/map_updates", transport::OccupancyGridUpdateTypeSupport(),
-      transport::OccupancyGridUpdateQos().writer);
+  auto update_writer = transport::MapUpdateWriter::Create(**slam, "rt/map_updates");
   ASSERT_TRUE(map_writer.ok() && update_writer.ok());
 
   transport::MapMessage full;
@@ -309,15 +304,13 @@ TEST(TopicMapSourceTest, FollowsFullMapsAndTheirUpdates) {
                               .height = 2,
                               .data = std::vector<int8_t>(4, grid::kOccupiedValue),
                               .stamp = {}};
-  auto outside_sample = transport::ToIdl(outside);
-  auto inside_sample = transport::ToIdl(inside);
   const auto patched = [](const grid::OccupancyGrid& g) {
     return g.at(3, 1) == grid::kOccupiedValue && g.at(4, 2) == grid::kOccupiedValue;
   };
   std::optional<grid::OccupancyGrid> updated;
   for (int attempt = 0; attempt < 100 && !(updated && patched(*updated)); ++attempt) {
-    (*update_writer)->writer()->write(&outside_sample);
-    (*update_writer)->writer()->write(&inside_sample);
+    (void)(*update_writer)->Write(outside);
+    (void)(*update_writer)->Write(inside);
     std::this_thread::sleep_for(milliseconds(50));
     if (auto polled = (*source)->Poll()) updated = std::move(polled);
   }

@@ -1,4 +1,4 @@
-#include "common/transport/checked_type_support.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
 
 #include <gtest/gtest.h>
 

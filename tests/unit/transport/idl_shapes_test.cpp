@@ -1,4 +1,4 @@
-#include "common/transport/idl_shapes.hpp"
+#include "common/transport/internal/idl_shapes.hpp"
 
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>

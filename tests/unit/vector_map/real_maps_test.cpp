@@ -1,4 +1,5 @@
-// The vectorizer on the real maps of ../shared/data/maps (SOURCES.md), loaded with map_io.
+// The vectorizer on the real maps of ../shared/data/maps (SOURCES.md), loaded with map_io; in a
+// lone clone, on the three copied into tests/data/maps/real.
 
 #include <gtest/gtest.h>
 

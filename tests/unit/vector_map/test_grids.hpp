@@ -1,6 +1,7 @@
 #pragma once
 
-// Grids for the vector-map tests: ASCII pictures and the real maps of ../shared/data/maps.
+// Grids for the vector-map tests: ASCII pictures and the real maps of ../shared/data/maps (in a
+// lone clone, the three of them copied into tests/data/maps/real).
 
 #include <cstdint>
 #include <random>
@@ -142,7 +143,8 @@ inline int OccupiedLeftUnpainted(const grid::OccupancyGrid& grid, const grid::Oc
   return count;
 }
 
-// The real maps of ../shared/data/maps (SOURCES.md).
+// The real maps of ../shared/data/maps (SOURCES.md); those absent from FLEETMAP_SHARED_MAPS_DIR
+// (in a lone clone all but tb3_world, strands_kth and aws_small_house) are skipped.
 inline const std::vector<std::string>& RealMapNames() {
   static const std::vector<std::string> names = {
       "intel_lab",   "aces3_austin",    "nav2_warehouse", "willow_garage_2010",

@@ -1,4 +1,4 @@
-#include "common/transport/endpoint.hpp"
+#include "common/transport/internal/endpoint.hpp"
 
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>

@@ -1,4 +1,4 @@
-#include "common/transport/qos.hpp"
+#include "common/transport/internal/qos.hpp"
 
 namespace fleetmap::transport {
 namespace {

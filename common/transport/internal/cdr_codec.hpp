@@ -13,7 +13,7 @@
 #include <string_view>
 
 #include "common/core/status.hpp"
-#include "common/transport/cdr_shape.hpp"
+#include "common/transport/internal/cdr_shape.hpp"
 
 namespace fleetmap::transport {
 

@@ -1,4 +1,4 @@
-#include "common/transport/cdr_shape.hpp"
+#include "common/transport/internal/cdr_shape.hpp"
 
 #include <cstring>
 

@@ -18,7 +18,7 @@
 #include <span>
 
 #include "common/core/status.hpp"
-#include "common/transport/cdr_shape.hpp"
+#include "common/transport/internal/cdr_shape.hpp"
 
 namespace fleetmap::transport {
 

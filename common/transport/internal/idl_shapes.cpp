@@ -1,4 +1,4 @@
-#include "common/transport/idl_shapes.hpp"
+#include "common/transport/internal/idl_shapes.hpp"
 
 namespace fleetmap::transport {
 namespace {

@@ -1,6 +1,6 @@
-#include "common/transport/checked_type_support.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
 
-#include "common/transport/idl_shapes.hpp"
+#include "common/transport/internal/idl_shapes.hpp"
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"

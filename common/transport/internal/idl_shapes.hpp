@@ -5,7 +5,7 @@
 // fastcdr writes for a filled sample, so a changed .idl without a changed shape fails the build's
 // tests.
 
-#include "common/transport/cdr_shape.hpp"
+#include "common/transport/internal/cdr_shape.hpp"
 
 namespace fleetmap::transport {
 
