@@ -11,7 +11,7 @@
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
 #include "common/transport/internal/writer_id.hpp"
-#include "common/transport/state_conversions.hpp"
+#include "common/transport/internal/state_conversions.hpp"
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::transport {

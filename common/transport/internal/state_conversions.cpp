@@ -1,4 +1,4 @@
-#include "common/transport/state_conversions.hpp"
+#include "common/transport/internal/state_conversions.hpp"
 
 #include <algorithm>
 #include <cmath>
