@@ -2,12 +2,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cli/bench_extrapolation_command.hpp"
-#include "cli/bench_fleet_command.hpp"
-#include "cli/bench_loss_command.hpp"
-#include "cli/bench_objects_command.hpp"
-#include "cli/bench_paper_command.hpp"
-#include "cli/bench_vectorize_command.hpp"
+#include "bench/extrapolation/bench_extrapolation_command.hpp"
+#include "bench/fleet/bench_fleet_command.hpp"
+#include "bench/fleet/bench_loss_command.hpp"
+#include "bench/objects/bench_objects_command.hpp"
+#include "bench/paper/bench_paper_command.hpp"
+#include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/extrapolate_command.hpp"
@@ -15,7 +15,7 @@
 #include "cli/learn_objects_command.hpp"
 #include "cli/rasterize_command.hpp"
 #include "cli/render_command.hpp"
-#include "cli/sim_command.hpp"
+#include "bench/fleet/sim_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
