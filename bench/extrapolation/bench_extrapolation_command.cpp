@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
 #include "bench/extrapolation/extrapolation_experiment.hpp"
+#include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
+#include "cli/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 using extrapolation::PredictionCheck;
@@ -191,16 +191,16 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
   const std::string prefix = "fleetmap bench extrapolation: ";
   if (options.scenes < 1 || options.scenes > 10000) {
     err << prefix << "--scenes: " << options.scenes << " must be in [1, 10000]\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (options.p_th.empty() || static_cast<int>(options.p_th.size()) > kMaxThresholds) {
     err << prefix << "--pth: give 1 to " << kMaxThresholds << " thresholds\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   for (double p : options.p_th) {
     if (!(p > 0.0 && p < 1.0)) {
       err << prefix << "--pth: " << p << " is not in (0, 1)\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
   if (!options.out_dir.empty()) {
@@ -208,7 +208,7 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     std::filesystem::create_directories(options.out_dir, ec);
     if (ec) {
       err << prefix << "--out: " << options.out_dir << ": cannot create the directory\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
   const auto start = std::chrono::steady_clock::now();
@@ -226,7 +226,7 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     StatusOr<ExtrapolationSceneResult> result = RunExtrapolationScene(scene);
     if (!result.ok()) {
       err << "\n" << prefix << "seed " << scene.seed << ": " << result.status().message() << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
     results.push_back(std::move(result).value());
   }
@@ -243,11 +243,11 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
                     SummaryJson(options, results, seconds).dump(2) + "\n"}}) {
       if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
         err << prefix << written.message() << "\n";
-        return kExitBadInput;
+        return cli::kExitBadInput;
       }
     }
   }
-  return kExitOk;
+  return cli::kExitOk;
 }
 
 void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code) {
@@ -265,4 +265,4 @@ void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code) {
       [options, exit_code] { *exit_code = RunBenchExtrapolation(*options, std::cout, std::cerr); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -1,7 +1,7 @@
 #pragma once
 
 // `fleetmap bench extrapolation [--out DIR] [--scenes N] [--seed S] [--pth 0.5,0.6,0.7]`: the map
-// extrapolation experiment (cli/extrapolation_experiment.hpp) over N simulated indoor scenes
+// extrapolation experiment (extrapolation_experiment.hpp) over N simulated indoor scenes
 // (seeds S .. S + N - 1). Prints the paper's tables (detection recall of stairs and doors;
 // free-space precision per class and threshold; the surface gained behind closed doors) and,
 // with --out, writes DIR/report.md, DIR/results.csv (one row per scene and threshold) and
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct BenchExtrapolationOptions {
   std::string out_dir;
@@ -30,4 +30,4 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
 
 void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

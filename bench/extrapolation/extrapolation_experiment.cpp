@@ -21,7 +21,7 @@
 #include "common/sim/people.hpp"
 #include "common/sim/random.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 namespace ex = extrapolation;
@@ -217,4 +217,4 @@ StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationScen
   return result;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

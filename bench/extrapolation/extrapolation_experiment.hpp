@@ -18,7 +18,7 @@
 #include "common/extrapolation/extrapolator.hpp"
 #include "common/extrapolation/prediction_check.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 inline constexpr int kMaxThresholds = 8;
 
@@ -66,4 +66,4 @@ struct ExtrapolationSceneResult {
 // Errors: bad options (a simulator component refused them).
 StatusOr<ExtrapolationSceneResult> RunExtrapolationScene(const ExtrapolationSceneOptions& options);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

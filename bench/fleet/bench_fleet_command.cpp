@@ -4,30 +4,26 @@
 
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <utility>
-#include <nlohmann/json.hpp>
 
-#include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
+#include "bench/fleet/fleet_scenario.hpp"
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
+#include "bench/report/bench_command.hpp"
+#include "cli/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/sim/terrain_generator.hpp"
-#include "common/sim/terrain_rasterizer.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 struct BenchFleetArgs {
   std::vector<int> robots = {1, 4, 16};
-  std::string terrain = "office";
-  double size = 80.0;
-  uint32_t seed = 1;
-  double duration_s = 60.0;
-  double rate = 10.0;
+  FleetScenarioArgs scenario{.size = 80.0};
   std::string json_path;
   // Also run one robot for robots x duration on the same terrain, and compare its map with the
   // fused map of the largest fleet: does fusing lose quality against one robot's own map?
@@ -79,20 +75,19 @@ void PrintHostileTable(const std::vector<Row>& rows, const HostileFloodOptions& 
     const auto [fused, refused] = SummaryCounts(attacked.server_output, flood.robot);
     const auto quiet = [&](double p) { return Percentile(row.tiles.latencies_ms, p); };
     const auto loud = [&](double p) { return Percentile(attacked.latencies_ms, p); };
-    std::cout << fmt::format("| {} | {} / {} / {} | {} / {} / {} | {:.0f} / {:.0f} | {} | {} | {} |\n",
-                             row.robots, Fmt(quiet(50), " ms"), Fmt(quiet(95), ""),
-                             Fmt(quiet(99), ""), Fmt(loud(50), " ms"), Fmt(loud(95), ""),
-                             Fmt(loud(99), ""), row.tiles.server_peak_rss_bytes / 1e6,
-                             attacked.server_peak_rss_bytes / 1e6, attacked.hostile_tiles_written,
-                             fused, refused);
-    (*json)[i]["hostile"] = {
-        {"latency_ms",
-         {{"p50", loud(50).value_or(-1)}, {"p95", loud(95).value_or(-1)},
-          {"p99", loud(99).value_or(-1)}}},
-        {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
-        {"flood_tiles_sent", attacked.hostile_tiles_written},
-        {"flood_tiles_fused", fused},
-        {"flood_samples_refused", refused}};
+    std::cout << fmt::format(
+        "| {} | {} / {} / {} | {} / {} / {} | {:.0f} / {:.0f} | {} | {} | {} |\n", row.robots,
+        Fmt(quiet(50), " ms"), Fmt(quiet(95), ""), Fmt(quiet(99), ""), Fmt(loud(50), " ms"),
+        Fmt(loud(95), ""), Fmt(loud(99), ""), row.tiles.server_peak_rss_bytes / 1e6,
+        attacked.server_peak_rss_bytes / 1e6, attacked.hostile_tiles_written, fused, refused);
+    (*json)[i]["hostile"] = {{"latency_ms",
+                              {{"p50", loud(50).value_or(-1)},
+                               {"p95", loud(95).value_or(-1)},
+                               {"p99", loud(99).value_or(-1)}}},
+                             {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
+                             {"flood_tiles_sent", attacked.hostile_tiles_written},
+                             {"flood_tiles_fused", fused},
+                             {"flood_samples_refused", refused}};
   }
 }
 
@@ -103,41 +98,25 @@ uint64_t Updates(const FleetRunResult& run) {
 }
 
 int RunBenchFleet(const BenchFleetArgs& args) {
-  const auto kind = sim::TerrainKindFromName(args.terrain);
+  const FleetScenarioArgs& scenario = args.scenario;
+  const auto kind = sim::TerrainKindFromName(scenario.terrain);
   if (!kind) {
-    std::cerr << "fleetmap bench fleet: --terrain \"" << args.terrain
+    std::cerr << "fleetmap bench fleet: --terrain \"" << scenario.terrain
               << "\" is not a terrain kind\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
-  FleetSimOptions base;
-  base.kind = *kind;
-  base.size = args.size;
-  base.seed = args.seed;
-  base.scans_per_second = args.rate;
-  base.duration = std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1000));
+  FleetSimOptions base = ScenarioFleetOptions(*kind, scenario);
   for (const int robots : args.robots) {
     base.robots = robots;
     if (const Status valid = base.Validate(); !valid.ok()) {
       std::cerr << "fleetmap bench fleet: " << valid.message() << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
-  StatusOr<std::string> binaries = FindFleetBinaries();
-  if (!binaries.ok()) {
-    std::cerr << "fleetmap bench fleet: " << binaries.status().message() << "\n";
-    return 1;
-  }
-  base.bin_dir = *binaries;
-  auto generator =
-      sim::TerrainGenerator::Create({.kind = *kind, .size = args.size, .seed = args.seed});
-  if (!generator.ok()) {
-    std::cerr << "fleetmap bench fleet: " << generator.status().message() << "\n";
-    return kExitBadInput;
-  }
-  const auto truth = sim::RasterizeTerrain(generator->Generate(), 0.05);
-  if (!truth.ok()) {
-    std::cerr << "fleetmap bench fleet: " << truth.status().message() << "\n";
-    return 1;
+  grid::OccupancyGrid truth;
+  if (const int code = PrepareFleetRuns("fleetmap bench fleet", &base, &truth);
+      code != cli::kExitOk) {
+    return code;
   }
 
   std::vector<Row> rows;
@@ -150,7 +129,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       options.wire = wire;
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
         std::cerr << fmt::format("\r{} robots, {} wire: {:.0f} / {:.0f} s   ", robots, wire,
-                                 seconds, args.duration_s)
+                                 seconds, scenario.duration_s)
                   << std::flush;
       });
       if (!run.ok()) {
@@ -165,7 +144,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       options.hostile = HostileFloodOptions{};
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
         std::cerr << fmt::format("\r{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s   ",
-                                 robots, seconds, args.duration_s)
+                                 robots, seconds, scenario.duration_s)
                   << std::flush;
       });
       if (!run.ok()) {
@@ -174,15 +153,15 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       }
       row.attacked = std::move(run).value();
     }
-    auto quality = metrics::CompareMaps(ResampleOnto(row.tiles.fused, *truth), *truth);
+    auto quality = metrics::CompareMaps(ResampleOnto(row.tiles.fused, truth), truth);
     if (quality.ok()) row.quality = *quality;
     rows.push_back(std::move(row));
   }
   std::cerr << "\n";
 
   std::cout << fmt::format(
-      "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n", args.terrain,
-      args.size, args.seed, args.duration_s, args.rate);
+      "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n",
+      scenario.terrain, scenario.size, scenario.seed, scenario.duration_s, scenario.rate);
   std::cout << "| robots | tile bytes | grid bytes | grid/tiles | tile updates | bytes/update | "
                "latency p50 / p95 / p99 | server CPU | server MB | MS / OPDF / UPDF |\n"
                "|---|---|---|---|---|---|---|---|---|---|\n";
@@ -234,13 +213,13 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       std::cerr << "fleetmap bench fleet: " << single.status().message() << "\n";
       return 1;
     }
-    const auto alone = metrics::CompareMaps(ResampleOnto(single->fused, *truth), *truth);
+    const auto alone = metrics::CompareMaps(ResampleOnto(single->fused, truth), truth);
     if (alone.ok()) {
       std::cout << fmt::format(
           "\nOne robot for {:.0f} s against {} robots for {:.0f} s, fused map vs ground truth: "
           "MS {} vs {}, OPDF {} vs {}, UPDF {} vs {}\n",
-          std::chrono::duration<double>(options.duration).count(), fleet.robots, args.duration_s,
-          Fmt(alone->map_score, ""), Fmt(fleet.quality.map_score, ""),
+          std::chrono::duration<double>(options.duration).count(), fleet.robots,
+          scenario.duration_s, Fmt(alone->map_score, ""), Fmt(fleet.quality.map_score, ""),
           Fmt(alone->occupied_picture_distance, ""),
           Fmt(fleet.quality.occupied_picture_distance, ""),
           Fmt(alone->unoccupied_picture_distance, ""),
@@ -251,10 +230,10 @@ int RunBenchFleet(const BenchFleetArgs& args) {
     if (const Status written = WriteFileAtomically(args.json_path, json.dump(2) + "\n");
         !written.ok()) {
       std::cerr << "fleetmap bench fleet: " << written.message() << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
-  return kExitOk;
+  return cli::kExitOk;
 }
 
 }  // namespace
@@ -264,11 +243,7 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   CLI::App* command = BenchCommand(app)->add_subcommand(
       "fleet", "Simulated fleets of growing size, tile wire vs grid wire: a scaling table");
   command->add_option("--robots", args->robots, "fleet sizes, e.g. 1 4 16");
-  command->add_option("--terrain", args->terrain, "office, maze or unstructured");
-  command->add_option("--size", args->size, "terrain side, metres");
-  command->add_option("--seed", args->seed, "terrain seed");
-  command->add_option("--duration", args->duration_s, "seconds per run");
-  command->add_option("--rate", args->rate, "laser scans per second per robot");
+  AddFleetScenarioOptions(command, &args->scenario);
   command->add_option("--json", args->json_path, "write the rows as JSON");
   command->add_flag("--single-robot", args->single_robot,
                     "also one robot for (largest fleet x duration), to compare map quality");
@@ -277,4 +252,4 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

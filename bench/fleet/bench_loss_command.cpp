@@ -8,27 +8,23 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
+#include "bench/fleet/fleet_scenario.hpp"
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
+#include "bench/report/bench_command.hpp"
+#include "cli/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/process/lossy_network_namespace.hpp"
 #include "common/sim/terrain_generator.hpp"
-#include "common/sim/terrain_rasterizer.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 struct BenchLossArgs {
   std::vector<int> loss_percents = {0, 5, 20, 40};
   int robots = 4;
-  std::string terrain = "office";
-  double size = 40.0;
-  uint32_t seed = 1;
-  double duration_s = 40.0;
-  double rate = 10.0;
+  FleetScenarioArgs scenario{.size = 40.0, .duration_s = 40.0};
   std::string json_path;
   std::string csv_path;
 };
@@ -60,47 +56,31 @@ int RunBenchLoss(const BenchLossArgs& args) {
   for (const int loss : args.loss_percents) {
     if (loss < 0 || loss > 90) {
       std::cerr << "fleetmap bench loss: --loss " << loss << " is outside 0..90 %\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
-  const auto kind = sim::TerrainKindFromName(args.terrain);
+  const FleetScenarioArgs& scenario = args.scenario;
+  const auto kind = sim::TerrainKindFromName(scenario.terrain);
   if (!kind) {
-    std::cerr << "fleetmap bench loss: --terrain \"" << args.terrain
+    std::cerr << "fleetmap bench loss: --terrain \"" << scenario.terrain
               << "\" is not a terrain kind\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
-  FleetSimOptions base;
-  base.kind = *kind;
-  base.size = args.size;
-  base.seed = args.seed;
+  FleetSimOptions base = ScenarioFleetOptions(*kind, scenario);
   base.robots = args.robots;
-  base.scans_per_second = args.rate;
   base.wire = "tiles";
-  base.duration = std::chrono::milliseconds(static_cast<int64_t>(args.duration_s * 1000));
   if (const Status valid = base.Validate(); !valid.ok()) {
     std::cerr << "fleetmap bench loss: " << valid.message() << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (const Status available = process::LossyNetworkNamespace::CheckAvailable(); !available.ok()) {
     std::cerr << "fleetmap bench loss: " << available.message() << "\n";
     return 1;
   }
-  StatusOr<std::string> binaries = FindFleetBinaries();
-  if (!binaries.ok()) {
-    std::cerr << "fleetmap bench loss: " << binaries.status().message() << "\n";
-    return 1;
-  }
-  base.bin_dir = *binaries;
-  auto generator =
-      sim::TerrainGenerator::Create({.kind = *kind, .size = args.size, .seed = args.seed});
-  if (!generator.ok()) {
-    std::cerr << "fleetmap bench loss: " << generator.status().message() << "\n";
-    return kExitBadInput;
-  }
-  const auto truth = sim::RasterizeTerrain(generator->Generate(), 0.05);
-  if (!truth.ok()) {
-    std::cerr << "fleetmap bench loss: " << truth.status().message() << "\n";
-    return 1;
+  grid::OccupancyGrid truth;
+  if (const int code = PrepareFleetRuns("fleetmap bench loss", &base, &truth);
+      code != cli::kExitOk) {
+    return code;
   }
 
   std::vector<Row> rows;
@@ -120,7 +100,7 @@ int RunBenchLoss(const BenchLossArgs& args) {
       }
       run = RunFleet(base, [&](double seconds) {
         std::cerr << fmt::format("\r{} % loss: {:.0f} / {:.0f} s   ", loss, seconds,
-                                 args.duration_s)
+                                 scenario.duration_s)
                   << std::flush;
       });
     }
@@ -135,7 +115,7 @@ int RunBenchLoss(const BenchLossArgs& args) {
     row.p95 = Percentile(row.run.latencies_ms, 95);
     row.p99 = Percentile(row.run.latencies_ms, 99);
     row.max = Percentile(row.run.latencies_ms, 100);
-    auto quality = metrics::CompareMaps(ResampleOnto(row.run.fused, *truth), *truth);
+    auto quality = metrics::CompareMaps(ResampleOnto(row.run.fused, truth), truth);
     if (quality.ok()) row.quality = *quality;
     rows.push_back(std::move(row));
   }
@@ -145,7 +125,8 @@ int RunBenchLoss(const BenchLossArgs& args) {
   std::cout << fmt::format(
       "loss benchmark: {} robots, {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot, UDP "
       "on loopback in a network namespace (nftables random drop)\nmachine: {}\n\n",
-      args.robots, args.terrain, args.size, args.seed, args.duration_s, args.rate, machine);
+      args.robots, scenario.terrain, scenario.size, scenario.seed, scenario.duration_s,
+      scenario.rate, machine);
   std::cout << "| UDP loss | tile updates | fused tiles received | latency p50 / p95 / p99 / max "
                "(ms) | robots falsely lost | MS |\n|---|---|---|---|---|---|\n";
   nlohmann::json json = nlohmann::json::array();
@@ -182,10 +163,10 @@ int RunBenchLoss(const BenchLossArgs& args) {
     if (path.empty()) continue;
     if (const Status written = WriteFileAtomically(path, text); !written.ok()) {
       std::cerr << "fleetmap bench loss: " << written.message() << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
-  return kExitOk;
+  return cli::kExitOk;
 }
 
 }  // namespace
@@ -196,14 +177,10 @@ void AddBenchLossCommand(CLI::App& app, int* exit_code) {
       "loss", "A simulated fleet on lossy UDP (network namespace + nftables; needs root)");
   command->add_option("--loss", args->loss_percents, "UDP loss rates in percent, e.g. 0 5 20 40");
   command->add_option("--robots", args->robots, "robots in the fleet");
-  command->add_option("--terrain", args->terrain, "office, maze or unstructured");
-  command->add_option("--size", args->size, "terrain side, metres");
-  command->add_option("--seed", args->seed, "terrain seed");
-  command->add_option("--duration", args->duration_s, "seconds per run");
-  command->add_option("--rate", args->rate, "laser scans per second per robot");
+  AddFleetScenarioOptions(command, &args->scenario);
   command->add_option("--json", args->json_path, "write the rows as JSON");
   command->add_option("--csv", args->csv_path, "write the rows as CSV");
   command->callback([args, exit_code] { *exit_code = RunBenchLoss(*args); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -15,7 +15,7 @@
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -201,4 +201,4 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   return result;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -18,7 +18,7 @@
 #include "common/sim/terrain.hpp"
 #include "common/sim/terrain_generator.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct FleetSimOptions {
   int robots = 4;
@@ -65,4 +65,4 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
 // The binaries next to this program (build tree or installed): an error names what is missing.
 StatusOr<std::string> FindFleetBinaries();
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -12,7 +12,7 @@
 #include "common/grid/image_file.hpp"
 #include "common/metrics/map_quality.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 std::string Percent(const std::optional<double>& value) {
@@ -193,4 +193,4 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       tiles.server_peak_rss_bytes / 1e6, out_dir, png_written.ok() ? png : "none");
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -7,7 +7,7 @@
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 // A fleet run summed up against the ground truth and, if it ran, the same scenario on the grid
 // wire: report.md, report.json and fused.png (the fused map with the robots' paths) in `out_dir`.
@@ -24,4 +24,4 @@ grid::OccupancyGrid ResampleOnto(const grid::OccupancyGrid& fused,
 // The p-th percentile (0..100) of `values` by nearest rank; nullopt when empty.
 std::optional<double> Percentile(std::vector<double> values, double p);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

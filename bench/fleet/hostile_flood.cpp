@@ -7,7 +7,7 @@
 #include "common/transport/topics.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 constexpr double kTileSize = 10.0;
@@ -33,10 +33,12 @@ vector_map::VectorMap HeavyTile(const TileId& tile, int walls, std::mt19937* ran
                    {lattice(x0 + x + step(*random)), lattice(y0 + y + step(*random))}};
     map.obstacles.push_back(std::move(wall));
   }
-  map.free_space.push_back(vector_map::FreePolygon{
-      {{x0, y0}, {x0 + kTileSize - quantum, y0}, {x0 + kTileSize - quantum, y0 + kTileSize - quantum},
-       {x0, y0 + kTileSize - quantum}},
-      {}});
+  map.free_space.push_back(
+      vector_map::FreePolygon{{{x0, y0},
+                               {x0 + kTileSize - quantum, y0},
+                               {x0 + kTileSize - quantum, y0 + kTileSize - quantum},
+                               {x0, y0 + kTileSize - quantum}},
+                              {}});
   return map;
 }
 
@@ -52,9 +54,8 @@ StatusOr<std::unique_ptr<HostileFlood>> HostileFlood::Create(int domain,
   FLEETMAP_ASSIGN_OR_RETURN(flood->participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(flood->status_,
                             transport::RobotStatusWriter::Create(*flood->participant_));
-  FLEETMAP_ASSIGN_OR_RETURN(flood->tiles_,
-                            transport::VectorTileWriter::Create(*flood->participant_,
-                                                                transport::kRobotTilesTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(flood->tiles_, transport::VectorTileWriter::Create(
+                                               *flood->participant_, transport::kRobotTilesTopic));
   return flood;
 }
 
@@ -121,4 +122,4 @@ void HostileFlood::Run() {
   (void)status_->Leave(status.robot);
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -15,7 +15,7 @@
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_writer.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct HostileFloodOptions {
   std::string robot = "intruder";
@@ -53,4 +53,4 @@ class HostileFlood {
   std::thread thread_;
 };
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

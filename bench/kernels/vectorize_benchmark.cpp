@@ -3,7 +3,7 @@
 // CHAIN_APPROX_SIMPLE) on occupied cells + approxPolyDP(1.414 cells)). Obstacles only (no free
 // space) so that the three do the same job. Counters: vertices (and segments) of the output.
 //
-//   build-vec/bench/vectorize_benchmark --benchmark_counters_tabular=true
+//   build/bench/kernels/vectorize_benchmark --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
 

@@ -9,14 +9,14 @@
 #include <sstream>
 #include <thread>
 
-#include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
 #include "bench/objects/object_experiment.hpp"
+#include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
+#include "cli/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 std::string Searched(const ModelComparison& c) {
@@ -54,15 +54,15 @@ nlohmann::json ToJson(const ModelComparison& c) {
 int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
   if (options.starts < 1 || options.starts > 1000) {
     err << "fleetmap bench objects: --starts " << options.starts << " must be in [1, 1000]\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (options.sessions < 2 || options.sessions > 50) {
     err << "fleetmap bench objects: --sessions " << options.sessions << " must be in [2, 50]\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (options.restarts < 0 || options.restarts > 100) {
     err << "fleetmap bench objects: --restarts " << options.restarts << " must be in [0, 100]\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   ObjectDatasetOptions dataset_options;
   dataset_options.terrain = options.terrain;
@@ -76,7 +76,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
   StatusOr<ObjectDataset> data = MakeObjectDataset(dataset_options, learn.snapshots);
   if (!data.ok()) {
     err << "fleetmap bench objects: " << data.status().message() << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   const double seconds_sim =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -107,14 +107,14 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
     if (ec) {
       err << "fleetmap bench objects: cannot create " << options.out_dir << ": " << ec.message()
           << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
     for (size_t t = 0; t < data->maps.size(); ++t) {
       const std::string path = options.out_dir + "/maps/session_" + std::to_string(t) + ".yaml";
       const Status saved = grid::SaveMap(data->maps[t], path);
       if (!saved.ok()) {
         err << "fleetmap bench objects: " << saved.message() << "\n";  // it names the file
-        return kExitBadInput;
+        return cli::kExitBadInput;
       }
     }
     nlohmann::json json = {{"maps", r.maps},
@@ -144,11 +144,11 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
           std::pair{options.out_dir + "/results.csv", csv.str()}}) {
       if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
         err << "fleetmap bench objects: " << written.message() << "\n";
-        return kExitBadInput;
+        return cli::kExitBadInput;
       }
     }
   }
-  return kExitOk;
+  return cli::kExitOk;
 }
 
 void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
@@ -172,4 +172,4 @@ void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
       [options, exit_code] { *exit_code = RunBenchObjects(*options, std::cout, std::cerr); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

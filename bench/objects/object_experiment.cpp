@@ -10,7 +10,7 @@
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 namespace ol = object_learning;
@@ -177,4 +177,4 @@ ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts
   return result;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -14,7 +14,7 @@
 #include "common/object_learning/snapshot_extractor.hpp"
 #include "common/sim/mapping_sessions.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct ObjectDatasetOptions {
   std::string terrain = "lab";  // "lab" (LabTerrain) or "office" (TerrainGenerator)
@@ -79,4 +79,4 @@ struct ObjectExperimentResult {
 ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts,
                                            const object_learning::LearnOptions& options);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

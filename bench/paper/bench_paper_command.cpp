@@ -11,15 +11,15 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/paper/paper_experiment.hpp"
 #include "bench/report/bar_chart.hpp"
 #include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
-#include "bench/paper/paper_experiment.hpp"
 #include "bench/report/report_format.hpp"
+#include "cli/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/sim/terrain_generator.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 constexpr double kKilo = 1024.0;  // KB in the report are KiB
@@ -291,34 +291,34 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
     const std::optional<sim::TerrainKind> kind = sim::TerrainKindFromName(name);
     if (!kind) {
       err << prefix << "--kinds: '" << name << "' is unknown: use maze, office or unstructured\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
     kinds.push_back(*kind);
   }
   if (options.sizes.empty()) {
     err << prefix << "--sizes: give at least one size\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   for (double size : options.sizes) {
     if (!(size >= sim::kMinTerrainSize && size <= sim::kMaxTerrainSize)) {
       err << prefix << "--sizes: " << size << " m is out of bounds: sizes must be in ["
           << sim::kMinTerrainSize << ", " << sim::kMaxTerrainSize << "] m\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
   if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
     err << prefix << "--resolution: " << options.resolution << " m is invalid: it must be > 0\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (!(options.laser_fov_deg > 0.0 && options.laser_fov_deg <= 360.0)) {
     err << prefix << "--laser-fov: " << options.laser_fov_deg
         << " deg gives a laser with no rays: it must be in (0, 360]\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   if (!(options.laser_step_deg > 0.0) || !std::isfinite(options.laser_step_deg)) {
     err << prefix << "--laser-step: " << options.laser_step_deg
         << " deg gives a laser with no rays: it must be > 0\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   PaperTerrainOptions base;
   base.resolution = options.resolution;
@@ -329,14 +329,14 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
   base.line_refit = options.line_refit;
   if (const auto check = sim::ExplorationSimulator::Create(base.exploration); !check.ok()) {
     err << prefix << "--laser-range / --laser-step: " << check.status().message() << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir + "/maps", ec);
   if (ec) {
     err << prefix << "--out: " << options.out_dir
         << ": cannot create the directory: " << ec.message() << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
 
   const auto start = std::chrono::steady_clock::now();
@@ -358,7 +358,7 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
       if (!result.ok()) {
         bar.Finish();
         err << prefix << name << ": " << result.status().message() << "\n";
-        return kExitBadInput;
+        return cli::kExitBadInput;
       }
       results.push_back(*result);
       bar.Show(static_cast<int>(results.size()), name + ": done");
@@ -373,15 +373,15 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
         std::pair{options.out_dir + "/report.md", report}}) {
     if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
       err << prefix << written.message() << "\n";
-      return kExitBadInput;
+      return cli::kExitBadInput;
     }
   }
   if (const Status charts = WriteCharts(options, results); !charts.ok()) {
     err << prefix << charts.message() << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   }
   out << report;
-  return kExitOk;
+  return cli::kExitOk;
 }
 
 void AddBenchPaperCommand(CLI::App& app, int* exit_code) {
@@ -412,4 +412,4 @@ void AddBenchPaperCommand(CLI::App& app, int* exit_code) {
       [options, exit_code] { *exit_code = RunBenchPaper(*options, std::cout, std::cerr); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

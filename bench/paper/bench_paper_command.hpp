@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct BenchPaperOptions {
   std::string out_dir;
@@ -29,9 +29,9 @@ struct BenchPaperOptions {
 };
 
 // Bad options (unknown kind, size out of bounds, resolution <= 0, a laser with no rays) print a
-// message naming the option and return kExitBadInput, before anything runs.
+// message naming the option and return cli::kExitBadInput, before anything runs.
 int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostream& err);
 
 void AddBenchPaperCommand(CLI::App& app, int* exit_code);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -15,7 +15,7 @@
 #include "common/vector_map/rasterizer.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -169,4 +169,4 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
   return result;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -17,7 +17,7 @@
 #include "common/sim/exploration_simulator.hpp"
 #include "common/sim/terrain.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct PaperTerrainOptions {
   sim::TerrainKind kind = sim::TerrainKind::kOffice;
@@ -70,4 +70,4 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
     const PaperTerrainOptions& options,
     const std::function<void(const std::string& stage)>& stage = {});
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -7,7 +7,7 @@
 
 #include "common/grid/image_file.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 const cv::Scalar kPalette[] = {{180, 119, 31},  {44, 160, 44},  {40, 100, 180},
@@ -105,4 +105,4 @@ Status WriteBarChartPng(const BarChart& chart, const std::string& path) {
   return grid::WriteImageFile(path, image);
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

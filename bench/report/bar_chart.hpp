@@ -9,7 +9,7 @@
 
 #include "common/core/status.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct BarChart {
   std::string title;
@@ -26,4 +26,4 @@ struct BarChart {
 // cannot be written (grid::WriteImageFile).
 Status WriteBarChartPng(const BarChart& chart, const std::string& path);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

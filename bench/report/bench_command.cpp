@@ -2,7 +2,7 @@
 
 #include <vector>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 CLI::App* BenchCommand(CLI::App& app) {
   const std::vector<CLI::App*> existing =
@@ -13,4 +13,4 @@ CLI::App* BenchCommand(CLI::App& app) {
   return bench;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -5,9 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 // The `bench` subcommand of `app`, created on first use, so drivers can register in any order.
 CLI::App* BenchCommand(CLI::App& app);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <thread>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 std::string Fixed(double value, int digits) {
   char buffer[64];
@@ -25,4 +25,4 @@ std::string MachineDescription() {
          " hardware threads (shared), one thread used";
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

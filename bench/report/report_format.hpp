@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 // `value` with exactly `digits` decimals ("3.14").
 std::string Fixed(double value, int digits);
@@ -13,4 +13,4 @@ std::string Fixed(double value, int digits);
 // "AMD EPYC 7B13, 2 hardware threads (shared), one thread used".
 std::string MachineDescription();
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

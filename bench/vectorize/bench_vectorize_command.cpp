@@ -9,12 +9,12 @@
 #include <opencv2/core/utility.hpp>
 
 #include "bench/report/bench_command.hpp"
+#include "bench/vectorize/vectorize_bench_report.hpp"
 #include "cli/command_inputs.hpp"
 #include "cli/exit_codes.hpp"
-#include "bench/vectorize/vectorize_bench_report.hpp"
 #include "common/core/file_io.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 StatusOr<std::vector<std::string>> MapFiles(const std::string& dir) {
@@ -38,13 +38,13 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
                       std::ostream& err) {
   auto fail = [&err](const std::string& message) {
     err << "fleetmap bench vectorize: " << message << "\n";
-    return kExitBadInput;
+    return cli::kExitBadInput;
   };
   if (options.bench.runs < kMinBenchRuns) {
     return fail("--runs must be >= " + std::to_string(kMinBenchRuns) + ", got " +
                 std::to_string(options.bench.runs));
   }
-  if (Status s = CheckPositiveFinite("--tile-size", options.bench.tile_size); !s.ok()) {
+  if (Status s = cli::CheckPositiveFinite("--tile-size", options.bench.tile_size); !s.ok()) {
     return fail(s.message());
   }
   StatusOr<std::vector<std::string>> files = MapFiles(options.maps_dir);
@@ -84,7 +84,7 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
     return fail(std::to_string(skipped) + " of " + std::to_string(files->size()) +
                 " maps skipped, see above");
   }
-  return out ? kExitOk : kExitBadInput;
+  return out ? cli::kExitOk : cli::kExitBadInput;
 }
 
 void AddBenchVectorizeCommand(CLI::App& app, int* exit_code) {
@@ -106,4 +106,4 @@ void AddBenchVectorizeCommand(CLI::App& app, int* exit_code) {
       [options, exit_code]() { *exit_code = RunBenchVectorize(*options, std::cout, std::cerr); });
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -2,7 +2,7 @@
 
 // `fleetmap bench vectorize --maps DIR [--json F] [--csv F] [--runs N]`: for every *.yaml in DIR,
 // ours (kDefault) and the paper's method against OpenCV findContours + approxPolyDP: time,
-// vertices, constraints, bytes, round trip and one-tile updates (cli/vectorize_bench.hpp). Prints
+// vertices, constraints, bytes, round trip and one-tile updates (vectorize_bench.hpp). Prints
 // Markdown tables and the targets met / missed; writes JSON / CSV on request.
 
 #include <CLI/CLI.hpp>
@@ -11,7 +11,7 @@
 
 #include "bench/vectorize/vectorize_bench.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct BenchVectorizeCommandOptions {
   std::string maps_dir;
@@ -28,4 +28,4 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
 // Registers `vectorize` under `bench` (see BenchCommand).
 void AddBenchVectorizeCommand(CLI::App& app, int* exit_code);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

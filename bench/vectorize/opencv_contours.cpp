@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 cv::Mat OccupiedMask(const grid::OccupancyGrid& grid) {
   // One table lookup per cell, as a tuned baseline would do (not a threshold test per cell).
@@ -50,4 +50,4 @@ vector_map::VectorMap ContoursToVectorMap(const Contours& contours, const grid::
   return map;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

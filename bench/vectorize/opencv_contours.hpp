@@ -13,7 +13,7 @@
 #include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/vector_map.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 using Contours = std::vector<std::vector<cv::Point>>;
 
@@ -29,4 +29,4 @@ Contours OpenCvVectorize(const cv::Mat& mask, double epsilon_cells);
 vector_map::VectorMap ContoursToVectorMap(const Contours& contours, const grid::OccupancyGrid& grid,
                                           double epsilon);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

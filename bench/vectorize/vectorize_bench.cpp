@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "cli/command_inputs.hpp"
 #include "bench/vectorize/opencv_contours.hpp"
+#include "cli/command_inputs.hpp"
 #include "common/grid/tiling.hpp"
 #include "common/metrics/grid_sizes.hpp"
 #include "common/metrics/map_quality.hpp"
@@ -18,7 +18,7 @@
 #include "common/vector_map/validator.hpp"
 #include "common/vector_map/vectorizer.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -168,7 +168,7 @@ StatusOr<vector_map::TiledVectorMap> MeasureVmap(const grid::OccupancyGrid& grid
       vector_map::VectorizeTiled(grid, Transform2::Identity(), TiledOptions(options, true)));
   row->vmap_tiles = tiled.tiles.size();
   FLEETMAP_ASSIGN_OR_RETURN(const std::string bytes,
-                            EncodeVmapBytes(&tiled, &row->vmap_dropped_free_rings));
+                            cli::EncodeVmapBytes(&tiled, &row->vmap_dropped_free_rings));
   FLEETMAP_ASSIGN_OR_RETURN(const EncodedSizes full, Sizes(bytes));
   row->vmap_raw = full.raw;
   row->vmap_zstd = full.zstd;
@@ -177,7 +177,7 @@ StatusOr<vector_map::TiledVectorMap> MeasureVmap(const grid::OccupancyGrid& grid
                             transport::DecodeVmap(bytes, row->name + ".vmap"));
   const vector_map::VectorMap merged = decoded.Merged();
   FLEETMAP_ASSIGN_OR_RETURN(row->vmap_check,
-                            Check(merged, grid, StoredEpsilonBound(decoded.epsilon)));
+                            Check(merged, grid, cli::StoredEpsilonBound(decoded.epsilon)));
   FLEETMAP_ASSIGN_OR_RETURN(const grid::OccupancyGrid raster,
                             vector_map::Rasterizer().Rasterize(merged, grid));
   FLEETMAP_ASSIGN_OR_RETURN(const metrics::QualityScores scores,
@@ -228,8 +228,8 @@ Status MeasureTileUpdate(const grid::OccupancyGrid& grid, const VectorizeBenchOp
     if (!tiled->tiles.contains(id)) continue;  // all unknown: nothing to redo
     Status status = Status::Ok();
     const double ms = MedianMs(options.runs, [&] {
-      status = vector_map::RevectorizeTile(changed, Transform2::Identity(), id, tiled_options,
-                                           tiled);
+      status =
+          vector_map::RevectorizeTile(changed, Transform2::Identity(), id, tiled_options, tiled);
     });
     row->tile_updates.push_back({id, ms});
     FLEETMAP_RETURN_IF_ERROR(status);
@@ -265,8 +265,8 @@ Status MeasureOpenCv(const grid::OccupancyGrid& grid, int runs, const vector_map
 StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
                                     const VectorizeBenchOptions& options) {
   FLEETMAP_ASSIGN_OR_RETURN(const grid::LoadedMap loaded,
-                            LoadGridInput(yaml_path, options.max_cells));
-  FLEETMAP_RETURN_IF_ERROR(CheckAxisAligned(yaml_path, loaded.grid));
+                            cli::LoadGridInput(yaml_path, options.max_cells));
+  FLEETMAP_RETURN_IF_ERROR(cli::CheckAxisAligned(yaml_path, loaded.grid));
   const grid::OccupancyGrid grid = ThreeState(loaded.grid);
   VectorizeBenchRow row;
   row.name = std::filesystem::path(yaml_path).stem().string();
@@ -305,4 +305,4 @@ StatusOr<VectorizeBenchRow> MeasureVectorizeBench(const std::string& yaml_path,
   return row;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

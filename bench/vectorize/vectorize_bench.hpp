@@ -17,7 +17,7 @@
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct VectorizeBenchOptions {
   int runs = 5;             // timings are medians of this many runs
@@ -86,4 +86,4 @@ struct VectorizeBenchRow {
 StatusOr<VectorizeBenchRow> MeasureVectorizeBench(const std::string& yaml_path,
                                                   const VectorizeBenchOptions& options);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -5,7 +5,7 @@
 #include <functional>
 #include <optional>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 std::string Format(const char* format, double value) {
@@ -394,4 +394,4 @@ std::string VectorizeBenchCsv(const std::vector<VectorizeBenchRow>& rows) {
   return csv;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

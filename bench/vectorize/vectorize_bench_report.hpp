@@ -11,7 +11,7 @@
 
 #include "bench/vectorize/vectorize_bench.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 struct BenchTarget {
   std::string name;    // "vertices <= 0.6 x OpenCV, summed"
@@ -31,4 +31,4 @@ nlohmann::ordered_json VectorizeBenchJson(const std::vector<VectorizeBenchRow>& 
 // One line per map, with a header line.
 std::string VectorizeBenchCsv(const std::vector<VectorizeBenchRow>& rows);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -7,7 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 namespace {
 
 size_t ClassOf(int cells) {
@@ -103,4 +103,4 @@ VertexBreakdown BreakDownVertices(const grid::OccupancyGrid& grid, const cv::Mat
   return breakdown;
 }
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench

@@ -16,7 +16,7 @@
 #include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/vector_map.hpp"
 
-namespace fleetmap::cli {
+namespace fleetmap::bench {
 
 // Component size classes, by cell count: 1, 2-3, 4-10, 11-50, more than 50.
 inline constexpr std::array<int, 4> kComponentClassUpperBounds = {1, 3, 10, 50};
@@ -43,4 +43,4 @@ VertexBreakdown BreakDownVertices(const grid::OccupancyGrid& grid, const cv::Mat
                                   const vector_map::VectorMap& ours, const Contours& opencv,
                                   double epsilon);
 
-}  // namespace fleetmap::cli
+}  // namespace fleetmap::bench
