@@ -1,13 +1,16 @@
-// fleetmap: the offline map tool. Each subcommand lives in its own <name>_command.{hpp,cpp}.
+// fleetmap: the offline map tool. Each of the tool's subcommands lives in its own
+// cli/<name>_command.{hpp,cpp}; the lab's (`sim`, `bench ...`) come from the bench/ libraries,
+// one per experiment, under the same names as ever.
 
 #include <CLI/CLI.hpp>
 
-#include "cli/bench_extrapolation_command.hpp"
-#include "cli/bench_fleet_command.hpp"
-#include "cli/bench_loss_command.hpp"
-#include "cli/bench_objects_command.hpp"
-#include "cli/bench_paper_command.hpp"
-#include "cli/bench_vectorize_command.hpp"
+#include "bench/extrapolation/bench_extrapolation_command.hpp"
+#include "bench/fleet/bench_fleet_command.hpp"
+#include "bench/fleet/bench_loss_command.hpp"
+#include "bench/fleet/sim_command.hpp"
+#include "bench/objects/bench_objects_command.hpp"
+#include "bench/paper/bench_paper_command.hpp"
+#include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/extrapolate_command.hpp"
@@ -15,7 +18,6 @@
 #include "cli/learn_objects_command.hpp"
 #include "cli/rasterize_command.hpp"
 #include "cli/render_command.hpp"
-#include "cli/sim_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
@@ -24,22 +26,23 @@ int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
   app.require_subcommand(1);
   int exit_code = fleetmap::cli::kExitOk;
+  // Registration order is the order `fleetmap --help` lists the commands in.
   fleetmap::cli::AddInfoCommand(app, &exit_code);
-  fleetmap::cli::AddSimCommand(app, &exit_code);
-  fleetmap::cli::AddBenchFleetCommand(app, &exit_code);
-  fleetmap::cli::AddBenchLossCommand(app, &exit_code);
+  fleetmap::bench::AddSimCommand(app, &exit_code);
+  fleetmap::bench::AddBenchFleetCommand(app, &exit_code);
+  fleetmap::bench::AddBenchLossCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
-  fleetmap::cli::AddBenchPaperCommand(app, &exit_code);
+  fleetmap::bench::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);
   fleetmap::cli::AddValidateCommand(app, &exit_code);
   fleetmap::cli::AddRasterizeCommand(app, &exit_code);
   fleetmap::cli::AddCompareCommand(app, &exit_code);
   fleetmap::cli::AddRenderCommand(app, &exit_code);
-  fleetmap::cli::AddBenchVectorizeCommand(app, &exit_code);
+  fleetmap::bench::AddBenchVectorizeCommand(app, &exit_code);
   fleetmap::cli::AddExtrapolateCommand(app, &exit_code);
-  fleetmap::cli::AddBenchExtrapolationCommand(app, &exit_code);
+  fleetmap::bench::AddBenchExtrapolationCommand(app, &exit_code);
   fleetmap::cli::AddLearnObjectsCommand(app, &exit_code);
-  fleetmap::cli::AddBenchObjectsCommand(app, &exit_code);
+  fleetmap::bench::AddBenchObjectsCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

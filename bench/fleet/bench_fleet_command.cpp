@@ -1,0 +1,255 @@
+#include "bench/fleet/bench_fleet_command.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "bench/fleet/fleet_scenario.hpp"
+#include "bench/fleet/fleet_sim.hpp"
+#include "bench/fleet/fleet_sim_report.hpp"
+#include "bench/report/bench_command.hpp"
+#include "cli/exit_codes.hpp"
+#include "common/core/file_io.hpp"
+#include "common/metrics/map_quality.hpp"
+#include "common/sim/terrain_generator.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+struct BenchFleetArgs {
+  std::vector<int> robots = {1, 4, 16};
+  FleetScenarioArgs scenario{.size = 80.0};
+  std::string json_path;
+  // Also run one robot for robots x duration on the same terrain, and compare its map with the
+  // fused map of the largest fleet: does fusing lose quality against one robot's own map?
+  bool single_robot = false;
+  // Also run each fleet with a hostile peer flooding the server, and report what the honest
+  // robots see: latency, server memory, what the flood got in.
+  bool hostile = false;
+};
+
+struct Row {
+  int robots = 0;
+  FleetRunResult tiles;
+  FleetRunResult grid;
+  std::optional<FleetRunResult> attacked;  // tiles, with a hostile flood (--hostile)
+  metrics::QualityScores quality;
+};
+
+std::string Fmt(const std::optional<double>& value, const char* unit) {
+  return value ? fmt::format("{:.1f}{}", *value, unit) : std::string("n/a");
+}
+
+// The server's summary line for `robot`: its tiles fused and samples rejected.
+std::pair<uint64_t, uint64_t> SummaryCounts(const std::string& output, const std::string& robot) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string name, state;
+    uint64_t tiles = 0, maps = 0, bytes = 0, rejected = 0;
+    if (fields >> name >> state >> tiles >> maps >> bytes >> rejected && name == robot) {
+      return {tiles, rejected};
+    }
+  }
+  return {0, 0};
+}
+
+void PrintHostileTable(const std::vector<Row>& rows, const HostileFloodOptions& flood,
+                       nlohmann::json* json) {
+  std::cout << fmt::format(
+      "\nUnder a hostile flood (one peer as robot \"{}\": {} heavy tiles rewritten {:.0f} times a "
+      "second, and {} distinct keys), honest robots' fused-tile latency and the server:\n\n",
+      flood.robot, flood.heavy_tiles, flood.rate_hz, flood.distinct_keys);
+  std::cout << "| robots | latency p50 / p95 / p99, quiet | latency p50 / p95 / p99, flooded | "
+               "server MB quiet / flooded | flood tiles sent | fused | refused |\n"
+               "|---|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Row& row = rows[i];
+    if (!row.attacked) continue;
+    const FleetRunResult& attacked = *row.attacked;
+    const auto [fused, refused] = SummaryCounts(attacked.server_output, flood.robot);
+    const auto quiet = [&](double p) { return Percentile(row.tiles.latencies_ms, p); };
+    const auto loud = [&](double p) { return Percentile(attacked.latencies_ms, p); };
+    std::cout << fmt::format(
+        "| {} | {} / {} / {} | {} / {} / {} | {:.0f} / {:.0f} | {} | {} | {} |\n", row.robots,
+        Fmt(quiet(50), " ms"), Fmt(quiet(95), ""), Fmt(quiet(99), ""), Fmt(loud(50), " ms"),
+        Fmt(loud(95), ""), Fmt(loud(99), ""), row.tiles.server_peak_rss_bytes / 1e6,
+        attacked.server_peak_rss_bytes / 1e6, attacked.hostile_tiles_written, fused, refused);
+    (*json)[i]["hostile"] = {{"latency_ms",
+                              {{"p50", loud(50).value_or(-1)},
+                               {"p95", loud(95).value_or(-1)},
+                               {"p99", loud(99).value_or(-1)}}},
+                             {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
+                             {"flood_tiles_sent", attacked.hostile_tiles_written},
+                             {"flood_tiles_fused", fused},
+                             {"flood_samples_refused", refused}};
+  }
+}
+
+uint64_t Updates(const FleetRunResult& run) {
+  uint64_t updates = 0;
+  for (const auto& [name, robot] : run.robots) updates += robot.updates;
+  return updates;
+}
+
+int RunBenchFleet(const BenchFleetArgs& args) {
+  const FleetScenarioArgs& scenario = args.scenario;
+  const auto kind = sim::TerrainKindFromName(scenario.terrain);
+  if (!kind) {
+    std::cerr << "fleetmap bench fleet: --terrain \"" << scenario.terrain
+              << "\" is not a terrain kind\n";
+    return cli::kExitBadInput;
+  }
+  FleetSimOptions base = ScenarioFleetOptions(*kind, scenario);
+  for (const int robots : args.robots) {
+    base.robots = robots;
+    if (const Status valid = base.Validate(); !valid.ok()) {
+      std::cerr << "fleetmap bench fleet: " << valid.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  grid::OccupancyGrid truth;
+  if (const int code = PrepareFleetRuns("fleetmap bench fleet", &base, &truth);
+      code != cli::kExitOk) {
+    return code;
+  }
+
+  std::vector<Row> rows;
+  for (const int robots : args.robots) {
+    Row row;
+    row.robots = robots;
+    for (const std::string wire : {"tiles", "grid"}) {
+      FleetSimOptions options = base;
+      options.robots = robots;
+      options.wire = wire;
+      StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
+        std::cerr << fmt::format("\r{} robots, {} wire: {:.0f} / {:.0f} s   ", robots, wire,
+                                 seconds, scenario.duration_s)
+                  << std::flush;
+      });
+      if (!run.ok()) {
+        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        return 1;
+      }
+      (wire == std::string("tiles") ? row.tiles : row.grid) = std::move(run).value();
+    }
+    if (args.hostile) {
+      FleetSimOptions options = base;
+      options.robots = robots;
+      options.hostile = HostileFloodOptions{};
+      StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
+        std::cerr << fmt::format("\r{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s   ",
+                                 robots, seconds, scenario.duration_s)
+                  << std::flush;
+      });
+      if (!run.ok()) {
+        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        return 1;
+      }
+      row.attacked = std::move(run).value();
+    }
+    auto quality = metrics::CompareMaps(ResampleOnto(row.tiles.fused, truth), truth);
+    if (quality.ok()) row.quality = *quality;
+    rows.push_back(std::move(row));
+  }
+  std::cerr << "\n";
+
+  std::cout << fmt::format(
+      "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n",
+      scenario.terrain, scenario.size, scenario.seed, scenario.duration_s, scenario.rate);
+  std::cout << "| robots | tile bytes | grid bytes | grid/tiles | tile updates | bytes/update | "
+               "latency p50 / p95 / p99 | server CPU | server MB | MS / OPDF / UPDF |\n"
+               "|---|---|---|---|---|---|---|---|---|---|\n";
+  nlohmann::json json = nlohmann::json::array();
+  for (const Row& row : rows) {
+    const uint64_t updates = Updates(row.tiles);
+    const double ratio = row.tiles.total_bytes > 0
+                             ? static_cast<double>(row.grid.total_bytes) / row.tiles.total_bytes
+                             : 0.0;
+    const auto p50 = Percentile(row.tiles.latencies_ms, 50);
+    const auto p95 = Percentile(row.tiles.latencies_ms, 95);
+    const auto p99 = Percentile(row.tiles.latencies_ms, 99);
+    const double cpu = 100.0 * row.tiles.server_cpu_seconds / std::max(1e-9, row.tiles.seconds);
+    std::cout << fmt::format(
+        "| {} | {} | {} | {:.1f}x | {} | {:.0f} | {} / {} / {} | {:.0f} % | {:.0f} | {} / {} / {} "
+        "|\n",
+        row.robots, row.tiles.total_bytes, row.grid.total_bytes, ratio, updates,
+        updates > 0 ? static_cast<double>(row.tiles.total_bytes) / updates : 0.0, Fmt(p50, " ms"),
+        Fmt(p95, ""), Fmt(p99, ""), cpu, row.tiles.server_peak_rss_bytes / 1e6,
+        Fmt(row.quality.map_score, ""), Fmt(row.quality.occupied_picture_distance, ""),
+        Fmt(row.quality.unoccupied_picture_distance, ""));
+    json.push_back(
+        {{"robots", row.robots},
+         {"tile_bytes", row.tiles.total_bytes},
+         {"grid_bytes", row.grid.total_bytes},
+         {"tile_updates", updates},
+         {"latency_ms",
+          {{"p50", p50.value_or(-1)}, {"p95", p95.value_or(-1)}, {"p99", p99.value_or(-1)}}},
+         {"server_cpu_percent", cpu},
+         {"server_peak_rss_bytes", row.tiles.server_peak_rss_bytes},
+         {"ms", row.quality.map_score.value_or(-1)},
+         {"opdf", row.quality.occupied_picture_distance.value_or(-1)},
+         {"updf", row.quality.unoccupied_picture_distance.value_or(-1)}});
+  }
+  if (args.hostile) PrintHostileTable(rows, HostileFloodOptions{}, &json);
+  if (args.single_robot && !rows.empty()) {
+    const Row& fleet = rows.back();
+    FleetSimOptions options = base;
+    options.robots = 1;
+    options.wire = "tiles";
+    options.duration = base.duration * fleet.robots;
+    StatusOr<FleetRunResult> single = RunFleet(options, [&](double seconds) {
+      std::cerr << fmt::format("\r1 robot for {:.0f} s: {:.0f} s   ",
+                               std::chrono::duration<double>(options.duration).count(), seconds)
+                << std::flush;
+    });
+    std::cerr << "\n";
+    if (!single.ok()) {
+      std::cerr << "fleetmap bench fleet: " << single.status().message() << "\n";
+      return 1;
+    }
+    const auto alone = metrics::CompareMaps(ResampleOnto(single->fused, truth), truth);
+    if (alone.ok()) {
+      std::cout << fmt::format(
+          "\nOne robot for {:.0f} s against {} robots for {:.0f} s, fused map vs ground truth: "
+          "MS {} vs {}, OPDF {} vs {}, UPDF {} vs {}\n",
+          std::chrono::duration<double>(options.duration).count(), fleet.robots,
+          scenario.duration_s, Fmt(alone->map_score, ""), Fmt(fleet.quality.map_score, ""),
+          Fmt(alone->occupied_picture_distance, ""),
+          Fmt(fleet.quality.occupied_picture_distance, ""),
+          Fmt(alone->unoccupied_picture_distance, ""),
+          Fmt(fleet.quality.unoccupied_picture_distance, ""));
+    }
+  }
+  if (!args.json_path.empty()) {
+    if (const Status written = WriteFileAtomically(args.json_path, json.dump(2) + "\n");
+        !written.ok()) {
+      std::cerr << "fleetmap bench fleet: " << written.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  return cli::kExitOk;
+}
+
+}  // namespace
+
+void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<BenchFleetArgs>();
+  CLI::App* command = BenchCommand(app)->add_subcommand(
+      "fleet", "Simulated fleets of growing size, tile wire vs grid wire: a scaling table");
+  command->add_option("--robots", args->robots, "fleet sizes, e.g. 1 4 16");
+  AddFleetScenarioOptions(command, &args->scenario);
+  command->add_option("--json", args->json_path, "write the rows as JSON");
+  command->add_flag("--single-robot", args->single_robot,
+                    "also one robot for (largest fleet x duration), to compare map quality");
+  command->add_flag("--hostile", args->hostile,
+                    "also run each fleet while a hostile peer floods the server, and compare");
+  command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
+}
+
+}  // namespace fleetmap::bench

@@ -1,0 +1,204 @@
+#include "bench/fleet/fleet_sim.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "common/process/subprocess.hpp"
+#include "common/transport/occupancy_grid_reader.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/robot_status_reader.hpp"
+#include "common/transport/topics.hpp"
+#include "common/transport/vector_tile_reader.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+using std::chrono::steady_clock;
+
+// What the observer keeps while the fleet runs. One thread (RunFleet's).
+class Observer {
+ public:
+  static StatusOr<std::unique_ptr<Observer>> Create(int domain) {
+    std::unique_ptr<Observer> observer(new Observer());
+    transport::ParticipantOptions options;
+    options.domain_id = domain;
+    options.localhost_only = true;
+    options.name = "fleetmap-sim-observer";
+    FLEETMAP_ASSIGN_OR_RETURN(observer->participant_, transport::Participant::Create(options));
+    FLEETMAP_ASSIGN_OR_RETURN(observer->status_, transport::RobotStatusReader::Create(
+                                                     *observer->participant_, observer->wake_up_));
+    FLEETMAP_ASSIGN_OR_RETURN(
+        observer->fused_tiles_,
+        transport::VectorTileReader::Create(*observer->participant_, transport::kFusedTilesTopic,
+                                            observer->wake_up_));
+    FLEETMAP_ASSIGN_OR_RETURN(
+        observer->fused_grid_,
+        transport::OccupancyGridReader::Create(*observer->participant_, transport::kFleetMapTopic,
+                                               observer->wake_up_));
+    return observer;
+  }
+
+  ~Observer() {
+    status_.reset();
+    fused_tiles_.reset();
+    fused_grid_.reset();
+  }
+
+  void Poll(FleetRunResult* result) {
+    wake_up_->WaitFor(milliseconds(50));
+    for (const transport::RobotEvent& event : status_->Drain()) {
+      if (event.kind != transport::RobotEvent::Kind::kStatus) continue;
+      FleetRobotResult& robot = result->robots[event.robot.value];
+      robot.bytes = event.status.bytes_published;
+      robot.updates =
+          event.status.tiles_published + (result->wire == "grid" ? event.status.maps_published : 0);
+      if (robot.path.empty() ||
+          (robot.path.back().translation() - event.status.map_from_robot.translation()).norm() >
+              0.05) {
+        robot.path.push_back(event.status.map_from_robot);
+      }
+    }
+    for (const transport::TileEvent& event : fused_tiles_->Drain()) {
+      if (event.kind != transport::TileEvent::Kind::kTile) continue;
+      // The first revisions a late reader gets are history, not updates: skip stamps from
+      // before the robots started.
+      if (event.tile.stamp < started_) continue;
+      if (event.tile.tile.x >= hostile_first_tile_x_) continue;  // the hostile peer's
+      result->latencies_ms.push_back(
+          std::chrono::duration<double, std::milli>(event.received - event.tile.stamp).count());
+    }
+    for (StatusOr<transport::MapMessage>& map : fused_grid_->Drain()) {
+      if (map.ok()) result->fused = std::move(map->grid);
+    }
+  }
+
+  void MarkStart() { started_ = Clock::now(); }
+  void IgnoreTilesFrom(int first_tile_x) { hostile_first_tile_x_ = first_tile_x; }
+
+ private:
+  Observer() = default;
+
+  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
+  std::unique_ptr<transport::Participant> participant_;
+  std::unique_ptr<transport::RobotStatusReader> status_;
+  std::unique_ptr<transport::VectorTileReader> fused_tiles_;
+  std::unique_ptr<transport::OccupancyGridReader> fused_grid_;
+  Timestamp started_;
+  int hostile_first_tile_x_ = INT32_MAX;
+};
+
+}  // namespace
+
+Status FleetSimOptions::Validate() const {
+  if (robots < 1 || robots > 64) return InvalidArgumentError("--robots must be in 1..64");
+  if (duration.count() <= 0) return InvalidArgumentError("--duration must be > 0 seconds");
+  if (!(scans_per_second > 0.0)) return InvalidArgumentError("--rate must be > 0 scans/s");
+  if (wire != "tiles" && wire != "grid") {
+    return InvalidArgumentError("--wire must be tiles or grid, not \"" + wire + "\"");
+  }
+  if (size < sim::kMinTerrainSize || size > sim::kMaxTerrainSize) {
+    return InvalidArgumentError("--size must be in " + std::to_string(sim::kMinTerrainSize) + ".." +
+                                std::to_string(sim::kMaxTerrainSize) + " metres");
+  }
+  return Status::Ok();
+}
+
+StatusOr<std::string> FindFleetBinaries() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  if (error) return NotFoundError("cannot locate this program: " + error.message());
+  const fs::path dir = self.parent_path();
+  // Installed side by side, or the build tree (cli/, server/, robot_agent/).
+  for (const fs::path& candidate : {dir, dir.parent_path()}) {
+    if (fs::exists(candidate / "fleetmap-server") && fs::exists(candidate / "fleetmap-agent")) {
+      return candidate.string() + "/";
+    }
+    if (fs::exists(candidate / "server/fleetmap-server") &&
+        fs::exists(candidate / "robot_agent/fleetmap-agent")) {
+      return candidate.string() + "/";
+    }
+  }
+  return NotFoundError("fleetmap-server and fleetmap-agent are not next to " + self.string());
+}
+
+StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
+                                  const std::function<void(double)>& progress) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  const auto binary = [&](const std::string& name, const std::string& subdir) {
+    const std::string side_by_side = options.bin_dir + name;
+    return fs::exists(side_by_side) ? side_by_side : options.bin_dir + subdir + "/" + name;
+  };
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  FleetRunResult result;
+  result.wire = options.wire;
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<Observer> observer, Observer::Create(domain));
+
+  process::Subprocess server({binary("fleetmap-server", "server"), "--map-period", "0.5"}, env);
+  if (!server.started()) return UnavailableError("could not start fleetmap-server");
+  if (!server.WaitForOutput("listening", std::chrono::seconds(20))) {
+    return UnavailableError("fleetmap-server did not start: " + server.Output());
+  }
+  observer->MarkStart();
+  const auto start = steady_clock::now();
+  std::vector<std::unique_ptr<process::Subprocess>> agents;
+  for (int i = 0; i < options.robots; ++i) {
+    agents.push_back(std::make_unique<process::Subprocess>(
+        std::vector<std::string>{
+            binary("fleetmap-agent", "robot_agent"), "--robot-id", "robot" + std::to_string(i),
+            "--sim", std::string(sim::TerrainKindName(options.kind)), "--sim-size",
+            std::to_string(options.size), "--sim-seed", std::to_string(options.seed),
+            "--sim-robot-index", std::to_string(i), "--sim-robots", std::to_string(options.robots),
+            "--sim-rate", std::to_string(options.scans_per_second), "--wire", options.wire},
+        env));
+  }
+
+  std::unique_ptr<HostileFlood> flood;
+  if (options.hostile) {
+    FLEETMAP_ASSIGN_OR_RETURN(flood, HostileFlood::Create(domain, *options.hostile));
+    observer->IgnoreTilesFrom(options.hostile->first_tile_x);
+    flood->Start();
+  }
+  auto next_progress = start;
+  while (steady_clock::now() - start < options.duration) {
+    observer->Poll(&result);
+    if (progress && steady_clock::now() >= next_progress) {
+      progress(std::chrono::duration<double>(steady_clock::now() - start).count());
+      next_progress += std::chrono::seconds(1);
+    }
+  }
+  // The server's resources while it still runs, then an orderly end: robots leave first.
+  const std::string during_run = server.Output();
+  for (size_t at = during_run.find(" lost (no liveliness"); at != std::string::npos;
+       at = during_run.find(" lost (no liveliness", at + 1)) {
+    ++result.robots_reported_lost;
+  }
+  if (const auto usage = process::ReadUsage(server.pid())) {
+    result.server_cpu_seconds = usage->cpu_seconds;
+    result.server_peak_rss_bytes = usage->peak_rss_bytes;
+  }
+  if (flood != nullptr) {
+    flood->Stop();
+    result.hostile_tiles_written = flood->tiles_written();
+  }
+  for (auto& agent : agents) agent->Signal(SIGTERM);
+  for (auto& agent : agents) agent->Wait(std::chrono::seconds(10));
+  const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);
+  while (steady_clock::now() < drain_until) observer->Poll(&result);
+  server.Signal(SIGINT);
+  server.Wait(std::chrono::seconds(10));
+  result.server_output = server.Output();
+  result.seconds = std::chrono::duration<double>(steady_clock::now() - start).count();
+  for (const auto& [name, robot] : result.robots) result.total_bytes += robot.bytes;
+  return result;
+}
+
+}  // namespace fleetmap::bench
