@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/metrics/map_quality.hpp"
 
 namespace fleetmap::cli {

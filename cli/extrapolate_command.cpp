@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "cli/extrapolation_outputs.hpp"
 #include "common/core/file_io.hpp"
 #include "common/extrapolation/door_detector.hpp"

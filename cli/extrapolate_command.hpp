@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/command_inputs.hpp"
+#include "cli/inputs/command_inputs.hpp"
 
 namespace fleetmap::cli {
 

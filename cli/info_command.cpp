@@ -7,7 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/grid/occupancy_grid.hpp"

@@ -10,8 +10,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "cli/command_inputs.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/command_inputs.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/object_learning/object_learner.hpp"

@@ -12,7 +12,7 @@
 #include "bench/paper/bench_paper_command.hpp"
 #include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "cli/extrapolate_command.hpp"
 #include "cli/info_command.hpp"
 #include "cli/learn_objects_command.hpp"

@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/vector_map/rasterizer.hpp"
 
 namespace fleetmap::cli {

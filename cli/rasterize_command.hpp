@@ -11,7 +11,7 @@
 #include <ostream>
 #include <string>
 
-#include "cli/command_inputs.hpp"
+#include "cli/inputs/command_inputs.hpp"
 
 namespace fleetmap::cli {
 

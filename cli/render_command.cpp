@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/vector_map/png.hpp"
 #include "common/vector_map/svg.hpp"

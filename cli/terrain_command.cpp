@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/sim/terrain_generator.hpp"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/vector_map/validator.hpp"
 
 namespace fleetmap::cli {

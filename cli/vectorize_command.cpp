@@ -7,7 +7,7 @@
 #include <optional>
 #include <span>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/metrics/grid_sizes.hpp"
 #include "common/vector_map/geojson.hpp"

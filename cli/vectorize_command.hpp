@@ -10,7 +10,7 @@
 #include <ostream>
 #include <string>
 
-#include "cli/command_inputs.hpp"
+#include "cli/inputs/command_inputs.hpp"
 
 namespace fleetmap::cli {
 

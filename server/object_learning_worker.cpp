@@ -17,7 +17,7 @@ Status ObjectLearningOptions::Validate() const {
     return InvalidArgumentError("max_sessions " + std::to_string(max_sessions) +
                                 " is below min_sessions " + std::to_string(min_sessions));
   }
-  return object_learning::ValidateLearnOptions(learn);
+  return learn.Validate();
 }
 
 StatusOr<std::unique_ptr<ObjectLearningWorker>> ObjectLearningWorker::Create(

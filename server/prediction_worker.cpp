@@ -67,7 +67,7 @@ Status PredictionOptions::Validate() const {
     return InvalidArgumentError("min_observed_cells " + std::to_string(min_observed_cells) +
                                 " must be at least 1");
   }
-  return extrapolation::ValidateOptions(extrapolation);
+  return extrapolation.Validate();
 }
 
 StatusOr<std::unique_ptr<PredictionWorker>> PredictionWorker::Create(

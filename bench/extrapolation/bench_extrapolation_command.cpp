@@ -13,7 +13,7 @@
 #include "bench/extrapolation/extrapolation_experiment.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 
 namespace fleetmap::bench {

@@ -13,7 +13,7 @@
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
 #include "bench/report/bench_command.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/sim/terrain_generator.hpp"

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <utility>
 
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
 
 namespace fleetmap::bench {

@@ -8,7 +8,7 @@
 #include "bench/fleet/fleet_scenario.hpp"
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::bench {

@@ -12,7 +12,7 @@
 #include "bench/objects/object_experiment.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 

@@ -15,7 +15,7 @@
 #include "bench/report/bar_chart.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/sim/terrain_generator.hpp"
 

@@ -10,8 +10,8 @@
 
 #include "bench/report/bench_command.hpp"
 #include "bench/vectorize/vectorize_bench_report.hpp"
-#include "cli/command_inputs.hpp"
-#include "cli/exit_codes.hpp"
+#include "cli/inputs/command_inputs.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 
 namespace fleetmap::bench {

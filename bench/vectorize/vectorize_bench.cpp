@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/vectorize/opencv_contours.hpp"
-#include "cli/command_inputs.hpp"
+#include "cli/inputs/command_inputs.hpp"
 #include "common/grid/tiling.hpp"
 #include "common/metrics/grid_sizes.hpp"
 #include "common/metrics/map_quality.hpp"

@@ -472,7 +472,8 @@ class Extrapolator {
 
 }  // namespace
 
-Status ValidateOptions(const ExtrapolationOptions& o) {
+Status ExtrapolationOptions::Validate() const {
+  const ExtrapolationOptions& o = *this;
   if (!(o.p_th > 0.0 && o.p_th < 1.0)) {
     return InvalidArgumentError("p_th " + std::to_string(o.p_th) + " must be in (0, 1)");
   }
@@ -519,9 +520,31 @@ Status ValidateOptions(const ExtrapolationOptions& o) {
 StatusOr<ExtrapolationResult> Extrapolate(const grid::OccupancyGrid& local_map,
                                           const scene::Entities& entities,
                                           const ExtrapolationOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(ValidateOptions(options));
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
   if (local_map.empty()) return InvalidArgumentError("the local map is empty");
   return Extrapolator(local_map, options).Run(entities);
+}
+
+void ExtrapolationOptions::Describe(OptionsPrinter& out) const {
+  out.Add("p_th", p_th);
+  out.Add("stairs_sigma_per_width", stairs_sigma_per_width);
+  out.Add("stairs_edge_clearance", stairs_edge_clearance);
+  out.Add("stairs_default_pitch", stairs_default_pitch);
+  out.Add("door_sigma_along_per_width", door_sigma_along_per_width);
+  out.Add("door_sigma_depth_per_width", door_sigma_depth_per_width);
+  out.Add("door_skew_per_width", door_skew_per_width);
+  out.Add("door_wall_clearance", door_wall_clearance);
+  out.Add("door_submap_distance", door_submap_distance);
+  out.Add("door_max_range", door_max_range);
+  out.Add("person_sigma_forward", person_sigma_forward);
+  out.Add("person_sigma_side", person_sigma_side);
+  out.Add("person_skew_forward", person_skew_forward);
+  out.Add("person_skew_side", person_skew_side);
+  out.Add("track_horizon", track_horizon);
+  out.Add("track_sample_spacing", track_sample_spacing);
+  out.Add("dominant_side_search", dominant_side_search);
+  out.Add("min_place_area", min_place_area);
+  out.Add("max_submap_cells_side", max_submap_cells_side);
 }
 
 }  // namespace fleetmap::extrapolation

@@ -81,10 +81,12 @@ struct ExtrapolationOptions {
   // Cells of the grid a predicted sub-map may have at most (a bad entity must not allocate the
   // world): larger kernels are cut to this size.
   int max_submap_cells_side = 2000;
-};
 
-// Errors (kInvalidArgument): p_th outside (0, 1), a non-positive or non-finite parameter.
-Status ValidateOptions(const ExtrapolationOptions& options);
+  // Errors (kInvalidArgument): p_th outside (0, 1), a non-positive or non-finite parameter.
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
+};
 
 struct ExtrapolationResult {
   scene::SubmapGraph graph;

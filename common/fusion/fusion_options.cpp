@@ -28,24 +28,25 @@ Status FusionOptions::Validate() const {
     return InvalidArgumentError("fusion max_coordinate must be at least one tile");
   }
   if (max_grid_cells < static_cast<int64_t>(CellsPerTile()) * CellsPerTile()) {
-    return InvalidArgumentError("the fused grid's cell budget (--max-map-cells) " +
-                                std::to_string(max_grid_cells) + " must hold at least one tile of " +
-                                std::to_string(CellsPerTile()) + " x " +
-                                std::to_string(CellsPerTile()) + " cells");
+    return InvalidArgumentError(
+        "the fused grid's cell budget (--max-map-cells) " + std::to_string(max_grid_cells) +
+        " must hold at least one tile of " + std::to_string(CellsPerTile()) + " x " +
+        std::to_string(CellsPerTile()) + " cells");
   }
   return Status::Ok();
 }
 
 Status FusionOptions::CheckTileInRange(const TileId& tile) const {
   // The far corner of the tile, computed in double: tile keys are any int32 on the wire.
-  const double reach = (std::max(std::abs(static_cast<double>(tile.x)),
-                                 std::abs(static_cast<double>(tile.y))) +
-                        1.0) *
-                       tile_size;
+  const double reach =
+      (std::max(std::abs(static_cast<double>(tile.x)), std::abs(static_cast<double>(tile.y))) +
+       1.0) *
+      tile_size;
   if (reach <= max_coordinate) return Status::Ok();
   return InvalidArgumentError("tile (" + std::to_string(tile.x) + ", " + std::to_string(tile.y) +
-                         ") lies " + std::to_string(reach) + " m from the fleet origin, beyond the " +
-                         std::to_string(max_coordinate) + " m this server accepts");
+                              ") lies " + std::to_string(reach) +
+                              " m from the fleet origin, beyond the " +
+                              std::to_string(max_coordinate) + " m this server accepts");
 }
 
 int FusionOptions::CellsPerTile() const {
@@ -53,5 +54,14 @@ int FusionOptions::CellsPerTile() const {
 }
 
 double FusionOptions::FusedResolution() const { return tile_size / CellsPerTile(); }
+
+void FusionOptions::Describe(OptionsPrinter& out) const {
+  out.Add("tile_size", tile_size);
+  out.Add("resolution", resolution);
+  out.Add("margin_cells", margin_cells);
+  out.Nested("vectorizer", vectorizer);
+  out.Add("max_coordinate", max_coordinate);
+  out.Add("max_grid_cells", max_grid_cells);
+}
 
 }  // namespace fleetmap::fusion

@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/types.hpp"
 
 namespace fleetmap::grid {
@@ -21,6 +22,11 @@ inline constexpr int8_t kOccupiedValue = 100;
 struct StateThresholds {
   double occupied = 0.65;
   double free = 0.25;
+
+  void Describe(OptionsPrinter& out) const {
+    out.Add("occupied", occupied);
+    out.Add("free", free);
+  }
 };
 
 CellState StateOf(int8_t value, const StateThresholds& thresholds = {});

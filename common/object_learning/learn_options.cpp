@@ -21,7 +21,8 @@ bool Positive(double v) { return std::isfinite(v) && v > 0.0; }
 
 }  // namespace
 
-Status ValidateSnapshotOptions(const SnapshotOptions& o) {
+Status SnapshotOptions::Validate() const {
+  const SnapshotOptions& o = *this;
   const auto& t = o.thresholds;
   if (!(t.free >= 0.0 && t.free <= t.occupied && t.occupied <= 1.0)) {
     return InvalidArgumentError("snapshots.thresholds must satisfy 0 <= free <= occupied <= 1");
@@ -54,9 +55,8 @@ Status ValidateSnapshotOptions(const SnapshotOptions& o) {
   return Status::Ok();
 }
 
-Status ValidateLearnOptions(const LearnOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(ValidateSnapshotOptions(options.snapshots));
-  const EmOptions& e = options.em;
+Status EmOptions::Validate() const {
+  const EmOptions& e = *this;
   if (!Positive(e.sigma)) return Bad("em.sigma", e.sigma, "> 0");
   if (!Positive(e.tau)) return Bad("em.tau", e.tau, "> 0");
   if (!(std::isfinite(e.sigma_initial) && e.sigma_initial >= e.sigma)) {
@@ -85,7 +85,11 @@ Status ValidateLearnOptions(const LearnOptions& options) {
   }
   if (e.gibbs_sweeps < 1) return Bad("em.gibbs_sweeps", e.gibbs_sweeps, ">= 1");
   if (e.gibbs_burn_in < 0) return Bad("em.gibbs_burn_in", e.gibbs_burn_in, ">= 0");
-  const SelectionOptions& s = options.selection;
+  return Status::Ok();
+}
+
+Status SelectionOptions::Validate() const {
+  const SelectionOptions& s = *this;
   if (!(std::isfinite(s.object_penalty) && s.object_penalty >= 0.0)) {
     return Bad("selection.object_penalty", s.object_penalty, ">= 0");
   }
@@ -94,10 +98,61 @@ Status ValidateLearnOptions(const LearnOptions& options) {
   }
   if (s.max_objects < 1) return Bad("selection.max_objects", s.max_objects, ">= 1");
   if (s.patience < 0) return Bad("selection.patience", s.patience, ">= 0");
-  if (options.restarts < 1 || options.restarts > 1000) {
-    return Bad("restarts", options.restarts, "in [1, 1000]");
-  }
   return Status::Ok();
+}
+
+Status LearnOptions::Validate() const {
+  FLEETMAP_RETURN_IF_ERROR(snapshots.Validate());
+  FLEETMAP_RETURN_IF_ERROR(em.Validate());
+  FLEETMAP_RETURN_IF_ERROR(selection.Validate());
+  if (restarts < 1 || restarts > 1000) return Bad("restarts", restarts, "in [1, 1000]");
+  return Status::Ok();
+}
+
+void SnapshotOptions::Describe(OptionsPrinter& out) const {
+  out.Nested("thresholds", thresholds);
+  out.Add("guard_radius", guard_radius);
+  out.Add("filter_radius", filter_radius);
+  out.Add("filter_threshold", filter_threshold);
+  out.Add("link_cells", link_cells);
+  out.Add("min_region_cells", min_region_cells);
+  out.Add("max_region_cells", max_region_cells);
+  out.Add("margin_cells", margin_cells);
+  out.Add("patch_cells", patch_cells);
+  out.Add("blur_cells", blur_cells);
+}
+
+void EmOptions::Describe(OptionsPrinter& out) const {
+  out.Add("sigma", sigma);
+  out.Add("tau", tau);
+  out.Add("sigma_initial", sigma_initial);
+  out.Add("tau_initial", tau_initial);
+  out.Add("annealing", annealing);
+  out.Add("iterations", iterations);
+  out.Add("rotation_scan_step", rotation_scan_step);
+  out.Add("rotation_scan_every", rotation_scan_every);
+  out.Add("initial_shift_step", initial_shift_step);
+  out.Add("initial_turn_step", initial_turn_step);
+  out.Add("min_shift_step", min_shift_step);
+  out.Add("max_exact_snapshots", max_exact_snapshots);
+  out.Add("gibbs_sweeps", gibbs_sweeps);
+  out.Add("gibbs_burn_in", gibbs_burn_in);
+}
+
+void SelectionOptions::Describe(OptionsPrinter& out) const {
+  out.Add("object_penalty", object_penalty);
+  out.Add("template_penalty", template_penalty);
+  out.Add("max_objects", max_objects);
+  out.Add("patience", patience);
+}
+
+void LearnOptions::Describe(OptionsPrinter& out) const {
+  out.Nested("snapshots", snapshots);
+  out.Nested("em", em);
+  out.Nested("selection", selection);
+  out.Add("restarts", restarts);
+  out.Add("seed", seed);
+  out.Add("hierarchical", hierarchical);
 }
 
 }  // namespace fleetmap::object_learning

@@ -1,8 +1,9 @@
 #pragma once
 
 // Every threshold and parameter of object learning, with its default (docs/object-learning.md has
-// the reasons). One struct per component, gathered in LearnOptions; ValidateLearnOptions checks
-// them once, where they are made.
+// the reasons). One struct per component, gathered in LearnOptions; each checks itself with
+// Validate() (kInvalidArgument naming the first bad option, e.g. "em.annealing 1.5 must be in
+// (0, 1)"), LearnOptions recursing into its parts, once, where they are made.
 
 #include <atomic>
 #include <cstdint>
@@ -35,6 +36,10 @@ struct SnapshotOptions {
   // an object's outline, one or two cells thick: unsmoothed, two outlines one cell apart share no
   // cell, and alignment has no slope to climb.
   double blur_cells = 1.0;  // in [0, 10]
+
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // One EM run (HierarchicalEm, FlatEm) for a fixed (N, M).
@@ -61,6 +66,10 @@ struct EmOptions {
   int max_exact_snapshots = 12;  // in [1, 20]
   int gibbs_sweeps = 200;        // samples kept, >= 1
   int gibbs_burn_in = 50;        // sweeps dropped, >= 0
+
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // The search over (N objects, M templates) (ModelSelection): max_t K_t <= N <= sum_t K_t,
@@ -72,6 +81,10 @@ struct SelectionOptions {
   // The search along N (and along M for each N) stops after this many candidates in a row
   // without a new best; 0 searches the whole grid.
   int patience = 1;
+
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 struct LearnOptions {
@@ -87,12 +100,10 @@ struct LearnOptions {
   // with kUnavailable: a server shutting down need not wait for a run of several seconds.
   // Null: never cancelled. Must outlive the call.
   const std::atomic<bool>* cancel = nullptr;
+
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
-
-// kInvalidArgument naming the first bad snapshot option ("snapshots.guard_radius ...").
-Status ValidateSnapshotOptions(const SnapshotOptions& options);
-
-// kInvalidArgument naming the first bad option (e.g. "em.annealing 1.5 must be in (0, 1)").
-Status ValidateLearnOptions(const LearnOptions& options);
 
 }  // namespace fleetmap::object_learning

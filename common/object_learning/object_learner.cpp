@@ -32,7 +32,7 @@ Pose2 ObjectPoseInMap(const SnapshotAssignment& assignment) {
 
 StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps,
                                     const LearnOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(ValidateLearnOptions(options));
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
   FLEETMAP_ASSIGN_OR_RETURN(SnapshotSet set, ExtractSnapshots(maps, options.snapshots));
   LearnedModel model;
   model.warnings = set.warnings;

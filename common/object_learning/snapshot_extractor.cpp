@@ -159,7 +159,7 @@ std::string GeometryMismatch(const grid::OccupancyGrid& a, const grid::Occupancy
 
 StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& maps,
                                        const SnapshotOptions& options) {
-  FLEETMAP_RETURN_IF_ERROR(ValidateSnapshotOptions(options));
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
   if (maps.size() < 2) {
     return InvalidArgumentError("object learning needs at least two maps of the same place, got " +
                                 std::to_string(maps.size()));

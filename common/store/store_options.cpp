@@ -21,4 +21,13 @@ Status StoreOptions::Validate() const {
   return Status::Ok();
 }
 
+void StoreOptions::Describe(OptionsPrinter& out) const {
+  out.Add("keep_history", keep_history);
+  out.Add("max_history_rows", max_history_rows);
+  out.Add("busy_timeout_ms", busy_timeout_ms);
+  out.Add("synchronous_full", synchronous_full);
+  out.Add("verify_on_open", verify_on_open);
+  out.Add("max_page_count", max_page_count);
+}
+
 }  // namespace fleetmap::store

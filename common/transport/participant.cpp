@@ -180,4 +180,12 @@ void Participant::ReleaseTopic(dds::Topic* topic) {
   }
 }
 
+void ParticipantOptions::Describe(OptionsPrinter& out) const {
+  out.Add("domain_id", domain_id);
+  out.Add("name", name);
+  out.Add("localhost_only", localhost_only);
+  out.Add("intraprocess_delivery", intraprocess_delivery);
+  out.Add("participant_lease", participant_lease);
+}
+
 }  // namespace fleetmap::transport

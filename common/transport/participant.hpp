@@ -30,6 +30,9 @@ struct ParticipantOptions {
   bool intraprocess_delivery = true;
   // How long a silent participant is kept before its endpoints are dropped.
   std::chrono::milliseconds participant_lease{6000};
+
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // Resolves the domain id from the options and the environment; an error names the bad value.

@@ -174,4 +174,16 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   return map;
 }
 
+void VectorizerOptions::Describe(OptionsPrinter& out) const {
+  out.Add("method", method);
+  out.Add("epsilon", epsilon);
+  out.Add("extract_free_space", extract_free_space);
+  out.Add("free_epsilon", free_epsilon);
+  out.Nested("thresholds", thresholds);
+  out.Add("frame_id", frame_id);
+  out.Add("quantum", quantum);
+  out.Add("lattice_origin", lattice_origin);
+  out.Add("refit_lines", refit_lines);
+}
+
 }  // namespace fleetmap::vector_map

@@ -52,6 +52,9 @@ struct VectorizerOptions {
   // kDefault: move centre lines off the cell centres where the painted band then matches the
   // cells better (line_refit.hpp; both constraints still hold). Off only to measure its effect.
   bool refit_lines = true;
+
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 class Vectorizer {

@@ -33,7 +33,7 @@ std::string ModuleOf(const std::string& path) {
   const size_t first = path.find('/');
   if (first == std::string::npos) return "";
   const std::string top = path.substr(0, first);
-  if (top == "common" || top == "bench") {
+  if (top == "common" || top == "bench" || top == "cli") {
     const size_t second = path.find('/', first + 1);
     return second == std::string::npos ? top : path.substr(0, second);
   }

@@ -3,8 +3,9 @@
 // The include directions of docs/architecture.md, read from the document itself and checked
 // against a source tree, so the picture a newcomer reads is the rule the build keeps.
 //
-// A module is a folder: `common/<name>` and `bench/<name>` (two levels), or a top-level folder
-// (`server`, `robot_agent`, `cli`). The rules block lists, per module, the modules its files may
+// A module is a folder: `common/<name>`, `bench/<name>` and `cli/<name>` (two levels; files right
+// in `bench/` or `cli/` belong to the top-level module), or a top-level folder (`server`,
+// `robot_agent`). The rules block lists, per module, the modules its files may
 // include; `idl` stands for the generated DDS headers (`<package>/msg/...`). Files under `tests/`
 // may include any module, but, like every module other than the owner, not another module's
 // `internal/` headers nor generated ones, unless the block names them as exceptions.

@@ -1,4 +1,4 @@
-#include "cli/command_inputs.hpp"
+#include "cli/inputs/command_inputs.hpp"
 
 #include <algorithm>
 #include <cctype>
