@@ -2,6 +2,7 @@
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include "common/core/sample_queue.hpp"
 #include "common/transport/checked_type_support.hpp"
 #include "common/transport/conversions.hpp"
 #include "common/transport/endpoint.hpp"
