@@ -7,35 +7,20 @@
 #include <string>
 #include <vector>
 
+#include "tests/unit/extrapolation/test_maps.hpp"
+
 namespace fleetmap::extrapolation {
 namespace {
 
+using testing::Corridor;
+using testing::CorridorWithRooms;
+using testing::DoorAt;
 using ::testing::ElementsAre;
+using testing::Fill;
 using ::testing::IsEmpty;
 using ::testing::UnorderedElementsAre;
 
-constexpr double kRes = 0.05;
 const Timestamp kNow = Timestamp(std::chrono::seconds(1700000000));
-
-void Fill(grid::OccupancyGrid* map, double x0, double y0, double x1, double y1, int8_t value) {
-  for (int y = 0; y < map->height(); ++y) {
-    for (int x = 0; x < map->width(); ++x) {
-      const Point2 c = map->CellCenter(x, y);
-      if (c.x() >= x0 && c.x() < x1 && c.y() >= y0 && c.y() < y1) map->at(x, y) = value;
-    }
-  }
-}
-
-// 10 x 8 m in the fleet frame: a corridor y in [0.15, 2] the robots have seen between two walls
-// (y < 0.15 and y in [2, 2.15]); a closed door in the upper wall between x = 4 and 5. Above the
-// wall nothing is known.
-grid::OccupancyGrid Corridor() {
-  grid::OccupancyGrid map(200, 160, kRes);
-  Fill(&map, 0, 0, 10, 0.15, grid::kOccupiedValue);
-  Fill(&map, 0, 0.15, 10, 2.0, grid::kFreeValue);
-  Fill(&map, 0, 2.0, 10, 2.15, grid::kOccupiedValue);
-  return map;
-}
 
 // The corridor once another robot has mapped the room behind the door (y in [2.15, 6]): empty,
 // or full of shelves.
@@ -46,14 +31,9 @@ grid::OccupancyGrid CorridorWithRoomBehind(bool shelves) {
   return map;
 }
 
+// Robot alpha's door_1 in the corridor's upper wall (closed: Corridor()'s door).
 scene::DoorEntity Door(bool open = false, double hinge_x = 4.0) {
-  scene::DoorEntity door;
-  door.id = "door_1";
-  door.hinge = Point2(hinge_x, 2.075);
-  door.latch = Point2(hinge_x + 1.0, 2.075);
-  door.opening_direction = Vector2(0, 1);
-  door.open = open;
-  return door;
+  return DoorAt("door_1", hinge_x, hinge_x + 1.0, 2.075, open);
 }
 
 TrackerInput From(const std::string& robot, scene::Entity entity) {
@@ -272,12 +252,12 @@ TEST(PredictionTrackerTest, RetractsWhatLaterObservationContradicts) {
 
 TEST(PredictionTrackerTest, APredictionUpTheStairsStaysPredicted) {
   PredictionTracker tracker = MakeTracker();
-  scene::StairsEntity stairs;
-  stairs.id = "stairs_1";
-  stairs.position = Point2(8.0, 1.0);
-  stairs.ascending = Vector2(1, 0);
-  stairs.step_width = 1.4;
-  stairs.run_length = 1.5;
+  const scene::StairsEntity stairs{.id = "stairs_1",
+                                   .position = Point2(8.0, 1.0),
+                                   .ascending = Vector2(1, 0),
+                                   .step_width = 1.4,
+                                   .next_floor_height = 3.0,
+                                   .run_length = 1.5};
   const std::vector<scene::SubmapNode> predicted =
       PredictionsWritten(Handle(tracker, {Corridor(), From("alpha", stairs)}));
   ASSERT_EQ(predicted.size(), 1u);
@@ -292,18 +272,11 @@ TEST(PredictionTrackerTest, APredictionUpTheStairsStaysPredicted) {
 
 TEST(PredictionTrackerTest, SplitsTheFusedMapIntoPlacesAtDoors) {
   // Two rooms above the corridor, split by a wall at x = 4.9, each seen through an open door.
-  grid::OccupancyGrid map = Corridor();
-  Fill(&map, 0, 2.15, 10, 6.0, grid::kFreeValue);
-  Fill(&map, 4.9, 2.15, 5.05, 6.0, grid::kOccupiedValue);
-  Fill(&map, 0, 6.0, 10, 6.15, grid::kOccupiedValue);
-  Fill(&map, 2.0, 2.0, 3.0, 2.15, grid::kFreeValue);
-  Fill(&map, 6.0, 2.0, 7.0, 2.15, grid::kFreeValue);
-  scene::DoorEntity door_a = Door(/*open=*/true, 2.0);
-  door_a.id = "door_a";
-  scene::DoorEntity door_b = Door(/*open=*/true, 6.0);
-  door_b.id = "door_b";
+  const grid::OccupancyGrid map = CorridorWithRooms();
   PredictionTracker tracker = MakeTracker();
-  const TrackerUpdate update = Handle(tracker, {map, From("alpha", door_a), From("alpha", door_b)});
+  const TrackerUpdate update =
+      Handle(tracker, {map, From("alpha", DoorAt("door_a", 2.0, 3.0, 2.075, /*open=*/true)),
+                       From("alpha", DoorAt("door_b", 6.0, 7.0, 2.075, /*open=*/true))});
   EXPECT_THAT(PredictionsWritten(update), IsEmpty());  // open doors predict nothing
   const std::vector<scene::SubmapNode> places = PlacesWritten(update);
   ASSERT_EQ(places.size(), 3u);
