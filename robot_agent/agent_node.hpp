@@ -62,8 +62,6 @@ class AgentNode {
 
   Status Run(const std::atomic<bool>& stop);
 
-  uint64_t fused_tiles_received() const { return fused_tiles_received_; }
-
  private:
   explicit AgentNode(AgentOptions options) : options_(std::move(options)) {}
 

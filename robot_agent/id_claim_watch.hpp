@@ -34,7 +34,7 @@ class IdClaimWatch {
   RobotId robot_;
   std::string own_participant_;
   int domain_id_ = 0;
-  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
+  std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
   std::unique_ptr<transport::RobotStatusReader> reader_;
   std::set<std::string> claimants_;
 };

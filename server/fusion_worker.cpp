@@ -39,9 +39,9 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   FLEETMAP_ASSIGN_OR_RETURN(fusion::TileFusion fusion, fusion::TileFusion::Create(options.fusion));
   std::unique_ptr<FusionWorker> worker(
       new FusionWorker(options, std::move(fusion), std::move(registry)));
-  FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_,
-                            transport::VectorTileReader::Create(
-                                participant, transport::kRobotTilesTopic, worker->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_, transport::VectorTileReader::Create(
+                                                      participant, transport::kRobotTilesTopic,
+                                                      worker->thread_.wake_up()));
   FLEETMAP_ASSIGN_OR_RETURN(worker->fused_writer_, transport::VectorTileWriter::Create(
                                                        participant, transport::kFusedTilesTopic));
   FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
@@ -84,20 +84,19 @@ Status FusionWorker::Restore() {
   }
   // Restored tiles count towards their robots' quotas, as if they had just been admitted.
   for (const auto& [robot, tile] : fusion_.contributions()) admission_.Adopt(robot, tile);
-  std::lock_guard lock(stats_mutex_);
-  stats_.restored_tiles = restored.from_evidence + restored.from_history;
-  if (stats_.restored_tiles > 0) {
+  const size_t restored_tiles = restored.from_evidence + restored.from_history;
+  if (restored_tiles > 0) {
     spdlog::info(
         "server: restored {} robot tiles from {} ({} from their evidence, {} by fusing "
         "their stored revisions again)",
-        stats_.restored_tiles, options_.store_path, restored.from_evidence, restored.from_history);
+        restored_tiles, options_.store_path, restored.from_evidence, restored.from_history);
   }
   return Status::Ok();
 }
 
 void FusionWorker::RecordRobot(store::RobotRecord robot) {
   robot_records_.Push(std::move(robot));
-  wake_up_->Notify();
+  thread_.Wake();
 }
 
 void FusionWorker::SetListeners(FusedMapListener on_fused_map, SessionsListener on_sessions) {
@@ -107,37 +106,41 @@ void FusionWorker::SetListeners(FusedMapListener on_fused_map, SessionsListener 
 
 void FusionWorker::Start() {
   if (on_sessions_ && !sessions_->finished().empty()) on_sessions_(sessions_->finished());
-  thread_ = std::thread([this] { Loop(); });
+  thread_.Start([this] { return Round(); }, [this] { AtStop(); });
 }
 
-void FusionWorker::Stop() {
-  stop_.store(true);
-  wake_up_->Notify();
-  if (thread_.joinable()) thread_.join();
-}
+void FusionWorker::Stop() { thread_.Stop(); }
 
 void FusionWorker::SubmitGrid(const std::string& robot, transport::MapMessage map,
                               Pose2 fleet_from_map) {
   grids_.Push(GridUpdate{robot, std::move(map), fleet_from_map});
-  wake_up_->Notify();
+  thread_.Wake();
 }
 
 FusionStats FusionWorker::stats() const {
-  std::lock_guard lock(stats_mutex_);
-  return stats_;
+  FusionStats stats;
+  {
+    std::lock_guard lock(stats_mutex_);
+    stats = stats_;
+  }
+  stats.tile_events_dropped = tile_reader_->dropped();
+  stats.grids_dropped = grids_.dropped();
+  stats.robot_records_dropped = robot_records_.dropped();
+  return stats;
 }
 
-void FusionWorker::Loop() {
-  while (!stop_.load()) {
-    if (queue_.empty()) wake_up_->WaitFor(std::chrono::milliseconds(50));
-    HandleTileEvents();
-    // Bounded, so that new samples are drained (and a flood coalesced) while a backlog lasts.
-    FuseQueuedTiles(kFusionSlice);
-    HandleGrids();
-    PublishFused(std::chrono::steady_clock::now());
-    HandleRobotRecords();
-    Persist();
-  }
+bool FusionWorker::Round() {
+  HandleTileEvents();
+  // Bounded, so that new samples are drained (and a flood coalesced) while a backlog lasts.
+  FuseQueuedTiles(kFusionSlice);
+  HandleGrids();
+  PublishFused(std::chrono::steady_clock::now());
+  HandleRobotRecords();
+  Persist();
+  return !queue_.empty();  // a backlog: the next round starts without waiting
+}
+
+void FusionWorker::AtStop() {
   Persist(std::chrono::steady_clock::time_point::max());
   if (sync_->pending() > 0) {
     spdlog::error("server: map store: stopping with {} records not stored: {}", sync_->pending(),
@@ -219,9 +222,7 @@ void FusionWorker::Refuse(const std::string& robot, Refusal reason, const std::s
     ++stats_.rejected_unattributed;
     return;
   }
-  FusionStats::Robot& counts = stats_.robots[robot];
-  ++counts.rejected;
-  if (reason != Refusal::kMalformed) ++counts.refused_by_admission;
+  ++stats_.robots[robot].rejected;
 }
 
 void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
@@ -297,12 +298,13 @@ void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady
         Admit(std::move(held.event), now, steady);
         it = robot->second.erase(it);
       } else if (steady - held.arrived > options_.unclaimed_wait) {
-        Refuse(robot->first, Refusal::kUnclaimed,
-               fmt::format("tile ({}, {}) waited {} s for a status claiming robot {}; dropped",
-                           it->first.x, it->first.y,
-                           std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait)
-                               .count(),
-                           robot->first));
+        Refuse(
+            robot->first, Refusal::kUnclaimed,
+            fmt::format(
+                "tile ({}, {}) waited {} s for a status claiming robot {}; dropped", it->first.x,
+                it->first.y,
+                std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait).count(),
+                robot->first));
         it = robot->second.erase(it);
       } else {
         ++it;
@@ -327,8 +329,6 @@ void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
     PublishFused(std::chrono::steady_clock::now());
     queue_.Charge(robot, std::chrono::steady_clock::now() - turn_start, tiles);
   }
-  std::lock_guard lock(stats_mutex_);
-  stats_.tiles_waiting = queue_.size();
 }
 
 void FusionWorker::ApplyTile(const std::string& robot, PendingTile pending) {
@@ -427,7 +427,6 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   stats_.fused_bytes_published += bytes;
   stats_.maps_published += map_sent ? 1 : 0;
   stats_.fused_tiles = fusion_.fused_tiles().size();
-  stats_.tiles_outside_map = tiles_outside_map_;
 }
 
 }  // namespace fleetmap::server

@@ -1,16 +1,16 @@
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include "common/core/robot_status.hpp"
+#include "common/core/sample_queue.hpp"
 #include "common/core/status.hpp"
+#include "common/core/worker_thread.hpp"
 #include "common/fusion/tile_fusion.hpp"
 #include "common/store/map_store.hpp"
 #include "common/transport/map_message.hpp"
@@ -18,13 +18,12 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "common/transport/vector_tile_writer.hpp"
-#include "common/transport/wake_up.hpp"
 #include "server/fair_tile_queue.hpp"
 #include "server/refusal_log.hpp"
 #include "server/robot_registry.hpp"
 #include "server/session_archive.hpp"
-#include "server/tile_admission.hpp"
 #include "server/store_sync.hpp"
+#include "server/tile_admission.hpp"
 
 namespace fleetmap::server {
 
@@ -50,32 +49,35 @@ struct FusionStats {
     uint64_t tiles = 0;
     uint64_t bytes = 0;
     uint64_t rejected = 0;
-    uint64_t refused_by_admission = 0;  // part of rejected: ids, ranges, stamps, quotas, owner
   };
   std::map<std::string, Robot> robots;
-  uint64_t rejected_unattributed = 0;  // samples too broken to name their robot
+  uint64_t rejected_unattributed = 0;                  // samples too broken to name their robot
   std::map<std::string, uint64_t> refusals_by_reason;  // every refused tile, by RefusalName
   uint64_t fused_tiles_published = 0;
   uint64_t fused_bytes_published = 0;
   uint64_t maps_published = 0;
   size_t fused_tiles = 0;
-  size_t tiles_waiting = 0;           // admitted robot tiles not fused yet
-  size_t tiles_outside_map = 0;       // fused tiles the last rt/fleetmap/map grid could not show
-  size_t restored_tiles = 0;  // robot tiles read back from the store at start
   uint64_t store_errors = 0;  // failed store writes (each retried) and refused records
   // The store is behind the fused map: a write failed and store_pending records wait for the
   // next attempt (once a second). Back to false when it caught up.
   bool store_behind = false;
   size_t store_pending = 0;
   size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
+  // Dropped because a queue was full (the worker fell behind): tile events from the reader,
+  // grids from grid-wire robots, robot state changes for the store.
+  uint64_t tile_events_dropped = 0;
+  uint64_t grids_dropped = 0;
+  uint64_t robot_records_dropped = 0;
 };
 
 // The server's fusion worker: drains robot tiles (and grids of robots on the grid wire), fuses
 // them, publishes changed fused tiles on rt/fleetmap/fused_tiles and the fused grid on
 // rt/fleetmap/map, and archives each robot's mapping session when it leaves or is lost.
 // Everything runs on its own thread, never on a DDS callback. Start() and Stop() from the owning
-// thread; SubmitGrid() and stats() from any thread. The listeners run on the worker's thread and
-// must be set before Start().
+// thread; SubmitGrid(), RecordRobot() and stats() from any thread. The listeners run on the
+// worker's thread and must be set before Start(). Stop() lets the round in progress finish (and
+// one more, if the thread was waiting), then writes what the store still lacks; samples queued
+// after that are not fused.
 class FusionWorker {
  public:
   static StatusOr<std::unique_ptr<FusionWorker>> Create(transport::Participant& participant,
@@ -126,10 +128,14 @@ class FusionWorker {
 
   // Rebuilds the fused map from the robot tiles in the store.
   Status Restore();
-  void Loop();
+  // One round of the worker: drain, fuse for a slice, publish, persist. True while tiles wait.
+  bool Round();
+  // The last attempt to store what the store lacks.
+  void AtStop();
   // Drains the tile reader: admission, then the fair queue (or the unclaimed hold).
   void HandleTileEvents();
-  void Admit(transport::TileEvent event, Timestamp now, std::chrono::steady_clock::time_point steady);
+  void Admit(transport::TileEvent event, Timestamp now,
+             std::chrono::steady_clock::time_point steady);
   void Refuse(const std::string& robot, Refusal reason, const std::string& detail);
   void RemoveTile(const std::string& robot, const TileId& tile);
   // Tiles held for robot ids that a status has claimed since, or that waited too long.
@@ -152,26 +158,22 @@ class FusionWorker {
   FusionWorkerOptions options_;
   fusion::TileFusion fusion_;  // worker thread only
   std::shared_ptr<RobotRegistry> registry_;
-  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
   std::unique_ptr<transport::VectorTileReader> tile_reader_;
   std::unique_ptr<transport::VectorTileWriter> fused_writer_;
   std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
-  transport::SampleQueue<GridUpdate> grids_{64};
-  transport::SampleQueue<store::RobotRecord> robot_records_{1024};
+  SampleQueue<GridUpdate> grids_{64};
+  SampleQueue<store::RobotRecord> robot_records_{1024};
   std::unique_ptr<store::MapStore> store_;    // worker thread only (after Create)
   std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)
   FusedMapListener on_fused_map_;
   SessionsListener on_sessions_;
-  std::vector<store::TileRecord> unsaved_;  // worker thread only
-  TileAdmission admission_;                 // worker thread only
-  FairTileQueue<PendingTile> queue_;        // worker thread only
+  TileAdmission admission_;                                 // worker thread only
+  FairTileQueue<PendingTile> queue_;                        // worker thread only
   std::map<std::string, std::map<TileId, HeldTile>> held_;  // worker thread only
-  RefusalLog refusals_{"server"};           // worker thread only
-  std::unique_ptr<StoreSync> sync_;  // worker thread only (after Create)
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-  bool map_dirty_ = false;  // worker thread only
-  size_t tiles_outside_map_ = 0;  // worker thread only
+  RefusalLog refusals_{"server"};                           // worker thread only
+  std::unique_ptr<StoreSync> sync_;                         // worker thread only (after Create)
+  bool map_dirty_ = false;                                  // worker thread only
+  size_t tiles_outside_map_ = 0;                            // worker thread only
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;
@@ -181,6 +183,9 @@ class FusionWorker {
   std::chrono::steady_clock::time_point last_map_{};
   mutable std::mutex stats_mutex_;
   FusionStats stats_;  // guarded by stats_mutex_
+  // Wakes on new tiles (the reader's listener), grids and robot records; fuses at least every
+  // 50 ms. Last member: its thread stops before the rest goes.
+  WorkerThread thread_{std::chrono::milliseconds(50)};
 };
 
 }  // namespace fleetmap::server

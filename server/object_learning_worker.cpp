@@ -39,17 +39,15 @@ ObjectLearningWorker::~ObjectLearningWorker() {
 }
 
 void ObjectLearningWorker::Start() {
-  thread_ = std::thread([this] { Loop(); });
+  thread_.Start([this] {
+    LearnPending();
+    return false;
+  });
 }
 
 void ObjectLearningWorker::Stop() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  cancel_.store(true);
-  wake_.notify_one();
-  if (thread_.joinable()) thread_.join();
+  cancel_.store(true);  // first: a run in progress ends, and no other starts
+  thread_.Stop();
 }
 
 void ObjectLearningWorker::Submit(std::vector<MappingSession> sessions) {
@@ -62,7 +60,7 @@ void ObjectLearningWorker::Submit(std::vector<MappingSession> sessions) {
     std::lock_guard lock(mutex_);
     pending_ = std::move(sessions);
   }
-  wake_.notify_one();
+  thread_.Wake();
 }
 
 ObjectLearningStats ObjectLearningWorker::stats() const {
@@ -70,24 +68,20 @@ ObjectLearningStats ObjectLearningWorker::stats() const {
   return stats_;
 }
 
-void ObjectLearningWorker::Loop() {
-  while (true) {
-    std::vector<MappingSession> sessions;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [this] { return stop_ || pending_.has_value(); });
-      if (stop_) return;
-      sessions = std::move(*pending_);
-      pending_.reset();
-    }
-    const Status learned = Learn(sessions);
-    if (cancel_.load()) return;  // stopping: the cancelled run is not a failure
+void ObjectLearningWorker::LearnPending() {
+  std::vector<MappingSession> sessions;
+  {
     std::lock_guard lock(mutex_);
-    if (!learned.ok()) {
-      ++stats_.failures;
-      stats_.last_error = learned.message();
-      spdlog::warn("server: object learning: {}", learned.message());
-    }
+    if (cancel_.load() || !pending_.has_value()) return;  // stopping, or woken for nothing
+    sessions = std::move(*pending_);
+    pending_.reset();
+  }
+  const Status learned = Learn(sessions);
+  if (cancel_.load()) return;  // stopping: the cancelled run is not a failure
+  std::lock_guard lock(mutex_);
+  if (!learned.ok()) {
+    ++stats_.failures;
+    spdlog::warn("server: object learning: {}", learned.message());
   }
 }
 

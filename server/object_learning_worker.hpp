@@ -1,15 +1,14 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common/core/status.hpp"
+#include "common/core/worker_thread.hpp"
 #include "common/fusion/fusion_options.hpp"
 #include "common/object_learning/object_learner.hpp"
 #include "common/transport/keyed_state_topic.hpp"
@@ -35,15 +34,15 @@ struct ObjectLearningStats {
   int num_objects = 0;  // of the last successful run
   int num_templates = 0;
   size_t sessions_used = 0;
-  std::string last_error;
 };
 
 // Runs the object-template learner (hierarchical EM over the differences between mapping
 // sessions, docs/object-learning.md) in the background whenever a session finishes, and
 // publishes the learned templates on rt/fleetmap/object_templates and objects on
 // rt/fleetmap/objects, replacing the previous run's (instances the new run no longer has are
-// disposed). Learning takes seconds: a newer submission replaces one that has not started yet,
-// and Stop() cancels a run in progress.
+// disposed). Learning takes seconds: a newer submission replaces one that has not started yet
+// (one slot, not a queue: nothing is dropped that a newer submission does not supersede), and
+// Stop() cancels a run in progress; a submission still waiting then is not learned.
 // Submit() and stats() from any thread; Start() and Stop() from the owner's.
 class ObjectLearningWorker {
  public:
@@ -63,7 +62,8 @@ class ObjectLearningWorker {
   ObjectLearningWorker(const ObjectLearningOptions& options, const fusion::FusionOptions& fusion)
       : options_(options), fusion_(fusion) {}
 
-  void Loop();
+  // One round of the worker: learns from the pending submission, if any.
+  void LearnPending();
   Status Learn(const std::vector<MappingSession>& sessions);
   Status Publish(const object_learning::LearnedModel& model,
                  const std::vector<MappingSession>& sessions);
@@ -77,12 +77,11 @@ class ObjectLearningWorker {
   uint32_t published_objects_ = 0;                                    // worker thread
 
   mutable std::mutex mutex_;
-  std::condition_variable wake_;
   std::optional<std::vector<MappingSession>> pending_;  // guarded by mutex_
-  bool stop_ = false;                                   // guarded by mutex_
   std::atomic<bool> cancel_{false};                     // stops a learning run in progress (Stop())
   ObjectLearningStats stats_;                           // guarded by mutex_
-  std::thread thread_;
+  // Wakes on Submit() only (no timeout). Last member: its thread stops first.
+  WorkerThread thread_{std::nullopt};
 };
 
 }  // namespace fleetmap::server

@@ -244,8 +244,7 @@ void ServerNode::HandleMaps() {
       spdlog::info("server: map from {}: {} x {} cells at {:.3f} m, {} bytes (total {} bytes)",
                    robot.value, map->grid.width(), map->grid.height(), map->grid.resolution(),
                    map->serialized_bytes, record.bytes_received);
-      fusion_worker_->SubmitGrid(robot.value, *map, FleetFromMap(record));
-      record.latest_map = std::move(map).value();
+      fusion_worker_->SubmitGrid(robot.value, std::move(map).value(), FleetFromMap(record));
     }
   }
 }
@@ -332,12 +331,20 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
   }
   if (prediction_worker_) {
     const PredictionStats prediction = prediction_worker_->stats();
+    const extrapolation::TrackerStats& tracker = prediction.tracker;
     fmt::print(
         "extrapolation: {} entities ({} rejected), {} places, {} predicted sub-maps ({} "
         "confirmed, {} retracted), {} sub-map samples published\n",
-        prediction.entities, rejected_entities_, prediction.places, prediction.predictions,
-        prediction.confirmed, prediction.retracted, prediction.submaps_published);
+        tracker.entities, rejected_entities_, tracker.places, tracker.predictions,
+        tracker.confirmed, tracker.retracted, prediction.submaps_published);
   }
+  // Queues that were full dropped their oldest entries: a worker fell behind its inputs.
+  fmt::print(
+      "dropped from full queues: {} tile events, {} grids, {} robot records (fusion); {} "
+      "entities, {} inputs (extrapolation)\n",
+      fusion.tile_events_dropped, fusion.grids_dropped, fusion.robot_records_dropped,
+      entity_reader_ ? entity_reader_->dropped() : 0,
+      prediction_worker_ ? prediction_worker_->stats().inputs_dropped : 0);
   std::fflush(stdout);
 }
 

@@ -4,17 +4,16 @@
 #include <chrono>
 #include <map>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
+#include "common/core/wake_up.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/map_message.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
-#include "common/transport/wake_up.hpp"
 #include "server/fusion_worker.hpp"
 #include "server/object_learning_worker.hpp"
 #include "server/prediction_worker.hpp"
@@ -28,7 +27,7 @@ struct ServerOptions {
   transport::ParticipantOptions dds;
   FusionWorkerOptions fusion;
   ObjectLearningOptions learning;
-  PredictionOptions prediction;
+  extrapolation::PredictionOptions prediction;
   // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what
   // their status says; a tile-wire robot whose status disagrees is reported.
   std::map<RobotId, Pose2> transforms;
@@ -43,7 +42,6 @@ struct RobotRecord {
   enum class State { kActive, kLeft, kLost };
   State state = State::kActive;
   RobotStatus last_status;
-  std::optional<transport::MapMessage> latest_map;
   uint64_t maps_received = 0;
   uint64_t bytes_received = 0;
   uint64_t rejected_samples = 0;
@@ -89,7 +87,7 @@ class ServerNode {
   void PrintSummary(const FusionStats& fusion) const;
 
   ServerOptions options_;
-  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
+  std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
   std::shared_ptr<RobotRegistry> registry_;

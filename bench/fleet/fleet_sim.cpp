@@ -85,7 +85,7 @@ class Observer {
  private:
   Observer() = default;
 
-  std::shared_ptr<transport::WakeUp> wake_up_ = std::make_shared<transport::WakeUp>();
+  std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::RobotStatusReader> status_;
   std::unique_ptr<transport::VectorTileReader> fused_tiles_;

@@ -6,12 +6,13 @@
 #include <map>
 #include <mutex>
 
+#include "common/core/sample_queue.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
-#include "common/transport/internal/writer_id.hpp"
 #include "common/transport/internal/state_conversions.hpp"
+#include "common/transport/internal/writer_id.hpp"
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::transport {
@@ -155,6 +156,7 @@ class KeyedStateReader<Message>::Listener : public dds::DataReaderListener, publ
   }
 
   std::vector<Event> Drain() { return events_.Drain(); }
+  size_t dropped() const { return events_.dropped(); }
 
  protected:
   void OnMalformed(const Status& error) override {
@@ -220,6 +222,11 @@ KeyedStateReader<Message>::~KeyedStateReader() {
 template <typename Message>
 std::vector<KeyedEvent<Message>> KeyedStateReader<Message>::Drain() {
   return listener_->Drain();
+}
+
+template <typename Message>
+size_t KeyedStateReader<Message>::dropped() const {
+  return listener_->dropped();
 }
 
 template class KeyedStateWriter<EntityMessage>;

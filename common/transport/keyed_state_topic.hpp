@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "common/core/status.hpp"
+#include "common/core/wake_up.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/state_messages.hpp"
-#include "common/transport/wake_up.hpp"
 
 namespace fleetmap::transport {
 
@@ -59,6 +59,8 @@ class KeyedStateReader {
   ~KeyedStateReader();
 
   std::vector<KeyedEvent<Message>> Drain();
+  // Events dropped because the queue was full (the owner drained too slowly), since creation.
+  size_t dropped() const;
 
  private:
   class Listener;

@@ -2,6 +2,7 @@
 
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
+#include "common/core/sample_queue.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "common/core/status.hpp"
+#include "common/core/wake_up.hpp"
 #include "common/transport/map_message.hpp"
 #include "common/transport/participant.hpp"
-#include "common/transport/wake_up.hpp"
 
 namespace fleetmap::transport {
 

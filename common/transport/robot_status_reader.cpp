@@ -7,6 +7,7 @@
 #include <mutex>
 #include <set>
 
+#include "common/core/sample_queue.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"

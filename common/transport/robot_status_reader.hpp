@@ -6,8 +6,8 @@
 
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
+#include "common/core/wake_up.hpp"
 #include "common/transport/participant.hpp"
-#include "common/transport/wake_up.hpp"
 
 namespace fleetmap::transport {
 

@@ -13,6 +13,7 @@
 #include "common/scene/entities.hpp"
 #include "common/scene/patch.hpp"
 #include "common/scene/submap_graph.hpp"
+#include "common/scene/submap_node.hpp"
 
 namespace fleetmap::transport {
 
@@ -27,19 +28,9 @@ struct EntityMessage {
   const std::string& entity_id() const;
 };
 
-// One node of the sub-map graph (rt/fleetmap/submap_graph), in the fleet frame, with the edges
-// that start from it. `submap.navigable` is empty for observed sub-maps (their cells are the
-// fused map).
-struct SubmapMessage {
-  scene::Submap submap;
-  scene::SubmapState state = scene::SubmapState::kPredicted;
-  std::string source_robot;
-  std::string source_entity;
-  float precision = -1.0F;  // measured against later observation; -1 before any
-  float observed_fraction = -1.0F;
-  std::vector<scene::SubmapEdge> edges;  // each edge's `from` is this sub-map
-  Timestamp stamp{};
-};
+// One node of the sub-map graph (rt/fleetmap/submap_graph): the plain node the prediction tracker
+// makes, under the name the other topics' messages share.
+using SubmapMessage = scene::SubmapNode;
 
 // A learned class of movable objects (rt/fleetmap/object_templates).
 struct ObjectTemplateMessage {

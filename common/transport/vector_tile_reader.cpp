@@ -5,6 +5,7 @@
 #include <map>
 #include <mutex>
 
+#include "common/core/sample_queue.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
@@ -39,6 +40,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
   }
 
   std::vector<TileEvent> Drain() { return events_.Drain(); }
+  size_t dropped() const { return events_.dropped(); }
 
  protected:
   void OnMalformed(const Status& error) override {
@@ -110,5 +112,7 @@ StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
 VectorTileReader::~VectorTileReader() { endpoint_.reset(); }
 
 std::vector<TileEvent> VectorTileReader::Drain() { return listener_->Drain(); }
+
+size_t VectorTileReader::dropped() const { return listener_->dropped(); }
 
 }  // namespace fleetmap::transport

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "common/core/status.hpp"
+#include "common/core/wake_up.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/vector_tile_message.hpp"
-#include "common/transport/wake_up.hpp"
 
 namespace fleetmap::transport {
 
@@ -37,6 +37,8 @@ class VectorTileReader {
   ~VectorTileReader();
 
   std::vector<TileEvent> Drain();
+  // Events dropped because the queue was full (the owner drained too slowly), since creation.
+  size_t dropped() const;
 
  private:
   class Listener;

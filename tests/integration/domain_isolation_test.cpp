@@ -59,7 +59,7 @@ struct DomainSide {
   std::string robot;
   std::unique_ptr<transport::Participant> participant;
   std::unique_ptr<transport::RobotStatusWriter> writer;
-  std::shared_ptr<transport::WakeUp> wake_up = std::make_shared<transport::WakeUp>();
+  std::shared_ptr<WakeUp> wake_up = std::make_shared<WakeUp>();
   std::unique_ptr<transport::RobotStatusReader> reader;
   std::set<std::string> heard;
 

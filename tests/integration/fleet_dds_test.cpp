@@ -92,7 +92,7 @@ class FleetDdsTest : public ::testing::Test {
   }
 
   // Waits for the first event of `kind` about `robot`, draining the reader.
-  static bool WaitForEvent(transport::RobotStatusReader& reader, transport::WakeUp& wake_up,
+  static bool WaitForEvent(transport::RobotStatusReader& reader, WakeUp& wake_up,
                            const std::string& robot, transport::RobotEvent::Kind kind,
                            std::vector<transport::RobotEvent>* seen = nullptr) {
     const auto deadline = std::chrono::steady_clock::now() + kDeadline;
@@ -107,7 +107,7 @@ class FleetDdsTest : public ::testing::Test {
   }
 
   static std::optional<transport::MapMessage> WaitForMap(transport::OccupancyGridReader& reader,
-                                                         transport::WakeUp& wake_up) {
+                                                         WakeUp& wake_up) {
     const auto deadline = std::chrono::steady_clock::now() + kDeadline;
     while (std::chrono::steady_clock::now() < deadline) {
       wake_up.WaitFor(milliseconds(100));
@@ -131,7 +131,7 @@ TEST_F(FleetDdsTest, AgentMapCrossesToAnotherProcessCellForCell) {
   auto agent = StartAgent("alpha", map_path_, {"--wire", "grid"});
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader = transport::OccupancyGridReader::Create(
       *participant, transport::RobotMapTopic(RobotId{"alpha"}), wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
@@ -158,7 +158,7 @@ TEST_F(FleetDdsTest, LateJoiningReaderReceivesTransientLocalMap) {
   std::this_thread::sleep_for(milliseconds(500));
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader = transport::OccupancyGridReader::Create(
       *participant, transport::RobotMapTopic(RobotId{"late"}), wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
@@ -174,7 +174,7 @@ TEST_F(FleetDdsTest, FiftyRobotsAllArrive) {
   ASSERT_NE(reader_side, nullptr);
   auto writer = transport::RobotStatusWriter::Create(*writer_side);
   ASSERT_TRUE(writer.ok()) << writer.status();
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader = transport::RobotStatusReader::Create(*reader_side, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
 
@@ -202,7 +202,7 @@ TEST_F(FleetDdsTest, FiftyRobotsAllArrive) {
 TEST_F(FleetDdsTest, KilledAgentIsReportedLostWhileOthersLive) {
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
 
@@ -229,7 +229,7 @@ TEST_F(FleetDdsTest, KilledAgentIsReportedLostWhileOthersLive) {
 TEST_F(FleetDdsTest, StoppedAgentLeavesOnPurpose) {
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader = transport::RobotStatusReader::Create(*participant, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
 
@@ -267,7 +267,7 @@ TEST_F(FleetDdsTest, ServerFollowsRobotsJoiningSendingAndDying) {
 std::optional<transport::MapMessage> WaitForFleetMap(
     transport::Participant& participant,
     const std::function<bool(const transport::MapMessage&)>& done) {
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader =
       transport::OccupancyGridReader::Create(participant, transport::kFleetMapTopic, wake_up);
   EXPECT_TRUE(reader.ok()) << reader.status();
@@ -322,7 +322,7 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
   // A reader that joins late still gets every fused tile (transient local).
   auto participant = MakeParticipant();
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto fused =
       transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic, wake_up);
   ASSERT_TRUE(fused.ok()) << fused.status();

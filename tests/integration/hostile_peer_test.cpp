@@ -12,11 +12,11 @@
 #include <map>
 #include <string>
 
+#include "common/core/wake_up.hpp"
 #include "common/process/subprocess.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
-#include "common/transport/wake_up.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/integration/hostile_peer.hpp"
 
@@ -37,8 +37,8 @@ std::unique_ptr<transport::Participant> TestParticipant(int domain) {
 
 // Drains `reader` until a tile event for `tile` of `robot` satisfies `accept`, or the deadline.
 template <typename Accept>
-bool WaitForTile(transport::VectorTileReader& reader, transport::WakeUp& wake_up,
-                 const std::string& robot, TileId tile, Accept accept) {
+bool WaitForTile(transport::VectorTileReader& reader, WakeUp& wake_up, const std::string& robot,
+                 TileId tile, Accept accept) {
   const auto deadline = std::chrono::steady_clock::now() + kDeadline;
   while (std::chrono::steady_clock::now() < deadline) {
     wake_up.WaitFor(std::chrono::milliseconds(200));
@@ -56,7 +56,7 @@ TEST(HostilePeerTest, FastDdsReaderDecodesTheCycloneTile) {
   const int domain = process::RandomDomainId();
   auto participant = TestParticipant(domain);
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader =
       transport::VectorTileReader::Create(*participant, transport::kRobotTilesTopic, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
@@ -87,7 +87,7 @@ TEST(HostilePeerTest, ScenarioTilesPassFleetmapsChecks) {
   const int domain = process::RandomDomainId();
   auto participant = TestParticipant(domain);
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto reader =
       transport::VectorTileReader::Create(*participant, transport::kRobotTilesTopic, wake_up);
   ASSERT_TRUE(reader.ok()) << reader.status();
@@ -138,7 +138,7 @@ TEST(HostilePeerTest, ServerJoinsAndFusesTheCycloneRobot) {
 
   auto participant = TestParticipant(domain);
   ASSERT_NE(participant, nullptr);
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto fused =
       transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic, wake_up);
   ASSERT_TRUE(fused.ok()) << fused.status();

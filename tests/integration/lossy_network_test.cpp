@@ -161,7 +161,7 @@ TEST_F(LossyNetworkTest, AtTwentyPercentLossNoLiveRobotIsLostAndEveryTileArrives
   options.domain_id = std::stoi(env.at("FLEETMAP_DOMAIN"));
   auto participant = transport::Participant::Create(options);
   ASSERT_TRUE(participant.ok()) << participant.status();
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto fused_tiles =
       transport::VectorTileReader::Create(**participant, transport::kFusedTilesTopic, wake_up);
   ASSERT_TRUE(fused_tiles.ok()) << fused_tiles.status();

@@ -231,7 +231,7 @@ class TileWirePeerTest : public ::testing::Test {
   // publishes the fused tile at its key with obstacles on it.
   bool WriteUntilFused(transport::WriterEndpoint& writer,
                        fleetmap_msgs::msg::dds_::VectorTile_& tile) {
-    auto wake_up = std::make_shared<transport::WakeUp>();
+    auto wake_up = std::make_shared<WakeUp>();
     auto fused =
         transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic, wake_up);
     EXPECT_TRUE(fused.ok()) << fused.status();

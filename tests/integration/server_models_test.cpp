@@ -111,7 +111,7 @@ class ServerModelsTest : public ::testing::Test {
 
   // Drains `reader` until `done` holds for the latest message of some instance.
   template <typename Reader, typename Message, typename Done>
-  std::optional<Message> WaitFor(Reader& reader, transport::WakeUp& wake_up, Done done) {
+  std::optional<Message> WaitFor(Reader& reader, WakeUp& wake_up, Done done) {
     const auto deadline = std::chrono::steady_clock::now() + kDeadline;
     while (std::chrono::steady_clock::now() < deadline) {
       wake_up.WaitFor(milliseconds(100));
@@ -132,7 +132,7 @@ class ServerModelsTest : public ::testing::Test {
   // Runs the door scenario: alpha maps the first room and sees the closed door; beta then maps
   // the room behind it. Returns the prediction once it has been judged.
   std::optional<transport::SubmapMessage> JudgedDoorPrediction(bool shelves) {
-    auto wake_up = std::make_shared<transport::WakeUp>();
+    auto wake_up = std::make_shared<WakeUp>();
     auto reader = transport::SubmapReader::Create(*participant_, wake_up);
     EXPECT_TRUE(reader.ok()) << reader.status();
     if (!reader.ok()) return std::nullopt;
@@ -225,7 +225,7 @@ grid::OccupancyGrid RoomWithBoxes(const std::vector<Point2>& boxes) {
 
 // Whether a fused tile arrives, before `deadline`, with an obstacle vertex near every box: the
 // server has fused the current robot's map (the boxes stand elsewhere in every session).
-bool FusedTilesShowBoxes(transport::VectorTileReader& fused, transport::WakeUp& wake_up,
+bool FusedTilesShowBoxes(transport::VectorTileReader& fused, WakeUp& wake_up,
                          const std::vector<Point2>& boxes,
                          std::chrono::steady_clock::time_point deadline) {
   while (std::chrono::steady_clock::now() < deadline) {
@@ -247,14 +247,14 @@ bool FusedTilesShowBoxes(transport::VectorTileReader& fused, transport::WakeUp& 
 }
 
 TEST_F(ServerModelsTest, ObjectsAreLearnedFromTheSessionsOfRobotsThatLeft) {
-  auto wake_up = std::make_shared<transport::WakeUp>();
+  auto wake_up = std::make_shared<WakeUp>();
   auto templates = transport::ObjectTemplateReader::Create(*participant_, wake_up);
   auto objects = transport::ObjectModelReader::Create(*participant_, wake_up);
   ASSERT_TRUE(templates.ok() && objects.ok());
   const std::string store = TempPath(std::to_string(domain_) + "_store.db");
   std::remove(store.c_str());
   auto server = Start({kServer, "--duration", "120", "--store", store});
-  auto fused_wake_up = std::make_shared<transport::WakeUp>();
+  auto fused_wake_up = std::make_shared<WakeUp>();
   auto fused = transport::VectorTileReader::Create(*participant_, transport::kFusedTilesTopic,
                                                    fused_wake_up);
   ASSERT_TRUE(fused.ok()) << fused.status();

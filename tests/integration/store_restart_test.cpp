@@ -117,7 +117,7 @@ class StoreRestartTest : public ::testing::Test {
       const std::function<bool(const grid::OccupancyGrid&)>& done, milliseconds settle) {
     auto participant = MakeParticipant();
     if (participant == nullptr) return std::nullopt;
-    auto wake_up = std::make_shared<transport::WakeUp>();
+    auto wake_up = std::make_shared<WakeUp>();
     auto reader =
         transport::OccupancyGridReader::Create(*participant, transport::kFleetMapTopic, wake_up);
     EXPECT_TRUE(reader.ok()) << reader.status();

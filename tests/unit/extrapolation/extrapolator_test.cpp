@@ -8,32 +8,17 @@
 
 #include "common/extrapolation/prediction_check.hpp"
 #include "common/extrapolation/submap_graph_json.hpp"
+#include "tests/unit/extrapolation/test_maps.hpp"
 
 namespace fleetmap::extrapolation {
 namespace {
 
+using testing::Corridor;
+using testing::CorridorWithRooms;
+using testing::DoorAt;
+using testing::Fill;
 using ::testing::HasSubstr;
-
-constexpr double kRes = 0.05;
-
-void Fill(grid::OccupancyGrid* map, double x0, double y0, double x1, double y1, int8_t value) {
-  for (int y = 0; y < map->height(); ++y) {
-    for (int x = 0; x < map->width(); ++x) {
-      const Point2 c = map->CellCenter(x, y);
-      if (c.x() >= x0 && c.x() < x1 && c.y() >= y0 && c.y() < y1) map->at(x, y) = value;
-    }
-  }
-}
-
-// 10 x 8 m: a corridor y in [0.15, 2] the robot has seen, walls below it and above it (y in
-// [2, 2.15]) with a closed door between x = 4 and 5; above the wall nothing is known.
-grid::OccupancyGrid Corridor() {
-  grid::OccupancyGrid map(200, 160, kRes);
-  Fill(&map, 0, 0, 10, 0.15, grid::kOccupiedValue);
-  Fill(&map, 0, 0.15, 10, 2.0, grid::kFreeValue);
-  Fill(&map, 0, 2.0, 10, 2.15, grid::kOccupiedValue);
-  return map;
-}
+using testing::kRes;
 
 scene::DoorEntity Door() {
   scene::DoorEntity door;
@@ -64,28 +49,6 @@ bool FreeAt(const scene::Submap& submap, const Point2& map_point) {
 }
 
 int64_t FreeCount(const grid::OccupancyGrid& grid) { return grid.CountStates().free; }
-
-// Corridor() with two rooms above it, y in [2.15, 6], split at x = 4.9 by a wall, each seen
-// through a doorway in the corridor's wall: x in [2, 3] and [6, 7].
-grid::OccupancyGrid CorridorWithRooms() {
-  grid::OccupancyGrid map = Corridor();
-  Fill(&map, 0, 2.15, 10, 6.0, grid::kFreeValue);
-  Fill(&map, 4.9, 2.15, 5.05, 6.0, grid::kOccupiedValue);
-  Fill(&map, 0, 6.0, 10, 6.15, grid::kOccupiedValue);
-  Fill(&map, 2.0, 2.0, 3.0, 2.15, grid::kFreeValue);
-  Fill(&map, 6.0, 2.0, 7.0, 2.15, grid::kFreeValue);
-  return map;
-}
-
-scene::DoorEntity DoorAt(const std::string& id, double x0, double x1, double y, bool open) {
-  scene::DoorEntity door;
-  door.id = id;
-  door.hinge = Point2(x0, y);
-  door.latch = Point2(x1, y);
-  door.opening_direction = Vector2(0, 1);
-  door.open = open;
-  return door;
-}
 
 TEST(ExtrapolatorTest, NoDoorGivesOnePlace) {
   const grid::OccupancyGrid map = CorridorWithRooms();
