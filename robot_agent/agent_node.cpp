@@ -92,8 +92,7 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
         EntityPublisher::Create(*node->participant_, o.robot, o.entities_path));
   }
 
-  FLEETMAP_ASSIGN_OR_RETURN(node->claim_watch_,
-                            IdClaimWatch::Create(*node->participant_, o.robot));
+  FLEETMAP_ASSIGN_OR_RETURN(node->claim_watch_, IdClaimWatch::Create(*node->participant_, o.robot));
   // Every endpoint is created, so discovery runs while the agent listens for a prior claim.
   FLEETMAP_RETURN_IF_ERROR(node->claim_watch_->CheckIdIsFree(o.claim_wait));
 
@@ -212,6 +211,24 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
   spdlog::info("{}: leaving the fleet ({} fused tiles received)", options_.robot.value,
                fused_tiles_received_);
   return status_writer_->Leave(options_.robot);
+}
+
+void AgentOptions::Describe(OptionsPrinter& out) const {
+  out.Add("robot", robot);
+  out.Add("map_path", map_path);
+  out.Add("ros_topic", ros_topic);
+  out.Nested("sim", sim);
+  out.Add("entities_path", entities_path);
+  out.Nested("map_limits", map_limits);
+  out.Add("wire", wire == Wire::kTiles ? "tiles" : "grid");
+  out.Nested("tiles", tiles);
+  out.Add("fleet_from_map", fleet_from_map);
+  out.Add("map_from_robot", map_from_robot);
+  out.Add("status_period", status_period);
+  out.Add("map_check_period", map_check_period);
+  out.Add("duration", duration);
+  out.Add("claim_wait", claim_wait);
+  out.Nested("dds", dds);
 }
 
 }  // namespace fleetmap::agent

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -50,6 +51,8 @@ struct AgentOptions {
 
   // Checks every field once; the error names the option and the value.
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // fleetmap-agent's node: takes the robot's grid from its source, publishes the tiles that changed

@@ -113,6 +113,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
+  spdlog::info("fleetmap-agent: options\n{}", fleetmap::DescribeOptions(options));
   auto node = fleetmap::agent::AgentNode::Create(std::move(options));
   if (!node.ok()) {
     spdlog::error("fleetmap-agent: {}", node.status().message());

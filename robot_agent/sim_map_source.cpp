@@ -104,4 +104,15 @@ Pose2 SimMapSource::pose() const {
   return pose_;
 }
 
+void SimOptions::Describe(OptionsPrinter& out) const {
+  out.Add("kind", sim::TerrainKindName(kind));
+  out.Add("size", size);
+  out.Add("seed", seed);
+  out.Add("robot_index", robot_index);
+  out.Add("robots", robots);
+  out.Add("resolution", resolution);
+  out.Add("scans_per_second", scans_per_second);
+  out.Add("scans_per_map", scans_per_map);
+}
+
 }  // namespace fleetmap::agent

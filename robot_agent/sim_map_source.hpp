@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/sim/terrain.hpp"
@@ -26,6 +27,8 @@ struct SimOptions {
   int scans_per_map = 5;           // a map snapshot every this many scans
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // The built-in robot: explores a seeded terrain (common/sim) on its own thread at a real-time

@@ -178,4 +178,10 @@ Status TilePublisher::Flush(std::chrono::steady_clock::time_point now) {
   return Status::Ok();
 }
 
+void TilePublisherOptions::Describe(OptionsPrinter& out) const {
+  out.Add("tile_size", tile_size);
+  out.Add("epsilon", epsilon);
+  out.Add("max_kbps", max_kbps);
+}
+
 }  // namespace fleetmap::agent

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "common/core/ids.hpp"
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -24,6 +25,8 @@ struct TilePublisherOptions {
   double max_kbps = 0.0;
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // Turns successive versions of a robot's grid into vector tiles and publishes only the tiles

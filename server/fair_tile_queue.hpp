@@ -54,8 +54,8 @@ class FairTileQueue {
     Robot& queue = chosen->second;
     virtual_now_ = std::max(virtual_now_, queue.virtual_time);
     if (queue.cost_per_item.count() > 0) {
-      max_items = std::clamp<size_t>(static_cast<size_t>(target / queue.cost_per_item), 1,
-                                     max_items);
+      max_items =
+          std::clamp<size_t>(static_cast<size_t>(target / queue.cost_per_item), 1, max_items);
     } else {
       max_items = std::min<size_t>(max_items, kItemsWhileCostUnknown);
     }
@@ -80,9 +80,8 @@ class FairTileQueue {
     if (items == 0) return;
     const Duration per_item = used / static_cast<int64_t>(items);
     // A moving average: a robot's tiles change cost as its map grows.
-    queue.cost_per_item = queue.cost_per_item.count() == 0
-                              ? per_item
-                              : (queue.cost_per_item * 3 + per_item) / 4;
+    queue.cost_per_item =
+        queue.cost_per_item.count() == 0 ? per_item : (queue.cost_per_item * 3 + per_item) / 4;
   }
 
   // Drops what waits for `robot`'s `tile` (its robot removed it).

@@ -429,4 +429,18 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   stats_.fused_tiles = fusion_.fused_tiles().size();
 }
 
+Status FusionWorkerOptions::Validate() const {
+  FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
+  return admission.Validate();
+}
+
+void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
+  out.Nested("fusion", fusion);
+  out.Add("store_path", store_path);
+  out.Add("history_rows", history_rows);
+  out.Add("map_period", map_period);
+  out.Nested("admission", admission);
+  out.Add("unclaimed_wait", unclaimed_wait);
+}
+
 }  // namespace fleetmap::server

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <string>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/sample_queue.hpp"
 #include "common/core/status.hpp"
@@ -41,6 +42,11 @@ struct FusionWorkerOptions {
   AdmissionOptions admission;
   // Tiles of a robot id that no live status claims yet wait this long for the claim.
   std::chrono::milliseconds unclaimed_wait{std::chrono::seconds(10)};
+
+  // The fusion and admission options' own checks.
+  Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // What the worker has done, per robot and in total. A snapshot; thread-safe to take.

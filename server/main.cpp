@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
+  spdlog::info("fleetmap-server: options\n{}", fleetmap::DescribeOptions(options));
   auto node = fleetmap::server::ServerNode::Create(std::move(options));
   if (!node.ok()) {
     spdlog::error("fleetmap-server: {}", node.status().message());

@@ -157,4 +157,11 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
   return Status::Ok();
 }
 
+void ObjectLearningOptions::Describe(OptionsPrinter& out) const {
+  out.Add("enabled", enabled);
+  out.Add("min_sessions", min_sessions);
+  out.Add("max_sessions", max_sessions);
+  out.Nested("learn", learn);
+}
+
 }  // namespace fleetmap::server

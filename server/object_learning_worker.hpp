@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/core/worker_thread.hpp"
 #include "common/fusion/fusion_options.hpp"
@@ -25,6 +26,8 @@ struct ObjectLearningOptions {
   object_learning::LearnOptions learn;
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // What the learner has done. A snapshot; thread-safe to take.

@@ -38,9 +38,10 @@ void RefusalLog::Refuse(const std::string& robot, Refusal reason, const std::str
   ++log.counts[reason];
   if (now - log.period_start >= period_) {
     if (log.left_out > 0) {
-      spdlog::warn("{}: refused {} more samples from {} in the last {} s without logging each",
-                   who_, log.left_out, key,
-                   std::chrono::duration_cast<std::chrono::seconds>(now - log.period_start).count());
+      spdlog::warn(
+          "{}: refused {} more samples from {} in the last {} s without logging each", who_,
+          log.left_out, key,
+          std::chrono::duration_cast<std::chrono::seconds>(now - log.period_start).count());
     }
     log.period_start = now;
     log.logged.clear();

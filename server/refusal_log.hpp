@@ -11,15 +11,15 @@ namespace fleetmap::server {
 
 // Why the server refused something a peer sent.
 enum class Refusal {
-  kMalformed,        // the sample failed its shape or content checks
-  kBadRobotId,       // not a ROS 2 name token of at most 64 characters
-  kTileOutOfRange,   // a tile key beyond the server's max_coordinate
-  kBadTileSettings,  // tile size, epsilon or resolution outside what the server fuses
-  kStampOutOfWindow, // stamped too far ahead of the server's clock, or implausibly old
-  kTileQuota,        // the robot already holds its maximum number of tiles
-  kByteQuota,        // the robot sends more bytes per second than its quota
-  kNotOwner,         // a sample for a robot id that another participant owns
-  kUnclaimed,        // tiles for a robot id no live status claims, held too long
+  kMalformed,         // the sample failed its shape or content checks
+  kBadRobotId,        // not a ROS 2 name token of at most 64 characters
+  kTileOutOfRange,    // a tile key beyond the server's max_coordinate
+  kBadTileSettings,   // tile size, epsilon or resolution outside what the server fuses
+  kStampOutOfWindow,  // stamped too far ahead of the server's clock, or implausibly old
+  kTileQuota,         // the robot already holds its maximum number of tiles
+  kByteQuota,         // the robot sends more bytes per second than its quota
+  kNotOwner,          // a sample for a robot id that another participant owns
+  kUnclaimed,         // tiles for a robot id no live status claims, held too long
 };
 
 const char* RefusalName(Refusal refusal);

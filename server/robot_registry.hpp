@@ -16,10 +16,10 @@ namespace fleetmap::server {
 class RobotRegistry {
  public:
   enum class Claim {
-    kNew,       // the id was free: now it is this participant's
-    kSame,      // the participant already owns it
-    kClash,     // another participant owns it
-    kTooMany,   // the participant already owns max_robots_per_participant ids
+    kNew,      // the id was free: now it is this participant's
+    kSame,     // the participant already owns it
+    kClash,    // another participant owns it
+    kTooMany,  // the participant already owns max_robots_per_participant ids
   };
   enum class Speaker { kOwner, kUnclaimed, kOther };
 

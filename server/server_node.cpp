@@ -35,7 +35,14 @@ Status ServerOptions::Validate() const {
   if (max_robots_per_participant == 0) {
     return InvalidArgumentError("--max-robots-per-participant must be >= 1");
   }
-  FLEETMAP_RETURN_IF_ERROR(fusion.admission.Validate());
+  FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
+  // A part that is switched off is not made, so its options are not checked.
+  if (learning.enabled) {
+    FLEETMAP_RETURN_IF_ERROR(learning.Validate().WithContext("object learning"));
+  }
+  if (prediction.enabled) {
+    FLEETMAP_RETURN_IF_ERROR(prediction.Validate().WithContext("map extrapolation"));
+  }
   return Status::Ok();
 }
 
@@ -346,6 +353,16 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
       entity_reader_ ? entity_reader_->dropped() : 0,
       prediction_worker_ ? prediction_worker_->stats().inputs_dropped : 0);
   std::fflush(stdout);
+}
+
+void ServerOptions::Describe(OptionsPrinter& out) const {
+  out.Add("duration", duration);
+  out.Nested("dds", dds);
+  out.Nested("fusion", fusion);
+  out.Nested("learning", learning);
+  out.Nested("prediction", prediction);
+  out.Add("transforms", transforms);
+  out.Add("max_robots_per_participant", max_robots_per_participant);
 }
 
 }  // namespace fleetmap::server

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/core/wake_up.hpp"
@@ -35,6 +36,8 @@ struct ServerOptions {
   size_t max_robots_per_participant = 16;
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // What the server knows of one robot.

@@ -60,17 +60,18 @@ std::optional<TileAdmission::Refused> TileAdmission::CheckSettings(
 std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(
     const transport::VectorTileMessage& tile, Timestamp now) const {
   if (tile.stamp > now + options_.max_clock_ahead) {
-    return Refused{Refusal::kStampOutOfWindow,
-                   fmt::format("{} is stamped {:.1f} s ahead of this server's clock (at most {:.1f} "
-                               "s accepted): check the robot's clock",
-                               TileName(tile), Seconds(tile.stamp - now),
-                               Seconds(options_.max_clock_ahead))};
+    return Refused{
+        Refusal::kStampOutOfWindow,
+        fmt::format("{} is stamped {:.1f} s ahead of this server's clock (at most {:.1f} "
+                    "s accepted): check the robot's clock",
+                    TileName(tile), Seconds(tile.stamp - now), Seconds(options_.max_clock_ahead))};
   }
   if (tile.stamp < now - options_.max_age) {
-    return Refused{Refusal::kStampOutOfWindow,
-                   fmt::format("{} is stamped {:.0f} s before this server's clock (at most {} h "
-                               "accepted)",
-                               TileName(tile), Seconds(now - tile.stamp), options_.max_age.count())};
+    return Refused{
+        Refusal::kStampOutOfWindow,
+        fmt::format("{} is stamped {:.0f} s before this server's clock (at most {} h "
+                    "accepted)",
+                    TileName(tile), Seconds(now - tile.stamp), options_.max_age.count())};
   }
   return std::nullopt;
 }
@@ -93,10 +94,10 @@ TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& 
 
   RobotQuota& quota = robots_[tile.robot_id];
   if (quota.tiles.count(tile.tile) == 0 && quota.tiles.size() >= options_.max_tiles_per_robot) {
-    return Refused{Refusal::kTileQuota,
-                   fmt::format("{} would be robot {}'s tile number {}; a robot may hold {}",
-                               TileName(tile), tile.robot_id, quota.tiles.size() + 1,
-                               options_.max_tiles_per_robot)};
+    return Refused{
+        Refusal::kTileQuota,
+        fmt::format("{} would be robot {}'s tile number {}; a robot may hold {}", TileName(tile),
+                    tile.robot_id, quota.tiles.size() + 1, options_.max_tiles_per_robot)};
   }
   // Token bucket: refilled at the sustained rate, capped at the burst.
   if (!quota.started) {
@@ -104,17 +105,17 @@ TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& 
     quota.started = true;
   } else {
     const double elapsed = Seconds(steady_now - quota.refilled);
-    quota.byte_tokens = std::min(options_.burst_bytes,
-                                 quota.byte_tokens + std::max(0.0, elapsed) *
-                                                         options_.max_bytes_per_second);
+    quota.byte_tokens =
+        std::min(options_.burst_bytes,
+                 quota.byte_tokens + std::max(0.0, elapsed) * options_.max_bytes_per_second);
   }
   quota.refilled = steady_now;
   if (static_cast<double>(bytes) > quota.byte_tokens) {
     return Refused{Refusal::kByteQuota,
                    fmt::format("{} of {} bytes exceeds robot {}'s byte quota ({:.0f} bytes/s, "
                                "burst {:.0f})",
-                               TileName(tile), bytes, tile.robot_id,
-                               options_.max_bytes_per_second, options_.burst_bytes)};
+                               TileName(tile), bytes, tile.robot_id, options_.max_bytes_per_second,
+                               options_.burst_bytes)};
   }
   quota.byte_tokens -= static_cast<double>(bytes);
   quota.tiles.insert(tile.tile);
@@ -133,6 +134,14 @@ void TileAdmission::Forget(const std::string& robot, const TileId& tile) {
 size_t TileAdmission::tiles_held(const std::string& robot) const {
   const auto it = robots_.find(robot);
   return it == robots_.end() ? 0 : it->second.tiles.size();
+}
+
+void AdmissionOptions::Describe(OptionsPrinter& out) const {
+  out.Add("max_clock_ahead", max_clock_ahead);
+  out.Add("max_age", max_age);
+  out.Add("max_tiles_per_robot", max_tiles_per_robot);
+  out.Add("max_bytes_per_second", max_bytes_per_second);
+  out.Add("burst_bytes", burst_bytes);
 }
 
 }  // namespace fleetmap::server

@@ -3,12 +3,13 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
-#include <optional>
 #include <variant>
 
 #include "common/core/ids.hpp"
+#include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/fusion/fusion_options.hpp"
 #include "common/transport/vector_tile_message.hpp"
@@ -33,6 +34,8 @@ struct AdmissionOptions {
   double burst_bytes = 64e6;
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // Decides, tile by tile, whether a robot tile may reach fusion: its robot id, key, settings,

@@ -15,6 +15,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,15 @@ class OptionsPrinter {
   template <typename T>
   void Add(std::string_view name, const T& value) {
     Line(name, Format(value));
+  }
+
+  template <typename Options>
+  void Nested(std::string_view name, const std::optional<Options>& options) {
+    if (options) {
+      Nested(name, *options);
+    } else {
+      Line(name, "none");
+    }
   }
 
   template <typename Options>
@@ -60,14 +70,35 @@ class OptionsPrinter {
     } else if constexpr (std::is_enum_v<T>) {
       return Format(static_cast<std::underlying_type_t<T>>(value));
     } else if constexpr (IsDuration<T>::value) {
-      return Format(std::chrono::duration<double>(value).count()) + " s";
+      return Format(std::chrono::duration<double>(value).count()).append(" s");
     } else if constexpr (IsOptional<T>::value) {
       return value ? Format(*value) : "none";
     } else if constexpr (requires { value.x() + value.y(); }) {  // a point (Eigen)
-      return "[" + Format(value.x()) + ", " + Format(value.y()) + "]";
+      return List({Format(value.x()), Format(value.y())});
+    } else if constexpr (requires { value.x + value.y + value.yaw; }) {  // a Pose2
+      return List({Format(value.x), Format(value.y), Format(value.yaw)});
+    } else if constexpr (requires { std::string_view(value.value); }) {  // a strong id
+      return Quoted(value.value);
+    } else if constexpr (requires { value.begin()->second; }) {  // a map
+      std::string text("{");
+      for (const auto& [key, item] : value) {
+        if (text.size() > 1) text.append(", ");
+        text.append(Format(key)).append(": ").append(Format(item));
+      }
+      return text.append("}");
     } else {
       return Quoted(std::string_view(value));
     }
+  }
+
+  // "[a, b, c]". (Appends, not operator+: GCC 12 warns falsely on literal + std::string.)
+  static std::string List(std::initializer_list<std::string> items) {
+    std::string text("[");
+    for (const std::string& item : items) {
+      if (text.size() > 1) text.append(", ");
+      text.append(item);
+    }
+    return text.append("]");
   }
 
   static std::string Quoted(std::string_view text) {

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/scene/entities.hpp"

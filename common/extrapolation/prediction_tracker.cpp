@@ -341,4 +341,12 @@ void PredictionTracker::PublishPlaces(Timestamp now, TrackerUpdate* update) {
   stats_.places = published_places_.size();
 }
 
+void PredictionOptions::Describe(OptionsPrinter& out) const {
+  out.Add("enabled", enabled);
+  out.Nested("extrapolation", extrapolation);
+  out.Add("judge_observed_fraction", judge_observed_fraction);
+  out.Add("min_observed_cells", min_observed_cells);
+  out.Add("confirm_precision", confirm_precision);
+}
+
 }  // namespace fleetmap::extrapolation

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/core/ids.hpp"
+#include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/extrapolation/extrapolator.hpp"
@@ -39,6 +40,8 @@ struct PredictionOptions {
   double confirm_precision = 0.9;
 
   Status Validate() const;
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // An entity a robot recognises, or a new version of it, in the fleet frame.

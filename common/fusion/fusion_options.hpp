@@ -1,6 +1,7 @@
 #pragma once
 
 #include "common/core/ids.hpp"
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/vector_map/vectorizer.hpp"
 

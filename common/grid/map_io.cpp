@@ -531,4 +531,10 @@ Status SaveMap(const OccupancyGrid& grid, const std::string& yaml_path,
   return WriteYaml(grid, yaml_path, image_path.filename().string(), options);
 }
 
+void MapLoadOptions::Describe(OptionsPrinter& out) const {
+  out.Add("max_cells", max_cells);
+  out.Add("max_decoded_bytes", max_decoded_bytes);
+  out.Add("allow_outside_dir", allow_outside_dir);
+}
+
 }  // namespace fleetmap::grid

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -53,6 +54,9 @@ struct MapLoadOptions {
   // and machines, and a map file should not make a server open arbitrary files. The check is
   // lexical (symbolic links inside the directory are followed).
   bool allow_outside_dir = false;
+
+  // Every field, for the start-up log (common/core/options_printer.hpp).
+  void Describe(OptionsPrinter& out) const;
 };
 
 // A grid with the metadata it was read with (`fleetmap info` prints both).

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 

@@ -26,6 +26,7 @@
 #include <string>
 #include <utility>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/delimitation.hpp"

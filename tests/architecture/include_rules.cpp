@@ -10,7 +10,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::regex kGeneratedHeader(R"(^[a-z_]+/(msg|srv)/)");
-const std::regex kProjectInclude(R"(^\s*#\s*include\s*"([^"]+)")");
+const std::regex kProjectInclude(R"re(^\s*#\s*include\s*"([^"]+)")re");
 
 std::vector<std::string> Words(const std::string& text) {
   std::istringstream in(text);

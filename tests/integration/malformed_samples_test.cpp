@@ -434,9 +434,10 @@ TEST_F(TileWirePeerTest, APeerCannotDisposeOrOverwriteAnotherAgentsRobot) {
   EXPECT_TRUE(SendUntilServerSays(*tile_writer, erasing, "for robot alpha from participant"))
       << server_->Output();
   tile_writer.reset();
-  // An agent started with the id this peer holds (gamma) is told and exits.
+  // An agent started with the id this peer holds (gamma) is told and exits. It waits 5 s for
+  // claims, not the default 1 s: on a loaded machine discovery alone can take longer.
   process::Subprocess squatted(
-      {kAgent, "--robot-id", "gamma", "--map", kMap},
+      {kAgent, "--robot-id", "gamma", "--map", kMap, "--claim-wait", "5"},
       {{"FLEETMAP_DOMAIN", std::to_string(domain_)}, {"FLEETMAP_LOCALHOST_ONLY", "1"}});
   status_writer_->writer()->write(&gamma_);
   EXPECT_EQ(squatted.Wait(kDeadline), 2) << squatted.Output();

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Every figure of docs/results.md, in one run: bash bench/run_all.sh [BUILD_DIR] [OUT_DIR]
+# Each command's stdout goes to OUT_DIR/<name>.txt (and its JSON/CSV beside it); the commands are
+# the ones docs/results.md names. About 40 minutes on the 2-core reference machine. The lossy
+# network run needs root (a network namespace and an nftables rule) and is skipped otherwise.
+set -euo pipefail
+
+build=${1:-build}
+out=${2:-out/results}
+maps=${FLEETMAP_MAPS:-../shared/data/maps}
+fleetmap="$build/cli/fleetmap"
+mkdir -p "$out"
+
+run() {
+  local name=$1
+  shift
+  echo "== $name: $*" >&2
+  local start=$SECONDS
+  "$@" > "$out/$name.txt"
+  echo "   $name done in $((SECONDS - start)) s" >&2
+}
+
+[[ -d $maps ]] || maps=tests/data/maps/real  # a lone clone: the three maps it carries
+
+run vectorize "$fleetmap" bench vectorize --maps "$maps" --runs 7 \
+  --json "$out/vectorize.json" --csv "$out/vectorize.csv"
+if [[ -x $build/bench/kernels/vectorize_benchmark ]]; then
+  run kernels "$build/bench/kernels/vectorize_benchmark" --benchmark_min_time=0.2
+fi
+run paper "$fleetmap" bench paper --out "$out/paper" --seed 1 --no-progress
+run fleet "$fleetmap" bench fleet --robots 1 4 16 --terrain office --size 80 --duration 45 \
+  --rate 10 --json "$out/fleet.json"
+run demo "$fleetmap" sim --robots 4 --terrain office --size 40 --duration 40 --out "$out/demo"
+run hostile "$fleetmap" bench fleet --robots 1 4 --terrain office --size 40 --duration 30 \
+  --hostile --json "$out/hostile.json"
+if [[ $(id -u) -eq 0 ]]; then
+  run loss "$fleetmap" bench loss --loss 0 5 20 40 --robots 4 --terrain office --size 40 \
+    --duration 40 --rate 10 --json "$out/loss.json" --csv "$out/loss.csv"
+else
+  echo "== loss: skipped (needs root for the network namespace)" >&2
+fi
+for seed in 1 2 3; do
+  run "objects_lab$seed" "$fleetmap" bench objects --out "$out/objects_lab$seed" --starts 20 \
+    --seed "$seed"
+done
+run objects_office1 "$fleetmap" bench objects --terrain office --size 40 \
+  --out "$out/objects_office1" --starts 20 --seed 1
+run extrapolation_1 "$fleetmap" bench extrapolation --out "$out/extrapolation_1" --scenes 100 \
+  --seed 1 --no-progress
+run extrapolation_1001 "$fleetmap" bench extrapolation --out "$out/extrapolation_1001" \
+  --scenes 100 --seed 1001 --no-progress
+echo "all figures in $out" >&2
