@@ -51,7 +51,6 @@ struct AgentOptions {
 
   // Checks every field once; the error names the option and the value.
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -27,7 +27,6 @@ struct SimOptions {
   int scans_per_map = 5;           // a map snapshot every this many scans
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

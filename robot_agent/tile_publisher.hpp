@@ -25,7 +25,6 @@ struct TilePublisherOptions {
   double max_kbps = 0.0;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -45,7 +45,6 @@ struct FusionWorkerOptions {
 
   // The fusion and admission options' own checks.
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

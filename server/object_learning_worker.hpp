@@ -26,7 +26,6 @@ struct ObjectLearningOptions {
   object_learning::LearnOptions learn;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

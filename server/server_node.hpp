@@ -36,7 +36,6 @@ struct ServerOptions {
   size_t max_robots_per_participant = 16;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

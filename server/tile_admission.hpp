@@ -34,7 +34,6 @@ struct AdmissionOptions {
   double burst_bytes = 64e6;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

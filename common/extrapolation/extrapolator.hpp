@@ -85,7 +85,6 @@ struct ExtrapolationOptions {
 
   // Errors (kInvalidArgument): p_th outside (0, 1), a non-positive or non-finite parameter.
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -40,7 +40,6 @@ struct PredictionOptions {
   double confirm_precision = 0.9;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -22,7 +22,6 @@ struct FusionOptions {
   int64_t max_grid_cells = int64_t{1} << 26;  // 64 M cells: 8192 x 8192, 410 m square at 5 cm
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
   // Whether `tile` lies within max_coordinate of the origin; the error names it otherwise.
   Status CheckTileInRange(const TileId& tile) const;

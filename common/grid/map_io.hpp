@@ -55,7 +55,6 @@ struct MapLoadOptions {
   // lexical (symbolic links inside the directory are followed).
   bool allow_outside_dir = false;
 
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -39,7 +39,6 @@ struct SnapshotOptions {
   double blur_cells = 1.0;  // in [0, 10]
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 
@@ -69,7 +68,6 @@ struct EmOptions {
   int gibbs_burn_in = 50;        // sweeps dropped, >= 0
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 
@@ -84,7 +82,6 @@ struct SelectionOptions {
   int patience = 1;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 
@@ -103,7 +100,6 @@ struct LearnOptions {
   const std::atomic<bool>* cancel = nullptr;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

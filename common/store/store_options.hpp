@@ -32,7 +32,6 @@ struct StoreOptions {
   int64_t max_page_count = 0;
 
   Status Validate() const;
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

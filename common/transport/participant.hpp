@@ -32,7 +32,6 @@ struct ParticipantOptions {
   // How long a silent participant is kept before its endpoints are dropped.
   std::chrono::milliseconds participant_lease{6000};
 
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 

@@ -54,7 +54,6 @@ struct VectorizerOptions {
   // cells better (line_refit.hpp; both constraints still hold). Off only to measure its effect.
   bool refit_lines = true;
 
-  // Every field, for the start-up log (common/core/options_printer.hpp).
   void Describe(OptionsPrinter& out) const;
 };
 
