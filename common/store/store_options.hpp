@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 
 namespace fleetmap::store {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 
 namespace eprosima::fastdds::dds {
