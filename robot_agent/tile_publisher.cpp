@@ -154,7 +154,7 @@ Status TilePublisher::Flush(std::chrono::steady_clock::time_point now) {
       bytes = estimate;
     } else {
       transport::VectorTileMessage message;
-      message.robot_id = robot_.value;
+      message.robot_id = robot_;
       message.tile = tile;
       message.revision = ++revisions_[tile];
       message.stamp = Clock::now();
