@@ -149,12 +149,12 @@ Status TilePublisher::Flush(std::chrono::steady_clock::time_point now) {
     }
     size_t bytes = 0;
     if (pending.removed) {
-      FLEETMAP_RETURN_IF_ERROR(writer_->Dispose(robot_.value, tile));
+      FLEETMAP_RETURN_IF_ERROR(writer_->Dispose(robot_, tile));
       revisions_.erase(tile);
       bytes = estimate;
     } else {
       transport::VectorTileMessage message;
-      message.robot_id = robot_.value;
+      message.robot_id = robot_;
       message.tile = tile;
       message.revision = ++revisions_[tile];
       message.stamp = Clock::now();

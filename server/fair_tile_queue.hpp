@@ -24,7 +24,7 @@ class FairTileQueue {
   using Duration = std::chrono::nanoseconds;
 
   // Queues `item` for `robot`'s `tile`, replacing an older one of the same tile.
-  void Push(const std::string& robot, const TileId& tile, Item item) {
+  void Push(const RobotId& robot, const TileId& tile, Item item) {
     Robot& queue = robots_[robot];
     if (queue.pending.empty()) {
       // A robot that was idle starts level with the others: idle time is not credit.
@@ -40,7 +40,7 @@ class FairTileQueue {
   // The next turn: of the robot that used the least fusion time, oldest first, as many items as
   // its average cost per item fits in `target` (at least one, at most `max_items`; a few while
   // its cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
-  std::vector<Item> NextTurn(size_t max_items, Duration target, std::string* robot) {
+  std::vector<Item> NextTurn(size_t max_items, Duration target, RobotId* robot) {
     std::vector<Item> turn;
     auto chosen = robots_.end();
     for (auto it = robots_.begin(); it != robots_.end(); ++it) {
@@ -72,7 +72,7 @@ class FairTileQueue {
   }
 
   // Fusion time spent on `robot`'s turn of `items` items.
-  void Charge(const std::string& robot, Duration used, size_t items) {
+  void Charge(const RobotId& robot, Duration used, size_t items) {
     const auto it = robots_.find(robot);
     if (it == robots_.end()) return;
     Robot& queue = it->second;
@@ -85,7 +85,7 @@ class FairTileQueue {
   }
 
   // Drops what waits for `robot`'s `tile` (its robot removed it).
-  void Erase(const std::string& robot, const TileId& tile) {
+  void Erase(const RobotId& robot, const TileId& tile) {
     const auto it = robots_.find(robot);
     if (it == robots_.end() || it->second.pending.erase(tile) == 0) return;
     std::erase(it->second.order, tile);
@@ -105,7 +105,7 @@ class FairTileQueue {
     Duration cost_per_item{0};  // moving average of what one item has cost; 0: unknown
   };
 
-  std::map<std::string, Robot> robots_;
+  std::map<RobotId, Robot> robots_;
   Duration virtual_now_{0};
   size_t size_ = 0;
 };

@@ -21,10 +21,10 @@ void FusionWorker::Remember(const std::string& owner, const transport::VectorTil
     ++stats_.store_errors;
     return;
   }
-  if (owner != store::kFleetOwner) RememberContribution(owner, tile.tile);
+  if (owner != store::kFleetOwner) RememberContribution(RobotId{owner}, tile.tile);
 }
 
-void FusionWorker::RememberContribution(const std::string& robot, const TileId& tile) {
+void FusionWorker::RememberContribution(const RobotId& robot, const TileId& tile) {
   if (store_ == nullptr) return;
   if (const Status queued = sync_->ContributionChanged(robot, tile); !queued.ok()) {
     spdlog::warn("server: map store: not storing a contribution: {}", queued.message());
@@ -111,7 +111,7 @@ void FusionWorker::Start() {
 
 void FusionWorker::Stop() { thread_.Stop(); }
 
-void FusionWorker::SubmitGrid(const std::string& robot, transport::MapMessage map,
+void FusionWorker::SubmitGrid(const RobotId& robot, transport::MapMessage map,
                               Pose2 fleet_from_map) {
   grids_.Push(GridUpdate{robot, std::move(map), fleet_from_map});
   thread_.Wake();
@@ -166,7 +166,7 @@ void FusionWorker::HandleRobotRecords() {
       continue;
     } else {
       spdlog::info("server: mapping session {} of {} finished ({} tiles)", (**finished).id,
-                   robot.robot, (**finished).map.tiles.size());
+                   robot.robot.value, (**finished).map.tiles.size());
     }
     {
       std::lock_guard lock(stats_mutex_);
@@ -212,10 +212,10 @@ void FusionWorker::HandleTileEvents() {
   ReleaseHeldTiles(steady);
 }
 
-void FusionWorker::Refuse(const std::string& robot, Refusal reason, const std::string& detail) {
+void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::string& detail) {
   // A name that is not a robot name (empty, too long) is not used as a key anywhere.
-  const bool named = IsValidRobotName(robot);
-  refusals_.Refuse(named ? robot : std::string(), reason, detail);
+  const bool named = IsValidRobotName(robot.value);
+  refusals_.Refuse(named ? robot.value : std::string(), reason, detail);
   std::lock_guard lock(stats_mutex_);
   ++stats_.refusals_by_reason[RefusalName(reason)];
   if (!named) {
@@ -227,7 +227,7 @@ void FusionWorker::Refuse(const std::string& robot, Refusal reason, const std::s
 
 void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
                          std::chrono::steady_clock::time_point steady) {
-  const std::string robot = event.tile.robot_id;
+  const RobotId robot = event.tile.robot_id;
   if (event.kind == transport::TileEvent::Kind::kRejected) {
     Refuse(robot, Refusal::kMalformed, event.error.message());
     return;
@@ -240,7 +240,7 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
     case RobotRegistry::Speaker::kOther:
       Refuse(robot, Refusal::kNotOwner,
              fmt::format("tile ({}, {}) for robot {} from participant {}, which does not own it",
-                         event.tile.tile.x, event.tile.tile.y, robot,
+                         event.tile.tile.x, event.tile.tile.y, robot.value,
                          RobotRegistry::ParticipantOf(event.writer)));
       return;
     case RobotRegistry::Speaker::kUnclaimed: {
@@ -279,7 +279,7 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
   queue_.Push(robot, key, PendingTile{std::move(event.tile), evidence, event.serialized_bytes});
 }
 
-void FusionWorker::RemoveTile(const std::string& robot, const TileId& tile) {
+void FusionWorker::RemoveTile(const RobotId& robot, const TileId& tile) {
   queue_.Erase(robot, tile);
   fusion_.RemoveRobotTile(robot, tile);
   RememberContribution(robot, tile);
@@ -304,7 +304,7 @@ void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady
                 "tile ({}, {}) waited {} s for a status claiming robot {}; dropped", it->first.x,
                 it->first.y,
                 std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait).count(),
-                robot->first));
+                robot->first.value));
         it = robot->second.erase(it);
       } else {
         ++it;
@@ -320,7 +320,7 @@ void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
     // What arrived during the last turn joins the queue now, not after the slice: an honest
     // update waits for at most the turn in progress.
     HandleTileEvents();
-    std::string robot;
+    RobotId robot;
     const auto turn_start = std::chrono::steady_clock::now();
     std::vector<PendingTile> turn = queue_.NextTurn(kMaxTilesPerTurn, kTurnTarget, &robot);
     const size_t tiles = turn.size();
@@ -331,7 +331,7 @@ void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
   }
 }
 
-void FusionWorker::ApplyTile(const std::string& robot, PendingTile pending) {
+void FusionWorker::ApplyTile(const RobotId& robot, PendingTile pending) {
   const transport::VectorTileMessage& tile = pending.tile;
   const Status updated =
       fusion_.UpdateRobotTile(robot, tile.tile, tile.map, pending.evidence_stamp);
@@ -341,7 +341,7 @@ void FusionWorker::ApplyTile(const std::string& robot, PendingTile pending) {
     return;
   }
   sessions_->RecordTile(robot, tile.tile, tile.map, pending.evidence_stamp);
-  if (store_ != nullptr) Remember(robot, tile);
+  if (store_ != nullptr) Remember(robot.value, tile);
   std::lock_guard lock(stats_mutex_);
   FusionStats::Robot& stats = stats_.robots[robot];
   ++stats.tiles;
@@ -355,7 +355,7 @@ void FusionWorker::HandleGrids() {
     const auto tiled =
         vector_map::VectorizeTiled(update.map.grid, update.fleet_from_map.ToTransform(), options);
     if (!tiled.ok()) {
-      spdlog::warn("server: cannot fuse the grid of {}: {}", update.robot,
+      spdlog::warn("server: cannot fuse the grid of {}: {}", update.robot.value,
                    tiled.status().message());
       std::lock_guard lock(stats_mutex_);
       ++stats_.robots[update.robot].rejected;
@@ -364,7 +364,7 @@ void FusionWorker::HandleGrids() {
     for (const auto& [tile, map] : tiled->tiles) {
       const Status updated = fusion_.UpdateRobotTile(update.robot, tile, map, update.map.stamp);
       if (!updated.ok()) {
-        spdlog::warn("server: {}: {}", update.robot, updated.message());
+        spdlog::warn("server: {}: {}", update.robot.value, updated.message());
         continue;
       }
       sessions_->RecordTile(update.robot, tile, map, update.map.stamp);
@@ -382,7 +382,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   uint64_t bytes = 0;
   for (fusion::FusedTile& tile : *changed) {
     transport::VectorTileMessage message;
-    message.robot_id = store::kFleetOwner;
+    message.robot_id = RobotId{store::kFleetOwner};
     message.tile = tile.tile;
     message.revision = tile.revision;
     message.stamp = tile.source_stamp;  // lets receivers measure end-to-end latency

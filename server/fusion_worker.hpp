@@ -7,6 +7,7 @@
 #include <mutex>
 #include <string>
 
+#include "common/core/ids.hpp"
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/sample_queue.hpp"
@@ -55,7 +56,7 @@ struct FusionStats {
     uint64_t bytes = 0;
     uint64_t rejected = 0;
   };
-  std::map<std::string, Robot> robots;
+  std::map<RobotId, Robot> robots;
   uint64_t rejected_unattributed = 0;                  // samples too broken to name their robot
   std::map<std::string, uint64_t> refusals_by_reason;  // every refused tile, by RefusalName
   uint64_t fused_tiles_published = 0;
@@ -101,14 +102,14 @@ class FusionWorker {
   void Stop();
 
   // A whole grid from a robot on the grid wire, with its fleet_from_map.
-  void SubmitGrid(const std::string& robot, transport::MapMessage map, Pose2 fleet_from_map);
+  void SubmitGrid(const RobotId& robot, transport::MapMessage map, Pose2 fleet_from_map);
   // A robot's state for the store ("active", "left", "lost").
   void RecordRobot(store::RobotRecord robot);
   FusionStats stats() const;
 
  private:
   struct GridUpdate {
-    std::string robot;
+    RobotId robot;
     transport::MapMessage map;
     Pose2 fleet_from_map;
   };
@@ -141,20 +142,21 @@ class FusionWorker {
   void HandleTileEvents();
   void Admit(transport::TileEvent event, Timestamp now,
              std::chrono::steady_clock::time_point steady);
-  void Refuse(const std::string& robot, Refusal reason, const std::string& detail);
-  void RemoveTile(const std::string& robot, const TileId& tile);
+  void Refuse(const RobotId& robot, Refusal reason, const std::string& detail);
+  void RemoveTile(const RobotId& robot, const TileId& tile);
   // Tiles held for robot ids that a status has claimed since, or that waited too long.
   void ReleaseHeldTiles(std::chrono::steady_clock::time_point steady);
   // Fuses queued tiles turn by turn, fairly between robots, for at most `budget`.
   void FuseQueuedTiles(std::chrono::steady_clock::duration budget);
-  void ApplyTile(const std::string& robot, PendingTile pending);
+  void ApplyTile(const RobotId& robot, PendingTile pending);
   void Persist();
   // Robot state changes: a robot that left or was lost ends its mapping session.
   void HandleRobotRecords();
   // Queues a tile revision for the store (and, for a robot's tile, its changed contribution).
+  // `owner` is the store's owner key: the robot id's string, or store::kFleetOwner.
   void Remember(const std::string& owner, const transport::VectorTileMessage& tile);
   // Queues a robot contribution that changed or was removed for the store.
-  void RememberContribution(const std::string& robot, const TileId& tile);
+  void RememberContribution(const RobotId& robot, const TileId& tile);
   // Persist() at `now`; a final attempt at stop ignores the retry period and says what is lost.
   void Persist(std::chrono::steady_clock::time_point now);
   void HandleGrids();
@@ -172,13 +174,13 @@ class FusionWorker {
   std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)
   FusedMapListener on_fused_map_;
   SessionsListener on_sessions_;
-  TileAdmission admission_;                                 // worker thread only
-  FairTileQueue<PendingTile> queue_;                        // worker thread only
-  std::map<std::string, std::map<TileId, HeldTile>> held_;  // worker thread only
-  RefusalLog refusals_{"server"};                           // worker thread only
-  std::unique_ptr<StoreSync> sync_;                         // worker thread only (after Create)
-  bool map_dirty_ = false;                                  // worker thread only
-  size_t tiles_outside_map_ = 0;                            // worker thread only
+  TileAdmission admission_;                             // worker thread only
+  FairTileQueue<PendingTile> queue_;                    // worker thread only
+  std::map<RobotId, std::map<TileId, HeldTile>> held_;  // worker thread only
+  RefusalLog refusals_{"server"};                       // worker thread only
+  std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)
+  bool map_dirty_ = false;                              // worker thread only
+  size_t tiles_outside_map_ = 0;                        // worker thread only
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;

@@ -2,8 +2,7 @@
 
 namespace fleetmap::server {
 
-RobotRegistry::Claim RobotRegistry::ClaimRobot(const std::string& robot,
-                                               const std::string& writer) {
+RobotRegistry::Claim RobotRegistry::ClaimRobot(const RobotId& robot, const std::string& writer) {
   std::lock_guard lock(mutex_);
   const std::string participant = ParticipantOf(writer);
   const auto it = participant_by_robot_.find(robot);
@@ -17,7 +16,7 @@ RobotRegistry::Claim RobotRegistry::ClaimRobot(const std::string& robot,
   return Claim::kNew;
 }
 
-bool RobotRegistry::Release(const std::string& robot, const std::string& writer) {
+bool RobotRegistry::Release(const RobotId& robot, const std::string& writer) {
   std::lock_guard lock(mutex_);
   const auto it = participant_by_robot_.find(robot);
   if (it == participant_by_robot_.end() || it->second != ParticipantOf(writer)) return false;
@@ -29,7 +28,7 @@ bool RobotRegistry::Release(const std::string& robot, const std::string& writer)
   return true;
 }
 
-RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const std::string& robot,
+RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const RobotId& robot,
                                                 const std::string& writer) const {
   std::lock_guard lock(mutex_);
   const auto it = participant_by_robot_.find(robot);
@@ -37,7 +36,7 @@ RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const std::string& robot,
   return it->second == ParticipantOf(writer) ? Speaker::kOwner : Speaker::kOther;
 }
 
-std::string RobotRegistry::OwnerOf(const std::string& robot) const {
+std::string RobotRegistry::OwnerOf(const RobotId& robot) const {
   std::lock_guard lock(mutex_);
   const auto it = participant_by_robot_.find(robot);
   return it == participant_by_robot_.end() ? std::string() : it->second;

@@ -5,6 +5,8 @@
 #include <mutex>
 #include <string>
 
+#include "common/core/ids.hpp"
+
 namespace fleetmap::server {
 
 // Which agent speaks for which robot id: the DDS participant (the first 24 hex digits of a writer
@@ -27,22 +29,22 @@ class RobotRegistry {
       : max_robots_per_participant_(max_robots_per_participant) {}
 
   // Claims `robot` for the participant of `writer`.
-  Claim ClaimRobot(const std::string& robot, const std::string& writer);
+  Claim ClaimRobot(const RobotId& robot, const std::string& writer);
   // Frees the id when its robot left or was lost, if `writer` speaks for its owner; returns
   // whether it did.
-  bool Release(const std::string& robot, const std::string& writer);
+  bool Release(const RobotId& robot, const std::string& writer);
   // Who `writer` is to `robot`.
-  Speaker WhoSpeaks(const std::string& robot, const std::string& writer) const;
+  Speaker WhoSpeaks(const RobotId& robot, const std::string& writer) const;
   // The participant owning `robot`, or empty.
-  std::string OwnerOf(const std::string& robot) const;
+  std::string OwnerOf(const RobotId& robot) const;
 
   static std::string ParticipantOf(const std::string& writer) { return writer.substr(0, 24); }
 
  private:
   const size_t max_robots_per_participant_;
   mutable std::mutex mutex_;
-  std::map<std::string, std::string> participant_by_robot_;  // guarded by mutex_
-  std::map<std::string, size_t> robots_by_participant_;      // guarded by mutex_
+  std::map<RobotId, std::string> participant_by_robot_;  // guarded by mutex_
+  std::map<std::string, size_t> robots_by_participant_;  // guarded by mutex_
 };
 
 }  // namespace fleetmap::server

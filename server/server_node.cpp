@@ -25,7 +25,7 @@ namespace {
 store::RobotRecord RobotRecordFor(const RobotId& robot, const std::string& state) {
   const int64_t now =
       std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
-  return store::RobotRecord{robot.value, now, now, state, ""};
+  return store::RobotRecord{robot, now, now, state, ""};
 }
 
 }  // namespace
@@ -135,14 +135,14 @@ void ServerNode::HandleRobotEvents() {
 }
 
 void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writer) {
-  const RobotRegistry::Claim claim = registry_->ClaimRobot(status.robot.value, writer);
+  const RobotRegistry::Claim claim = registry_->ClaimRobot(status.robot, writer);
   if (claim == RobotRegistry::Claim::kClash) {
     ++robots_[status.robot].id_clashes;
     refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
                      fmt::format("a status from participant {} claims robot id {}, which "
                                  "participant {} owns: keeping the first, ignoring the other",
                                  RobotRegistry::ParticipantOf(writer), status.robot.value,
-                                 registry_->OwnerOf(status.robot.value)));
+                                 registry_->OwnerOf(status.robot)));
     return;
   }
   if (claim == RobotRegistry::Claim::kTooMany) {
@@ -183,8 +183,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   }
   if (const auto early = early_entities_.find(status.robot); early != early_entities_.end()) {
     for (auto& [entity_writer, entity] : early->second) {
-      if (registry_->WhoSpeaks(status.robot.value, entity_writer) ==
-          RobotRegistry::Speaker::kOwner) {
+      if (registry_->WhoSpeaks(status.robot, entity_writer) == RobotRegistry::Speaker::kOwner) {
         SubmitEntity(std::move(entity), record);
       } else {
         ++rejected_entities_;
@@ -208,20 +207,20 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
                              const std::string& writer) {
   const auto it = robots_.find(robot);
   if (it == robots_.end() || it->second.state != RobotRecord::State::kActive) return;
-  if (registry_->WhoSpeaks(robot.value, writer) != RobotRegistry::Speaker::kOwner) {
+  if (registry_->WhoSpeaks(robot, writer) != RobotRegistry::Speaker::kOwner) {
     // A second agent with this id went away, or a peer disposed an instance it does not own.
     refusals_.Refuse(robot.value, Refusal::kNotOwner,
                      fmt::format("participant {} {} robot {}, which participant {} owns: ignored",
                                  RobotRegistry::ParticipantOf(writer),
                                  state == RobotRecord::State::kLeft ? "disposed" : "lost",
-                                 robot.value, registry_->OwnerOf(robot.value)));
+                                 robot.value, registry_->OwnerOf(robot)));
     return;
   }
   RobotRecord& record = it->second;
   HandleMaps();  // keep whatever the robot sent before it went
   record.state = state;
   record.map_reader.reset();
-  registry_->Release(robot.value, writer);
+  registry_->Release(robot, writer);
   fusion_worker_->RecordRobot(RobotRecordFor(robot, RobotStateName(state)));
   if (state == RobotRecord::State::kLost) {
     spdlog::warn("server: robot {} lost (no liveliness within {} ms); its map stays, marked stale",
@@ -251,7 +250,7 @@ void ServerNode::HandleMaps() {
       spdlog::info("server: map from {}: {} x {} cells at {:.3f} m, {} bytes (total {} bytes)",
                    robot.value, map->grid.width(), map->grid.height(), map->grid.resolution(),
                    map->serialized_bytes, record.bytes_received);
-      fusion_worker_->SubmitGrid(robot.value, std::move(map).value(), FleetFromMap(record));
+      fusion_worker_->SubmitGrid(robot, std::move(map).value(), FleetFromMap(record));
     }
   }
 }
@@ -265,7 +264,7 @@ void ServerNode::HandleEntities() {
       spdlog::warn("server: dropped an entity: {}", event.error.message());
       continue;
     }
-    const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot.value, event.writer);
+    const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot, event.writer);
     if (speaker == RobotRegistry::Speaker::kOther) {
       ++rejected_entities_;
       refusals_.Refuse(robot.value, Refusal::kNotOwner,
@@ -307,7 +306,7 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
   fmt::print("\n{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", "robot", "state", "tiles", "maps",
              "bytes in", "rejected", "clashes");
   for (const auto& [robot, record] : robots_) {
-    const auto tiles = fusion.robots.find(robot.value);
+    const auto tiles = fusion.robots.find(robot);
     const FusionStats::Robot counts =
         tiles == fusion.robots.end() ? FusionStats::Robot{} : tiles->second;
     fmt::print("{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", robot.value,

@@ -33,7 +33,7 @@ StatusOr<std::vector<std::string>> SessionArchive::Restore() {
   return warnings;
 }
 
-void SessionArchive::RecordTile(const std::string& robot, const TileId& tile,
+void SessionArchive::RecordTile(const RobotId& robot, const TileId& tile,
                                 const vector_map::VectorMap& map, Timestamp stamp) {
   auto& sessions = closed_.count(robot) > 0 ? held_ : open_;
   auto [it, inserted] = sessions.try_emplace(robot);
@@ -46,14 +46,14 @@ void SessionArchive::RecordTile(const std::string& robot, const TileId& tile,
   session.map.tiles[tile] = map;
 }
 
-void SessionArchive::RemoveTile(const std::string& robot, const TileId& tile) {
+void SessionArchive::RemoveTile(const RobotId& robot, const TileId& tile) {
   for (auto* sessions : {&open_, &held_}) {
     const auto it = sessions->find(robot);
     if (it != sessions->end()) it->second.map.tiles.erase(tile);
   }
 }
 
-void SessionArchive::Rejoin(const std::string& robot) {
+void SessionArchive::Rejoin(const RobotId& robot) {
   closed_.erase(robot);
   const auto held = held_.find(robot);
   if (held == held_.end()) return;
@@ -61,7 +61,7 @@ void SessionArchive::Rejoin(const std::string& robot) {
   held_.erase(held);
 }
 
-StatusOr<std::optional<MappingSession>> SessionArchive::EndSession(const std::string& robot,
+StatusOr<std::optional<MappingSession>> SessionArchive::EndSession(const RobotId& robot,
                                                                    Timestamp ended) {
   held_.erase(robot);  // late samples of a session that already ended
   closed_.insert(robot);
@@ -82,7 +82,7 @@ StatusOr<std::optional<MappingSession>> SessionArchive::EndSession(const std::st
     if (id.ok()) {
       session.id = *id;
     } else {
-      stored = id.status().WithContext("storing the session of " + robot);
+      stored = id.status().WithContext("storing the session of " + robot.value);
     }
   }
   next_memory_id_ = session.id + 1;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/ids.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/store/map_store.hpp"
@@ -16,7 +17,7 @@ namespace fleetmap::server {
 // One robot's map of one mapping session, in the fleet frame.
 struct MappingSession {
   int64_t id = 0;  // the store's id, or a counter without a store; increases
-  std::string robot;
+  RobotId robot;
   Timestamp started{};
   Timestamp ended{};
   vector_map::TiledVectorMap map;
@@ -40,15 +41,15 @@ class SessionArchive {
   // A tile of the robot's open session (the first tile opens one). Tiles of a robot whose
   // session ended are held back: late samples of the session that ended are dropped by the next
   // EndSession(), and a robot that comes back (Rejoin) starts its new session with them.
-  void RecordTile(const std::string& robot, const TileId& tile, const vector_map::VectorMap& map,
+  void RecordTile(const RobotId& robot, const TileId& tile, const vector_map::VectorMap& map,
                   Timestamp stamp);
-  void RemoveTile(const std::string& robot, const TileId& tile);
+  void RemoveTile(const RobotId& robot, const TileId& tile);
   // The robot is active again after its session ended.
-  void Rejoin(const std::string& robot);
+  void Rejoin(const RobotId& robot);
 
   // Ends the robot's open session. Returns the finished session, or nullopt when the robot had no
   // open session with tiles. Fails only when the store refused it; it is kept in memory then.
-  StatusOr<std::optional<MappingSession>> EndSession(const std::string& robot, Timestamp ended);
+  StatusOr<std::optional<MappingSession>> EndSession(const RobotId& robot, Timestamp ended);
 
   const std::vector<MappingSession>& finished() const { return finished_; }
   size_t open_sessions() const { return open_.size(); }
@@ -56,10 +57,10 @@ class SessionArchive {
  private:
   double tile_size_;
   store::MapStore* store_;
-  std::map<std::string, MappingSession> open_;  // by robot
-  std::map<std::string, MappingSession> held_;  // by robot: tiles after its session ended
-  std::set<std::string> closed_;          // robots whose session ended and that have not rejoined
-  std::vector<MappingSession> finished_;  // oldest first
+  std::map<RobotId, MappingSession> open_;  // by robot
+  std::map<RobotId, MappingSession> held_;  // by robot: tiles after its session ended
+  std::set<RobotId> closed_;                // robots whose session ended and that have not rejoined
+  std::vector<MappingSession> finished_;    // oldest first
   int64_t next_memory_id_ = 1;
 };
 

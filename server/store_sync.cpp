@@ -50,7 +50,7 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
       continue;
     }
     const Status imported =
-        fusion->ImportContribution(record.owner, record.tile, std::move(decoded).value());
+        fusion->ImportContribution(RobotId{record.owner}, record.tile, std::move(decoded).value());
     if (!imported.ok()) {
       restored.skipped.push_back(name + ": " + std::string(imported.message()));
       continue;
@@ -84,12 +84,13 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
       }
       // The payload's coordinates are relative to its own tile: fused under another key they
       // would land far away (and once kept start-up busy for good).
-      if (tile->tile != record.tile || tile->robot_id != record.owner) {
+      if (tile->tile != record.tile || tile->robot_id.value != record.owner) {
         restored.skipped.push_back(name + ": its payload is " +
-                                   Describe(tile->robot_id, tile->tile) + ", not the row's key");
+                                   Describe(tile->robot_id.value, tile->tile) +
+                                   ", not the row's key");
         continue;
       }
-      const Status updated = fusion->UpdateRobotTile(record.owner, record.tile, tile->map,
+      const Status updated = fusion->UpdateRobotTile(RobotId{record.owner}, record.tile, tile->map,
                                                      FromNanoseconds(record.stamp_ns));
       if (!updated.ok()) {
         restored.skipped.push_back(name + ": " + std::string(updated.message()));
@@ -127,10 +128,10 @@ Status StoreSync::AddTile(store::TileRecord record) {
   return Status::Ok();
 }
 
-Status StoreSync::ContributionChanged(const std::string& robot, const TileId& tile) {
+Status StoreSync::ContributionChanged(const RobotId& robot, const TileId& tile) {
   if (store_ == nullptr) return Status::Ok();
-  FLEETMAP_RETURN_IF_ERROR(store::ValidateEvidenceRecord({robot, tile, 0, ""}));
-  changed_.insert({robot, tile});
+  FLEETMAP_RETURN_IF_ERROR(store::ValidateEvidenceRecord({robot.value, tile, 0, ""}));
+  changed_.insert({robot.value, tile});
   return Status::Ok();
 }
 
@@ -166,7 +167,7 @@ StatusOr<store::StoreBatch> StoreSync::MakeBatch(const fusion::TileFusion& fusio
   std::set<store::TileKey> removed;
   for (const store::TileKey& key : changed_) {
     const std::optional<fusion::ContributionEvidence> evidence =
-        fusion.ExportContribution(key.owner, key.tile);
+        fusion.ExportContribution(RobotId{key.owner}, key.tile);
     if (!evidence.has_value()) {
       batch.removed.push_back(key);
       removed.insert(key);

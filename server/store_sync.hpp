@@ -60,7 +60,7 @@ class StoreSync {
   // record cannot hold back every later write.
   Status AddTile(store::TileRecord record);
   // A robot's contribution to `tile` changed or was removed from the fusion.
-  Status ContributionChanged(const std::string& robot, const TileId& tile);
+  Status ContributionChanged(const RobotId& robot, const TileId& tile);
   Status AddRobot(store::RobotRecord robot);
 
   // Writes what is queued, unless the store is behind and `now` is before the next attempt.
@@ -84,7 +84,7 @@ class StoreSync {
   std::vector<store::TileRecord> tiles_;
   std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
   std::set<store::TileKey> changed_;
-  std::map<std::string, store::RobotRecord> robots_;
+  std::map<RobotId, store::RobotRecord> robots_;
   // Per fused tile, the newest revision stored before this process: added to the fusion's
   // revisions, so that the store's latest fused rows stay the newest.
   std::map<TileId, uint32_t> fused_revision_base_;

@@ -78,11 +78,13 @@ std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(
 
 std::optional<TileAdmission::Refused> TileAdmission::CheckRobotId(
     const transport::VectorTileMessage& tile) {
-  if (IsValidRobotName(tile.robot_id) && tile.robot_id != store::kFleetOwner) return std::nullopt;
-  return Refused{Refusal::kBadRobotId,
-                 fmt::format("robot_id \"{}\" of {} is not a ROS 2 name token of at most 64 "
-                             "characters (or is the reserved \"{}\")",
-                             tile.robot_id.substr(0, 64), TileName(tile), store::kFleetOwner)};
+  if (IsValidRobotName(tile.robot_id.value) && tile.robot_id.value != store::kFleetOwner)
+    return std::nullopt;
+  return Refused{
+      Refusal::kBadRobotId,
+      fmt::format("robot_id \"{}\" of {} is not a ROS 2 name token of at most 64 "
+                  "characters (or is the reserved \"{}\")",
+                  tile.robot_id.value.substr(0, 64), TileName(tile), store::kFleetOwner)};
 }
 
 TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
@@ -97,7 +99,7 @@ TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& 
     return Refused{
         Refusal::kTileQuota,
         fmt::format("{} would be robot {}'s tile number {}; a robot may hold {}", TileName(tile),
-                    tile.robot_id, quota.tiles.size() + 1, options_.max_tiles_per_robot)};
+                    tile.robot_id.value, quota.tiles.size() + 1, options_.max_tiles_per_robot)};
   }
   // Token bucket: refilled at the sustained rate, capped at the burst.
   if (!quota.started) {
@@ -114,24 +116,24 @@ TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& 
     return Refused{Refusal::kByteQuota,
                    fmt::format("{} of {} bytes exceeds robot {}'s byte quota ({:.0f} bytes/s, "
                                "burst {:.0f})",
-                               TileName(tile), bytes, tile.robot_id, options_.max_bytes_per_second,
-                               options_.burst_bytes)};
+                               TileName(tile), bytes, tile.robot_id.value,
+                               options_.max_bytes_per_second, options_.burst_bytes)};
   }
   quota.byte_tokens -= static_cast<double>(bytes);
   quota.tiles.insert(tile.tile);
   return Admitted{std::min(tile.stamp, now)};
 }
 
-void TileAdmission::Adopt(const std::string& robot, const TileId& tile) {
+void TileAdmission::Adopt(const RobotId& robot, const TileId& tile) {
   robots_[robot].tiles.insert(tile);
 }
 
-void TileAdmission::Forget(const std::string& robot, const TileId& tile) {
+void TileAdmission::Forget(const RobotId& robot, const TileId& tile) {
   const auto it = robots_.find(robot);
   if (it != robots_.end()) it->second.tiles.erase(tile);
 }
 
-size_t TileAdmission::tiles_held(const std::string& robot) const {
+size_t TileAdmission::tiles_held(const RobotId& robot) const {
   const auto it = robots_.find(robot);
   return it == robots_.end() ? 0 : it->second.tiles.size();
 }

@@ -66,11 +66,11 @@ class TileAdmission {
 
   // A robot's tile that exists without passing Admit (restored from the store): it counts
   // towards the robot's tile quota.
-  void Adopt(const std::string& robot, const TileId& tile);
+  void Adopt(const RobotId& robot, const TileId& tile);
   // The robot removed the tile: it no longer counts.
-  void Forget(const std::string& robot, const TileId& tile);
+  void Forget(const RobotId& robot, const TileId& tile);
 
-  size_t tiles_held(const std::string& robot) const;
+  size_t tiles_held(const RobotId& robot) const;
 
  private:
   struct RobotQuota {
@@ -85,7 +85,7 @@ class TileAdmission {
 
   AdmissionOptions options_;
   fusion::FusionOptions fusion_;
-  std::map<std::string, RobotQuota> robots_;
+  std::map<RobotId, RobotQuota> robots_;
 };
 
 }  // namespace fleetmap::server

@@ -82,7 +82,7 @@ void HostileFlood::Run() {
   uint32_t revision = 0;
   const auto write = [&](const TileId& tile, int walls) {
     transport::VectorTileMessage message;
-    message.robot_id = options_.robot;
+    message.robot_id = RobotId{options_.robot};
     message.tile = tile;
     message.revision = ++revision;
     message.stamp = Clock::now();

@@ -174,7 +174,7 @@ void PredictionTracker::Predict(const std::string& key, const RobotEntity& entit
   node.submap.place = id->second;  // behind a door or up the stairs: a place of its own
   node.submap.confidence.clear();  // the wire carries the thresholded cells only
   node.state = scene::SubmapState::kPredicted;
-  node.source_robot = entity.robot.value;
+  node.source_robot = entity.robot;
   node.source_entity = entity_id;
   node.stamp = now;
   prediction.added = AddedCells(node.submap, *map_);

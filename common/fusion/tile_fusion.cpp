@@ -64,7 +64,7 @@ uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
   return static_cast<uint32_t>(std::clamp<int64_t>(ticks, 1, std::numeric_limits<uint32_t>::max()));
 }
 
-Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
+Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
                                    const vector_map::VectorMap& map, Timestamp stamp) {
   FLEETMAP_RETURN_IF_ERROR(options_.CheckTileInRange(tile));
   const grid::OccupancyGrid geometry = EmptyTileGrid(tile);
@@ -87,13 +87,13 @@ Status TileFusion::UpdateRobotTile(const std::string& robot, const TileId& tile,
   return Status::Ok();
 }
 
-void TileFusion::RemoveRobotTile(const std::string& robot, const TileId& tile) {
+void TileFusion::RemoveRobotTile(const RobotId& robot, const TileId& tile) {
   const auto it = tiles_.find(tile);
   if (it == tiles_.end() || it->second.robots.erase(robot) == 0) return;
   to_refuse_.insert(tile);
 }
 
-std::optional<ContributionEvidence> TileFusion::ExportContribution(const std::string& robot,
+std::optional<ContributionEvidence> TileFusion::ExportContribution(const RobotId& robot,
                                                                    const TileId& tile) const {
   const auto state = tiles_.find(tile);
   if (state == tiles_.end()) return std::nullopt;
@@ -104,23 +104,24 @@ std::optional<ContributionEvidence> TileFusion::ExportContribution(const std::st
                               contribution.stamp};
 }
 
-Status TileFusion::ImportContribution(const std::string& robot, const TileId& tile,
+Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
                                       ContributionEvidence evidence) {
   FLEETMAP_RETURN_IF_ERROR(options_.CheckTileInRange(tile));
   grid::OccupancyGrid cells = EmptyTileGrid(tile);
   const size_t count = static_cast<size_t>(cells.cell_count());
   if (evidence.cells.size() != count || evidence.changed_at.size() != count) {
     return InvalidArgumentError(
-        "evidence of " + robot + " for tile (" + std::to_string(tile.x) + ", " +
+        "evidence of " + robot.value + " for tile (" + std::to_string(tile.x) + ", " +
         std::to_string(tile.y) + ") has " + std::to_string(evidence.cells.size()) + " cells and " +
         std::to_string(evidence.changed_at.size()) + " dates, not " + std::to_string(count));
   }
   for (size_t i = 0; i < count; ++i) {
     const int8_t value = evidence.cells[i];
     if (value != kUnknownValue && value != grid::kFreeValue && value != kOccupiedValue) {
-      return InvalidArgumentError("evidence of " + robot + " for tile (" + std::to_string(tile.x) +
-                                  ", " + std::to_string(tile.y) + "): cell " + std::to_string(i) +
-                                  " has value " + std::to_string(value));
+      return InvalidArgumentError("evidence of " + robot.value + " for tile (" +
+                                  std::to_string(tile.x) + ", " + std::to_string(tile.y) +
+                                  "): cell " + std::to_string(i) + " has value " +
+                                  std::to_string(value));
     }
   }
   cells.mutable_data() = std::move(evidence.cells);
@@ -236,7 +237,7 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
   }
   std::vector<SourcedTile> sourced;
   sourced.reserve(tiles_.size());
-  std::map<std::string, int> robot_numbers;
+  std::map<RobotId, int> robot_numbers;
   for (const auto& [tile, state] : tiles_) {
     SourcedTile& entry = sourced.emplace_back(SourcedTile{tile, {}, state.first_seen});
     for (const auto& [robot, contribution] : state.robots) {
@@ -249,10 +250,10 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
   const GridWindow window = ChooseGridWindow(sourced, options_.max_grid_cells / cells_per_tile);
   if (shown != nullptr) *shown = window;
   const TileRect& rect = window.rect;
-  grid::OccupancyGrid out(static_cast<int>(rect.width() * cells),
-                          static_cast<int>(rect.height() * cells), options_.FusedResolution(),
-                          Pose2{rect.min.x * options_.tile_size, rect.min.y * options_.tile_size, 0.0},
-                          kUnknownValue);
+  grid::OccupancyGrid out(
+      static_cast<int>(rect.width() * cells), static_cast<int>(rect.height() * cells),
+      options_.FusedResolution(),
+      Pose2{rect.min.x * options_.tile_size, rect.min.y * options_.tile_size, 0.0}, kUnknownValue);
   for (const auto& [tile, state] : tiles_) {
     if (state.fused.empty() || !rect.Contains(tile)) continue;
     const int x0 = static_cast<int>((int64_t{tile.x} - rect.min.x) * cells);
@@ -270,8 +271,8 @@ const FusedTile* TileFusion::FindFusedTile(const TileId& tile) const {
   return it == vector_tiles_.end() ? nullptr : &it->second;
 }
 
-std::vector<std::pair<std::string, TileId>> TileFusion::contributions() const {
-  std::vector<std::pair<std::string, TileId>> out;
+std::vector<std::pair<RobotId, TileId>> TileFusion::contributions() const {
+  std::vector<std::pair<RobotId, TileId>> out;
   for (const auto& [tile, state] : tiles_) {
     for (const auto& [robot, contribution] : state.robots) out.emplace_back(robot, tile);
   }

@@ -49,18 +49,18 @@ class TileFusion {
   static StatusOr<TileFusion> Create(const FusionOptions& options);
 
   // A robot's new revision of a tile (fleet frame). Fails for a tile beyond max_coordinate.
-  Status UpdateRobotTile(const std::string& robot, const TileId& tile,
-                         const vector_map::VectorMap& map, Timestamp stamp);
-  void RemoveRobotTile(const std::string& robot, const TileId& tile);
+  Status UpdateRobotTile(const RobotId& robot, const TileId& tile, const vector_map::VectorMap& map,
+                         Timestamp stamp);
+  void RemoveRobotTile(const RobotId& robot, const TileId& tile);
 
   // A robot's contribution to a tile, if it has one: its cells with their evidence dates.
-  std::optional<ContributionEvidence> ExportContribution(const std::string& robot,
+  std::optional<ContributionEvidence> ExportContribution(const RobotId& robot,
                                                          const TileId& tile) const;
   // Replaces a robot's contribution to a tile with one exported before (by this or an earlier
   // process with the same options), as if its revisions had been fused again one by one.
   // kInvalidArgument, changing nothing, when the tile is beyond max_coordinate, the sizes do not
   // fit the tile or a cell is not free, occupied or unknown.
-  Status ImportContribution(const std::string& robot, const TileId& tile,
+  Status ImportContribution(const RobotId& robot, const TileId& tile,
                             ContributionEvidence evidence);
 
   // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
@@ -77,7 +77,7 @@ class TileFusion {
   const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }
   size_t contribution_count() const;
   // Every (robot, tile) with a contribution.
-  std::vector<std::pair<std::string, TileId>> contributions() const;
+  std::vector<std::pair<RobotId, TileId>> contributions() const;
   const FusionOptions& options() const { return options_; }
 
  private:
@@ -88,7 +88,7 @@ class TileFusion {
     Timestamp stamp;                   // the newest revision received
   };
   struct TileState {
-    std::map<std::string, Contribution> robots;
+    std::map<RobotId, Contribution> robots;
     grid::OccupancyGrid fused;  // 3-state
     Timestamp newest_input;     // the latest robot tile stamp received for this tile
     uint64_t first_seen = 0;    // tiles_created_ when it appeared: the fleet's oldest area first
@@ -110,7 +110,7 @@ class TileFusion {
   Timestamp epoch_;
   std::map<TileId, TileState> tiles_;
   uint64_t tiles_created_ = 0;
-  std::set<TileId> to_refuse_;     // robot input changed
+  std::set<TileId> to_refuse_;  // robot input changed
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;

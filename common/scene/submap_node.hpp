@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/ids.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/scene/submap_graph.hpp"
 
@@ -18,7 +19,7 @@ namespace fleetmap::scene {
 struct SubmapNode {
   Submap submap;
   SubmapState state = SubmapState::kPredicted;
-  std::string source_robot;
+  RobotId source_robot;
   std::string source_entity;
   float precision = -1.0F;  // measured against later observation; -1 before any
   float observed_fraction = -1.0F;

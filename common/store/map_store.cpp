@@ -635,7 +635,7 @@ Status MapStore::PutRobot(const RobotRecord& robot) {
 
 Status MapStore::RunPutRobot(const RobotRecord& robot) {
   upsert_robot_->Reset();
-  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(1, robot.robot));
+  FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(1, robot.robot.value));
   FLEETMAP_RETURN_IF_ERROR(upsert_robot_->Bind(2, robot.first_seen_ns));
   FLEETMAP_RETURN_IF_ERROR(upsert_robot_->Bind(3, robot.last_seen_ns));
   FLEETMAP_RETURN_IF_ERROR(upsert_robot_->BindText(4, robot.state));
@@ -650,7 +650,7 @@ StatusOr<std::vector<RobotRecord>> MapStore::Robots() const {
     FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_robots_->Step());
     if (!row) break;
     RobotRecord& robot = robots.emplace_back();
-    robot.robot = select_robots_->ColumnText(0);
+    robot.robot = RobotId{select_robots_->ColumnText(0)};
     robot.first_seen_ns = select_robots_->ColumnInt64(1);
     robot.last_seen_ns = select_robots_->ColumnInt64(2);
     robot.state = select_robots_->ColumnText(3);
@@ -675,7 +675,7 @@ Status MapStore::DeleteOwner(const std::string& owner) {
 StatusOr<int64_t> MapStore::PutSession(const SessionRecord& session) {
   FLEETMAP_RETURN_IF_ERROR(ValidateSessionRecord(session).WithContext(path()));
   insert_session_->Reset();
-  FLEETMAP_RETURN_IF_ERROR(insert_session_->BindText(1, session.robot));
+  FLEETMAP_RETURN_IF_ERROR(insert_session_->BindText(1, session.robot.value));
   FLEETMAP_RETURN_IF_ERROR(insert_session_->Bind(2, session.started_ns));
   FLEETMAP_RETURN_IF_ERROR(insert_session_->Bind(3, session.ended_ns));
   FLEETMAP_RETURN_IF_ERROR(insert_session_->BindBlob(4, session.payload));
@@ -691,7 +691,7 @@ StatusOr<std::vector<SessionRecord>> MapStore::Sessions() const {
     if (!row) break;
     SessionRecord& session = sessions.emplace_back();
     session.id = select_sessions_->ColumnInt64(0);
-    session.robot = select_sessions_->ColumnText(1);
+    session.robot = RobotId{select_sessions_->ColumnText(1)};
     session.started_ns = select_sessions_->ColumnInt64(2);
     session.ended_ns = select_sessions_->ColumnInt64(3);
     session.payload = select_sessions_->ColumnBlob(4);

@@ -37,8 +37,8 @@ Status ValidateEvidenceRecord(const EvidenceRecord& record) {
 
 Status ValidateRobotRecord(const RobotRecord& record) {
   std::ostringstream what;
-  if (!IsValidRobotName(record.robot)) {
-    what << "'" << record.robot
+  if (!IsValidRobotName(record.robot.value)) {
+    what << "'" << record.robot.value
          << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
   } else if (record.state != "active" && record.state != "left" && record.state != "lost") {
     what << "state '" << record.state << "' is not one of active, left, lost";
@@ -48,13 +48,13 @@ Status ValidateRobotRecord(const RobotRecord& record) {
   } else {
     return Status::Ok();
   }
-  return InvalidArgumentError("robot record '" + record.robot + "': " + what.str());
+  return InvalidArgumentError("robot record '" + record.robot.value + "': " + what.str());
 }
 
 Status ValidateSessionRecord(const SessionRecord& record) {
   std::ostringstream what;
-  if (!IsValidRobotName(record.robot)) {
-    what << "'" << record.robot
+  if (!IsValidRobotName(record.robot.value)) {
+    what << "'" << record.robot.value
          << "' is not a valid robot name ([A-Za-z][A-Za-z0-9_]*, at most 64 chars)";
   } else if (record.started_ns < 0 || record.ended_ns < record.started_ns) {
     what << "started_ns " << record.started_ns << " and ended_ns " << record.ended_ns
@@ -62,7 +62,7 @@ Status ValidateSessionRecord(const SessionRecord& record) {
   } else {
     return Status::Ok();
   }
-  return InvalidArgumentError("session of '" + record.robot + "': " + what.str());
+  return InvalidArgumentError("session of '" + record.robot.value + "': " + what.str());
 }
 
 }  // namespace fleetmap::store

@@ -10,6 +10,10 @@
 namespace fleetmap::store {
 
 // The owner of fused tiles in TileRecord::owner. Robot ids are the other owners.
+//
+// Owners stay strings, not RobotId: an owner is the key of a stored row, and the fleet that owns
+// the fused tiles is not a robot. The server turns them into RobotId where it hands a robot's
+// tiles and evidence to the fusion (server/store_sync.cpp).
 inline constexpr char kFleetOwner[] = "fleet";
 
 // One revision of one tile. The payload is opaque to the store: the server encodes tiles with its
@@ -49,7 +53,7 @@ struct TileKey {
 
 // What the server knows about a robot of the fleet.
 struct RobotRecord {
-  std::string robot;  // robot id
+  RobotId robot;
   int64_t first_seen_ns = 0;
   int64_t last_seen_ns = 0;
   std::string state;           // "active" | "left" | "lost"
@@ -75,7 +79,7 @@ struct StoreBatch {
 // lost). The payload is opaque to the store (the server stores the session's vector map).
 struct SessionRecord {
   int64_t id = 0;  // assigned by the store
-  std::string robot;
+  RobotId robot;
   int64_t started_ns = 0;
   int64_t ended_ns = 0;
   std::string payload;

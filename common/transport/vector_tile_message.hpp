@@ -12,7 +12,7 @@ namespace fleetmap::transport {
 // One tile as it travels in a fleetmap_msgs/VectorTile: whose it is, where, which revision, and
 // its geometry in the fleet frame (vertices on the tile lattice, see tiled_vector_map.hpp).
 struct VectorTileMessage {
-  std::string robot_id;  // "fleet" for fused tiles; empty in .vmap files
+  RobotId robot_id;  // "fleet" for fused tiles; empty in .vmap files
   TileId tile;
   uint32_t revision = 0;
   Timestamp stamp;

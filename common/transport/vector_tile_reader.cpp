@@ -57,7 +57,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
       event.kind = TileEvent::Kind::kRejected;
       // Name the robot when the name itself is sound, so the server can count per robot.
       if (IsValidRobotName(sample.robot_id()) || sample.robot_id() == "fleet") {
-        event.tile.robot_id = sample.robot_id();
+        event.tile.robot_id = RobotId{sample.robot_id()};
       }
       event.error = tile.status().WithContext(
           topic_name_ + ": tile (" + std::to_string(sample.tile_x()) + ", " +
@@ -96,7 +96,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
   SampleQueue<TileEvent> events_;
   std::mutex mutex_;
   // get_key_value is not supported by Fast DDS 2.9: remember each instance's key.
-  std::map<dds::InstanceHandle_t, std::pair<std::string, TileId>> key_by_instance_;  // mutex_
+  std::map<dds::InstanceHandle_t, std::pair<RobotId, TileId>> key_by_instance_;  // mutex_
 };
 
 StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(

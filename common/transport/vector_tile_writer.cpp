@@ -32,9 +32,9 @@ StatusOr<size_t> VectorTileWriter::Write(const VectorTileMessage& message) {
   return VectorTile_::getCdrSerializedSize(sample) + 4;
 }
 
-Status VectorTileWriter::Dispose(const std::string& robot_id, const TileId& tile) {
+Status VectorTileWriter::Dispose(const RobotId& robot_id, const TileId& tile) {
   VectorTile_ key;
-  key.robot_id(robot_id);
+  key.robot_id(robot_id.value);
   key.tile_x(tile.x);
   key.tile_y(tile.y);
   if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {

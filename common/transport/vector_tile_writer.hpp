@@ -23,7 +23,7 @@ class VectorTileWriter {
   // Returns the serialized size of the sample written.
   StatusOr<size_t> Write(const VectorTileMessage& message);
   // The tile no longer exists (e.g. all its cells became unknown).
-  Status Dispose(const std::string& robot_id, const TileId& tile);
+  Status Dispose(const RobotId& robot_id, const TileId& tile);
   int matched_readers() const;
 
  private:

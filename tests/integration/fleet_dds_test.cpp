@@ -334,7 +334,7 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
     for (const auto& event : (*fused)->Drain()) {
       ASSERT_NE(event.kind, transport::TileEvent::Kind::kRejected) << event.error;
       if (event.kind == transport::TileEvent::Kind::kTile) {
-        EXPECT_EQ(event.tile.robot_id, "fleet");
+        EXPECT_EQ(event.tile.robot_id.value, "fleet");
         tiles.insert(event.tile.tile);
       }
     }
@@ -474,7 +474,7 @@ TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored)
     auto store = store::MapStore::Open(path);
     ASSERT_TRUE(store.ok()) << store.status();
     transport::VectorTileMessage tile;
-    tile.robot_id = "alpha";
+    tile.robot_id = RobotId{"alpha"};
     tile.tile = TileId{0, 0};
     tile.revision = 1;
     tile.map.frame_id = "fleet";

@@ -43,7 +43,7 @@ bool WaitForTile(transport::VectorTileReader& reader, WakeUp& wake_up, const std
   while (std::chrono::steady_clock::now() < deadline) {
     wake_up.WaitFor(std::chrono::milliseconds(200));
     for (const transport::TileEvent& event : reader.Drain()) {
-      if (event.kind == transport::TileEvent::Kind::kTile && event.tile.robot_id == robot &&
+      if (event.kind == transport::TileEvent::Kind::kTile && event.tile.robot_id.value == robot &&
           event.tile.tile == tile && accept(event.tile)) {
         return true;
       }
@@ -110,14 +110,14 @@ TEST(HostilePeerTest, ScenarioTilesPassFleetmapsChecks) {
       }
       if (event.kind != transport::TileEvent::Kind::kTile) continue;
       const transport::VectorTileMessage& tile = event.tile;
-      far |= tile.tile == TileId{kMax, kMax} && tile.robot_id == "intruder";
-      empty |= tile.robot_id.empty() && !tile.map.obstacles.empty();
+      far |= tile.tile == TileId{kMax, kMax} && tile.robot_id.value == "intruder";
+      empty |= tile.robot_id.value.empty() && !tile.map.obstacles.empty();
       // 600 vertices in polylines of at most 255.
       size_t vertices = 0;
       for (const auto& polyline : tile.map.obstacles) vertices += polyline.points.size();
       heavy |= tile.tile == TileId{5, 5} && tile.map.obstacles.size() == 3 && vertices == 600;
-      forged |=
-          tile.robot_id == "ghost" && tile.map.obstacles.empty() && tile.map.free_space.size() == 1;
+      forged |= tile.robot_id.value == "ghost" && tile.map.obstacles.empty() &&
+                tile.map.free_space.size() == 1;
     }
   }
   EXPECT_TRUE(far) << peer->Output();

@@ -146,7 +146,7 @@ class ServerModelsTest : public ::testing::Test {
     EXPECT_TRUE(predicted.has_value()) << server->Output();
     if (!predicted) return std::nullopt;
     EXPECT_EQ(predicted->state, scene::SubmapState::kPredicted);
-    EXPECT_EQ(predicted->source_robot, "alpha");
+    EXPECT_EQ(predicted->source_robot.value, "alpha");
     EXPECT_EQ(predicted->source_entity, "door_east");
     // Behind the door: the sub-map's frame is east of the door, and it predicts free cells.
     EXPECT_GT(predicted->submap.map_from_submap.x, 4.0);

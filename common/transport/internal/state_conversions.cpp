@@ -261,7 +261,7 @@ StatusOr<Submap_> ToIdl(const SubmapMessage& message) {
   sample.place(submap.place);
   sample.elevation(submap.elevation);
   sample.fleet_from_submap(ToIdl(submap.map_from_submap));
-  sample.source_robot(message.source_robot);
+  sample.source_robot(message.source_robot.value);
   sample.source_entity(message.source_entity);
   sample.precision(message.precision);
   sample.observed_fraction(message.observed_fraction);
@@ -330,7 +330,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   submap.navigable.mutable_data() = sample.data();
   if (!sample.source_entity().empty()) submap.entity_ids.push_back(sample.source_entity());
   message.state = static_cast<scene::SubmapState>(sample.state());
-  message.source_robot = sample.source_robot();
+  message.source_robot = RobotId{sample.source_robot()};
   message.source_entity = sample.source_entity();
   message.precision = sample.precision();
   message.observed_fraction = sample.observed_fraction();

@@ -254,7 +254,7 @@ StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   }
   const TileQuantiser quantiser(message.tile, message.tile_size);
   VectorTile_ out;
-  out.robot_id(message.robot_id);
+  out.robot_id(message.robot_id.value);
   out.tile_x(message.tile.x);
   out.tile_y(message.tile.y);
   out.stamp(ToIdl(message.stamp));
@@ -292,7 +292,7 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   FLEETMAP_RETURN_IF_ERROR(CheckTile(tile));
 
   VectorTileMessage out;
-  out.robot_id = tile.robot_id();
+  out.robot_id = RobotId{tile.robot_id()};
   out.tile = TileId{tile.tile_x(), tile.tile_y()};
   out.revision = tile.revision();
   out.stamp = FromIdl(tile.stamp());

@@ -119,7 +119,7 @@ TEST(PredictionTrackerTest, PredictsBehindAClosedDoorOnceTheMapArrives) {
   EXPECT_EQ(node.submap.place, kFirstPredictedSubmap);
   EXPECT_EQ(node.submap.kind, scene::SubmapKind::kPredictedDoor);
   EXPECT_EQ(node.state, scene::SubmapState::kPredicted);
-  EXPECT_EQ(node.source_robot, "alpha");
+  EXPECT_EQ(node.source_robot.value, "alpha");
   EXPECT_EQ(node.source_entity, "door_1");
   EXPECT_EQ(node.precision, -1.0F);
   EXPECT_TRUE(node.submap.confidence.empty());  // the wire carries thresholded cells only
@@ -186,7 +186,7 @@ TEST(PredictionTrackerTest, AChangedEntityIsPredictedAgainUnderTheSameId) {
       PredictionsWritten(Handle(tracker, {From("beta", Door())}));
   ASSERT_EQ(other.size(), 1u);
   EXPECT_EQ(other[0].submap.id, kFirstPredictedSubmap + 1);
-  EXPECT_EQ(other[0].source_robot, "beta");
+  EXPECT_EQ(other[0].source_robot.value, "beta");
   EXPECT_EQ(tracker.stats().predictions, 2u);
 }
 

@@ -43,7 +43,7 @@ void Feed(TileFusion* fusion, const std::string& robot, const OccupancyGrid& gri
   const auto tiled = vector_map::VectorizeTiled(grid, Transform2::Identity(), options);
   ASSERT_TRUE(tiled.ok()) << tiled.status();
   for (const auto& [tile, map] : tiled->tiles) {
-    ASSERT_TRUE(fusion->UpdateRobotTile(robot, tile, map, at).ok());
+    ASSERT_TRUE(fusion->UpdateRobotTile(RobotId{robot}, tile, map, at).ok());
   }
 }
 
@@ -185,7 +185,7 @@ TEST(TileFusionTest, RemovedContributionDisappears) {
   Feed(&*fusion, "alpha", grid, kT0);
   ASSERT_TRUE(fusion->FuseChanged().ok());
   EXPECT_EQ(fusion->contribution_count(), 1u);
-  fusion->RemoveRobotTile("alpha", {0, 0});
+  fusion->RemoveRobotTile(RobotId{"alpha"}, {0, 0});
   ASSERT_TRUE(fusion->FuseChanged().ok());
   EXPECT_EQ(fusion->contribution_count(), 0u);
   EXPECT_EQ(FusedAt(*fusion, 20, 20), kUnknownValue);
@@ -195,7 +195,7 @@ TEST(TileFusionTest, TileKeysBeyondTheMaximumCoordinateAreRefusedWithTheirKey) {
   auto fusion = TileFusion::Create(Options());
   ASSERT_TRUE(fusion.ok());
   const vector_map::VectorMap empty;
-  const Status far = fusion->UpdateRobotTile("alpha", {INT32_MAX, INT32_MAX}, empty, kT0);
+  const Status far = fusion->UpdateRobotTile(RobotId{"alpha"}, {INT32_MAX, INT32_MAX}, empty, kT0);
   EXPECT_EQ(far.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(far.message(), ::testing::HasSubstr("tile (2147483647, 2147483647) lies"));
   EXPECT_EQ(fusion->contribution_count(), 0u);
@@ -216,7 +216,7 @@ TEST(TileFusionTest, MapsFarFromTheOriginFuseAndTheirGridIsSmall) {
   const auto tiled = vector_map::VectorizeTiled(far, Transform2::Identity(), tiling);
   ASSERT_TRUE(tiled.ok()) << tiled.status();
   for (const auto& [tile, map] : tiled->tiles) {
-    ASSERT_TRUE(fusion->UpdateRobotTile("far", tile, map, kT0).ok());
+    ASSERT_TRUE(fusion->UpdateRobotTile(RobotId{"far"}, tile, map, kT0).ok());
   }
   OccupancyGrid near = Grid(40, 40);
   Fill(&near, 0, 0, 40, 40, kFreeValue);
@@ -236,7 +236,6 @@ TEST(TileFusionTest, MapsFarFromTheOriginFuseAndTheirGridIsSmall) {
   EXPECT_EQ(fused.at(10, 20), kOccupiedValue);
   EXPECT_EQ(fused.at(70, 5), kFreeValue);
 }
-
 
 // alpha maps a room at t0; beta sees a wall across it at t0 + 5 s; alpha republishes at
 // t0 + 10 s for a change in one corner. Per-cell dating keeps beta's wall.
@@ -262,9 +261,9 @@ TEST(TileFusionTest, ImportedEvidenceRebuildsTheFusionExactly) {
   auto restored = TileFusion::Create(Options());
   ASSERT_TRUE(restored.ok());
   for (const std::string robot : {"alpha", "beta"}) {
-    std::optional<ContributionEvidence> evidence = live->ExportContribution(robot, {0, 0});
+    std::optional<ContributionEvidence> evidence = live->ExportContribution(RobotId{robot}, {0, 0});
     ASSERT_TRUE(evidence.has_value()) << robot;
-    ASSERT_TRUE(restored->ImportContribution(robot, {0, 0}, std::move(*evidence)).ok());
+    ASSERT_TRUE(restored->ImportContribution(RobotId{robot}, {0, 0}, std::move(*evidence)).ok());
   }
   ASSERT_TRUE(restored->FuseChanged().ok());
   EXPECT_EQ(restored->FusedGrid().data(), live->FusedGrid().data());
@@ -309,15 +308,15 @@ TEST(TileFusionTest, NewestRevisionsAloneDoNotRebuildTheFusion) {
 TEST(TileFusionTest, ExportOfAMissingContributionIsEmpty) {
   auto fusion = TileFusion::Create(Options());
   ASSERT_TRUE(fusion.ok());
-  EXPECT_FALSE(fusion->ExportContribution("alpha", {0, 0}).has_value());
+  EXPECT_FALSE(fusion->ExportContribution(RobotId{"alpha"}, {0, 0}).has_value());
   OccupancyGrid grid = Grid(40, 40);
   Fill(&grid, 0, 0, 40, 40, kFreeValue);
   Feed(&*fusion, "alpha", grid, kT0);
-  EXPECT_TRUE(fusion->ExportContribution("alpha", {0, 0}).has_value());
-  EXPECT_FALSE(fusion->ExportContribution("beta", {0, 0}).has_value());
-  EXPECT_FALSE(fusion->ExportContribution("alpha", {1, 0}).has_value());
-  fusion->RemoveRobotTile("alpha", {0, 0});
-  EXPECT_FALSE(fusion->ExportContribution("alpha", {0, 0}).has_value());
+  EXPECT_TRUE(fusion->ExportContribution(RobotId{"alpha"}, {0, 0}).has_value());
+  EXPECT_FALSE(fusion->ExportContribution(RobotId{"beta"}, {0, 0}).has_value());
+  EXPECT_FALSE(fusion->ExportContribution(RobotId{"alpha"}, {1, 0}).has_value());
+  fusion->RemoveRobotTile(RobotId{"alpha"}, {0, 0});
+  EXPECT_FALSE(fusion->ExportContribution(RobotId{"alpha"}, {0, 0}).has_value());
 }
 
 TEST(TileFusionTest, ImportRefusesEvidenceThatDoesNotFitAndChangesNothing) {
@@ -325,13 +324,13 @@ TEST(TileFusionTest, ImportRefusesEvidenceThatDoesNotFitAndChangesNothing) {
   ASSERT_TRUE(fusion.ok());
   ContributionEvidence short_evidence{std::vector<int8_t>(10, kFreeValue),
                                       std::vector<uint32_t>(10, 1), kT0};
-  const Status wrong_size = fusion->ImportContribution("alpha", {0, 0}, short_evidence);
+  const Status wrong_size = fusion->ImportContribution(RobotId{"alpha"}, {0, 0}, short_evidence);
   EXPECT_EQ(wrong_size.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(wrong_size.message(), ::testing::HasSubstr("not 1600"));
   ContributionEvidence bad_value{std::vector<int8_t>(1600, kFreeValue),
                                  std::vector<uint32_t>(1600, 1), kT0};
   bad_value.cells[7] = 42;
-  const Status refused = fusion->ImportContribution("alpha", {0, 0}, bad_value);
+  const Status refused = fusion->ImportContribution(RobotId{"alpha"}, {0, 0}, bad_value);
   EXPECT_THAT(refused.message(), ::testing::HasSubstr("cell 7 has value 42"));
   EXPECT_EQ(fusion->contribution_count(), 0u);
 }

@@ -15,61 +15,61 @@ constexpr auto kLong = std::chrono::hours(1);
 
 TEST(FairTileQueueTest, ANewerRevisionOfAQueuedTileReplacesIt) {
   FairTileQueue<int> queue;
-  queue.Push("alpha", {0, 0}, 1);
-  queue.Push("alpha", {1, 0}, 2);
-  queue.Push("alpha", {0, 0}, 3);
+  queue.Push(RobotId{"alpha"}, {0, 0}, 1);
+  queue.Push(RobotId{"alpha"}, {1, 0}, 2);
+  queue.Push(RobotId{"alpha"}, {0, 0}, 3);
   EXPECT_EQ(queue.size(), 2u);
-  std::string robot;
+  RobotId robot;
   EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{3, 2}));
-  EXPECT_EQ(robot, "alpha");
+  EXPECT_EQ(robot.value, "alpha");
   EXPECT_TRUE(queue.empty());
 }
 
 TEST(FairTileQueueTest, AFloodingRobotDoesNotDelayAnotherBeyondOneTurn) {
   FairTileQueue<int> queue;
-  for (int i = 0; i < 1000; ++i) queue.Push("flood", {i, 0}, i);
-  std::string robot;
+  for (int i = 0; i < 1000; ++i) queue.Push(RobotId{"flood"}, {i, 0}, i);
+  RobotId robot;
   // The flood's first turn (a few tiles while their cost is unknown) is expensive...
   ASSERT_EQ(queue.NextTurn(8, kLong, &robot).size(), 4u);
   queue.Charge(robot, milliseconds(400), 4);
   // ...then an honest robot's update arrives: it is served next, not after 992 tiles.
-  queue.Push("honest", {5, 5}, -1);
+  queue.Push(RobotId{"honest"}, {5, 5}, -1);
   EXPECT_EQ(queue.NextTurn(8, kLong, &robot), (std::vector<int>{-1}));
-  EXPECT_EQ(robot, "honest");
+  EXPECT_EQ(robot.value, "honest");
   queue.Charge(robot, milliseconds(2), 1);
   // With nobody else waiting the flood goes on, in turns as long as the target allows.
   EXPECT_EQ(queue.NextTurn(8, kLong, &robot).size(), 8u);
-  EXPECT_EQ(robot, "flood");
+  EXPECT_EQ(robot.value, "flood");
 }
 
 TEST(FairTileQueueTest, RobotsWithEqualCostsTakeTurns) {
   FairTileQueue<int> queue;
   for (int i = 0; i < 4; ++i) {
-    queue.Push("a", {i, 0}, i);
-    queue.Push("b", {i, 0}, 10 + i);
+    queue.Push(RobotId{"a"}, {i, 0}, i);
+    queue.Push(RobotId{"b"}, {i, 0}, 10 + i);
   }
   std::string served;
   for (int turn = 0; turn < 4; ++turn) {
-    std::string robot;
+    RobotId robot;
     ASSERT_EQ(queue.NextTurn(1, kLong, &robot).size(), 1u);
     queue.Charge(robot, milliseconds(5), 1);
-    served += robot;
+    served += robot.value;
   }
   EXPECT_EQ(served, "abab");
 }
 
 TEST(FairTileQueueTest, IdleTimeIsNotCredit) {
   FairTileQueue<int> queue;
-  std::string robot;
-  queue.Push("a", {0, 0}, 0);
+  RobotId robot;
+  queue.Push(RobotId{"a"}, {0, 0}, 0);
   queue.NextTurn(1, kLong, &robot);
-  queue.Charge("a", milliseconds(1000), 1);
+  queue.Charge(RobotId{"a"}, milliseconds(1000), 1);
   // b arrives late: it starts level with a's progress, not 1000 ms behind it.
-  queue.Push("a", {1, 0}, 1);
-  queue.Push("b", {0, 0}, 2);
+  queue.Push(RobotId{"a"}, {1, 0}, 1);
+  queue.Push(RobotId{"b"}, {0, 0}, 2);
   queue.NextTurn(1, kLong, &robot);
   queue.Charge(robot, milliseconds(10), 1);
-  const std::string first = robot;
+  const RobotId first = robot;
   queue.NextTurn(1, kLong, &robot);
   EXPECT_NE(first, robot);
 }
@@ -77,23 +77,24 @@ TEST(FairTileQueueTest, IdleTimeIsNotCredit) {
 TEST(FairTileQueueTest, ExpensiveTilesMakeShortTurns) {
   FairTileQueue<int> queue;
   for (int i = 0; i < 100; ++i) {
-    queue.Push("cheap", {i, 0}, i);
-    queue.Push("costly", {i, 0}, i);
+    queue.Push(RobotId{"cheap"}, {i, 0}, i);
+    queue.Push(RobotId{"costly"}, {i, 0}, i);
   }
-  std::string robot;
+  RobotId robot;
   // Unknown cost: a few items.
   EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 4u);
-  const std::string first = robot;
+  const std::string first = robot.value;
   queue.Charge(robot, milliseconds(first == "cheap" ? 4 : 200), 4);
   EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 4u);
-  queue.Charge(robot, milliseconds(robot == "cheap" ? 4 : 200), 4);
+  queue.Charge(robot, milliseconds(robot.value == "cheap" ? 4 : 200), 4);
   // Known costs: 10 items of 1 ms fit in 10 ms, but never less than one item of 50 ms.
   const std::string cheap = "cheap";
   std::map<std::string, size_t> sizes;
   for (int turn = 0; turn < 40 && !queue.empty(); ++turn) {
     const auto items = queue.NextTurn(16, milliseconds(10), &robot);
-    sizes[robot] = std::max(sizes[robot], items.size());
-    queue.Charge(robot, milliseconds(robot == cheap ? 1 : 50) * static_cast<int>(items.size()),
+    sizes[robot.value] = std::max(sizes[robot.value], items.size());
+    queue.Charge(robot,
+                 milliseconds(robot.value == cheap ? 1 : 50) * static_cast<int>(items.size()),
                  items.size());
   }
   EXPECT_EQ(sizes["cheap"], 10u);
@@ -102,11 +103,11 @@ TEST(FairTileQueueTest, ExpensiveTilesMakeShortTurns) {
 
 TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
   FairTileQueue<int> queue;
-  queue.Push("a", {0, 0}, 1);
-  queue.Push("a", {1, 0}, 2);
-  queue.Erase("a", {0, 0});
-  queue.Erase("a", {7, 7});  // not queued: nothing happens
-  std::string robot;
+  queue.Push(RobotId{"a"}, {0, 0}, 1);
+  queue.Push(RobotId{"a"}, {1, 0}, 2);
+  queue.Erase(RobotId{"a"}, {0, 0});
+  queue.Erase(RobotId{"a"}, {7, 7});  // not queued: nothing happens
+  RobotId robot;
   EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{2}));
   EXPECT_TRUE(queue.empty());
 }

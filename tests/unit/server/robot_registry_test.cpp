@@ -12,33 +12,34 @@ const std::string kPeerWriter = "ffffffffffffffffffffffff00000103";
 
 TEST(RobotRegistryTest, TheFirstParticipantOwnsAnIdAndOthersClash) {
   RobotRegistry registry;
-  EXPECT_EQ(registry.ClaimRobot("alpha", kAgentWriter), RobotRegistry::Claim::kNew);
-  EXPECT_EQ(registry.ClaimRobot("alpha", kAgentOtherWriter), RobotRegistry::Claim::kSame);
-  EXPECT_EQ(registry.ClaimRobot("alpha", kPeerWriter), RobotRegistry::Claim::kClash);
-  EXPECT_EQ(registry.WhoSpeaks("alpha", kAgentOtherWriter), RobotRegistry::Speaker::kOwner);
-  EXPECT_EQ(registry.WhoSpeaks("alpha", kPeerWriter), RobotRegistry::Speaker::kOther);
-  EXPECT_EQ(registry.WhoSpeaks("beta", kPeerWriter), RobotRegistry::Speaker::kUnclaimed);
-  EXPECT_EQ(registry.OwnerOf("alpha"), "0102030405060708090a0b0c");
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"alpha"}, kAgentWriter), RobotRegistry::Claim::kNew);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"alpha"}, kAgentOtherWriter), RobotRegistry::Claim::kSame);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"alpha"}, kPeerWriter), RobotRegistry::Claim::kClash);
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"alpha"}, kAgentOtherWriter),
+            RobotRegistry::Speaker::kOwner);
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"alpha"}, kPeerWriter), RobotRegistry::Speaker::kOther);
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"beta"}, kPeerWriter), RobotRegistry::Speaker::kUnclaimed);
+  EXPECT_EQ(registry.OwnerOf(RobotId{"alpha"}), "0102030405060708090a0b0c");
 }
 
 TEST(RobotRegistryTest, OnlyTheOwnerReleasesAnId) {
   RobotRegistry registry;
-  registry.ClaimRobot("alpha", kAgentWriter);
-  EXPECT_FALSE(registry.Release("alpha", kPeerWriter));
-  EXPECT_EQ(registry.WhoSpeaks("alpha", kPeerWriter), RobotRegistry::Speaker::kOther);
-  EXPECT_TRUE(registry.Release("alpha", kAgentWriter));
+  registry.ClaimRobot(RobotId{"alpha"}, kAgentWriter);
+  EXPECT_FALSE(registry.Release(RobotId{"alpha"}, kPeerWriter));
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"alpha"}, kPeerWriter), RobotRegistry::Speaker::kOther);
+  EXPECT_TRUE(registry.Release(RobotId{"alpha"}, kAgentWriter));
   // Free again: a restarted agent (a new participant) may take it.
-  EXPECT_EQ(registry.ClaimRobot("alpha", kPeerWriter), RobotRegistry::Claim::kNew);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"alpha"}, kPeerWriter), RobotRegistry::Claim::kNew);
 }
 
 TEST(RobotRegistryTest, AParticipantSpeaksForABoundedNumberOfIds) {
   RobotRegistry registry(2);
-  EXPECT_EQ(registry.ClaimRobot("a", kPeerWriter), RobotRegistry::Claim::kNew);
-  EXPECT_EQ(registry.ClaimRobot("b", kPeerWriter), RobotRegistry::Claim::kNew);
-  EXPECT_EQ(registry.ClaimRobot("c", kPeerWriter), RobotRegistry::Claim::kTooMany);
-  EXPECT_EQ(registry.ClaimRobot("c", kAgentWriter), RobotRegistry::Claim::kNew);
-  registry.Release("a", kPeerWriter);
-  EXPECT_EQ(registry.ClaimRobot("d", kPeerWriter), RobotRegistry::Claim::kNew);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"a"}, kPeerWriter), RobotRegistry::Claim::kNew);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"b"}, kPeerWriter), RobotRegistry::Claim::kNew);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"c"}, kPeerWriter), RobotRegistry::Claim::kTooMany);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"c"}, kAgentWriter), RobotRegistry::Claim::kNew);
+  registry.Release(RobotId{"a"}, kPeerWriter);
+  EXPECT_EQ(registry.ClaimRobot(RobotId{"d"}, kPeerWriter), RobotRegistry::Claim::kNew);
 }
 
 }  // namespace

@@ -15,13 +15,13 @@ vector_map::VectorMap SomeTile() {
 
 TEST(SessionArchiveTest, LateTilesAfterASessionEndedDoNotMakeANewSession) {
   SessionArchive archive(10.0, nullptr);
-  archive.RecordTile("alpha", {0, 0}, SomeTile(), Timestamp{});
-  auto first = archive.EndSession("alpha", Timestamp{});
+  archive.RecordTile(RobotId{"alpha"}, {0, 0}, SomeTile(), Timestamp{});
+  auto first = archive.EndSession(RobotId{"alpha"}, Timestamp{});
   ASSERT_TRUE(first.ok());
   ASSERT_TRUE(first->has_value());
   // A sample still in flight when alpha left, then the writer vanishes (alpha "lost").
-  archive.RecordTile("alpha", {1, 0}, SomeTile(), Timestamp{});
-  auto late = archive.EndSession("alpha", Timestamp{});
+  archive.RecordTile(RobotId{"alpha"}, {1, 0}, SomeTile(), Timestamp{});
+  auto late = archive.EndSession(RobotId{"alpha"}, Timestamp{});
   ASSERT_TRUE(late.ok());
   EXPECT_FALSE(late->has_value());
   EXPECT_EQ(archive.finished().size(), 1u);
@@ -29,13 +29,13 @@ TEST(SessionArchiveTest, LateTilesAfterASessionEndedDoNotMakeANewSession) {
 
 TEST(SessionArchiveTest, ARobotThatComesBackStartsANewSessionWithItsFirstTiles) {
   SessionArchive archive(10.0, nullptr);
-  archive.RecordTile("alpha", {0, 0}, SomeTile(), Timestamp{});
-  ASSERT_TRUE(archive.EndSession("alpha", Timestamp{}).ok());
+  archive.RecordTile(RobotId{"alpha"}, {0, 0}, SomeTile(), Timestamp{});
+  ASSERT_TRUE(archive.EndSession(RobotId{"alpha"}, Timestamp{}).ok());
   // Its first tiles may arrive before the server has seen it rejoin, or after.
-  archive.RecordTile("alpha", {2, 0}, SomeTile(), Timestamp{});
-  archive.Rejoin("alpha");
-  archive.RecordTile("alpha", {3, 0}, SomeTile(), Timestamp{});
-  auto second = archive.EndSession("alpha", Timestamp{});
+  archive.RecordTile(RobotId{"alpha"}, {2, 0}, SomeTile(), Timestamp{});
+  archive.Rejoin(RobotId{"alpha"});
+  archive.RecordTile(RobotId{"alpha"}, {3, 0}, SomeTile(), Timestamp{});
+  auto second = archive.EndSession(RobotId{"alpha"}, Timestamp{});
   ASSERT_TRUE(second.ok());
   ASSERT_TRUE(second->has_value());
   EXPECT_EQ((*second)->map.tiles.size(), 2u);
@@ -45,7 +45,7 @@ TEST(SessionArchiveTest, ARobotThatComesBackStartsANewSessionWithItsFirstTiles) 
 
 TEST(SessionArchiveTest, ASessionWithoutTilesIsNotArchived) {
   SessionArchive archive(10.0, nullptr);
-  auto none = archive.EndSession("beta", Timestamp{});
+  auto none = archive.EndSession(RobotId{"beta"}, Timestamp{});
   ASSERT_TRUE(none.ok());
   EXPECT_FALSE(none->has_value());
   EXPECT_TRUE(archive.finished().empty());

@@ -26,7 +26,7 @@ MappingSession Session(int64_t id, const grid::OccupancyGrid& map) {
   EXPECT_TRUE(tiled.ok()) << tiled.status();
   MappingSession session;
   session.id = id;
-  session.robot = "robot" + std::to_string(id);
+  session.robot = RobotId{"robot" + std::to_string(id)};
   session.map = *std::move(tiled);
   return session;
 }

@@ -50,14 +50,14 @@ void Publish(fusion::TileFusion* fusion, StoreSync* sync, const std::string& rob
   const auto tiled = vector_map::VectorizeTiled(grid, Transform2::Identity(), options);
   ASSERT_TRUE(tiled.ok()) << tiled.status();
   for (const auto& [tile, map] : tiled->tiles) {
-    ASSERT_TRUE(fusion->UpdateRobotTile(robot, tile, map, stamp).ok());
-    transport::VectorTileMessage message{robot, tile, revision, stamp, kTileSize, map};
+    ASSERT_TRUE(fusion->UpdateRobotTile(RobotId{robot}, tile, map, stamp).ok());
+    transport::VectorTileMessage message{RobotId{robot}, tile, revision, stamp, kTileSize, map};
     const auto payload = transport::EncodeTilePayload(message);
     ASSERT_TRUE(payload.ok()) << payload.status();
     const int64_t ns =
         std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch()).count();
     ASSERT_TRUE(sync->AddTile({robot, tile, revision, ns, *payload}).ok());
-    ASSERT_TRUE(sync->ContributionChanged(robot, tile).ok());
+    ASSERT_TRUE(sync->ContributionChanged(RobotId{robot}, tile).ok());
   }
 }
 
@@ -73,8 +73,8 @@ void PlayOverlappingFleet(fusion::TileFusion* fusion, StoreSync* sync) {
   Fill(&alpha, 2, 35, 6, 38, kOccupiedValue);
   Fill(&alpha, 40, 0, 80, 40, kUnknownValue);
   Publish(fusion, sync, "alpha", alpha, kT0 + std::chrono::seconds(10), 2);
-  fusion->RemoveRobotTile("alpha", {1, 0});
-  ASSERT_TRUE(sync->ContributionChanged("alpha", {1, 0}).ok());
+  fusion->RemoveRobotTile(RobotId{"alpha"}, {1, 0});
+  ASSERT_TRUE(sync->ContributionChanged(RobotId{"alpha"}, {1, 0}).ok());
 }
 
 // The fused cells of tile (0, 0), the first tile of every grid here.
@@ -293,7 +293,8 @@ TEST(StoreSyncTest, RecordsTheStoreWouldRefuseAreRefusedAlone) {
   fusion::TileFusion fusion = MakeFusion();
   EXPECT_EQ(sync.AddTile({"", {0, 0}, 1, 1, "x"}).code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(sync.AddTile({"alpha", {0, 0}, 1, -5, "x"}).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(sync.ContributionChanged("no good", {0, 0}).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(sync.ContributionChanged(RobotId{"no good"}, {0, 0}).code(),
+            StatusCode::kInvalidArgument);
   EXPECT_EQ(sync.AddRobot({"alpha", 5, 1, "active", ""}).code(), StatusCode::kInvalidArgument);
   ASSERT_TRUE(sync.AddTile({"alpha", {0, 0}, 1, 1, "x"}).ok());
   EXPECT_EQ(sync.Flush(fusion, kNow), FlushResult::kWritten) << sync.last_error();

@@ -15,7 +15,7 @@ const auto kSteady = std::chrono::steady_clock::time_point(hours(1));
 
 transport::VectorTileMessage Tile(const std::string& robot, TileId key = {0, 0}) {
   transport::VectorTileMessage tile;
-  tile.robot_id = robot;
+  tile.robot_id = RobotId{robot};
   tile.tile = key;
   tile.stamp = kNow - seconds(1);
   tile.tile_size = 10.0;
@@ -58,7 +58,7 @@ TEST_F(TileAdmissionTest, AnHonestTileIsAdmittedWithItsOwnStamp) {
   const auto verdict = Admit(Tile("alpha"));
   ASSERT_TRUE(std::holds_alternative<TileAdmission::Admitted>(verdict));
   EXPECT_EQ(std::get<TileAdmission::Admitted>(verdict).evidence_stamp, kNow - seconds(1));
-  EXPECT_EQ(admission_.tiles_held("alpha"), 1u);
+  EXPECT_EQ(admission_.tiles_held(RobotId{"alpha"}), 1u);
 }
 
 TEST_F(TileAdmissionTest, RobotIdsMustBeNameTokensAndNotTheFleet) {
@@ -117,7 +117,7 @@ TEST_F(TileAdmissionTest, ARobotHoldsAtMostItsQuotaOfTilesAndMayUpdateThem) {
   EXPECT_TRUE(std::holds_alternative<TileAdmission::Admitted>(Admit(Tile("alpha", {1, 0}))));
   EXPECT_TRUE(std::holds_alternative<TileAdmission::Admitted>(Admit(Tile("beta", {3, 0}))));
   // A removed tile frees its place.
-  admission_.Forget("alpha", {0, 0});
+  admission_.Forget(RobotId{"alpha"}, {0, 0});
   EXPECT_TRUE(std::holds_alternative<TileAdmission::Admitted>(Admit(Tile("alpha", {3, 0}))));
 }
 

@@ -416,7 +416,7 @@ TEST_F(MapStoreTest, SessionsRoundTripInOrderAndSurviveReopening) {
   const auto sessions = store->Sessions();
   ASSERT_TRUE(sessions.ok()) << sessions.status();
   ASSERT_EQ(sessions->size(), 2u);
-  EXPECT_EQ((*sessions)[0].robot, "alpha");
+  EXPECT_EQ((*sessions)[0].robot.value, "alpha");
   EXPECT_EQ((*sessions)[0].payload, std::string("v\0map", 5));
   EXPECT_EQ((*sessions)[1].ended_ns, 400);
 }

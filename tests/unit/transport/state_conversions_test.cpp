@@ -131,7 +131,7 @@ TEST(StateConversionsTest, SubmapRoundTripsWithEdgesAndCells) {
   message.state = scene::SubmapState::kConfirmed;
   message.precision = 0.97F;
   message.observed_fraction = 0.6F;
-  message.source_robot = "alpha";
+  message.source_robot = RobotId{"alpha"};
   message.source_entity = "door_3";
   message.edges.push_back({4, 0, Pose2{-1.0, 2.0, -0.5}, "door_3"});
   StatusOr<SubmapMessage> back = FromIdl(*ToIdl(message));

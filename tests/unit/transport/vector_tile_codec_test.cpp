@@ -40,7 +40,7 @@ double Steps(int n) { return n * vector_map::HalfWidthStep(0.0707); }
 
 VectorTileMessage TileWith(std::vector<Polyline> obstacles, std::vector<FreePolygon> free = {}) {
   VectorTileMessage message;
-  message.robot_id = "alpha";
+  message.robot_id = RobotId{"alpha"};
   message.tile = kTile;
   message.tile_size = kTileSize;
   message.map.frame_id = "fleet";
