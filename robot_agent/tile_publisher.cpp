@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/grid/tiling.hpp"
+#include "common/transport/tile_payload.hpp"
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::agent {
@@ -16,6 +17,8 @@ constexpr double kBurstSeconds = 2.0;
 // A backlog worth more than this many seconds of budget coarsens epsilon.
 constexpr double kBacklogSeconds = 5.0;
 constexpr double kMaxEpsilonFactor = 4.0;
+// What a disposal costs the budget: about a sample's key and header.
+constexpr size_t kDisposeBytes = 64;
 
 uint64_t Fnv1a(uint64_t hash, const void* data, size_t size) {
   const auto* bytes = static_cast<const uint8_t*>(data);
@@ -45,19 +48,6 @@ uint64_t TileHash(const grid::OccupancyGrid& grid, const grid::CellRect& rect,
   return hash;
 }
 
-size_t EstimatedBytes(const vector_map::VectorMap& map) {
-  // The fixed header, int16 x and y per vertex (a closed polyline repeats its first), a uint16
-  // size and half width per polyline, a uint16 half width per point obstacle and a uint16 count
-  // per ring and polygon (docs/file-formats.md).
-  size_t bytes = 104 + 4 * (map.ObstacleVertexCount() + map.FreeVertexCount());
-  for (const vector_map::Polyline& polyline : map.obstacles) {
-    bytes += polyline.points.size() == 1 ? 2 : (polyline.closed ? 8 : 4);
-  }
-  for (const vector_map::FreePolygon& polygon : map.free_space) {
-    bytes += 2 * (2 + polygon.holes.size());
-  }
-  return bytes;
-}
 
 }  // namespace
 
@@ -139,11 +129,24 @@ Status TilePublisher::Flush(std::chrono::steady_clock::time_point now) {
   for (auto it = pending_.begin(); it != pending_.end();) {
     const TileId tile = it->first;
     Pending& pending = it->second;
-    const size_t estimate = pending.removed ? 64 : EstimatedBytes(pending.map);
+    transport::VectorTileMessage message;
+    size_t estimate = kDisposeBytes;
+    if (!pending.removed) {
+      message.robot_id = robot_;
+      message.tile = tile;
+      message.revision = revisions_[tile] + 1;
+      message.stamp = Clock::now();
+      message.tile_size = options_.tile_size;
+      message.map = std::move(pending.map);
+      // The exact sample: the codec's varints and zstd make a formula a poor guess.
+      FLEETMAP_ASSIGN_OR_RETURN(const std::string payload, transport::EncodeTilePayload(message));
+      estimate = payload.size();
+    }
     // Over budget: wait, unless the bucket is full and the tile alone is larger than it.
     if (budgeted && tokens_ < static_cast<double>(estimate) &&
         tokens_ < kBurstSeconds * bytes_per_second) {
       backlog += estimate;
+      if (!pending.removed) pending.map = std::move(message.map);
       ++it;
       continue;
     }
@@ -153,14 +156,8 @@ Status TilePublisher::Flush(std::chrono::steady_clock::time_point now) {
       revisions_.erase(tile);
       bytes = estimate;
     } else {
-      transport::VectorTileMessage message;
-      message.robot_id = robot_;
-      message.tile = tile;
-      message.revision = ++revisions_[tile];
-      message.stamp = Clock::now();
-      message.tile_size = options_.tile_size;
-      message.map = std::move(pending.map);
       FLEETMAP_ASSIGN_OR_RETURN(bytes, writer_->Write(message));
+      revisions_[tile] = message.revision;
       ++tiles_published_;
     }
     bytes_published_ += bytes;

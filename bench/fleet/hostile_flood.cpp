@@ -18,7 +18,8 @@ vector_map::VectorMap HeavyTile(const TileId& tile, int walls, std::mt19937* ran
   map.frame_id = "fleet";
   map.epsilon = 0.07;
   map.resolution = 0.05;
-  const double quantum = vector_map::TileQuantum(kTileSize);
+  const double quantum = vector_map::TileQuantum(map.resolution);
+  map.lattice = {quantum, Point2::Zero()};
   const double x0 = tile.x * kTileSize;
   const double y0 = tile.y * kTileSize;
   // Vertices on the tile lattice, as an agent's would be.

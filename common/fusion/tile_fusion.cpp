@@ -35,7 +35,7 @@ TileFusion::TileFusion(const FusionOptions& options)
       vectorizer_([&] {
         vector_map::VectorizerOptions vectorizer = options.vectorizer;
         // Windows are cut from the fleet frame, so the lattice starts at their frame's origin.
-        vectorizer.quantum = vector_map::TileQuantum(options.tile_size);
+        vectorizer.quantum = vector_map::TileQuantum(options.FusedResolution());
         vectorizer.lattice_origin = Point2::Zero();
         vectorizer.frame_id = "fleet";
         return vector_map::Vectorizer(vectorizer);

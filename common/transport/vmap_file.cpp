@@ -88,13 +88,14 @@ StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const st
   }
   for (const auto& tile : message.tiles()) {
     const TileId id{tile.tile_x(), tile.tile_y()};
-    if (tile.tile_size() != map.tile_size) {
-      return InvalidArgumentError(name + ": " + TileName(id) + " has tile_size " +
-                                  std::to_string(tile.tile_size()) + ", the map " +
-                                  std::to_string(map.tile_size));
-    }
     StatusOr<VectorTileMessage> decoded = FromIdl(tile);
     if (!decoded.ok()) return decoded.status().WithContext(name + ": " + TileName(id));
+    if (decoded->tile_size != map.tile_size) {
+      return InvalidArgumentError(name + ": " + TileName(id) + " has tile_size " +
+                                  std::to_string(decoded->tile_size) + ", the map " +
+                                  std::to_string(map.tile_size));
+    }
+    if (map.tiles.empty()) map.lattice = decoded->map.lattice;
     if (!map.tiles.emplace(id, std::move(decoded->map)).second) {
       return InvalidArgumentError(name + ": " + TileName(id) + " appears twice");
     }

@@ -13,12 +13,13 @@
 
 namespace fleetmap::transport {
 
-// Version 4 (uint8 obstacle sizes and half widths in steps of epsilon / 254) replaced version 3
+// Version 5 (tiles of layout 5: varint steps of a lattice tied to the resolution) replaced
+// version 4 (uint8 obstacle sizes and half widths in steps of epsilon / 254) replaced version 3
 // (uint16 for both, half widths in quanta), which replaced version 2 (quantum tile_size / 16384
 // instead of tile_size / 16000), which replaced version 1 (uint32 counts, no point arrays, closed
 // flags); a file of another version is refused with a message naming both.
 inline constexpr char kVmapFormatPrefix[] = "fleetmap-vmap/";
-inline constexpr char kVmapFormat[] = "fleetmap-vmap/4";
+inline constexpr char kVmapFormat[] = "fleetmap-vmap/5";
 
 struct VmapReadOptions {
   size_t max_bytes = size_t{1} << 30;  // a larger file is refused before it is read

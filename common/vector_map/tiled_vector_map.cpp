@@ -23,11 +23,18 @@ void Translate(const Point2& offset, std::vector<Point2>* points) {
   for (Point2& point : *points) point += offset;
 }
 
-// The map frame's lattice: fleet-frame multiples of the quantum, seen from the map frame.
-Vectorizer TileVectorizer(const Transform2& fleet_from_map, const TiledVectorizeOptions& options) {
+// The tile lattice of `grid` in the fleet frame.
+VertexLattice FleetLattice(const grid::OccupancyGrid& grid, const Transform2& fleet_from_map) {
+  const double quantum = TileQuantum(grid.resolution());
+  return {quantum, TileLatticeOrigin(fleet_from_map * grid.origin().translation(), quantum)};
+}
+
+// The per-tile vectorizer, its lattice (the fleet lattice) seen from the map frame.
+Vectorizer TileVectorizer(const VertexLattice& fleet_lattice, const Transform2& fleet_from_map,
+                          const TiledVectorizeOptions& options) {
   VectorizerOptions vectorizer = options.vectorizer;
-  vectorizer.quantum = TileQuantum(options.tile_size);
-  vectorizer.lattice_origin = -fleet_from_map.translation();
+  vectorizer.quantum = fleet_lattice.quantum;
+  vectorizer.lattice_origin = fleet_lattice.origin - fleet_from_map.translation();
   vectorizer.frame_id = "fleet";
   return Vectorizer(vectorizer);
 }
@@ -42,11 +49,20 @@ StatusOr<VectorMap> VectorizeRect(const Vectorizer& vectorizer, const grid::Occu
     Translate(offset, &polygon.outer);
     for (auto& hole : polygon.holes) Translate(offset, &hole);
   }
+  tile.lattice.origin += offset;
   tile.frame_id = "fleet";
   return tile;
 }
 
 }  // namespace
+
+Point2 TileLatticeOrigin(const Point2& grid_corner, double quantum) {
+  const auto offset = [quantum](double coordinate) {
+    const double in_range = coordinate - std::floor(coordinate / quantum) * quantum;
+    return in_range >= quantum ? 0.0 : in_range;
+  };
+  return {offset(grid_corner.x()), offset(grid_corner.y())};
+}
 
 size_t TiledVectorMap::ObstacleVertexCount() const {
   size_t count = 0;
@@ -71,6 +87,7 @@ VectorMap TiledVectorMap::Merged() const {
   merged.frame_id = frame_id;
   merged.resolution = resolution;
   merged.epsilon = epsilon;
+  merged.lattice = lattice;
   for (const auto& [id, tile] : tiles) merged.Append(tile);
   return merged;
 }
@@ -80,8 +97,9 @@ StatusOr<TiledVectorMap> VectorizeTiled(const grid::OccupancyGrid& grid,
                                         const TiledVectorizeOptions& options) {
   FLEETMAP_ASSIGN_OR_RETURN(const auto rects,
                             grid::TileCellRects(grid, fleet_from_map, options.tile_size));
-  const Vectorizer vectorizer = TileVectorizer(fleet_from_map, options);
   TiledVectorMap map;
+  map.lattice = FleetLattice(grid, fleet_from_map);
+  const Vectorizer vectorizer = TileVectorizer(map.lattice, fleet_from_map, options);
   map.tile_size = options.tile_size;
   map.resolution = grid.resolution();
   map.epsilon = vectorizer.EpsilonFor(grid.resolution());
@@ -108,9 +126,13 @@ Status RevectorizeTile(const grid::OccupancyGrid& grid, const Transform2& fleet_
     map->tiles.erase(tile);
     return Status::Ok();
   }
-  FLEETMAP_ASSIGN_OR_RETURN(
-      VectorMap vectorized,
-      VectorizeRect(TileVectorizer(fleet_from_map, options), grid, fleet_from_map, rect->second));
+  // A grid whose corner moved off the old lattice gets a new one. Each tile keeps the lattice it
+  // was made on (VectorMap::lattice), so every tile still decodes right; seams are exact between
+  // tiles of one lattice.
+  map->lattice = FleetLattice(grid, fleet_from_map);
+  FLEETMAP_ASSIGN_OR_RETURN(VectorMap vectorized,
+                            VectorizeRect(TileVectorizer(map->lattice, fleet_from_map, options),
+                                          grid, fleet_from_map, rect->second));
   map->tiles[tile] = std::move(vectorized);
   return Status::Ok();
 }

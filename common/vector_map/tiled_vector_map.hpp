@@ -18,21 +18,23 @@
 
 namespace fleetmap::vector_map {
 
-// Coordinates on the wire are int16 multiples of the quantum tile_size / kTileQuantaPerSide:
-// 0.625 mm for 10 m tiles. 16000 rather than a power of two so that, with 10 m tiles, the quantum
-// divides half a cell of every common resolution (1, 2, 2.5, 3, 4, 5 and 10 cm): the vectorizer's
-// vertices, cell centres and half-cell points, then lie on the lattice exactly and it can build
-// with the full epsilon (vectorizer.hpp, VectorizerOptions::quantum). A point is decoded as
-// (tile_x * kTileQuantaPerSide + local_x) * quantum, so a vertex on a border shared by two tiles
-// decodes to the same point from either tile.
-inline constexpr int kTileQuantaPerSide = 16000;
-inline double TileQuantum(double tile_size) { return tile_size / kTileQuantaPerSide; }
+// The tile lattice. Vertices travel as whole steps of a quantum of half a cell, counted from a
+// lattice origin in [0, quantum) per axis of the fleet frame that puts the grid's cell corners on
+// the lattice. Then every cell centre and half-cell point (all the vectorizer's own vertices) is a
+// lattice point and the vectorizer builds with the full epsilon (vectorizer.hpp,
+// VectorizerOptions::quantum); line refits and line-end extensions are snapped to it and checked
+// after snapping. The tile codec stores the quantum and the origin, and a vertex on a border shared
+// by two tiles is the same number of steps from either tile.
+inline double TileQuantum(double resolution) { return resolution / 2.0; }
+// The origin, in [0, quantum) per axis, of the lattice that holds `grid_corner` (a fleet-frame point, e.g. the corner of a grid's first cell).
+Point2 TileLatticeOrigin(const Point2& grid_corner, double quantum);
 
 struct TiledVectorMap {
   std::string frame_id = "fleet";
   double tile_size = 10.0;   // metres
   double resolution = 0.05;  // of the source grid, metres per cell
   double epsilon = 0.0;      // metres
+  VertexLattice lattice;     // of every tile (fleet frame)
   std::map<TileId, VectorMap> tiles;
 
   size_t ObstacleVertexCount() const;

@@ -35,10 +35,22 @@ struct FreePolygon {
   friend bool operator==(const FreePolygon&, const FreePolygon&) = default;
 };
 
+// The lattice a map's vertices lie on: origin + (i, j) * quantum for whole i, j (metres, in the
+// map's frame). A quantum of 0 means none: vertices anywhere. The tile codec sends vertices as
+// whole steps of the lattice (tiled_vector_map.hpp says which lattice the tiles use).
+struct VertexLattice {
+  double quantum = 0.0;
+  Point2 origin = Point2::Zero();
+
+  bool enabled() const { return quantum > 0.0; }
+  friend bool operator==(const VertexLattice&, const VertexLattice&) = default;
+};
+
 struct VectorMap {
   std::string frame_id = "map";
   double resolution = 0.05;  // of the grid it was made from (metres per cell)
   double epsilon = 0.0;      // the error bound both constraints were built with (metres)
+  VertexLattice lattice;     // the vectorizer's, when it snapped vertices to one
   std::vector<Polyline> obstacles;
   std::vector<FreePolygon> free_space;
 
@@ -48,7 +60,8 @@ struct VectorMap {
   size_t ObstacleSegmentCount() const;
   size_t FreeVertexCount() const;
 
-  // Appends another map's geometry (e.g. the tiles of one grid into one map).
+  // Appends another map's geometry (e.g. the tiles of one grid into one map); the lattice stays
+  // this map's.
   void Append(const VectorMap& other);
 };
 

@@ -70,6 +70,7 @@ StatusOr<VectorMap> Vectorizer::VectorizeTile(const grid::OccupancyGrid& grid,
   map.frame_id = options_.frame_id;
   map.resolution = resolution;
   map.epsilon = epsilon;
+  if (lattice.enabled()) map.lattice = {lattice.quantum(), options_.lattice_origin};
   if (rect.empty()) return map;
 
   // A half width in cells as emitted, metres: on a lattice (for the tile codec) rounded up to

@@ -54,24 +54,16 @@ CTile ToC(const TileSample& tile) {
   out.tile_x = tile.key.x;
   out.tile_y = tile.key.y;
   out.stamp = ToC(tile.stamp);
-  out.frame_id = View(tile.frame_id);
-  out.revision = tile.revision;
   out.layout_version = tile.layout_version;
-  out.tile_size = tile.tile_size;
+  out.compression = tile.compression;
+  out.revision = tile.revision;
+  out.tile_size_mm = tile.tile_size_mm;
   out.quantum = tile.quantum;
+  out.lattice_x = tile.lattice_x;
+  out.lattice_y = tile.lattice_y;
   out.epsilon = tile.epsilon;
   out.resolution = tile.resolution;
-  out.obstacle_sizes = View<dds_sequence_uint8>(tile.obstacle_sizes);
-  out.obstacle_half_widths = View<dds_sequence_uint8>(tile.obstacle_half_widths);
-  out.obstacle_x = View<dds_sequence_int16>(tile.obstacle_x);
-  out.obstacle_y = View<dds_sequence_int16>(tile.obstacle_y);
-  out.point_x = View<dds_sequence_int16>(tile.point_x);
-  out.point_y = View<dds_sequence_int16>(tile.point_y);
-  out.point_half_widths = View<dds_sequence_uint8>(tile.point_half_widths);
-  out.free_polygon_rings = View<dds_sequence_uint16>(tile.free_polygon_rings);
-  out.free_ring_sizes = View<dds_sequence_uint16>(tile.free_ring_sizes);
-  out.free_x = View<dds_sequence_int16>(tile.free_x);
-  out.free_y = View<dds_sequence_int16>(tile.free_y);
+  out.geometry = View<dds_sequence_uint8>(tile.geometry);
   return out;
 }
 

@@ -7,26 +7,59 @@ namespace fleetmap::hostile {
 namespace {
 
 // A vertex may lie a little outside its tile; the peer stays inside so every tile is valid.
-constexpr int16_t kSide = kQuantaPerSide;
-constexpr int kMaxPolyline = 255;  // obstacle_sizes are uint8
+constexpr int64_t kSide = kStepsPerSide;
+constexpr int kMaxPolyline = 255;
 
 TileSample Blank(const std::string& robot, TileKey key, double tile_size) {
   TileSample tile;
   tile.robot_id = robot;
   tile.key = key;
   tile.stamp = StampFromNow();
-  tile.tile_size = tile_size;
-  tile.quantum = tile_size / kQuantaPerSide;
+  tile.tile_size_mm = static_cast<uint32_t>(tile_size * 1000.0 + 0.5);
+  tile.quantum = tile_size / kStepsPerSide;
   return tile;
 }
 
-// One free polygon: the ring (x0, y0) - (x1, y1), no holes.
-void AddFreeRectangle(TileSample* tile, int16_t x0, int16_t y0, int16_t x1, int16_t y1) {
-  tile->free_polygon_rings.push_back(1);
-  tile->free_ring_sizes.push_back(4);
-  tile->free_x.insert(tile->free_x.end(), {x0, x1, x1, x0});
-  tile->free_y.insert(tile->free_y.end(), {y0, y0, y1, y1});
-}
+// The geometry bytes: LEB128 varints, zigzag for signed ones, and vertices as steps from the one
+// before, the first from step (0, 0) of the fleet frame. Vertices are given from the tile's corner.
+class GeometryWriter {
+ public:
+  explicit GeometryWriter(TileKey key) : corner_x_(key.x * kSide), corner_y_(key.y * kSide) {}
+
+  void Unsigned(uint64_t value) {
+    for (; value >= 0x80; value >>= 7) bytes_.push_back(static_cast<uint8_t>(value | 0x80));
+    bytes_.push_back(static_cast<uint8_t>(value));
+  }
+  void Byte(uint8_t value) { bytes_.push_back(value); }
+  void Vertex(int64_t x, int64_t y) {
+    Signed(corner_x_ + x - last_x_);
+    Signed(corner_y_ + y - last_y_);
+    last_x_ = corner_x_ + x;
+    last_y_ = corner_y_ + y;
+  }
+  // One polygon of one ring, the rectangle (x0, y0) - (x1, y1).
+  void FreeRectangle(int64_t x0, int64_t y0, int64_t x1, int64_t y1) {
+    Unsigned(1);  // polygons
+    Unsigned(1);  // rings
+    Unsigned(4);  // vertices
+    Vertex(x0, y0);
+    Vertex(x1, y0);
+    Vertex(x1, y1);
+    Vertex(x0, y1);
+  }
+  std::vector<uint8_t> Take() { return std::move(bytes_); }
+
+ private:
+  void Signed(int64_t value) {
+    Unsigned((static_cast<uint64_t>(value) << 1) ^ static_cast<uint64_t>(value >> 63));
+  }
+
+  std::vector<uint8_t> bytes_;
+  int64_t corner_x_;
+  int64_t corner_y_;
+  int64_t last_x_ = 0;
+  int64_t last_y_ = 0;
+};
 
 }  // namespace
 
@@ -40,39 +73,53 @@ WireTime StampFromNow(std::chrono::seconds offset) {
 
 TileSample WallTile(const std::string& robot, TileKey key, double tile_size) {
   TileSample tile = Blank(robot, key, tile_size);
-  constexpr int16_t kLow = kSide / 8;
-  constexpr int16_t kHigh = kSide - kSide / 8;
-  AddFreeRectangle(&tile, kLow, kLow, kHigh, kHigh);
-  // A closed polyline repeats its first vertex (n >= 4).
-  tile.obstacle_sizes = {5};
-  tile.obstacle_x = {kLow, kHigh, kHigh, kLow, kLow};
-  tile.obstacle_y = {kLow, kLow, kHigh, kHigh, kLow};
-  tile.point_x = {kSide / 2};
-  tile.point_y = {kSide / 2};
+  constexpr int64_t kLow = kSide / 8;
+  constexpr int64_t kHigh = kSide - kSide / 8;
+  GeometryWriter out(key);
+  out.Unsigned(1);                // one polyline:
+  out.Unsigned((4 - 2) << 1 | 1);  // 4 vertices, closed
+  out.Byte(0);                    // half width 0
+  out.Vertex(kLow, kLow);
+  out.Vertex(kHigh, kLow);
+  out.Vertex(kHigh, kHigh);
+  out.Vertex(kLow, kHigh);
+  out.Unsigned(1);  // one point obstacle
+  out.Byte(0);
+  out.Vertex(kSide / 2, kSide / 2);
+  out.FreeRectangle(kLow, kLow, kHigh, kHigh);
+  tile.geometry = out.Take();
   return tile;
 }
 
 TileSample AllFreeTile(const std::string& robot, TileKey key, double tile_size) {
   TileSample tile = Blank(robot, key, tile_size);
-  AddFreeRectangle(&tile, 0, 0, kSide, kSide);
+  GeometryWriter out(key);
+  out.Unsigned(0);  // no polyline
+  out.Unsigned(0);  // no point
+  out.FreeRectangle(0, 0, kSide, kSide);
+  tile.geometry = out.Take();
   return tile;
 }
 
 TileSample HeavyTile(const std::string& robot, TileKey key, double tile_size, int vertices,
                      uint32_t seed) {
-  TileSample tile = AllFreeTile(robot, key, tile_size);
+  TileSample tile = Blank(robot, key, tile_size);
   std::mt19937 random(seed);
-  std::uniform_int_distribution<int> coordinate(0, kSide);
-  for (int left = std::max(vertices, 2); left >= 2;) {
-    const int n = std::min(left, kMaxPolyline);
-    tile.obstacle_sizes.push_back(static_cast<uint8_t>(n));
-    for (int i = 0; i < n; ++i) {
-      tile.obstacle_x.push_back(static_cast<int16_t>(coordinate(random)));
-      tile.obstacle_y.push_back(static_cast<int16_t>(coordinate(random)));
-    }
-    left -= n;
+  std::uniform_int_distribution<int64_t> coordinate(0, kSide);
+  std::vector<int> sizes;
+  for (int left = std::max(vertices, 2); left >= 2; left -= sizes.back()) {
+    sizes.push_back(std::min(left, kMaxPolyline));
   }
-  // The last vertex of a polyline is random, so it never repeats the first: every one is open.
+  GeometryWriter out(key);
+  out.Unsigned(sizes.size());
+  for (const int n : sizes) {
+    out.Unsigned(static_cast<uint64_t>(n - 2) << 1);  // open
+    out.Byte(0);
+    for (int i = 0; i < n; ++i) out.Vertex(coordinate(random), coordinate(random));
+  }
+  out.Unsigned(0);  // no point
+  out.FreeRectangle(0, 0, kSide, kSide);
+  tile.geometry = out.Take();
   return tile;
 }
 

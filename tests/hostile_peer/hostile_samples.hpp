@@ -13,8 +13,8 @@
 namespace fleetmap::hostile {
 
 // docs/file-formats.md, "VectorTile, field by field".
-inline constexpr int kQuantaPerSide = 16000;  // tile_size / quantum
-inline constexpr uint8_t kLayoutVersion = 4;
+inline constexpr int kStepsPerSide = 400;  // tile_size / quantum: half-cell steps of 5 cm cells
+inline constexpr uint8_t kLayoutVersion = 5;
 inline constexpr char kRobotTilesTopic[] = "rt/fleetmap/robot_tiles";
 inline constexpr char kFusedTilesTopic[] = "rt/fleetmap/fused_tiles";
 inline constexpr char kRobotStatusTopic[] = "rt/fleetmap/robot_status";
@@ -40,24 +40,16 @@ struct TileSample {
   std::string robot_id;
   TileKey key;
   WireTime stamp;
-  std::string frame_id = "fleet";
-  uint32_t revision = 1;
   uint8_t layout_version = kLayoutVersion;
-  double tile_size = 10.0;
-  double quantum = 10.0 / kQuantaPerSide;
+  uint8_t compression = 0;  // plain geometry
+  uint32_t revision = 1;
+  uint32_t tile_size_mm = 10000;
+  double quantum = 10.0 / kStepsPerSide;
+  double lattice_x = 0.0;
+  double lattice_y = 0.0;
   float epsilon = 0.07f;
   float resolution = 0.05f;
-  std::vector<uint8_t> obstacle_sizes;
-  std::vector<uint8_t> obstacle_half_widths;
-  std::vector<int16_t> obstacle_x;
-  std::vector<int16_t> obstacle_y;
-  std::vector<int16_t> point_x;
-  std::vector<int16_t> point_y;
-  std::vector<uint8_t> point_half_widths;
-  std::vector<uint16_t> free_polygon_rings;
-  std::vector<uint16_t> free_ring_sizes;
-  std::vector<int16_t> free_x;
-  std::vector<int16_t> free_y;
+  std::vector<uint8_t> geometry = {0, 0, 0};  // no polyline, no point, no polygon
 };
 
 // fleetmap_msgs/RobotStatus, field for field (poses as x, y, theta).

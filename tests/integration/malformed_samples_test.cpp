@@ -18,6 +18,7 @@
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
+#include "common/transport/internal/vector_tile_codec.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
@@ -269,25 +270,26 @@ class TileWirePeerTest : public ::testing::Test {
   fleetmap_msgs::msg::dds_::RobotStatus_ gamma_;
 };
 
-// A valid-looking tile of `robot` at (0, 0): one 2-vertex polyline and one point obstacle.
-fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot) {
-  fleetmap_msgs::msg::dds_::VectorTile_ tile;
-  tile.robot_id(robot);
-  tile.stamp(transport::ToIdl(Clock::now()));
-  tile.frame_id("fleet");
-  tile.layout_version(4);
-  tile.tile_size(10.0);
-  tile.quantum(vector_map::TileQuantum(10.0));
-  tile.epsilon(0.07f);
-  tile.resolution(0.05f);
-  tile.obstacle_sizes({2});
-  tile.obstacle_half_widths({0});
-  tile.obstacle_x({100, 900});
-  tile.obstacle_y({100, 100});
-  tile.point_x({500});
-  tile.point_y({700});
-  return tile;
+// A valid tile of `robot` at (x, y), as an agent's codec writes it: one 2-vertex polyline, one
+// point obstacle (layout 5: varint steps of the fleet-frame lattice).
+fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot, int32_t x = 0, int32_t y = 0) {
+  transport::VectorTileMessage message;
+  message.robot_id = RobotId{robot};
+  message.tile = {x, y};
+  message.stamp = Clock::now();
+  message.map.epsilon = 0.07;
+  message.map.resolution = 0.05;
+  const Point2 corner(x * 10.0, y * 10.0);
+  message.map.obstacles = {
+      vector_map::Polyline{{corner + Point2(0.5, 0.5), corner + Point2(4.5, 0.5)}, false, 0.0},
+      vector_map::Polyline{{corner + Point2(2.5, 3.5)}, false, 0.0}};
+  auto tile = transport::ToIdl(message);
+  EXPECT_TRUE(tile.ok()) << tile.status();
+  return tile.ok() ? *tile : fleetmap_msgs::msg::dds_::VectorTile_();
 }
+
+// The geometry of no element: decodes anywhere, whatever the keys say.
+constexpr uint8_t kNoGeometry[] = {0, 0, 0};
 
 TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
   auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
@@ -298,38 +300,36 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
     std::function<void(fleetmap_msgs::msg::dds_::VectorTile_&)> spoil;
   };
   const Case cases[] = {
-      {"obstacle_sizes add up to", [](auto& t) { t.obstacle_sizes({3}); }},
-      {"layout_version is 3, this fleetmap reads 4", [](auto& t) { t.layout_version(3); }},
+      {"the polyline count is 100, more than",
+       [](auto& t) {
+         t.compression(0);
+         t.geometry()[0] = 100;
+       }},
+      {"layout_version is 4, this fleetmap reads 5", [](auto& t) { t.layout_version(4); }},
       {"epsilon 0.000000 is not a positive distance", [](auto& t) { t.epsilon(0.0f); }},
+      // One polyline whose first vertex is a million steps (25 km) from the fleet origin.
       {"outside its tile",
        [](auto& t) {
-         t.obstacle_x({100, 30000});
+         t.compression(0);
+         t.geometry({1, 0, 0, 0x80, 0x89, 0x7a, 0, 2, 0, 0, 0, 0});
        }},
-      {"tile_size nan is not a positive number",
-       [](auto& t) { t.tile_size(std::numeric_limits<double>::quiet_NaN()); }},
-      {"point_x has 1 values but point_y 2",
+      {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
+      {"compression 9 is neither 0 (plain) nor 1 (zstd)", [](auto& t) { t.compression(9); }},
+      {"a free polygon has no outer ring",
        [](auto& t) {
-         t.point_y({700, 701});
-       }},
-      {"free_polygon_rings add up to 2 rings but 1 are given",
-       [](auto& t) {
-         t.free_polygon_rings({2});
-         t.free_ring_sizes({1});
-         t.free_x({5});
-         t.free_y({5});
+         t.compression(0);
+         t.geometry({0, 0, 1, 0, 0, 0, 0});
        }},
   };
   int32_t x = 0;
   for (const Case& c : cases) {
-    auto tile = Tile("gamma");
-    tile.tile_x(x++);  // one instance each, so no bad sample replaces another
+    auto tile = Tile("gamma", x++);  // one instance each, so no bad sample replaces another
     c.spoil(tile);
     EXPECT_TRUE(SendUntilServerSays(*tile_writer, tile, c.expect)) << c.expect << "\n"
                                                                    << server_->Output();
   }
   // A sound tile from the same peer is fused as usual: it comes back on the fused tiles.
-  auto good = Tile("gamma");
-  good.tile_y(7);
+  auto good = Tile("gamma", 0, 7);
   EXPECT_TRUE(WriteUntilFused(*tile_writer, good)) << server_->Output();
 
   tile_writer.reset();
@@ -369,6 +369,8 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
        [](auto& t) {
          t.tile_x(INT32_MAX);
          t.tile_y(INT32_MAX);
+         t.compression(0);
+         t.geometry({std::begin(kNoGeometry), std::end(kNoGeometry)});
        }},
       {"ahead of this server's clock",
        [](auto& t) { t.stamp(transport::ToIdl(Clock::now() + std::chrono::hours(24 * 365))); }},
@@ -381,21 +383,20 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
       {"robot_id \"\" of tile", [](auto& t) { t.robot_id(""); }},
       {"this fleet's tiles are 10 m",
        [](auto& t) {
-         t.tile_size(20.0);
-         t.quantum(vector_map::TileQuantum(20.0));
+         t.tile_size_mm(20000);  // geometry coded for 10 m tiles would lie outside a 20 m one
+         t.compression(0);
+         t.geometry({std::begin(kNoGeometry), std::end(kNoGeometry)});
        }},
   };
   int32_t x = 0;
   for (const Case& c : cases) {
-    auto tile = Tile("gamma");
-    tile.tile_x(100 + x++);  // one instance each
+    auto tile = Tile("gamma", 100 + x++);  // one instance each
     c.spoil(tile);
     EXPECT_TRUE(SendUntilServerSays(*tile_writer, tile, c.expect)) << c.expect << "\n"
                                                                    << server_->Output();
   }
   // A far but honest place (1000 km out) is fused like any other.
-  auto far = Tile("gamma");
-  far.tile_x(100000);
+  auto far = Tile("gamma", 100000);
   EXPECT_TRUE(WriteUntilFused(*tile_writer, far)) << server_->Output();
   // The fused grid cannot span 1000 km: it shows the larger group and says what it left out.
   EXPECT_TRUE(server_->WaitForOutput("leaves 1 out", kDeadline)) << server_->Output();
@@ -420,17 +421,14 @@ TEST_F(TileWirePeerTest, APeerCannotDisposeOrOverwriteAnotherAgentsRobot) {
   auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
                             transport::VectorTileQos().writer);
   ASSERT_NE(tile_writer, nullptr);
-  auto erasing = Tile("alpha");
-  erasing.obstacle_sizes({});
-  erasing.obstacle_half_widths({});
-  erasing.obstacle_x({});
-  erasing.obstacle_y({});
-  erasing.point_x({});
-  erasing.point_y({});
-  erasing.free_polygon_rings({1});
-  erasing.free_ring_sizes({4});
-  erasing.free_x({0, 15999, 15999, 0});
-  erasing.free_y({0, 0, 15999, 15999});
+  transport::VectorTileMessage all_free;
+  all_free.robot_id = RobotId{"alpha"};
+  all_free.stamp = Clock::now();
+  all_free.map.epsilon = 0.07;
+  all_free.map.resolution = 0.05;
+  all_free.map.free_space = {
+      vector_map::FreePolygon{{{0.0, 0.0}, {9.975, 0.0}, {9.975, 9.975}, {0.0, 9.975}}, {}}};
+  auto erasing = transport::ToIdl(all_free).value();
   EXPECT_TRUE(SendUntilServerSays(*tile_writer, erasing, "for robot alpha from participant"))
       << server_->Output();
   tile_writer.reset();

@@ -85,24 +85,16 @@ const CdrShape& VectorTileShape() {
                                  Primitive("tile_x", 4),
                                  Primitive("tile_y", 4),
                                  Struct("stamp", TimeShape()),
-                                 String("frame_id"),
-                                 Primitive("revision", 4),
                                  Primitive("layout_version", 1),
-                                 Primitive("tile_size", 8),
+                                 Primitive("compression", 1),
+                                 Primitive("revision", 4),
+                                 Primitive("tile_size_mm", 4),
                                  Primitive("quantum", 8),
+                                 Primitive("lattice_x", 8),
+                                 Primitive("lattice_y", 8),
                                  Primitive("epsilon", 4),
                                  Primitive("resolution", 4),
-                                 Sequence("obstacle_sizes", 1),
-                                 Sequence("obstacle_half_widths", 1),
-                                 Sequence("obstacle_x", 2),
-                                 Sequence("obstacle_y", 2),
-                                 Sequence("point_x", 2),
-                                 Sequence("point_y", 2),
-                                 Sequence("point_half_widths", 1),
-                                 Sequence("free_polygon_rings", 2),
-                                 Sequence("free_ring_sizes", 2),
-                                 Sequence("free_x", 2),
-                                 Sequence("free_y", 2)};
+                                 Sequence("geometry", 1)};
   return shape;
 }
 

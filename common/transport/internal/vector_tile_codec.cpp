@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/varint_stream.hpp"
+#include "common/transport/internal/zstd_frame.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 
 namespace fleetmap::transport {
@@ -15,50 +18,82 @@ using fleetmap_msgs::msg::dds_::VectorTile_;
 using vector_map::FreePolygon;
 using vector_map::Polyline;
 
-// free_polygon_rings and free_ring_sizes are uint16: the most vertices one wire ring, and the most
-// rings one polygon, can have. obstacle_sizes are uint8: longer polylines travel as pieces.
-constexpr size_t kMaxWireCount = UINT16_MAX;
-constexpr size_t kMaxWirePolyline = UINT8_MAX;
 // VectorTile::layout_version of this layout (docs/file-formats.md, "Versions").
-constexpr uint8_t kTileLayoutVersion = 4;
+constexpr uint8_t kTileLayoutVersion = 5;
+// What layouts 3 and 4 hold where this one has layout_version: the low byte of the length of
+// their frame_id, "fleet" (6 with its NUL).
+constexpr uint8_t kOldLayoutMark = 6;
 
-// Quantises coordinates relative to one tile's corner. Decoding computes the point as
-// (tile index * kTileQuantaPerSide + local) * quantum, an integer times the quantum, so a point on
-// a border shared by two tiles decodes to the same double from either tile.
-class TileQuantiser {
+enum Compression : uint8_t { kPlain = 0, kZstd = 1 };
+// zstd level for the geometry: small strings of varints gain as much at 9 as at 19 (measured in
+// docs/results.md), at a fraction of the time.
+constexpr int kZstdLevel = 9;
+// No tile's geometry comes near this (a 10 m tile of 5 cm cells holds 40 000 cells); a larger
+// decompressed size is a hostile or broken sample, refused before anything is allocated.
+constexpr size_t kMaxGeometryBytes = size_t{4} << 20;
+
+// The fewest bytes each element takes in the geometry, to bound counts by the bytes left before
+// anything is reserved: a vertex is two varints, a polyline its header, half width and two
+// vertices, a point its half width and vertex, a ring its size and a vertex, a polygon its ring
+// count and a ring.
+constexpr size_t kMinVertexBytes = 2;
+constexpr size_t kMinPolylineBytes = 2 + 2 * kMinVertexBytes;
+constexpr size_t kMinPointBytes = 1 + kMinVertexBytes;
+constexpr size_t kMinRingBytes = 1 + kMinVertexBytes;
+constexpr size_t kMinPolygonBytes = 1 + kMinRingBytes;
+
+// A lattice of fewer steps than this per tile side would not hold half a cell; more would mean
+// a quantum no grid has (10 m tiles of 10 micrometre steps).
+constexpr double kMinStepsPerSide = 1.0;
+constexpr double kMaxStepsPerSide = 1 << 20;
+
+// The tile's lattice in whole steps of the fleet frame: step (i, j) is the point
+// (i * quantum + origin_x, j * quantum + origin_y). The same integers times the same quantum from
+// either side of a border: seams decode exactly.
+class TileLattice {
  public:
-  TileQuantiser(const TileId& tile, double tile_size)
-      : corner_units_(static_cast<double>(tile.x) * vector_map::kTileQuantaPerSide,
-                      static_cast<double>(tile.y) * vector_map::kTileQuantaPerSide),
-        quantum_(vector_map::TileQuantum(tile_size)) {}
+  TileLattice(const TileId& tile, double tile_size, double quantum, Point2 origin)
+      : quantum_(quantum),
+        origin_(origin),
+        steps_per_side_(tile_size / quantum),
+        corner_((tile.x * tile_size - origin.x()) / quantum,
+                (tile.y * tile_size - origin.y()) / quantum) {}
 
   double quantum() const { return quantum_; }
+  const Point2& origin() const { return origin_; }
 
-  Status Append(const Point2& point, std::vector<int16_t>* xs, std::vector<int16_t>* ys) const {
-    FLEETMAP_ASSIGN_OR_RETURN(const int16_t x, Quantise(point.x(), corner_units_.x()));
-    FLEETMAP_ASSIGN_OR_RETURN(const int16_t y, Quantise(point.y(), corner_units_.y()));
-    xs->push_back(x);
-    ys->push_back(y);
-    return Status::Ok();
+  // Steps of the nearest lattice point, which must lie near the tile.
+  StatusOr<std::pair<int64_t, int64_t>> Steps(const Point2& point) const {
+    const double i = std::round((point.x() - origin_.x()) / quantum_);
+    const double j = std::round((point.y() - origin_.y()) / quantum_);
+    if (!WithinSlack(i, corner_.x()) || !WithinSlack(j, corner_.y())) {
+      return InvalidArgumentError("a vertex at (" + std::to_string(point.x()) + ", " +
+                                  std::to_string(point.y()) + ") lies outside its tile");
+    }
+    return std::pair{static_cast<int64_t>(i), static_cast<int64_t>(j)};
   }
 
-  Point2 Decode(int16_t x, int16_t y) const {
-    return {(corner_units_.x() + x) * quantum_, (corner_units_.y() + y) * quantum_};
+  Point2 Decode(int64_t i, int64_t j) const {
+    return {static_cast<double>(i) * quantum_ + origin_.x(),
+            static_cast<double>(j) * quantum_ + origin_.y()};
+  }
+
+  // A vertex may sit a little outside its tile (a cell centre beyond a border that is not on the
+  // cell lattice); farther out means a broken or hostile tile.
+  bool WithinSlack(double step, double corner) const {
+    const double slack = steps_per_side_ / 16 + 1;
+    return step >= corner - slack && step <= corner + steps_per_side_ + slack;
+  }
+  bool Near(int64_t i, int64_t j) const {
+    return WithinSlack(static_cast<double>(i), corner_.x()) &&
+           WithinSlack(static_cast<double>(j), corner_.y());
   }
 
  private:
-  StatusOr<int16_t> Quantise(double coordinate, double corner_units) const {
-    const double units = std::round(coordinate / quantum_ - corner_units);
-    if (!std::isfinite(units) || units < INT16_MIN || units > INT16_MAX) {
-      return InvalidArgumentError("a vertex " +
-                                  std::to_string(coordinate - corner_units * quantum_) +
-                                  " m from its tile's corner does not fit the tile encoding");
-    }
-    return static_cast<int16_t>(units);
-  }
-
-  Point2 corner_units_;  // the tile's corner in quanta
   double quantum_;
+  Point2 origin_;
+  double steps_per_side_;
+  Point2 corner_;  // the tile's corner in steps (not whole)
 };
 
 // Whole HalfWidthStep(epsilon), rounded up so that a reader never paints an obstacle thinner than
@@ -74,111 +109,236 @@ StatusOr<uint8_t> HalfWidthSteps(double half_width, double epsilon) {
   return static_cast<uint8_t>(steps);
 }
 
-template <typename T>
-uint64_t Sum(const std::vector<T>& values) {
-  uint64_t sum = 0;
-  for (const T value : values) sum += value;
-  return sum;
+StatusOr<uint32_t> TileSizeMillimetres(double tile_size) {
+  const double millimetres = std::round(tile_size * 1000.0);
+  if (!std::isfinite(tile_size) || tile_size <= 0.0 || millimetres > UINT32_MAX ||
+      millimetres / 1000.0 != tile_size) {
+    return InvalidArgumentError("tile_size " + std::to_string(tile_size) +
+                                " m is not a positive whole number of millimetres");
+  }
+  return static_cast<uint32_t>(millimetres);
 }
 
-// A vertex may sit a little outside its tile (a cell centre beyond a border that is not on the
-// cell lattice); more than this many quanta outside means a broken or hostile tile.
-constexpr int kOutsideSlack = vector_map::kTileQuantaPerSide / 16;
-
-Status CheckInsideTile(const std::vector<int16_t>& coordinates, const char* name) {
-  for (const int16_t value : coordinates) {
-    if (value < -kOutsideSlack || value > vector_map::kTileQuantaPerSide + kOutsideSlack) {
-      return InvalidArgumentError(std::string(name) + " value " + std::to_string(value) +
-                                  " lies outside its tile (0.." +
-                                  std::to_string(vector_map::kTileQuantaPerSide) + " quanta)");
-    }
+Status CheckQuantum(double quantum, double tile_size) {
+  const double steps = tile_size / quantum;
+  if (!std::isfinite(quantum) || !(steps >= kMinStepsPerSide && steps <= kMaxStepsPerSide)) {
+    return InvalidArgumentError("quantum " + std::to_string(quantum) + " m makes " +
+                                std::to_string(steps) + " steps of a " +
+                                std::to_string(tile_size) + " m tile side, not 1 to " +
+                                std::to_string(static_cast<int>(kMaxStepsPerSide)));
   }
   return Status::Ok();
 }
 
-Status CheckSameLength(size_t a, const char* a_name, size_t b, const char* b_name) {
-  if (a == b) return Status::Ok();
-  return InvalidArgumentError(std::string(a_name) + " has " + std::to_string(a) + " values but " +
-                              b_name + " " + std::to_string(b));
+// The lattice the tile is sent on: the map's own, or half-cell steps from the fleet origin.
+StatusOr<TileLattice> EncodingLattice(const VectorTileMessage& message) {
+  const vector_map::VectorMap& map = message.map;
+  const double quantum =
+      map.lattice.enabled() ? map.lattice.quantum : vector_map::TileQuantum(map.resolution);
+  FLEETMAP_RETURN_IF_ERROR(CheckQuantum(quantum, message.tile_size));
+  // The origin as the layout holds it: in [0, quantum).
+  const auto in_range = [quantum](double origin) {
+    const double offset = origin - std::floor(origin / quantum) * quantum;
+    return offset >= quantum ? 0.0 : offset;
+  };
+  const Point2 origin = map.lattice.enabled() ? Point2(in_range(map.lattice.origin.x()),
+                                                       in_range(map.lattice.origin.y()))
+                                              : Point2::Zero();
+  return TileLattice(message.tile, message.tile_size, quantum, origin);
 }
 
-// A per-element array that may be left empty (meaning 0 for every element).
-Status CheckOptionalLength(size_t values, const char* name, size_t elements, const char* what) {
-  if (values == 0 || values == elements) return Status::Ok();
-  return InvalidArgumentError(std::string(name) + " has " + std::to_string(values) +
-                              " values for " + std::to_string(elements) + " " + what);
-}
+// Writes vertices as steps from the vertex before (the first of the tile from the tile's corner).
+class VertexWriter {
+ public:
+  VertexWriter(const TileLattice& lattice, VarintWriter* out) : lattice_(lattice), out_(out) {}
 
-Status CheckObstacleCounts(const VectorTile_& tile) {
-  const size_t polylines = tile.obstacle_sizes().size();
-  FLEETMAP_RETURN_IF_ERROR(CheckSameLength(tile.obstacle_x().size(), "obstacle_x",
-                                           tile.obstacle_y().size(), "obstacle_y"));
-  if (Sum(tile.obstacle_sizes()) != tile.obstacle_x().size()) {
-    return InvalidArgumentError("obstacle_sizes add up to " +
-                                std::to_string(Sum(tile.obstacle_sizes())) + " vertices but " +
-                                std::to_string(tile.obstacle_x().size()) + " are given");
+  Status Write(const Point2& point) {
+    FLEETMAP_ASSIGN_OR_RETURN(const auto steps, lattice_.Steps(point));
+    out_->Signed(steps.first - last_.first);
+    out_->Signed(steps.second - last_.second);
+    last_ = steps;
+    return Status::Ok();
   }
-  for (size_t k = 0; k < polylines; ++k) {
-    if (tile.obstacle_sizes()[k] < 2) {
-      return InvalidArgumentError("obstacle_sizes[" + std::to_string(k) + "] is " +
-                                  std::to_string(tile.obstacle_sizes()[k]) +
-                                  ": a polyline has at least two vertices (point obstacles go in "
-                                  "point_x / point_y)");
+
+ private:
+  const TileLattice& lattice_;
+  VarintWriter* out_;
+  std::pair<int64_t, int64_t> last_{0, 0};
+};
+
+StatusOr<std::vector<uint8_t>> EncodeGeometry(const vector_map::VectorMap& map,
+                                              const TileLattice& lattice) {
+  VarintWriter out;
+  VertexWriter vertices(lattice, &out);
+  std::vector<const Polyline*> polylines;
+  std::vector<const Polyline*> points;
+  for (const Polyline& polyline : map.obstacles) {
+    if (polyline.points.size() == 1) points.push_back(&polyline);
+    if (polyline.points.size() >= 2) polylines.push_back(&polyline);
+  }
+  out.Unsigned(polylines.size());
+  for (const Polyline* polyline : polylines) {
+    const size_t n = polyline->points.size();
+    const bool closed = polyline->closed && n >= 3;
+    out.Unsigned((uint64_t{n} - 2) << 1 | (closed ? 1 : 0));
+    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width,
+                              HalfWidthSteps(polyline->half_width, map.epsilon));
+    out.Byte(half_width);
+    for (const Point2& point : polyline->points) FLEETMAP_RETURN_IF_ERROR(vertices.Write(point));
+  }
+  out.Unsigned(points.size());
+  for (const Polyline* point : points) {
+    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width,
+                              HalfWidthSteps(point->half_width, map.epsilon));
+    out.Byte(half_width);
+    FLEETMAP_RETURN_IF_ERROR(vertices.Write(point->points[0]));
+  }
+  out.Unsigned(map.free_space.size());
+  const auto write_ring = [&](const std::vector<Point2>& ring) -> Status {
+    if (ring.empty()) return InvalidArgumentError("a free ring has no vertex");
+    out.Unsigned(ring.size());
+    for (const Point2& point : ring) FLEETMAP_RETURN_IF_ERROR(vertices.Write(point));
+    return Status::Ok();
+  };
+  for (const FreePolygon& polygon : map.free_space) {
+    out.Unsigned(1 + polygon.holes.size());
+    FLEETMAP_RETURN_IF_ERROR(write_ring(polygon.outer));
+    for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(write_ring(hole));
+  }
+  return std::move(out.bytes());
+}
+
+// Reads vertices back, each checked to lie near the tile.
+class VertexReader {
+ public:
+  VertexReader(const TileLattice& lattice, VarintReader* in) : lattice_(lattice), in_(in) {}
+
+  StatusOr<Point2> Read() {
+    FLEETMAP_ASSIGN_OR_RETURN(const int64_t dx, in_->Signed("a vertex's x step"));
+    FLEETMAP_ASSIGN_OR_RETURN(const int64_t dy, in_->Signed("a vertex's y step"));
+    // Wrapping arithmetic: a hostile step may overflow, and then lands far from the tile.
+    const auto x = static_cast<int64_t>(static_cast<uint64_t>(last_.first) + dx);
+    const auto y = static_cast<int64_t>(static_cast<uint64_t>(last_.second) + dy);
+    if (!lattice_.Near(x, y)) {
+      return InvalidArgumentError("the vertex ending at geometry byte " +
+                                  std::to_string(in_->offset()) + " lies at (" +
+                                  std::to_string(x) + ", " + std::to_string(y) +
+                                  ") lattice steps, outside its tile");
     }
+    last_ = {x, y};
+    return lattice_.Decode(x, y);
   }
-  FLEETMAP_RETURN_IF_ERROR(CheckOptionalLength(tile.obstacle_half_widths().size(),
-                                               "obstacle_half_widths", polylines, "polylines"));
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckSameLength(tile.point_x().size(), "point_x", tile.point_y().size(), "point_y"));
-  FLEETMAP_RETURN_IF_ERROR(CheckOptionalLength(tile.point_half_widths().size(), "point_half_widths",
-                                               tile.point_x().size(), "points"));
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_x(), "obstacle_x"));
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.obstacle_y(), "obstacle_y"));
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.point_x(), "point_x"));
-  return CheckInsideTile(tile.point_y(), "point_y");
+
+ private:
+  const TileLattice& lattice_;
+  VarintReader* in_;
+  std::pair<int64_t, int64_t> last_{0, 0};
+};
+
+// A count read from the bytes, refused if the bytes left cannot hold that many elements.
+StatusOr<uint32_t> ReadCount(VarintReader& in, size_t min_bytes_each, const char* what) {
+  FLEETMAP_ASSIGN_OR_RETURN(const uint64_t count, in.Unsigned(what));
+  if (count > in.remaining() / min_bytes_each) {
+    return InvalidArgumentError(std::string(what) + " is " + std::to_string(count) +
+                                ", more than the " + std::to_string(in.remaining()) +
+                                " bytes left can hold");
+  }
+  return static_cast<uint32_t>(count);
 }
 
-Status CheckFreeCounts(const VectorTile_& tile) {
-  FLEETMAP_RETURN_IF_ERROR(
-      CheckSameLength(tile.free_x().size(), "free_x", tile.free_y().size(), "free_y"));
-  if (Sum(tile.free_polygon_rings()) != tile.free_ring_sizes().size()) {
-    return InvalidArgumentError("free_polygon_rings add up to " +
-                                std::to_string(Sum(tile.free_polygon_rings())) + " rings but " +
-                                std::to_string(tile.free_ring_sizes().size()) + " are given");
+Status DecodeObstacles(VarintReader& in, VertexReader& vertices, double half_width_step,
+                       vector_map::VectorMap* map) {
+  FLEETMAP_ASSIGN_OR_RETURN(const uint32_t polylines,
+                            ReadCount(in, kMinPolylineBytes, "the polyline count"));
+  map->obstacles.reserve(polylines);
+  for (uint32_t k = 0; k < polylines; ++k) {
+    FLEETMAP_ASSIGN_OR_RETURN(const uint64_t header, in.Unsigned("a polyline's vertex count"));
+    const uint64_t n = (header >> 1) + 2;
+    Polyline polyline;
+    polyline.closed = (header & 1) != 0;
+    if (polyline.closed && n < 3) {
+      return InvalidArgumentError("polyline " + std::to_string(k) +
+                                  " is closed with 2 vertices (a closed one has at least 3)");
+    }
+    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width, in.Byte("a polyline's half width"));
+    polyline.half_width = half_width * half_width_step;
+    if (n > in.remaining() / kMinVertexBytes) {
+      return InvalidArgumentError("polyline " + std::to_string(k) + " has " + std::to_string(n) +
+                                  " vertices, more than the " + std::to_string(in.remaining()) +
+                                  " bytes left can hold");
+    }
+    polyline.points.reserve(static_cast<size_t>(n));
+    for (uint64_t i = 0; i < n; ++i) {
+      FLEETMAP_ASSIGN_OR_RETURN(Point2 point, vertices.Read());
+      polyline.points.push_back(point);
+    }
+    map->obstacles.push_back(std::move(polyline));
   }
-  for (const uint16_t rings : tile.free_polygon_rings()) {
-    if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
+  FLEETMAP_ASSIGN_OR_RETURN(const uint32_t points,
+                            ReadCount(in, kMinPointBytes, "the point obstacle count"));
+  map->obstacles.reserve(polylines + points);
+  for (uint32_t k = 0; k < points; ++k) {
+    Polyline point;
+    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width, in.Byte("a point's half width"));
+    point.half_width = half_width * half_width_step;
+    FLEETMAP_ASSIGN_OR_RETURN(Point2 where, vertices.Read());
+    point.points.push_back(where);
+    map->obstacles.push_back(std::move(point));
   }
-  for (const uint16_t size : tile.free_ring_sizes()) {
+  return Status::Ok();
+}
+
+Status DecodeFreeSpace(VarintReader& in, VertexReader& vertices, vector_map::VectorMap* map) {
+  FLEETMAP_ASSIGN_OR_RETURN(const uint32_t polygons,
+                            ReadCount(in, kMinPolygonBytes, "the free polygon count"));
+  map->free_space.reserve(polygons);
+  const auto read_ring = [&](std::vector<Point2>* ring) -> Status {
+    FLEETMAP_ASSIGN_OR_RETURN(const uint32_t size,
+                              ReadCount(in, kMinVertexBytes, "a free ring's vertex count"));
     if (size == 0) return InvalidArgumentError("a free ring has no vertex");
+    ring->reserve(size);
+    for (uint32_t i = 0; i < size; ++i) {
+      FLEETMAP_ASSIGN_OR_RETURN(Point2 point, vertices.Read());
+      ring->push_back(point);
+    }
+    return Status::Ok();
+  };
+  for (uint32_t k = 0; k < polygons; ++k) {
+    FLEETMAP_ASSIGN_OR_RETURN(const uint32_t rings,
+                              ReadCount(in, kMinRingBytes, "a free polygon's ring count"));
+    if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
+    FreePolygon polygon;
+    FLEETMAP_RETURN_IF_ERROR(read_ring(&polygon.outer));
+    polygon.holes.resize(rings - 1);
+    for (auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(read_ring(&hole));
+    map->free_space.push_back(std::move(polygon));
   }
-  if (Sum(tile.free_ring_sizes()) != tile.free_x().size()) {
-    return InvalidArgumentError("free_ring_sizes add up to " +
-                                std::to_string(Sum(tile.free_ring_sizes())) + " vertices but " +
-                                std::to_string(tile.free_x().size()) + " are given");
-  }
-  FLEETMAP_RETURN_IF_ERROR(CheckInsideTile(tile.free_x(), "free_x"));
-  return CheckInsideTile(tile.free_y(), "free_y");
+  return Status::Ok();
 }
 
-// Everything a tile must satisfy, on the way out and on the way in.
-Status CheckTile(const VectorTile_& tile) {
+Status CheckHeader(const VectorTile_& tile) {
   if (tile.layout_version() != kTileLayoutVersion) {
+    const std::string older =
+        tile.layout_version() == kOldLayoutMark ? " (layouts 3 and 4 read so)" : "";
     return InvalidArgumentError(
-        "layout_version is " + std::to_string(tile.layout_version()) + ", this fleetmap reads " +
-        std::to_string(kTileLayoutVersion) +
-        ": the tile comes from another fleetmap version (3 and older had no such field); agents "
-        "and server must run the same version");
+        "layout_version is " + std::to_string(tile.layout_version()) + older +
+        ", this fleetmap reads " + std::to_string(kTileLayoutVersion) +
+        ": the tile comes from another fleetmap version; agents and server must run the same "
+        "version");
   }
-  if (!std::isfinite(tile.tile_size()) || tile.tile_size() <= 0.0) {
-    return InvalidArgumentError("tile_size " + std::to_string(tile.tile_size()) +
-                                " is not a positive number");
+  if (tile.compression() != kPlain && tile.compression() != kZstd) {
+    return InvalidArgumentError("compression " + std::to_string(tile.compression()) +
+                                " is neither 0 (plain) nor 1 (zstd)");
   }
-  const double expected_quantum = vector_map::TileQuantum(tile.tile_size());
-  if (!(std::abs(tile.quantum() - expected_quantum) <= 1e-12 * tile.tile_size())) {
-    return InvalidArgumentError("quantum " + std::to_string(tile.quantum()) +
-                                " m is not tile_size / " +
-                                std::to_string(vector_map::kTileQuantaPerSide));
+  if (tile.tile_size_mm() == 0) return InvalidArgumentError("tile_size_mm is 0");
+  const double quantum = tile.quantum();
+  FLEETMAP_RETURN_IF_ERROR(CheckQuantum(quantum, tile.tile_size_mm() / 1000.0));
+  for (const double origin : {tile.lattice_x(), tile.lattice_y()}) {
+    if (!(origin >= 0.0) || !(origin < quantum)) {
+      return InvalidArgumentError("lattice origin " + std::to_string(origin) +
+                                  " m is not within [0, quantum " + std::to_string(quantum) +
+                                  " m)");
+    }
   }
   if (!std::isfinite(tile.epsilon()) || tile.epsilon() <= 0.0f) {
     return InvalidArgumentError("epsilon " + std::to_string(tile.epsilon()) +
@@ -188,164 +348,73 @@ Status CheckTile(const VectorTile_& tile) {
     return InvalidArgumentError("resolution " + std::to_string(tile.resolution()) +
                                 " is not a positive distance");
   }
-  FLEETMAP_RETURN_IF_ERROR(CheckObstacleCounts(tile));
-  return CheckFreeCounts(tile);
-}
-
-// One polyline of two or more vertices. A closed one is written with its first vertex repeated at
-// its end (its closing segment; fewer than three vertices have none). More than kMaxWirePolyline
-// vertices are written as open pieces of at most kMaxWirePolyline, each starting at the last
-// vertex of the one before, so the pieces have exactly the polyline's segments.
-Status AppendPolyline(const Polyline& polyline, uint8_t half_width, const TileQuantiser& quantiser,
-                      VectorTile_* out) {
-  const std::vector<Point2>& points = polyline.points;
-  const size_t n = points.size();
-  const size_t total = polyline.closed && n >= 3 ? n + 1 : n;
-  size_t start = 0;
-  while (true) {
-    const size_t end = std::min(total, start + kMaxWirePolyline);
-    out->obstacle_sizes().push_back(static_cast<uint8_t>(end - start));
-    out->obstacle_half_widths().push_back(half_width);
-    for (size_t i = start; i < end; ++i) {
-      FLEETMAP_RETURN_IF_ERROR(
-          quantiser.Append(points[i % n], &out->obstacle_x(), &out->obstacle_y()));
-    }
-    if (end == total) return Status::Ok();
-    start = end - 1;
-  }
-}
-
-Status AppendFreePolygon(const FreePolygon& polygon, const TileQuantiser& quantiser,
-                         VectorTile_* out) {
-  if (polygon.holes.size() + 1 > kMaxWireCount) {
-    return InvalidArgumentError("a free polygon has " + std::to_string(polygon.holes.size()) +
-                                " holes, more than the " + std::to_string(kMaxWireCount - 1) +
-                                " a tile can carry");
-  }
-  out->free_polygon_rings().push_back(static_cast<uint16_t>(1 + polygon.holes.size()));
-  const auto append_ring = [&](const std::vector<Point2>& ring) -> Status {
-    // A ring cannot be cut into pieces without changing the area it bounds.
-    if (ring.size() > kMaxWireCount) {
-      return InvalidArgumentError("a free ring has " + std::to_string(ring.size()) +
-                                  " vertices, more than the " + std::to_string(kMaxWireCount) +
-                                  " a tile can carry");
-    }
-    out->free_ring_sizes().push_back(static_cast<uint16_t>(ring.size()));
-    for (const Point2& point : ring) {
-      FLEETMAP_RETURN_IF_ERROR(quantiser.Append(point, &out->free_x(), &out->free_y()));
-    }
-    return Status::Ok();
-  };
-  FLEETMAP_RETURN_IF_ERROR(append_ring(polygon.outer));
-  for (const auto& hole : polygon.holes) FLEETMAP_RETURN_IF_ERROR(append_ring(hole));
   return Status::Ok();
-}
-
-bool AllZero(const std::vector<uint8_t>& values) {
-  return std::all_of(values.begin(), values.end(), [](uint8_t value) { return value == 0; });
 }
 
 }  // namespace
 
 StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
-  if (!std::isfinite(message.tile_size) || message.tile_size <= 0.0) {
-    return InvalidArgumentError("tile_size " + std::to_string(message.tile_size) +
-                                " is not a positive number");
-  }
-  const TileQuantiser quantiser(message.tile, message.tile_size);
+  FLEETMAP_ASSIGN_OR_RETURN(const uint32_t tile_size_mm, TileSizeMillimetres(message.tile_size));
+  FLEETMAP_ASSIGN_OR_RETURN(const TileLattice lattice, EncodingLattice(message));
+  FLEETMAP_ASSIGN_OR_RETURN(std::vector<uint8_t> geometry, EncodeGeometry(message.map, lattice));
   VectorTile_ out;
   out.robot_id(message.robot_id.value);
   out.tile_x(message.tile.x);
   out.tile_y(message.tile.y);
   out.stamp(ToIdl(message.stamp));
-  out.frame_id(message.map.frame_id);
-  out.revision(message.revision);
   out.layout_version(kTileLayoutVersion);
-  out.tile_size(message.tile_size);
-  out.quantum(quantiser.quantum());
+  out.revision(message.revision);
+  out.tile_size_mm(tile_size_mm);
+  out.quantum(lattice.quantum());
+  out.lattice_x(lattice.origin().x());
+  out.lattice_y(lattice.origin().y());
   out.epsilon(static_cast<float>(message.map.epsilon));
   out.resolution(static_cast<float>(message.map.resolution));
-  for (const Polyline& polyline : message.map.obstacles) {
-    if (polyline.points.empty()) continue;
-    FLEETMAP_ASSIGN_OR_RETURN(const uint8_t half_width,
-                              HalfWidthSteps(polyline.half_width, message.map.epsilon));
-    if (polyline.points.size() == 1) {
-      FLEETMAP_RETURN_IF_ERROR(
-          quantiser.Append(polyline.points[0], &out.point_x(), &out.point_y()));
-      out.point_half_widths().push_back(half_width);
-    } else {
-      FLEETMAP_RETURN_IF_ERROR(AppendPolyline(polyline, half_width, quantiser, &out));
-    }
+  if (geometry.size() > kMaxGeometryBytes) {
+    return InvalidArgumentError("the tile's geometry takes " + std::to_string(geometry.size()) +
+                                " bytes, more than the " + std::to_string(kMaxGeometryBytes) +
+                                " a tile may carry");
   }
-  // All zero (the paper's method, or no half widths measured) is said with an empty array.
-  if (AllZero(out.obstacle_half_widths())) out.obstacle_half_widths().clear();
-  if (AllZero(out.point_half_widths())) out.point_half_widths().clear();
-  for (const FreePolygon& polygon : message.map.free_space) {
-    FLEETMAP_RETURN_IF_ERROR(AppendFreePolygon(polygon, quantiser, &out));
-  }
+  std::vector<uint8_t> compressed = ZstdCompress(geometry, kZstdLevel);
+  const bool smaller = !compressed.empty() && compressed.size() < geometry.size();
+  out.compression(smaller ? kZstd : kPlain);
+  out.geometry(smaller ? std::move(compressed) : std::move(geometry));
   // Refuse here whatever FromIdl would refuse on the other side.
-  FLEETMAP_RETURN_IF_ERROR(CheckTile(out));
+  FLEETMAP_RETURN_IF_ERROR(CheckHeader(out));
   return out;
 }
 
 StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
-  FLEETMAP_RETURN_IF_ERROR(CheckTile(tile));
-
+  FLEETMAP_RETURN_IF_ERROR(CheckHeader(tile));
   VectorTileMessage out;
   out.robot_id = RobotId{tile.robot_id()};
   out.tile = TileId{tile.tile_x(), tile.tile_y()};
   out.revision = tile.revision();
   out.stamp = FromIdl(tile.stamp());
-  out.tile_size = tile.tile_size();
-  out.map.frame_id = tile.frame_id();
+  out.tile_size = tile.tile_size_mm() / 1000.0;
+  out.map.frame_id = "fleet";
   out.map.epsilon = tile.epsilon();
   out.map.resolution = tile.resolution();
-  const TileQuantiser quantiser(out.tile, out.tile_size);
-  const double half_width_step = vector_map::HalfWidthStep(out.map.epsilon);
-  const auto& xs = tile.obstacle_x();
-  const auto& ys = tile.obstacle_y();
-  out.map.obstacles.reserve(tile.obstacle_sizes().size() + tile.point_x().size());
-  size_t vertex = 0;
-  for (size_t k = 0; k < tile.obstacle_sizes().size(); ++k) {
-    const size_t n = tile.obstacle_sizes()[k];
-    const size_t last = vertex + n - 1;
-    Polyline polyline;
-    // The LinearRing convention: a repeated first vertex closes the polyline.
-    polyline.closed = n >= 4 && xs[vertex] == xs[last] && ys[vertex] == ys[last];
-    polyline.half_width = tile.obstacle_half_widths().empty()
-                              ? 0.0
-                              : tile.obstacle_half_widths()[k] * half_width_step;
-    const size_t kept = polyline.closed ? n - 1 : n;
-    polyline.points.reserve(kept);
-    for (size_t i = 0; i < kept; ++i) {
-      polyline.points.push_back(quantiser.Decode(xs[vertex + i], ys[vertex + i]));
-    }
-    vertex += n;
-    out.map.obstacles.push_back(std::move(polyline));
+  const TileLattice lattice(out.tile, out.tile_size, tile.quantum(),
+                            Point2(tile.lattice_x(), tile.lattice_y()));
+  out.map.lattice = {lattice.quantum(), lattice.origin()};
+
+  std::vector<uint8_t> decompressed;
+  if (tile.compression() == kZstd) {
+    FLEETMAP_ASSIGN_OR_RETURN(decompressed,
+                              ZstdDecompress(tile.geometry(), kMaxGeometryBytes, "the geometry"));
   }
-  for (size_t i = 0; i < tile.point_x().size(); ++i) {
-    Polyline point;
-    point.points.push_back(quantiser.Decode(tile.point_x()[i], tile.point_y()[i]));
-    point.half_width =
-        tile.point_half_widths().empty() ? 0.0 : tile.point_half_widths()[i] * half_width_step;
-    out.map.obstacles.push_back(std::move(point));
-  }
-  size_t ring = 0;
-  vertex = 0;
-  const auto read_ring = [&]() {
-    std::vector<Point2> points;
-    points.reserve(tile.free_ring_sizes()[ring]);
-    for (uint16_t i = 0; i < tile.free_ring_sizes()[ring]; ++i, ++vertex) {
-      points.push_back(quantiser.Decode(tile.free_x()[vertex], tile.free_y()[vertex]));
-    }
-    ++ring;
-    return points;
-  };
-  for (const uint16_t rings : tile.free_polygon_rings()) {
-    FreePolygon polygon;
-    polygon.outer = read_ring();
-    for (uint16_t h = 1; h < rings; ++h) polygon.holes.push_back(read_ring());
-    out.map.free_space.push_back(std::move(polygon));
+  const std::vector<uint8_t>& geometry =
+      tile.compression() == kZstd ? decompressed : tile.geometry();
+  VarintReader in(
+      std::string_view(reinterpret_cast<const char*>(geometry.data()), geometry.size()));
+  VertexReader vertices(lattice, &in);
+  FLEETMAP_RETURN_IF_ERROR(
+      DecodeObstacles(in, vertices, vector_map::HalfWidthStep(out.map.epsilon), &out.map));
+  FLEETMAP_RETURN_IF_ERROR(DecodeFreeSpace(in, vertices, &out.map));
+  if (in.remaining() != 0) {
+    return InvalidArgumentError("the geometry has " + std::to_string(in.remaining()) +
+                                " bytes after its last polygon");
   }
   return out;
 }

@@ -62,8 +62,8 @@ TEST(TilePublisherTest, BandwidthBudgetDefersTilesAndCoarsensEpsilon) {
   auto participant = LoopbackParticipant();
   ASSERT_NE(participant, nullptr);
   TilePublisherOptions options;
-  // 200 bytes per second, 400 banked at most: less than any tile here (about 240 bytes each).
-  options.max_kbps = 1.6;
+  // 50 bytes per second, 100 banked at most: less than any tile here (about 150 bytes each).
+  options.max_kbps = 0.4;
   auto publisher = TilePublisher::Create(*participant, RobotId{"alpha"}, Pose2{}, options);
   ASSERT_TRUE(publisher.ok()) << publisher.status();
   ASSERT_TRUE((*publisher)->Update(Rooms()).ok());
@@ -89,8 +89,8 @@ TEST(TilePublisherTest, BandwidthBudgetDefersTilesAndCoarsensEpsilon) {
     EXPECT_LE(sent, 1u) << "second " << s;
     flushes_with_a_tile += sent > 0 ? 1 : 0;
   }
-  // Draining took at least as long as the bytes need at 200 B/s, less the 400-byte bank.
-  EXPECT_GE(200.0 * s + 400.0, static_cast<double>((*publisher)->bytes_published() - first_second));
+  // Draining took at least as long as the bytes need at 50 B/s, less the 100-byte bank.
+  EXPECT_GE(50.0 * s + 100.0, static_cast<double>((*publisher)->bytes_published() - first_second));
   EXPECT_GT(flushes_with_a_tile, 1);
   EXPECT_EQ((*publisher)->pending_tiles(), 0u);
   EXPECT_EQ((*publisher)->tiles_published(), 6u);

@@ -66,38 +66,22 @@ TEST(IdlShapesTest, RobotStatusShapeMatchesGeneratedCode) {
 
 TEST(IdlShapesTest, VectorMapShapeMatchesGeneratedCode) {
   fleetmap_msgs::msg::dds_::VectorTile_ tile;
-  tile.robot_id("ab");
-  tile.frame_id("fleet");
-  // Odd lengths everywhere, so the padding before each sequence length is exercised.
-  tile.obstacle_sizes({3});
-  tile.obstacle_half_widths({3});
-  tile.obstacle_x({1, 2, 3});
-  tile.obstacle_y({4, 5, 6});
-  tile.point_x({7});
-  tile.point_y({8});
-  tile.point_half_widths({41});
-  tile.free_polygon_rings({1});
-  tile.free_ring_sizes({3});
-  tile.free_x({0, 9, 9});
-  tile.free_y({0, 0, 9});
+  tile.robot_id("ab");  // an odd length, so the padding before the float64 quantum is exercised
+  tile.geometry({1, 2, 3});
   fleetmap_msgs::msg::dds_::VectorMap_ map;
-  map.format("fleetmap-vmap/4");
+  map.format("fleetmap-vmap/5");
   map.frame_id("fleet");
   map.tiles({tile, tile});
   ExpectShapeMatches(tile, VectorTileShape());
   ExpectShapeMatches(map, VectorMapShape());
-  // Empty arrays, as a tile of free space only has them.
+  // An empty geometry and robot id, as in a .vmap file.
   fleetmap_msgs::msg::dds_::VectorTile_ empty;
-  empty.free_polygon_rings({1});
-  empty.free_ring_sizes({1});
-  empty.free_x({5});
-  empty.free_y({5});
   ExpectShapeMatches(empty, VectorTileShape());
 }
 
 TEST(IdlShapesTest, VmapFormatShapeIsTheFirstFieldOfAVectorMap) {
   fleetmap_msgs::msg::dds_::VectorMap_ map;
-  map.format("fleetmap-vmap/4");
+  map.format("fleetmap-vmap/5");
   map.frame_id("fleet");
   const std::string bytes = Serialize(map, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS);
   const std::span<const uint8_t> payload(reinterpret_cast<const uint8_t*>(bytes.data()),

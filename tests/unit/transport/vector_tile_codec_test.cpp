@@ -1,4 +1,5 @@
-// The VectorTile codec (layout in docs/file-formats.md).
+// The VectorTile codec, layout 5 (docs/file-formats.md): round trips, seams, the varint edges,
+// compression, and a decoder that refuses every kind of malformed tile without crashing.
 
 #include "common/transport/internal/vector_tile_codec.hpp"
 
@@ -11,7 +12,7 @@
 #include <limits>
 #include <random>
 
-#include "common/vector_map/rasterizer.hpp"
+#include "common/transport/internal/zstd_frame.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 #include "tests/unit/vector_map/test_grids.hpp"
 
@@ -21,21 +22,20 @@ namespace {
 using ::testing::HasSubstr;
 using vector_map::FreePolygon;
 using vector_map::Polyline;
-using vector_map::TileQuantum;
 using VectorTileIdl = fleetmap_msgs::msg::dds_::VectorTile_;
 
 constexpr double kTileSize = 10.0;
+constexpr double kQuantum = 0.025;  // half a 5 cm cell
 const TileId kTile{1, -2};
+const Point2 kLatticeOrigin{0.0125, 0.005};  // within [0, kQuantum)
 
-// The point (i, j) quanta from kTile's corner, computed as the decoder does: on the lattice, as
-// the vectorizer makes them.
-Point2 At(int i, int j) {
-  const double q = TileQuantum(kTileSize);
-  constexpr double n = vector_map::kTileQuantaPerSide;
-  return {(kTile.x * n + i) * q, (kTile.y * n + j) * q};
+// The lattice point (i, j) steps from kTile's corner, computed as the decoder does.
+Point2 At(int64_t i, int64_t j) {
+  return {static_cast<double>(kTile.x * 400 + i) * kQuantum + kLatticeOrigin.x(),
+          static_cast<double>(kTile.y * 400 + j) * kQuantum + kLatticeOrigin.y()};
 }
 
-// Whole half-width steps of the tiles' epsilon, as the vectorizer makes half widths on the lattice.
+// Whole half-width steps of the tiles' epsilon, as the vectorizer makes half widths.
 double Steps(int n) { return n * vector_map::HalfWidthStep(0.0707); }
 
 VectorTileMessage TileWith(std::vector<Polyline> obstacles, std::vector<FreePolygon> free = {}) {
@@ -46,6 +46,7 @@ VectorTileMessage TileWith(std::vector<Polyline> obstacles, std::vector<FreePoly
   message.map.frame_id = "fleet";
   message.map.resolution = 0.05;
   message.map.epsilon = 0.0707;
+  message.map.lattice = {kQuantum, kLatticeOrigin};
   message.map.obstacles = std::move(obstacles);
   message.map.free_space = std::move(free);
   return message;
@@ -57,10 +58,10 @@ VectorTileIdl Encoded(const VectorTileMessage& message) {
   return idl.ok() ? *std::move(idl) : VectorTileIdl();
 }
 
-std::vector<Polyline> Decoded(const VectorTileIdl& idl) {
+vector_map::VectorMap Decoded(const VectorTileIdl& idl) {
   StatusOr<VectorTileMessage> back = FromIdl(idl);
   EXPECT_TRUE(back.ok()) << back.status();
-  return back.ok() ? back->map.obstacles : std::vector<Polyline>();
+  return back.ok() ? back->map : vector_map::VectorMap();
 }
 
 // The order FromIdl gives obstacles back in: polylines, then point obstacles, each as given.
@@ -70,348 +71,314 @@ std::vector<Polyline> WireOrder(std::vector<Polyline> obstacles) {
   return obstacles;
 }
 
-// The cells a map paints over a 20 x 20 m grid around kTile.
-grid::OccupancyGrid Painted(const std::vector<Polyline>& obstacles) {
-  vector_map::VectorMap map;
-  map.epsilon = 0.0707;
-  map.obstacles = obstacles;
-  const Pose2 origin{kTile.x * kTileSize - 5.0, kTile.y * kTileSize - 5.0, 0.0};
-  StatusOr<grid::OccupancyGrid> cells =
-      vector_map::Rasterizer().Rasterize(map, 400, 400, 0.05, origin);
-  EXPECT_TRUE(cells.ok()) << cells.status();
-  return cells.ok() ? *std::move(cells) : grid::OccupancyGrid();
+// The plain geometry bytes of a tile (decompressed if need be).
+std::vector<uint8_t> PlainGeometry(const VectorTileIdl& idl) {
+  if (idl.compression() == 0) return idl.geometry();
+  StatusOr<std::vector<uint8_t>> plain = ZstdDecompress(idl.geometry(), 1 << 22, "geometry");
+  EXPECT_TRUE(plain.ok()) << plain.status();
+  return plain.ok() ? *plain : std::vector<uint8_t>();
 }
 
-TEST(VectorTileCodecTest, PointObstaclesTravelInThePointArrays) {
-  const Polyline line{{At(0, 0), At(100, 0)}, false, 0.0};
+// A tile whose geometry is `bytes` as they are, uncompressed.
+VectorTileIdl WithGeometry(std::vector<uint8_t> bytes) {
+  VectorTileIdl idl = Encoded(TileWith({}));
+  idl.compression(0);
+  idl.geometry(std::move(bytes));
+  return idl;
+}
+
+void ExpectSamePoints(const std::vector<Point2>& got, const std::vector<Point2>& sent,
+                      const std::string& where) {
+  ASSERT_EQ(got.size(), sent.size()) << where;
+  for (size_t i = 0; i < sent.size(); ++i) {
+    EXPECT_NEAR(got[i].x(), sent[i].x(), 1e-9) << where << " vertex " << i;
+    EXPECT_NEAR(got[i].y(), sent[i].y(), 1e-9) << where << " vertex " << i;
+  }
+}
+
+// Every vertex, half width and ring of `sent` comes back from the wire (to float noise).
+void ExpectSameMap(const vector_map::VectorMap& got, const vector_map::VectorMap& sent,
+                   const std::string& where) {
+  const std::vector<Polyline> expected = WireOrder(sent.obstacles);
+  ASSERT_EQ(got.obstacles.size(), expected.size()) << where;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    const std::string which = where + " obstacle " + std::to_string(k);
+    ExpectSamePoints(got.obstacles[k].points, expected[k].points, which);
+    EXPECT_EQ(got.obstacles[k].closed, expected[k].closed && expected[k].points.size() >= 3)
+        << which;
+    EXPECT_EQ(got.obstacles[k].half_width, expected[k].half_width) << which;
+  }
+  ASSERT_EQ(got.free_space.size(), sent.free_space.size()) << where;
+  for (size_t k = 0; k < sent.free_space.size(); ++k) {
+    const std::string which = where + " polygon " + std::to_string(k);
+    ExpectSamePoints(got.free_space[k].outer, sent.free_space[k].outer, which);
+    ASSERT_EQ(got.free_space[k].holes.size(), sent.free_space[k].holes.size()) << which;
+    for (size_t h = 0; h < sent.free_space[k].holes.size(); ++h) {
+      ExpectSamePoints(got.free_space[k].holes[h], sent.free_space[k].holes[h], which);
+    }
+  }
+}
+
+TEST(VectorTileCodecTest, EveryKindOfElementRoundTripsOnTheLattice) {
+  const Polyline wall{{At(0, 0), At(100, 0), At(100, 37)}, false, Steps(120)};
+  const Polyline room{{At(10, 10), At(20, 10), At(20, 20), At(10, 20)}, true, 0.0};
   const Polyline speck{{At(7, 8)}, false, 0.0};
   const Polyline fat_speck{{At(9, 10)}, false, Steps(41)};
-  const Polyline ring{{At(10, 10), At(20, 10), At(20, 20)}, true, 0.0};
-  const VectorTileIdl idl = Encoded(TileWith({line, speck, ring, fat_speck}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{2, 4}));
-  EXPECT_TRUE(idl.obstacle_half_widths().empty());  // all 0
-  EXPECT_EQ(idl.point_x(), (std::vector<int16_t>{7, 9}));
-  EXPECT_EQ(idl.point_y(), (std::vector<int16_t>{8, 10}));
-  EXPECT_EQ(idl.point_half_widths(), (std::vector<uint8_t>{0, 41}));
-  // Exactly what went in: points come back as one-vertex open polylines, after the others.
-  EXPECT_EQ(Decoded(idl), (std::vector<Polyline>{line, ring, speck, fat_speck}));
+  const FreePolygon free{{At(0, 0), At(400, 0), At(400, 400), At(0, 400)},
+                         {{At(50, 50), At(60, 50), At(60, 60)}, {At(200, 200)}}};
+  const VectorTileMessage message = TileWith({wall, speck, room, fat_speck}, {free});
+  const VectorTileIdl idl = Encoded(message);
+  EXPECT_EQ(idl.layout_version(), 5);
+  EXPECT_EQ(idl.tile_size_mm(), 10000u);
+  EXPECT_EQ(idl.quantum(), kQuantum);
+  EXPECT_EQ(idl.lattice_x(), kLatticeOrigin.x());
+  const StatusOr<VectorTileMessage> back = FromIdl(idl);
+  ASSERT_TRUE(back.ok()) << back.status();
+  ExpectSameMap(back->map, message.map, "tile");
+  EXPECT_EQ(back->map.obstacles[1].closed, true);
+  EXPECT_EQ(back->tile_size, kTileSize);
+  EXPECT_EQ(back->robot_id.value, "alpha");
+  EXPECT_EQ(back->map.lattice.quantum, kQuantum);
+  EXPECT_NEAR(back->map.lattice.origin.x(), kLatticeOrigin.x(), 1e-9);
+}
+
+TEST(VectorTileCodecTest, AnEmptyTileIsThreeBytesOfGeometry) {
+  const VectorTileIdl idl = Encoded(TileWith({}));
+  EXPECT_EQ(idl.compression(), 0);
+  EXPECT_EQ(idl.geometry(), (std::vector<uint8_t>{0, 0, 0}));
+  const vector_map::VectorMap back = Decoded(idl);
+  EXPECT_TRUE(back.obstacles.empty());
+  EXPECT_TRUE(back.free_space.empty());
+}
+
+TEST(VectorTileCodecTest, AStepCostsOneByteUpTo63AndTwoAcrossTheTile) {
+  // The second vertex's x step alone (zigzag: 63 -> 126, one byte; 64 -> 128, two; -64 -> 127,
+  // one); a 10 m tile of 5 cm cells is 400 steps, so no step inside it takes three bytes.
+  const auto x_step_bytes = [](int step) {
+    const int from = step > 0 ? 0 : 400;
+    const VectorTileMessage message =
+        TileWith({Polyline{{At(from, 200), At(from + step, 200)}, false, 0.0}});
+    const VectorTileIdl idl = Encoded(message);
+    EXPECT_EQ(idl.compression(), 0);
+    ExpectSameMap(Decoded(idl), message.map, "step " + std::to_string(step));
+    return static_cast<int>(idl.geometry().size());
+  };
+  const int one_byte = x_step_bytes(1);
+  EXPECT_EQ(x_step_bytes(63), one_byte);
+  EXPECT_EQ(x_step_bytes(64), one_byte + 1);
+  EXPECT_EQ(x_step_bytes(-64), x_step_bytes(-1));
+  EXPECT_EQ(x_step_bytes(-65), x_step_bytes(-1) + 1);
+  EXPECT_EQ(x_step_bytes(400), one_byte + 1);
+  EXPECT_EQ(x_step_bytes(-400), x_step_bytes(-1) + 1);
+}
+
+TEST(VectorTileCodecTest, VerticesOnSharedBordersDecodeToTheSamePointFromBothTiles) {
+  // Tiles (1, -2) and (2, -2) share the border x = 20 m (+ origin); (1, -1) shares y = -10 m.
+  const Point2 east = At(400, 123);
+  const Point2 north = At(321, 400);
+  const Point2 corner = At(400, 400);
+  VectorTileMessage west_tile = TileWith({Polyline{{At(0, 0), east, corner, north}, false, 0.0}});
+  VectorTileMessage east_tile = TileWith({Polyline{{east, corner, At(700, 300)}, false, 0.0}});
+  east_tile.tile = {kTile.x + 1, kTile.y};
+  VectorTileMessage north_tile = TileWith({Polyline{{north, corner, At(350, 700)}, false, 0.0}});
+  north_tile.tile = {kTile.x, kTile.y + 1};
+  // All four borders of one tile carry vertices, and a vertex on each corner.
+  VectorTileMessage all_borders = TileWith({Polyline{
+      {At(0, 0), At(400, 0), At(400, 400), At(0, 400), At(0, 17), At(17, 0)}, true, 0.0}});
+  const vector_map::VectorMap west = Decoded(Encoded(west_tile));
+  const vector_map::VectorMap east_back = Decoded(Encoded(east_tile));
+  const vector_map::VectorMap north_back = Decoded(Encoded(north_tile));
+  ASSERT_EQ(west.obstacles.size(), 1u);
+  ASSERT_EQ(east_back.obstacles.size(), 1u);
+  ASSERT_EQ(north_back.obstacles.size(), 1u);
+  // Bit for bit, not just close.
+  EXPECT_EQ(west.obstacles[0].points[1], east_back.obstacles[0].points[0]);
+  EXPECT_EQ(west.obstacles[0].points[2], east_back.obstacles[0].points[1]);
+  EXPECT_EQ(west.obstacles[0].points[3], north_back.obstacles[0].points[0]);
+  EXPECT_EQ(west.obstacles[0].points[2], north_back.obstacles[0].points[1]);
+  ExpectSameMap(Decoded(Encoded(all_borders)), all_borders.map, "all borders");
+}
+
+TEST(VectorTileCodecTest, TheLongestPolylineTravelsWhole) {
+  // A ragged wall along the whole tile and back, 20 000 vertices: one polyline, no pieces.
+  Polyline wall;
+  for (int i = 0; i < 20000; ++i) wall.points.push_back(At((i * 7) % 400, (i / 57) % 400));
+  const VectorTileMessage message = TileWith({wall});
+  const vector_map::VectorMap back = Decoded(Encoded(message));
+  ExpectSameMap(back, message.map, "long wall");
+}
+
+TEST(VectorTileCodecTest, GeometryIsCompressedOnlyWhenThatIsSmaller) {
+  std::vector<Polyline> walls;
+  for (int i = 0; i < 200; ++i) {
+    walls.push_back(Polyline{{At(10, i), At(20, i), At(30, i + 1)}, false, Steps(50)});
+  }
+  const VectorTileMessage repetitive = TileWith(walls);
+  const VectorTileIdl compressed = Encoded(repetitive);
+  EXPECT_EQ(compressed.compression(), 1);
+  EXPECT_LT(compressed.geometry().size(), PlainGeometry(compressed).size());
+  ExpectSameMap(Decoded(compressed), repetitive.map, "compressed");
+  const VectorTileIdl small = Encoded(TileWith({Polyline{{At(1, 1), At(5, 3)}, false, 0.0}}));
+  EXPECT_EQ(small.compression(), 0);
+}
+
+TEST(VectorTileCodecTest, AMapWithoutLatticeIsSentOnHalfCellStepsFromTheFleetOrigin) {
+  VectorTileMessage message = TileWith({Polyline{{{10.012, -19.99}, {11.0, -19.0}}, false, 0.0}});
+  message.map.lattice = {};
+  const VectorTileIdl idl = Encoded(message);
+  EXPECT_EQ(idl.quantum(), 0.025);
+  EXPECT_EQ(idl.lattice_x(), 0.0);
+  const vector_map::VectorMap back = Decoded(idl);
+  ASSERT_EQ(back.obstacles.size(), 1u);
+  EXPECT_NEAR(back.obstacles[0].points[0].x(), 10.0, 1e-12);  // rounded onto the lattice
+  EXPECT_NEAR(back.obstacles[0].points[0].y(), -20.0, 1e-12);
 }
 
 TEST(VectorTileCodecTest, HalfWidthsTravelAsStepsOfEpsilonAndEpsilonAlwaysFits) {
-  // The tile carries epsilon as a float; 254 steps of it make epsilon, so a half width of exactly
-  // the (double) epsilon still fits in 255 steps whichever way the float rounded.
   for (const double epsilon : {0.0707, 0.07071067811865477, 0.1414213562373095, 0.0353553, 0.3}) {
     VectorTileMessage message = TileWith({Polyline{{At(0, 0), At(100, 0)}, false, epsilon}});
     message.map.epsilon = epsilon;
-    const VectorTileIdl idl = Encoded(message);
-    ASSERT_EQ(idl.obstacle_half_widths().size(), 1u);
-    EXPECT_GE(idl.obstacle_half_widths()[0], vector_map::kHalfWidthStepsPerEpsilon);
-    const std::vector<Polyline> back = Decoded(idl);
-    ASSERT_EQ(back.size(), 1u);
-    EXPECT_GE(back[0].half_width, epsilon) << epsilon;
-    EXPECT_LT(back[0].half_width, epsilon * 1.005) << epsilon;
-    // Beyond epsilon is not a half width the constraints allow: refused, naming both.
+    const vector_map::VectorMap back = Decoded(Encoded(message));
+    ASSERT_EQ(back.obstacles.size(), 1u);
+    EXPECT_GE(back.obstacles[0].half_width, epsilon) << epsilon;
+    EXPECT_LT(back.obstacles[0].half_width, epsilon * 1.005) << epsilon;
     message.map.obstacles[0].half_width = epsilon * 1.01;
     EXPECT_THAT(ToIdl(message).status().message(), HasSubstr("is not within epsilon"));
   }
 }
 
-TEST(VectorTileCodecTest, ClosedPolylinesRepeatTheirFirstVertex) {
-  const Polyline triangle{{At(10, 10), At(20, 10), At(20, 20)}, true, Steps(3)};
-  const Polyline open_triangle{{At(10, 10), At(20, 10), At(20, 20)}, false, Steps(3)};
-  const VectorTileIdl idl = Encoded(TileWith({triangle, open_triangle}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{4, 3}));
-  EXPECT_EQ(idl.obstacle_x(), (std::vector<int16_t>{10, 20, 20, 10, 10, 20, 20}));
-  EXPECT_EQ(idl.obstacle_y(), (std::vector<int16_t>{10, 10, 20, 10, 10, 10, 20}));
-  EXPECT_EQ(idl.obstacle_half_widths(), (std::vector<uint8_t>{3, 3}));
-  EXPECT_EQ(Decoded(idl), (std::vector<Polyline>{triangle, open_triangle}));
-
-  // A closed ring whose last vertex already equals its first keeps it.
-  const Polyline repeated{{At(1, 1), At(5, 1), At(5, 5), At(1, 1)}, true, 0.0};
-  EXPECT_EQ(Decoded(Encoded(TileWith({repeated}))), std::vector<Polyline>{repeated});
-  // Three vertices returning to the first are an open polyline (n < 4): two segments.
-  const Polyline there_and_back{{At(1, 1), At(5, 1), At(1, 1)}, false, 0.0};
-  EXPECT_EQ(Decoded(Encoded(TileWith({there_and_back}))), std::vector<Polyline>{there_and_back});
+TEST(VectorTileCodecTest, WhatCannotTravelIsRefusedByTheWriter) {
+  VectorTileMessage far = TileWith({Polyline{{At(0, 0), At(2000, 0)}, false, 0.0}});
+  EXPECT_THAT(ToIdl(far).status().message(), HasSubstr("lies outside its tile"));
+  VectorTileMessage odd_size = TileWith({});
+  odd_size.tile_size = 10.0001234;
+  EXPECT_THAT(ToIdl(odd_size).status().message(), HasSubstr("whole number of millimetres"));
+  VectorTileMessage no_quantum = TileWith({});
+  no_quantum.map.lattice.quantum = 1e-9;
+  EXPECT_THAT(ToIdl(no_quantum).status().message(), HasSubstr("steps of a"));
+  VectorTileMessage nan = TileWith({Polyline{{At(0, 0), {std::nan(""), 0.0}}, false, 0.0}});
+  EXPECT_FALSE(ToIdl(nan).ok());
 }
 
-TEST(VectorTileCodecTest, DegenerateClosednessTakesItsCanonicalForm) {
-  // closed adds a segment only from three vertices on (Polyline::SegmentCount), so a closed
-  // polyline of two vertices is the open one, and a closed point is a point.
-  const Polyline closed_pair{{At(1, 1), At(5, 1)}, true, 0.0};
-  const Polyline closed_point{{At(3, 3)}, true, Steps(2)};
-  const std::vector<Polyline> back = Decoded(Encoded(TileWith({closed_pair, closed_point})));
-  EXPECT_EQ(back, (std::vector<Polyline>{Polyline{{At(1, 1), At(5, 1)}, false, 0.0},
-                                         Polyline{{At(3, 3)}, false, Steps(2)}}));
-  EXPECT_EQ(back[0].SegmentCount(), closed_pair.SegmentCount());
-}
-
-TEST(VectorTileCodecTest, AnOpenLoopComesBackClosedAndPaintsTheSameCells) {
-  // The vectorizer never emits this (MakePolyline closes such pieces), but another writer may:
-  // n >= 4 vertices whose last is the first read as the closed ring, with the same segments.
-  const Polyline loop{
-      {At(200, 200), At(1800, 200), At(1800, 1500), At(200, 1500), At(200, 200)}, false, Steps(40)};
-  const std::vector<Polyline> back = Decoded(Encoded(TileWith({loop})));
-  ASSERT_EQ(back.size(), 1u);
-  EXPECT_TRUE(back[0].closed);
-  EXPECT_EQ(back[0].points, std::vector<Point2>(loop.points.begin(), loop.points.end() - 1));
-  EXPECT_EQ(back[0].half_width, loop.half_width);
-  EXPECT_EQ(back[0].SegmentCount(), loop.SegmentCount());
-  const grid::OccupancyGrid before = Painted({loop});
-  EXPECT_GT(std::count(before.data().begin(), before.data().end(), grid::kOccupiedValue), 50);
-  EXPECT_EQ(Painted(back).data(), before.data());
-}
-
-// Distinct lattice points of kTile, on a zigzag: (i % 128) * 64, (i / 128) * 16 quanta.
-std::vector<Point2> ManyPoints(size_t count) {
-  std::vector<Point2> points;
-  for (size_t i = 0; i < count; ++i) {
-    points.push_back(At(static_cast<int>(i % 128) * 64, static_cast<int>(i / 128) * 16));
-  }
-  return points;
-}
-
-TEST(VectorTileCodecTest, ALongOpenPolylineIsSplitIntoPiecesSharingTheirEnds) {
-  const Polyline wall{ManyPoints(2 * 255 + 10), false, Steps(5)};
-  const VectorTileIdl idl = Encoded(TileWith({wall}));
-  // 520 vertices: 255, then 255 from the 255th, then the last 12 from the 509th.
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{255, 255, 12}));
-  const std::vector<Polyline> pieces = Decoded(idl);
-  ASSERT_EQ(pieces.size(), 3u);
-  std::vector<Point2> joined;
-  for (const Polyline& piece : pieces) {
-    EXPECT_FALSE(piece.closed);
-    EXPECT_EQ(piece.half_width, wall.half_width);
-    if (!joined.empty()) {
-      EXPECT_EQ(piece.points.front(), joined.back());
-      joined.pop_back();
-    }
-    joined.insert(joined.end(), piece.points.begin(), piece.points.end());
-  }
-  EXPECT_EQ(joined, wall.points);
-  size_t segments = 0;
-  for (const Polyline& piece : pieces) segments += piece.SegmentCount();
-  EXPECT_EQ(segments, wall.SegmentCount());
-}
-
-TEST(VectorTileCodecTest, ALongClosedPolylineBecomesOpenPiecesWithAllItsSegments) {
-  // 255 vertices closed: 256 on the wire with the repeated first, one too many.
-  const Polyline ring{ManyPoints(255), true, 0.0};
-  const VectorTileIdl idl = Encoded(TileWith({ring}));
-  EXPECT_EQ(idl.obstacle_sizes(), (std::vector<uint8_t>{255, 2}));
-  const std::vector<Polyline> pieces = Decoded(idl);
-  ASSERT_EQ(pieces.size(), 2u);
-  EXPECT_FALSE(pieces[0].closed);
-  EXPECT_FALSE(pieces[1].closed);
-  EXPECT_EQ(pieces[0].points, ring.points);
-  // The last piece is the closing segment.
-  EXPECT_EQ(pieces[1].points, (std::vector<Point2>{ring.points.back(), ring.points.front()}));
-  EXPECT_EQ(pieces[0].SegmentCount() + pieces[1].SegmentCount(), ring.SegmentCount());
-  // One vertex fewer fits whole and stays closed.
-  const Polyline fits{ManyPoints(254), true, 0.0};
-  EXPECT_EQ(Decoded(Encoded(TileWith({fits}))), std::vector<Polyline>{fits});
-}
-
-TEST(VectorTileCodecTest, FreeRingsAndPolygonsTooLargeForTheCountsAreRefused) {
-  const FreePolygon fits{ManyPoints(65535), {}};
-  const StatusOr<VectorTileIdl> ok = ToIdl(TileWith({}, {fits}));
-  ASSERT_TRUE(ok.ok()) << ok.status();
-  EXPECT_EQ(ok->free_ring_sizes(), std::vector<uint16_t>{65535});
-
-  const FreePolygon long_ring{ManyPoints(65536), {}};
-  const StatusOr<VectorTileIdl> too_long = ToIdl(TileWith({}, {long_ring}));
-  EXPECT_EQ(too_long.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_THAT(too_long.status().message(), HasSubstr("a free ring has 65536 vertices"));
-  EXPECT_THAT(too_long.status().message(), HasSubstr("65535"));
-
-  const FreePolygon long_hole{ManyPoints(4), {ManyPoints(3), ManyPoints(65536)}};
-  EXPECT_THAT(ToIdl(TileWith({}, {long_hole})).status().message(),
-              HasSubstr("a free ring has 65536 vertices"));
-
-  FreePolygon holes{{At(0, 0), At(9000, 0), At(9000, 9000)}, {}};
-  holes.holes.assign(65535, {At(100, 100)});
-  const StatusOr<VectorTileIdl> too_many = ToIdl(TileWith({}, {holes}));
-  EXPECT_EQ(too_many.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_THAT(too_many.status().message(), HasSubstr("a free polygon has 65535 holes"));
-  holes.holes.pop_back();
-  const StatusOr<VectorTileIdl> most = ToIdl(TileWith({}, {holes}));
-  ASSERT_TRUE(most.ok()) << most.status();
-  EXPECT_EQ(most->free_polygon_rings(), std::vector<uint16_t>{65535});
-}
-
-TEST(VectorTileCodecTest, FromIdlRefusesArraysThatDoNotAgree) {
-  const Polyline line{{At(0, 0), At(100, 0)}, false, Steps(4)};
-  const Polyline speck{{At(7, 8)}, false, Steps(2)};
-  const FreePolygon square{{At(0, 0), At(900, 0), At(900, 900), At(0, 900)}, {{At(5, 5)}}};
-  const VectorTileIdl good = Encoded(TileWith({line, speck}, {square}));
-  ASSERT_TRUE(FromIdl(good).ok());
-  struct Case {
-    const char* expect;
-    std::function<void(VectorTileIdl&)> spoil;
-  };
-  const Case cases[] = {
-      {"layout_version is 0, this fleetmap reads 4", [](auto& t) { t.layout_version(0); }},
-      {"obstacle_x has 2 values but obstacle_y 3", [](auto& t) { t.obstacle_y().push_back(1); }},
-      {"obstacle_sizes add up to 3 vertices but 2 are given",
-       [](auto& t) { t.obstacle_sizes({3}); }},
-      {"obstacle_sizes[0] is 1: a polyline has at least two vertices",
-       [](auto& t) {
-         t.obstacle_sizes({1, 1});
-         t.obstacle_half_widths({4, 4});
-       }},
-      {"obstacle_sizes[0] is 0",
-       [](auto& t) {
-         t.obstacle_sizes({0, 2});
-       }},
-      {"obstacle_half_widths has 2 values for 1 polylines",
-       [](auto& t) {
-         t.obstacle_half_widths({4, 4});
-       }},
-      {"point_x has 1 values but point_y 0", [](auto& t) { t.point_y().clear(); }},
-      {"point_half_widths has 2 values for 1 points",
-       [](auto& t) {
-         t.point_half_widths({2, 2});
-       }},
-      {"point_x value 30000 lies outside its tile", [](auto& t) { t.point_x({30000}); }},
-      {"point_y value -2000 lies outside its tile", [](auto& t) { t.point_y({-2000}); }},
-      {"obstacle_y value 17500 lies outside its tile",
-       [](auto& t) {
-         t.obstacle_y({0, 17500});
-       }},
-      {"free_x has 6 values but free_y 5", [](auto& t) { t.free_x().push_back(0); }},
-      {"free_polygon_rings add up to 3 rings but 2 are given",
-       [](auto& t) { t.free_polygon_rings({3}); }},
-      {"a free polygon has no outer ring",
-       [](auto& t) {
-         t.free_polygon_rings({0, 2});
-       }},
-      {"free_ring_sizes add up to 6 vertices but 5 are given",
-       [](auto& t) {
-         t.free_ring_sizes({5, 1});
-       }},
-      {"a free ring has no vertex",
-       [](auto& t) {
-         t.free_ring_sizes({5, 0});
-       }},
-      {"free_y value 20000 lies outside its tile", [](auto& t) { t.free_y()[2] = 20000; }},
-  };
-  for (const Case& c : cases) {
-    VectorTileIdl bad = good;
-    c.spoil(bad);
-    const StatusOr<VectorTileMessage> back = FromIdl(bad);
-    EXPECT_EQ(back.status().code(), StatusCode::kInvalidArgument) << c.expect;
-    EXPECT_THAT(back.status().message(), HasSubstr(c.expect));
-  }
-}
-
-// Random arrays, mostly inconsistent and sometimes consistent: the decoder refuses or decodes,
-// never reads past an array, and what it decodes holds exactly the vertices it was given.
-TEST(VectorTileCodecTest, SeededRandomTilesNeverCrashTheDecoder) {
-  std::mt19937 random(99);
-  const auto small = [&](int limit) { return static_cast<int>(random() % (limit + 1)); };
-  const auto coordinates = [&](int count) {
-    std::vector<int16_t> values(count);
-    for (auto& v : values) v = static_cast<int16_t>(small(17000) - 300);
-    return values;
-  };
-  const auto counts = [&](int count, int limit) {
-    std::vector<uint16_t> values(count);
-    for (auto& v : values) v = static_cast<uint16_t>(small(limit));
-    return values;
-  };
-  const auto bytes = [&](int count, int limit) {
-    std::vector<uint8_t> values(count);
-    for (auto& v : values) v = static_cast<uint8_t>(small(limit));
-    return values;
-  };
-  const VectorTileIdl base = Encoded(TileWith({}));
-  int decoded = 0;
-  for (int round = 0; round < 20000; ++round) {
-    VectorTileIdl tile = base;
-    const int polylines = small(3);
-    tile.obstacle_sizes(bytes(polylines, 5));
-    const int vertices = small(12);
-    tile.obstacle_x(coordinates(vertices));
-    tile.obstacle_y(coordinates(small(1) == 0 ? vertices : small(12)));
-    tile.obstacle_half_widths(bytes(small(1) == 0 ? polylines : small(3), 255));
-    const int points = small(3);
-    tile.point_x(coordinates(points));
-    tile.point_y(coordinates(small(1) == 0 ? points : small(3)));
-    tile.point_half_widths(bytes(small(1) == 0 ? 0 : small(3), 255));
-    const int polygons = small(2);
-    tile.free_polygon_rings(counts(polygons, 2));
-    tile.free_ring_sizes(counts(small(3), 4));
-    const int free_vertices = small(10);
-    tile.free_x(coordinates(free_vertices));
-    tile.free_y(coordinates(free_vertices));
-    const StatusOr<VectorTileMessage> back = FromIdl(tile);
-    if (!back.ok()) {
-      EXPECT_EQ(back.status().code(), StatusCode::kInvalidArgument);
-      continue;
-    }
-    ++decoded;
-    size_t wire_vertices = 0;
-    for (const Polyline& polyline : back->map.obstacles) {
-      wire_vertices += polyline.points.size() + (polyline.closed ? 1 : 0);
-    }
-    EXPECT_EQ(wire_vertices, tile.obstacle_x().size() + tile.point_x().size());
-    EXPECT_EQ(back->map.FreeVertexCount(), tile.free_x().size());
-  }
-  EXPECT_GT(decoded, 0);
-  EXPECT_LT(decoded, 20000);
-}
-
-// Free space with square rooms whose one-cell walls the vectorizer draws as closed rings.
-grid::OccupancyGrid Rooms() {
-  grid::OccupancyGrid grid(80, 60, 0.05, Pose2{}, grid::kFreeValue);
-  for (const int x0 : {5, 30, 50}) {
-    vector_map::testing::FillRect(grid, x0, 10, x0 + 12, 22, grid::kOccupiedValue);
-    vector_map::testing::FillRect(grid, x0 + 1, 11, x0 + 11, 21, grid::kFreeValue);
-  }
-  return grid;
-}
-
-// What the vectorizer makes of a floor plan, of closed rooms and of speckle (many point obstacles
-// and small rings) comes back exactly, in wire order, half widths included (whole steps).
-TEST(VectorTileCodecTest, VectorizerTilesRoundTrip) {
-  size_t points = 0;
-  size_t closed = 0;
-  for (const grid::OccupancyGrid& grid : {vector_map::testing::FloorPlan(), Rooms(),
-                                          vector_map::testing::NoiseGrid(150, 120, 0.08, 7)}) {
-    vector_map::TiledVectorizeOptions options;
-    options.tile_size = 2.0;
+// What the vectorizer makes of real SLAM maps, tile by tile, comes back vertex for vertex.
+TEST(VectorTileCodecTest, RealMapTilesRoundTrip) {
+  size_t maps = 0;
+  for (const std::string& name : vector_map::testing::RealMapNames()) {
+    grid::OccupancyGrid grid;
+    if (!vector_map::testing::LoadRealMap(name, grid)) continue;
+    ++maps;
+    // A fleet frame that puts the grid's corner off the half-cell lattice of the fleet origin.
+    const Transform2 fleet_from_map = Transform2::Identity();
     const StatusOr<vector_map::TiledVectorMap> tiled =
-        vector_map::VectorizeTiled(grid, Transform2::Identity(), options);
-    ASSERT_TRUE(tiled.ok()) << tiled.status();
+        vector_map::VectorizeTiled(grid, fleet_from_map, {});
+    ASSERT_TRUE(tiled.ok()) << name << ": " << tiled.status();
     for (const auto& [id, map] : tiled->tiles) {
       VectorTileMessage message;
       message.tile = id;
-      message.tile_size = options.tile_size;
       message.map = map;
+      const std::string where = name + " tile (" + std::to_string(id.x) + ", " +
+                                std::to_string(id.y) + ")";
       const StatusOr<VectorTileIdl> idl = ToIdl(message);
-      ASSERT_TRUE(idl.ok()) << idl.status();
+      ASSERT_TRUE(idl.ok()) << where << ": " << idl.status();
       const StatusOr<VectorTileMessage> back = FromIdl(*idl);
-      ASSERT_TRUE(back.ok()) << back.status();
-      const std::vector<Polyline> expected = WireOrder(map.obstacles);
-      ASSERT_EQ(back->map.obstacles.size(), expected.size()) << id;
-      for (size_t k = 0; k < expected.size(); ++k) {
-        const Polyline& sent = expected[k];
-        const Polyline& got = back->map.obstacles[k];
-        EXPECT_EQ(got.points, sent.points) << id << " obstacle " << k;
-        EXPECT_EQ(got.closed, sent.closed) << id << " obstacle " << k;
-        EXPECT_EQ(got.half_width, sent.half_width) << id << " obstacle " << k;
-        // Never an open loop (it would come back closed).
-        if (!sent.closed && sent.points.size() >= 4) {
-          EXPECT_NE(sent.points.front(), sent.points.back()) << id << " obstacle " << k;
-        }
-        if (sent.points.size() == 1) ++points;
-        if (sent.closed) ++closed;
-      }
-      EXPECT_EQ(back->map.free_space, map.free_space) << id;
+      ASSERT_TRUE(back.ok()) << where << ": " << back.status();
+      ExpectSameMap(back->map, map, where);
     }
   }
-  // Both kinds the layout treats specially were exercised.
-  EXPECT_GT(points, 10u);
-  EXPECT_GT(closed, 0u);
+  EXPECT_GE(maps, 3u);
+}
+
+TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
+  const VectorTileIdl good =
+      Encoded(TileWith({Polyline{{At(0, 0), At(10, 0)}, false, 0.0}}));
+  const std::vector<std::pair<std::string, std::function<void(VectorTileIdl&)>>> cases = {
+      {"layout_version is 6 (layouts 3 and 4 read so), this fleetmap reads 5",
+       [](auto& t) { t.layout_version(6); }},
+      {"layout_version is 0", [](auto& t) { t.layout_version(0); }},
+      {"compression 7 is neither", [](auto& t) { t.compression(7); }},
+      {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
+      {"quantum 0.000000 m", [](auto& t) { t.quantum(0.0); }},
+      {"quantum nan", [](auto& t) { t.quantum(std::nan("")); }},
+      {"quantum -0.025", [](auto& t) { t.quantum(-0.025); }},
+      {"quantum 20.000000 m", [](auto& t) { t.quantum(20.0); }},
+      {"lattice origin 0.030000 m is not within", [](auto& t) { t.lattice_x(0.03); }},
+      {"lattice origin -0.001", [](auto& t) { t.lattice_y(-0.001); }},
+      {"lattice origin nan", [](auto& t) { t.lattice_y(std::nan("")); }},
+      {"epsilon nan", [](auto& t) { t.epsilon(std::nanf("")); }},
+      {"resolution -0.05", [](auto& t) { t.resolution(-0.05f); }},
+      {"the geometry is not a zstd frame",
+       [](auto& t) { t.compression(1); }},
+  };
+  for (const auto& [message, breaker] : cases) {
+    VectorTileIdl broken = good;
+    breaker(broken);
+    const StatusOr<VectorTileMessage> back = FromIdl(broken);
+    ASSERT_FALSE(back.ok()) << message;
+    EXPECT_THAT(back.status().message(), HasSubstr(message));
+  }
+}
+
+TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaims) {
+  const std::vector<std::pair<std::string, std::vector<uint8_t>>> cases = {
+      {"the geometry ends at byte 0", {}},
+      {"the polyline count is 4294967295, more than the 2 bytes left",
+       {0xff, 0xff, 0xff, 0xff, 0x0f, 0, 0}},
+      {"is a varint of more than 64 bits",
+       {0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01}},
+      {"is a varint of more than 64 bits",
+       {0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x02}},
+      // One polyline claiming 2^31 vertices.
+      {"more than the", {1, 0xfe, 0xff, 0xff, 0xff, 0x0f, 0, 2, 2, 2, 2}},
+      {"is closed with 2 vertices", {1, 1, 0, 2, 2, 2, 2, 0, 0}},
+      {"outside its tile", {1, 0, 0, 2, 2, 2, 2, 0, 0}},  // a vertex near the fleet origin
+      {"a free polygon has no outer ring", {0, 0, 1, 0, 0, 0, 0}},
+      {"a free ring has no vertex", {0, 0, 1, 1, 0, 0, 0}},
+      {"bytes after its last polygon", {0, 0, 0, 0}},
+  };
+  for (const auto& [message, bytes] : cases) {
+    const StatusOr<VectorTileMessage> back = FromIdl(WithGeometry(bytes));
+    ASSERT_FALSE(back.ok()) << message;
+    EXPECT_THAT(back.status().message(), HasSubstr(message));
+  }
+  // A zstd frame that claims to inflate to more than any tile holds is refused before inflating.
+  std::vector<uint8_t> zeros(size_t{5} << 20, 0);
+  VectorTileIdl bomb = WithGeometry(ZstdCompress(zeros, 1));
+  bomb.compression(1);
+  EXPECT_THAT(FromIdl(bomb).status().message(), HasSubstr("more than the"));
+}
+
+TEST(VectorTileCodecTest, EveryTruncationAndByteFlipIsAnErrorOrAValidTileNeverACrash) {
+  std::vector<Polyline> walls;
+  for (int i = 0; i < 30; ++i) {
+    walls.push_back(Polyline{{At(10 + i, 20), At(40, 20 + 3 * i), At(45 + i, 90)}, i % 2 == 0,
+                             Steps(i)});
+  }
+  walls.push_back(Polyline{{At(3, 3)}, false, Steps(9)});
+  const FreePolygon free{{At(0, 0), At(400, 0), At(400, 400)}, {{At(50, 50), At(60, 55)}}};
+  const VectorTileIdl idl = Encoded(TileWith(walls, {free}));
+  const std::vector<uint8_t> plain = PlainGeometry(idl);
+  for (size_t length = 0; length < plain.size(); ++length) {
+    const std::vector<uint8_t> cut(plain.begin(), plain.begin() + length);
+    EXPECT_FALSE(FromIdl(WithGeometry(cut)).ok()) << "cut at " << length;
+  }
+  std::mt19937 random(17);
+  size_t refused = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::vector<uint8_t> flipped = plain;
+    flipped[random() % flipped.size()] ^= static_cast<uint8_t>(1 + random() % 255);
+    if (!FromIdl(WithGeometry(flipped)).ok()) ++refused;
+  }
+  EXPECT_GT(refused, 100u);  // most flips break a count or a coordinate; none crashes
+  // The same for the compressed form.
+  VectorTileIdl compressed = idl;
+  compressed.geometry(ZstdCompress(plain, 3));
+  compressed.compression(1);
+  EXPECT_TRUE(FromIdl(compressed).ok());
+  for (size_t length = 0; length < compressed.geometry().size(); ++length) {
+    VectorTileIdl cut = compressed;
+    cut.geometry().resize(length);
+    EXPECT_FALSE(FromIdl(cut).ok()) << "compressed, cut at " << length;
+  }
 }
 
 }  // namespace
