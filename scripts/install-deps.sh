@@ -13,7 +13,7 @@ packages=(
   # Persistence and compression.
   libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev
   # Tests and benchmarks.
-  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).
   libboost-dev
   # The tests' hostile peer: a DDS participant of another vendor (Cyclone DDS and its idlc).
