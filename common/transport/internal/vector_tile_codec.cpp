@@ -147,7 +147,7 @@ StatusOr<TileLattice> EncodingLattice(const VectorTileMessage& message) {
   return TileLattice(message.tile, message.tile_size, quantum, origin);
 }
 
-// Writes vertices as steps from the vertex before (the first of the tile from the tile's corner).
+// Writes vertices as steps from the vertex before (the first of the tile from step (0, 0)).
 class VertexWriter {
  public:
   VertexWriter(const TileLattice& lattice, VarintWriter* out) : lattice_(lattice), out_(out) {}
