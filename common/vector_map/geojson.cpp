@@ -37,6 +37,7 @@ StatusOr<nlohmann::json> ToGeoJson(const VectorMap& map) {
   }
   for (size_t i = 0; i < map.free_space.size(); ++i) {
     const FreePolygon& polygon = map.free_space[i];
+    if (polygon.outer.empty()) continue;  // the rasterizer fills nothing for it either
     std::vector<std::vector<Point2>> rings = {polygon.outer};
     rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());
     StatusOr<gis::FilledArea> area = gis::FilledAreaOfRings(rings);
