@@ -72,9 +72,8 @@ StatusOr<nlohmann::json> PredictedFreeGeoJson(const extrapolation::Extrapolation
     properties["p_th"] = p_th;
     for (const gis::FilledArea& area : *areas) {
       for (nlohmann::json& geometry : gis::GeoJsonGeometries(area)) {
-        features.push_back({{"type", "Feature"},
-                            {"geometry", std::move(geometry)},
-                            {"properties", properties}});
+        features.push_back(
+            {{"type", "Feature"}, {"geometry", std::move(geometry)}, {"properties", properties}});
       }
     }
     return Status::Ok();
@@ -105,11 +104,12 @@ StatusOr<nlohmann::json> PredictedFreeGeoJson(const extrapolation::Extrapolation
       }
     }
     if (!any) continue;
-    FLEETMAP_RETURN_IF_ERROR(add(FreeAreas(people, map_from_submap), {{"submap", s.id},
-                                                                   {"kind", "conditionally_free"},
-                                                                   {"class", "dynamic"},
-                                                                   {"entities", s.entity_ids},
-                                                                   {"elevation", 0.0}}));
+    FLEETMAP_RETURN_IF_ERROR(
+        add(FreeAreas(people, map_from_submap), {{"submap", s.id},
+                                                 {"kind", "conditionally_free"},
+                                                 {"class", "dynamic"},
+                                                 {"entities", s.entity_ids},
+                                                 {"elevation", 0.0}}));
   }
   return nlohmann::json{
       {"type", "FeatureCollection"}, {"crs", gis::GeoJsonCrs()}, {"features", features}};

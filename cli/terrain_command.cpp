@@ -37,8 +37,9 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
   }
   if (!options.geojson.empty()) {
     StatusOr<std::string> geojson = sim::TerrainToGeoJsonString(terrain, 1);
-    const Status written = geojson.ok() ? WriteFileAtomically(options.geojson, geojson->append("\n"))
-                                        : geojson.status();
+    const Status written = geojson.ok()
+                               ? WriteFileAtomically(options.geojson, geojson->append("\n"))
+                               : geojson.status();
     if (!written.ok()) {
       err << "fleetmap terrain: " << written.message() << "\n";
       return kExitBadInput;

@@ -39,8 +39,8 @@ Geometry PolygonOf(const GeosContext& geos, const std::vector<Ring>& rings) {
   for (size_t i = 1; i < rings.size(); ++i) {
     holes.push_back(GEOSGeom_createLinearRing_r(h, Sequence(geos, rings[i], true)));
   }
-  return geos.Own(GEOSGeom_createPolygon_r(h, shell, holes.data(),
-                                           static_cast<unsigned>(holes.size())));
+  return geos.Own(
+      GEOSGeom_createPolygon_r(h, shell, holes.data(), static_cast<unsigned>(holes.size())));
 }
 
 // True if `p` lies inside an odd number of the rings: the even-odd rule cv::fillPoly fills by

@@ -21,11 +21,12 @@ nlohmann::json Feature(nlohmann::json geometry, nlohmann::json properties) {
 StatusOr<nlohmann::json> TerrainToGeoJson(const Terrain& terrain) {
   nlohmann::json features = nlohmann::json::array();
   for (const Wall& wall : terrain.walls) {
-    features.push_back(Feature(
-        {{"type", "LineString"}, {"coordinates", {GeoJsonPosition(wall.a), GeoJsonPosition(wall.b)}}},
-        {{"kind", std::string(ObstacleKindName(wall.kind))},
-         {"thickness", wall.thickness},
-         {"movable", wall.movable}}));
+    features.push_back(
+        Feature({{"type", "LineString"},
+                 {"coordinates", {GeoJsonPosition(wall.a), GeoJsonPosition(wall.b)}}},
+                {{"kind", std::string(ObstacleKindName(wall.kind))},
+                 {"thickness", wall.thickness},
+                 {"movable", wall.movable}}));
   }
   for (size_t i = 0; i < terrain.polygons.size(); ++i) {
     const SolidPolygon& polygon = terrain.polygons[i];
@@ -42,9 +43,10 @@ StatusOr<nlohmann::json> TerrainToGeoJson(const Terrain& terrain) {
     }
   }
   for (const Door& door : terrain.doors) {
-    features.push_back(Feature(
-        {{"type", "LineString"}, {"coordinates", {GeoJsonPosition(door.a), GeoJsonPosition(door.b)}}},
-        {{"kind", "door"}, {"open", door.open}, {"thickness", door.thickness}}));
+    features.push_back(
+        Feature({{"type", "LineString"},
+                 {"coordinates", {GeoJsonPosition(door.a), GeoJsonPosition(door.b)}}},
+                {{"kind", "door"}, {"open", door.open}, {"thickness", door.thickness}}));
   }
   return nlohmann::json{
       {"type", "FeatureCollection"},

@@ -45,8 +45,8 @@ void CheckCoordinates(const nlohmann::json& geometry, const std::string& where,
 
 std::vector<std::string> GeoJsonProblems(const nlohmann::json& collection) {
   std::vector<std::string> problems;
-  const nlohmann::json expected_crs = {
-      {"type", "name"}, {"properties", {{"name", "urn:ogc:def:crs:EPSG::3857"}}}};
+  const nlohmann::json expected_crs = {{"type", "name"},
+                                       {"properties", {{"name", "urn:ogc:def:crs:EPSG::3857"}}}};
   if (!collection.contains("crs") || collection["crs"] != expected_crs) {
     problems.push_back("no crs member naming EPSG:3857");
   }
@@ -103,7 +103,8 @@ GeoJsonCoverage::GeoJsonCoverage(const nlohmann::json& collection) : geos_(new G
 }
 
 GeoJsonCoverage::~GeoJsonCoverage() {
-  for (const GEOSPreparedGeometry* p : geos_->prepared) GEOSPreparedGeom_destroy_r(geos_->handle, p);
+  for (const GEOSPreparedGeometry* p : geos_->prepared)
+    GEOSPreparedGeom_destroy_r(geos_->handle, p);
   for (GEOSGeometry* g : geos_->geometries) GEOSGeom_destroy_r(geos_->handle, g);
   GEOS_finish_r(geos_->handle);
   delete geos_;

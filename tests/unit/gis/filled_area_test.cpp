@@ -105,7 +105,8 @@ TEST(FilledAreaTest, CrossingRingsFillByTheEvenOddRule) {
   EXPECT_DOUBLE_EQ(Area(bow_tie), 2.0);
   EXPECT_THAT(Problems(bow_tie), IsEmpty());
   // A "hole" crossing its shell: the cells inside both rings are not filled (4 + 4 - 2 * 1).
-  const FilledArea crossed = Fill({{{0, 0}, {2, 0}, {2, 2}, {0, 2}}, {{1, 1}, {3, 1}, {3, 3}, {1, 3}}});
+  const FilledArea crossed =
+      Fill({{{0, 0}, {2, 0}, {2, 2}, {0, 2}}, {{1, 1}, {3, 1}, {3, 3}, {1, 3}}});
   EXPECT_DOUBLE_EQ(Area(crossed), 6.0);
   EXPECT_THAT(Problems(crossed), IsEmpty());
 }
@@ -123,9 +124,11 @@ TEST(FilledAreaTest, PointOnTheAreaIsNotRepeated) {
 }
 
 TEST(GeoJsonGeometryTest, CrsNamesEpsg3857AndPartsBecomeMultiGeometries) {
-  EXPECT_EQ(GeoJsonCrs(), nlohmann::json::parse(
-                              R"({"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::3857"}})"));
-  const FilledArea area = Fill({{{0, 0}, {2, 2}, {2, 0}, {0, 2}}, {{5, 5}}, {{8, 8}}, {{6, 0}, {7, 0}}});
+  EXPECT_EQ(GeoJsonCrs(),
+            nlohmann::json::parse(
+                R"({"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::3857"}})"));
+  const FilledArea area =
+      Fill({{{0, 0}, {2, 2}, {2, 0}, {0, 2}}, {{5, 5}}, {{8, 8}}, {{6, 0}, {7, 0}}});
   const std::vector<nlohmann::json> geometries = GeoJsonGeometries(area);
   ASSERT_EQ(geometries.size(), 3u);
   EXPECT_EQ(geometries[0]["type"], "MultiPolygon");

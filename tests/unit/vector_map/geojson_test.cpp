@@ -43,10 +43,10 @@ bool FreePolygonFills(const FreePolygon& polygon, const Point2& p, double tolera
       const Point2& a = ring[i];
       const Point2& b = ring[(i + 1) % ring.size()];
       const Point2 ab = b - a;
-      const double t = ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      const double t =
+          ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
       if ((a + t * ab - p).norm() <= tolerance) return true;
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * ab.x() / ab.y()) {
+      if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * ab.x() / ab.y()) {
         inside = !inside;
       }
     }
@@ -73,8 +73,8 @@ int CellCentresFilledDifferently(const VectorMap& map, const grid::OccupancyGrid
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
         const Point2 c = like.CellCenter(x, y);
-        differ += FreePolygonFills(polygon, c, tolerance) !=
-                  exported.Covers(c.x(), c.y(), tolerance);
+        differ +=
+            FreePolygonFills(polygon, c, tolerance) != exported.Covers(c.x(), c.y(), tolerance);
       }
     }
   }
@@ -135,9 +135,9 @@ TEST(GeoJsonTest, DegenerateAndSelfTouchingFreeRingsExportValidAndCoverWhatTheyF
   map.free_space.push_back({{centre(0, 0), centre(4, 0), centre(4, 4), centre(8, 4), centre(8, 8),
                              centre(4, 8), centre(4, 4), centre(0, 4)},
                             {}});
-  map.free_space.push_back({{centre(10, 0), centre(14, 0), centre(14, 4), centre(14, 9),
-                             centre(14, 4), centre(10, 4)},
-                            {}});
+  map.free_space.push_back(
+      {{centre(10, 0), centre(14, 0), centre(14, 4), centre(14, 9), centre(14, 4), centre(10, 4)},
+       {}});
   const nlohmann::json json = Exported(map);
   EXPECT_THAT(GeoJsonProblems(json), IsEmpty());
   EXPECT_THAT(GeometryTypes(json, "free"),
