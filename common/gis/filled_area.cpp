@@ -118,6 +118,50 @@ Status Failed(const GeosContext& geos, const char* step) {
   return InternalError(std::move(message));
 }
 
+// The general case: nodes every outline against every other (the union also drops segments
+// drawn twice), cuts the plane into faces along them, keeps the faces the even-odd rule fills and
+// merges them into `area`; what the area does not cover (its border included) bounds no area and
+// goes to `lines` (spikes, rows of cells, edges a hole shares with its shell).
+Status FillByEvenOddRule(const GeosContext& geos, const std::vector<Ring>& outlines, Geometry* area,
+                         Geometry* lines) {
+  GEOSContextHandle_t h = geos.handle();
+  std::vector<GEOSGeometry*> parts;
+  for (const Ring& outline : outlines) {
+    parts.push_back(GEOSGeom_createLineString_r(h, Sequence(geos, outline, true)));
+  }
+  const Geometry linework = geos.Own(GEOSGeom_createCollection_r(
+      h, GEOS_MULTILINESTRING, parts.data(), static_cast<unsigned>(parts.size())));
+  const Geometry noded = geos.Own(GEOSUnaryUnion_r(h, linework.get()));
+  if (!noded) return Failed(geos, "node the outlines");
+  const GEOSGeometry* noded_parts[] = {noded.get()};
+  const Geometry faces = geos.Own(GEOSPolygonize_r(h, noded_parts, 1));
+  if (!faces) return Failed(geos, "cut the outlines into faces");
+  std::vector<Geometry> filled;
+  for (int i = 0; i < GEOSGetNumGeometries_r(h, faces.get()); ++i) {
+    const GEOSGeometry* face = GEOSGetGeometryN_r(h, faces.get(), i);
+    const Geometry inside = geos.Own(GEOSPointOnSurface_r(h, face));
+    double x = 0.0, y = 0.0;
+    if (!inside || GEOSGeomGetX_r(h, inside.get(), &x) != 1 ||
+        GEOSGeomGetY_r(h, inside.get(), &y) != 1) {
+      return Failed(geos, "find a point inside a face");
+    }
+    if (InsideOddNumberOfRings(Point2(x, y), outlines)) {
+      filled.push_back(geos.Own(GEOSGeom_clone_r(h, face)));
+    }
+  }
+  std::vector<GEOSGeometry*> released;
+  for (Geometry& face : filled) released.push_back(face.release());
+  const Geometry filled_faces = geos.Own(GEOSGeom_createCollection_r(
+      h, GEOS_GEOMETRYCOLLECTION, released.data(), static_cast<unsigned>(released.size())));
+  *area = geos.Own(GEOSUnaryUnion_r(h, filled_faces.get()));
+  if (!*area) return Failed(geos, "merge the filled faces");
+  const Geometry bare = geos.Own(GEOSDifference_r(h, noded.get(), area->get()));
+  if (!bare) return Failed(geos, "subtract the area from the outlines");
+  *lines = geos.Own(GEOSLineMerge_r(h, bare.get()));
+  if (!*lines) return Failed(geos, "merge the bare outlines");
+  return Status::Ok();
+}
+
 }  // namespace
 
 StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
@@ -142,41 +186,7 @@ StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
     if (polygon && GEOSisValid_r(h, polygon.get()) == 1) area = std::move(polygon);
   }
   if (!area && !outlines.empty()) {
-    // Node every outline against every other (the union also drops segments drawn twice), cut
-    // the plane into faces along them, keep the faces the even-odd rule fills, and merge them.
-    std::vector<GEOSGeometry*> parts;
-    for (const Ring& outline : outlines) {
-      parts.push_back(GEOSGeom_createLineString_r(h, Sequence(geos, outline, true)));
-    }
-    const Geometry linework = geos.Own(GEOSGeom_createCollection_r(
-        h, GEOS_MULTILINESTRING, parts.data(), static_cast<unsigned>(parts.size())));
-    const Geometry noded = geos.Own(GEOSUnaryUnion_r(h, linework.get()));
-    if (!noded) return Failed(geos, "node the outlines");
-    const GEOSGeometry* noded_parts[] = {noded.get()};
-    const Geometry faces = geos.Own(GEOSPolygonize_r(h, noded_parts, 1));
-    if (!faces) return Failed(geos, "cut the outlines into faces");
-    std::vector<GEOSGeometry*> filled;
-    for (int i = 0; i < GEOSGetNumGeometries_r(h, faces.get()); ++i) {
-      const GEOSGeometry* face = GEOSGetGeometryN_r(h, faces.get(), i);
-      const Geometry inside = geos.Own(GEOSPointOnSurface_r(h, face));
-      double x = 0.0, y = 0.0;
-      if (!inside || GEOSGeomGetX_r(h, inside.get(), &x) != 1 ||
-          GEOSGeomGetY_r(h, inside.get(), &y) != 1) {
-        return Failed(geos, "find a point inside a face");
-      }
-      if (InsideOddNumberOfRings(Point2(x, y), outlines)) {
-        filled.push_back(GEOSGeom_clone_r(h, face));
-      }
-    }
-    const Geometry filled_faces = geos.Own(GEOSGeom_createCollection_r(
-        h, GEOS_GEOMETRYCOLLECTION, filled.data(), static_cast<unsigned>(filled.size())));
-    area = geos.Own(GEOSUnaryUnion_r(h, filled_faces.get()));
-    if (!area) return Failed(geos, "merge the filled faces");
-    // What the faces do not cover (their borders included) bounds no area: spikes, lines.
-    const Geometry bare = geos.Own(GEOSDifference_r(h, noded.get(), area.get()));
-    if (!bare) return Failed(geos, "subtract the area from the outlines");
-    lines = geos.Own(GEOSLineMerge_r(h, bare.get()));
-    if (!lines) return Failed(geos, "merge the bare outlines");
+    FLEETMAP_RETURN_IF_ERROR(FillByEvenOddRule(geos, outlines, &area, &lines));
   }
   if (area && GEOSisValid_r(h, area.get()) != 1) {
     // Not expected of GEOS's own union; said rather than exported as an invalid polygon.

@@ -90,7 +90,8 @@ struct GeoJsonCoverage::Geos {
   std::vector<const GEOSPreparedGeometry*> prepared;
 };
 
-GeoJsonCoverage::GeoJsonCoverage(const nlohmann::json& collection) : geos_(new Geos) {
+GeoJsonCoverage::GeoJsonCoverage(const nlohmann::json& collection)
+    : geos_(std::make_unique<Geos>()) {
   GEOSGeoJSONReader* reader = GEOSGeoJSONReader_create_r(geos_->handle);
   for (const auto& feature : collection["features"]) {
     GEOSGeometry* geometry =
@@ -107,7 +108,6 @@ GeoJsonCoverage::~GeoJsonCoverage() {
     GEOSPreparedGeom_destroy_r(geos_->handle, p);
   for (GEOSGeometry* g : geos_->geometries) GEOSGeom_destroy_r(geos_->handle, g);
   GEOS_finish_r(geos_->handle);
-  delete geos_;
 }
 
 bool GeoJsonCoverage::Covers(double x, double y, double tolerance) const {

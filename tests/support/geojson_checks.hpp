@@ -4,6 +4,7 @@
 // FeatureCollection that fleetmap wrote. The tests judge our exports with GEOS itself, reading
 // each feature's geometry with GEOS's own GeoJSON reader, so they do not share the writer's code.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,7 @@ class GeoJsonCoverage {
 
  private:
   struct Geos;
-  Geos* geos_;
+  std::unique_ptr<Geos> geos_;
 };
 
 }  // namespace fleetmap::testing
