@@ -69,8 +69,10 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map,
                     {"predicted_free_m2", floor.predicted_free_cells * cell_area},
                     {"files", {"predicted_free.yaml", "extrapolated.yaml"}}};
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/graph.json", graph.dump(2) + "\n"));
-  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/predicted_free.geojson",
-                                               PredictedFreeGeoJson(result, p_th).dump() + "\n"));
+  FLEETMAP_ASSIGN_OR_RETURN(const nlohmann::json predicted_free,
+                            PredictedFreeGeoJson(result, p_th));
+  FLEETMAP_RETURN_IF_ERROR(
+      WriteFileAtomically(dir + "/predicted_free.geojson", predicted_free.dump() + "\n"));
   FLEETMAP_RETURN_IF_ERROR(WriteOverlayPng(result, floor, entities, dir + "/overlay.png"));
 
   std::ostringstream line;

@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/gis/filled_area.hpp"
+#include "common/gis/geojson_geometry.hpp"
 #include "common/grid/image_file.hpp"
 
 namespace fleetmap::cli {
@@ -26,8 +28,12 @@ const char* ClassOf(SubmapKind kind) {
   return "unknown";
 }
 
-// Polygons of the free cells of `grid` whose map-frame cell centres come from `map_from_grid`.
-nlohmann::json FreePolygons(const grid::OccupancyGrid& grid, const Transform2& map_from_grid) {
+// The free cells of `grid` as valid simple features (common/gis/filled_area.hpp), one FilledArea
+// per connected region: cv::findContours traces each region's outer outline and its holes through
+// the centres of its boundary cells (map frame by `map_from_grid`), and a region one cell wide
+// becomes a line, a lone cell a point.
+StatusOr<std::vector<gis::FilledArea>> FreeAreas(const grid::OccupancyGrid& grid,
+                                                 const Transform2& map_from_grid) {
   cv::Mat mask(grid.height(), grid.width(), CV_8UC1, cv::Scalar(0));
   for (int y = 0; y < grid.height(); ++y) {
     for (int x = 0; x < grid.width(); ++x) {
@@ -38,46 +44,48 @@ nlohmann::json FreePolygons(const grid::OccupancyGrid& grid, const Transform2& m
   std::vector<cv::Vec4i> hierarchy;
   cv::findContours(mask, contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_SIMPLE);
   auto ring = [&](const std::vector<cv::Point>& contour) {
-    nlohmann::json coordinates = nlohmann::json::array();
-    for (const cv::Point& p : contour) {
-      const Point2 c = map_from_grid * grid.CellCenter(p.x, p.y);
-      coordinates.push_back({c.x(), c.y()});
-    }
-    coordinates.push_back(coordinates.front());  // GeoJSON rings are closed
-    return coordinates;
+    std::vector<Point2> points;
+    for (const cv::Point& p : contour) points.push_back(map_from_grid * grid.CellCenter(p.x, p.y));
+    return points;
   };
-  nlohmann::json polygons = nlohmann::json::array();
+  std::vector<gis::FilledArea> areas;
   for (size_t i = 0; i < contours.size(); ++i) {
     if (hierarchy[i][3] >= 0) continue;  // a hole: added with its outer ring
-    nlohmann::json rings = nlohmann::json::array({ring(contours[i])});
+    std::vector<std::vector<Point2>> rings = {ring(contours[i])};
     for (int child = hierarchy[i][2]; child >= 0; child = hierarchy[child][0]) {
       rings.push_back(ring(contours[child]));
     }
-    polygons.push_back(rings);
+    FLEETMAP_ASSIGN_OR_RETURN(gis::FilledArea area, gis::FilledAreaOfRings(rings));
+    areas.push_back(std::move(area));
   }
-  return polygons;
+  return areas;
 }
 
 }  // namespace
 
-nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result, double p_th) {
+StatusOr<nlohmann::json> PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result,
+                                              double p_th) {
   nlohmann::json features = nlohmann::json::array();
-  auto add = [&](const nlohmann::json& polygons, nlohmann::json properties) {
+  auto add = [&](const StatusOr<std::vector<gis::FilledArea>>& areas,
+                 nlohmann::json properties) -> Status {
+    if (!areas.ok()) return areas.status();
     properties["p_th"] = p_th;
-    for (const nlohmann::json& rings : polygons) {
-      features.push_back({{"type", "Feature"},
-                          {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}},
-                          {"properties", properties}});
+    for (const gis::FilledArea& area : *areas) {
+      for (nlohmann::json& geometry : gis::GeoJsonGeometries(area)) {
+        features.push_back(
+            {{"type", "Feature"}, {"geometry", std::move(geometry)}, {"properties", properties}});
+      }
     }
+    return Status::Ok();
   };
   for (const Submap& s : result.graph.submaps) {
     if (s.kind != SubmapKind::kObserved) {
-      add(FreePolygons(s.navigable, s.map_from_submap.ToTransform()),
-          {{"submap", s.id},
-           {"kind", scene::SubmapKindName(s.kind)},
-           {"class", ClassOf(s.kind)},
-           {"entities", s.entity_ids},
-           {"elevation", s.elevation}});
+      FLEETMAP_RETURN_IF_ERROR(add(FreeAreas(s.navigable, s.map_from_submap.ToTransform()),
+                                   {{"submap", s.id},
+                                    {"kind", scene::SubmapKindName(s.kind)},
+                                    {"class", ClassOf(s.kind)},
+                                    {"entities", s.entity_ids},
+                                    {"elevation", s.elevation}}));
       continue;
     }
     // The people's conditionally free cells in this observed sub-map's place.
@@ -96,13 +104,15 @@ nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& re
       }
     }
     if (!any) continue;
-    add(FreePolygons(people, map_from_submap), {{"submap", s.id},
-                                                {"kind", "conditionally_free"},
-                                                {"class", "dynamic"},
-                                                {"entities", s.entity_ids},
-                                                {"elevation", 0.0}});
+    FLEETMAP_RETURN_IF_ERROR(
+        add(FreeAreas(people, map_from_submap), {{"submap", s.id},
+                                                 {"kind", "conditionally_free"},
+                                                 {"class", "dynamic"},
+                                                 {"entities", s.entity_ids},
+                                                 {"elevation", 0.0}}));
   }
-  return {{"type", "FeatureCollection"}, {"features", features}};
+  return nlohmann::json{
+      {"type", "FeatureCollection"}, {"crs", gis::GeoJsonCrs()}, {"features", features}};
 }
 
 Status WriteOverlayPng(const extrapolation::ExtrapolationResult& result,

@@ -1,8 +1,9 @@
 #pragma once
 
 // What `fleetmap extrapolate` writes for one threshold (docs/extrapolation.md, "Outputs"): the
-// predicted free space as GeoJSON polygons (cv::findContours on each sub-map's free cells, vertices
-// at cell centres, map frame) and a PNG overlay of the local map with the predictions.
+// predicted free space as GeoJSON (cv::findContours on each sub-map's free cells, vertices at cell
+// centres, map frame, valid simple features with a `crs` member: docs/file-formats.md) and a PNG
+// overlay of the local map with the predictions.
 
 #include <string>
 
@@ -15,11 +16,13 @@
 
 namespace fleetmap::cli {
 
-// One Feature per connected free region of each predicted sub-map and of the people's
-// conditionally free space (per observed sub-map, i.e. per place): Polygons (outer ring, then
-// holes) with the sub-map id, kind, class (static, quasi-static, dynamic), entities, elevation and
-// p_th as properties.
-nlohmann::json PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result, double p_th);
+// Features for each connected free region of each predicted sub-map and of the people's
+// conditionally free space (per observed sub-map, i.e. per place): its area as a (Multi)Polygon,
+// and parts one cell wide as (Multi)LineString or (Multi)Point features, with the sub-map id, kind,
+// class (static, quasi-static, dynamic), entities, elevation and p_th as properties. Errors
+// (kInternal) only if GEOS fails on a region.
+StatusOr<nlohmann::json> PredictedFreeGeoJson(const extrapolation::ExtrapolationResult& result,
+                                              double p_th);
 
 // Local map (occupied black, free white, unknown grey), predicted free space behind doors (green),
 // people's conditionally free space (orange), the tracks (blue), the doors (purple, hinge dot) and

@@ -36,8 +36,10 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
     return kExitBadInput;
   }
   if (!options.geojson.empty()) {
-    const Status written =
-        WriteFileAtomically(options.geojson, sim::TerrainToGeoJsonString(terrain, 1) + "\n");
+    StatusOr<std::string> geojson = sim::TerrainToGeoJsonString(terrain, 1);
+    const Status written = geojson.ok()
+                               ? WriteFileAtomically(options.geojson, geojson->append("\n"))
+                               : geojson.status();
     if (!written.ok()) {
       err << "fleetmap terrain: " << written.message() << "\n";
       return kExitBadInput;

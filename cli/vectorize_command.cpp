@@ -27,8 +27,9 @@ std::optional<vector_map::VectorizeMethod> MethodFromName(const std::string& nam
 Status WritePictures(const VectorizeCommandOptions& options, const vector_map::VectorMap& merged,
                      const grid::OccupancyGrid& grid) {
   if (!options.geojson_path.empty()) {
-    FLEETMAP_RETURN_IF_ERROR(
-        WriteFileAtomically(options.geojson_path, vector_map::ToGeoJsonString(merged) + "\n"));
+    FLEETMAP_ASSIGN_OR_RETURN(std::string geojson, vector_map::ToGeoJsonString(merged));
+    geojson.append("\n");
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.geojson_path, geojson));
   }
   if (!options.svg_path.empty()) {
     FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.svg_path, vector_map::ToSvg(merged)));

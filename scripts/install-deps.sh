@@ -16,6 +16,8 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).
   libboost-dev
+  # Valid simple features in the GeoJSON exports (GEOS C API, common/gis).
+  libgeos-dev
   # The tests' hostile peer: a DDS participant of another vendor (Cyclone DDS and its idlc).
   cyclonedds-dev cyclonedds-tools
   # The lossy-network test and `fleetmap bench loss` (network namespaces, nftables random drop;

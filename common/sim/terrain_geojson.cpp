@@ -2,10 +2,13 @@
 
 #include <string>
 
+#include "common/gis/filled_area.hpp"
+#include "common/gis/geojson_geometry.hpp"
+
 namespace fleetmap::sim {
 namespace {
 
-nlohmann::json Position(const Point2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+using gis::GeoJsonPosition;
 
 nlohmann::json Feature(nlohmann::json geometry, nlohmann::json properties) {
   return {{"type", "Feature"},
@@ -15,30 +18,39 @@ nlohmann::json Feature(nlohmann::json geometry, nlohmann::json properties) {
 
 }  // namespace
 
-nlohmann::json TerrainToGeoJson(const Terrain& terrain) {
+StatusOr<nlohmann::json> TerrainToGeoJson(const Terrain& terrain) {
   nlohmann::json features = nlohmann::json::array();
   for (const Wall& wall : terrain.walls) {
     features.push_back(
-        Feature({{"type", "LineString"}, {"coordinates", {Position(wall.a), Position(wall.b)}}},
+        Feature({{"type", "LineString"},
+                 {"coordinates", {GeoJsonPosition(wall.a), GeoJsonPosition(wall.b)}}},
                 {{"kind", std::string(ObstacleKindName(wall.kind))},
                  {"thickness", wall.thickness},
                  {"movable", wall.movable}}));
   }
-  for (const SolidPolygon& polygon : terrain.polygons) {
-    nlohmann::json ring = nlohmann::json::array();
-    for (const Point2& p : polygon.points) ring.push_back(Position(p));
-    if (!polygon.points.empty()) ring.push_back(Position(polygon.points.front()));
-    features.push_back(Feature(
-        {{"type", "Polygon"}, {"coordinates", {ring}}},
-        {{"kind", std::string(ObstacleKindName(polygon.kind))}, {"movable", polygon.movable}}));
+  for (size_t i = 0; i < terrain.polygons.size(); ++i) {
+    const SolidPolygon& polygon = terrain.polygons[i];
+    StatusOr<gis::FilledArea> area = gis::FilledAreaOfRings({polygon.points});
+    if (!area.ok()) {
+      std::string message = "GeoJSON export of terrain polygon ";
+      message.append(std::to_string(i)).append(": ").append(area.status().message());
+      return InternalError(std::move(message));
+    }
+    for (nlohmann::json& geometry : gis::GeoJsonGeometries(*area)) {
+      features.push_back(Feature(
+          std::move(geometry),
+          {{"kind", std::string(ObstacleKindName(polygon.kind))}, {"movable", polygon.movable}}));
+    }
   }
   for (const Door& door : terrain.doors) {
     features.push_back(
-        Feature({{"type", "LineString"}, {"coordinates", {Position(door.a), Position(door.b)}}},
+        Feature({{"type", "LineString"},
+                 {"coordinates", {GeoJsonPosition(door.a), GeoJsonPosition(door.b)}}},
                 {{"kind", "door"}, {"open", door.open}, {"thickness", door.thickness}}));
   }
-  return {
+  return nlohmann::json{
       {"type", "FeatureCollection"},
+      {"crs", gis::GeoJsonCrs()},
       {"properties",
        {{"terrain", std::string(TerrainKindName(terrain.kind))},
         {"size", terrain.size},
@@ -48,8 +60,9 @@ nlohmann::json TerrainToGeoJson(const Terrain& terrain) {
       {"features", std::move(features)}};
 }
 
-std::string TerrainToGeoJsonString(const Terrain& terrain, int indent) {
-  return TerrainToGeoJson(terrain).dump(indent);
+StatusOr<std::string> TerrainToGeoJsonString(const Terrain& terrain, int indent) {
+  FLEETMAP_ASSIGN_OR_RETURN(const nlohmann::json json, TerrainToGeoJson(terrain));
+  return json.dump(indent);
 }
 
 }  // namespace fleetmap::sim

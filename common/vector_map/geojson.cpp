@@ -2,63 +2,67 @@
 
 #include <vector>
 
+#include "common/gis/filled_area.hpp"
+#include "common/gis/geojson_geometry.hpp"
+
 namespace fleetmap::vector_map {
 namespace {
 
-nlohmann::json Position(const Point2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+using gis::GeoJsonPosition;
 
-// A closed linear ring: at least four positions, first == last.
-nlohmann::json Ring(const std::vector<Point2>& ring) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const Point2& p : ring) out.push_back(Position(p));
-  if (!ring.empty()) {
-    out.push_back(Position(ring.front()));
-    while (out.size() < 4) out.push_back(Position(ring.front()));
+nlohmann::json ObstacleFeature(const Polyline& polyline) {
+  nlohmann::json geometry;
+  if (polyline.points.size() == 1) {
+    // A zero-length LineString would be an invalid geometry to GEOS-based tools (QGIS, shapely).
+    geometry = {{"type", "Point"}, {"coordinates", GeoJsonPosition(polyline.points.front())}};
+  } else {
+    nlohmann::json coordinates = nlohmann::json::array();
+    for (const Point2& p : polyline.points) coordinates.push_back(GeoJsonPosition(p));
+    if (polyline.closed) coordinates.push_back(GeoJsonPosition(polyline.points.front()));
+    geometry = {{"type", "LineString"}, {"coordinates", coordinates}};
   }
-  return out;
+  // The half width is what the rasterizer paints around the line: a reader needs it to draw
+  // the obstacle as the grid will have it.
+  return {{"type", "Feature"},
+          {"properties", {{"kind", "obstacle"}, {"half_width", polyline.half_width}}},
+          {"geometry", std::move(geometry)}};
 }
 
 }  // namespace
 
-nlohmann::json ToGeoJson(const VectorMap& map) {
+StatusOr<nlohmann::json> ToGeoJson(const VectorMap& map) {
   nlohmann::json features = nlohmann::json::array();
   for (const Polyline& polyline : map.obstacles) {
-    if (polyline.points.empty()) continue;
-    nlohmann::json geometry;
-    if (polyline.points.size() == 1) {
-      // A zero-length LineString would be an invalid geometry to GEOS-based tools (QGIS, shapely).
-      geometry = {{"type", "Point"}, {"coordinates", Position(polyline.points.front())}};
-    } else {
-      nlohmann::json coordinates = nlohmann::json::array();
-      for (const Point2& p : polyline.points) coordinates.push_back(Position(p));
-      if (polyline.closed) coordinates.push_back(Position(polyline.points.front()));
-      geometry = {{"type", "LineString"}, {"coordinates", coordinates}};
-    }
-    // The half width is what the rasterizer paints around the line: a reader needs it to draw
-    // the obstacle as the grid will have it.
-    features.push_back({{"type", "Feature"},
-                        {"properties", {{"kind", "obstacle"}, {"half_width", polyline.half_width}}},
-                        {"geometry", geometry}});
+    if (!polyline.points.empty()) features.push_back(ObstacleFeature(polyline));
   }
-  for (const FreePolygon& polygon : map.free_space) {
-    if (polygon.outer.empty()) continue;
-    nlohmann::json rings = nlohmann::json::array();
-    rings.push_back(Ring(polygon.outer));
-    for (const auto& hole : polygon.holes) {
-      if (!hole.empty()) rings.push_back(Ring(hole));
+  for (size_t i = 0; i < map.free_space.size(); ++i) {
+    const FreePolygon& polygon = map.free_space[i];
+    if (polygon.outer.empty()) continue;  // the rasterizer fills nothing for it either
+    std::vector<std::vector<Point2>> rings = {polygon.outer};
+    rings.insert(rings.end(), polygon.holes.begin(), polygon.holes.end());
+    StatusOr<gis::FilledArea> area = gis::FilledAreaOfRings(rings);
+    if (!area.ok()) {
+      std::string message = "GeoJSON export of free polygon ";
+      message.append(std::to_string(i)).append(": ").append(area.status().message());
+      return InternalError(std::move(message));
     }
-    features.push_back({{"type", "Feature"},
-                        {"properties", {{"kind", "free"}}},
-                        {"geometry", {{"type", "Polygon"}, {"coordinates", rings}}}});
+    for (nlohmann::json& geometry : gis::GeoJsonGeometries(*area)) {
+      features.push_back({{"type", "Feature"},
+                          {"properties", {{"kind", "free"}}},
+                          {"geometry", std::move(geometry)}});
+    }
   }
-  return {{"type", "FeatureCollection"},
-          {"properties",
-           {{"epsilon", map.epsilon}, {"resolution", map.resolution}, {"frame", map.frame_id}}},
-          {"features", features}};
+  return nlohmann::json{
+      {"type", "FeatureCollection"},
+      {"crs", gis::GeoJsonCrs()},
+      {"properties",
+       {{"epsilon", map.epsilon}, {"resolution", map.resolution}, {"frame", map.frame_id}}},
+      {"features", std::move(features)}};
 }
 
-std::string ToGeoJsonString(const VectorMap& map, int indent) {
-  return ToGeoJson(map).dump(indent);
+StatusOr<std::string> ToGeoJsonString(const VectorMap& map, int indent) {
+  FLEETMAP_ASSIGN_OR_RETURN(const nlohmann::json json, ToGeoJson(map));
+  return json.dump(indent);
 }
 
 }  // namespace fleetmap::vector_map

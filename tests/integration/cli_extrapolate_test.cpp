@@ -17,11 +17,13 @@
 #include "common/sim/depth_sensor.hpp"
 #include "common/sim/indoor_scene_generator.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
+#include "tests/support/geojson_checks.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 using testing::RunFleetmap;
 
 std::string Data(const std::string& name) {
@@ -79,6 +81,7 @@ TEST(CliExtrapolateTest, WritesGraphGridsGeoJsonAndOverlayPerThreshold) {
     EXPECT_GT(free, 50);
     const nlohmann::json geojson = ReadJson(dir + "/predicted_free.geojson");
     EXPECT_EQ(geojson["type"], "FeatureCollection");
+    EXPECT_THAT(testing::GeoJsonProblems(geojson), IsEmpty()) << p;
     bool door_polygon = false;
     for (const nlohmann::json& f : geojson["features"]) {
       door_polygon |= f["properties"]["class"] == "quasi-static";

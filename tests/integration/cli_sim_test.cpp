@@ -6,17 +6,20 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "common/process/subprocess.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
+#include "tests/support/geojson_checks.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 using testing::ReadFile;
 using testing::RunFleetmap;
 
@@ -35,6 +38,8 @@ TEST(CliSimTest, TerrainWritesMapAndGeoJsonReproducibly) {
   EXPECT_EQ(ReadFile(dir + "/a.pgm"), ReadFile(dir + "/b.pgm"));
   EXPECT_EQ(ReadFile(dir + "/a.geojson"), ReadFile(dir + "/b.geojson"));
   EXPECT_THAT(ReadFile(dir + "/a.geojson"), HasSubstr("\"door\""));
+  EXPECT_THAT(testing::GeoJsonProblems(nlohmann::json::parse(ReadFile(dir + "/a.geojson"))),
+              IsEmpty());
   const process::CommandResult info = RunFleetmap({"info", dir + "/a.yaml"});
   EXPECT_THAT(info.out, HasSubstr("240 x 240 cells"));
   std::filesystem::remove_all(dir);

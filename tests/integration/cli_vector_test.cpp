@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,11 +21,13 @@
 #include "common/transport/vmap_file.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
+#include "tests/support/geojson_checks.hpp"
 
 namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::IsEmpty;
 using ::testing::Not;
 using testing::RunFleetmap;
 
@@ -292,14 +296,47 @@ TEST(CliVectorTest, GeoJsonHasTheRequiredStructure) {
     } else {
       ++free;
       EXPECT_EQ(kind, "free");
-      EXPECT_EQ(type, "Polygon");
-      EXPECT_GE(feature["geometry"]["coordinates"][0].size(), 4u);  // closed ring
     }
   }
   EXPECT_GT(obstacles, 0);
   EXPECT_GT(free, 0);
+  EXPECT_THAT(testing::GeoJsonProblems(json), IsEmpty());
   EXPECT_EQ(ReadText(dir + "/room.svg").rfind("<svg", 0), 0u);
   EXPECT_EQ(ReadText(dir + "/room.png").substr(1, 3), "PNG");
+}
+
+// `fleetmap vectorize --geojson` on every real map present (docs/file-formats.md: valid simple
+// features, crs EPSG:3857), judged by GEOS and, where gdal-bin is installed, by GDAL as a GIS user
+// would load the file: no invalid geometry, metres in EPSG:3857.
+TEST(CliVectorTest, GeoJsonOfRealMapsIsValidForGisTools) {
+  const bool have_ogrinfo =
+      process::RunCommand({"sh", "-c", "command -v ogrinfo"}, std::chrono::seconds(10)).exit_code ==
+      0;
+  int maps = 0;
+  for (const char* name : {"intel_lab", "aces3_austin", "nav2_warehouse", "willow_garage_2010",
+                           "strands_kth", "aws_small_house", "tb3_world"}) {
+    const std::string map = std::string(FLEETMAP_SHARED_MAPS_DIR) + "/" + name + ".yaml";
+    if (!std::filesystem::exists(map)) continue;
+    ++maps;
+    const std::string dir = TestDir();
+    const std::string geojson = dir + "/" + name + ".geojson";
+    const process::CommandResult run =
+        RunFleetmap({"vectorize", map, "-o", dir + "/" + name + ".vmap", "--geojson", geojson});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_THAT(testing::GeoJsonProblems(nlohmann::json::parse(ReadText(geojson))), IsEmpty())
+        << name;
+    if (!have_ogrinfo) continue;
+    std::string sql = "SELECT COUNT(*) AS invalid FROM ";
+    sql.append(name).append(" WHERE NOT ST_IsValid(geometry)");
+    const process::CommandResult invalid =
+        process::RunCommand({"ogrinfo", "-ro", "-q", "-dialect", "SQLite", "-sql", sql, geojson});
+    EXPECT_THAT(invalid.out, HasSubstr("invalid (Integer) = 0")) << name << invalid.output();
+    const process::CommandResult layer =
+        process::RunCommand({"ogrinfo", "-ro", "-so", geojson, name});
+    EXPECT_THAT(layer.out, HasSubstr("ID[\"EPSG\",3857]")) << name << layer.output();
+  }
+  EXPECT_GT(maps, 0) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
+  if (!have_ogrinfo) std::cout << "ogrinfo (gdal-bin) not installed: GDAL's check skipped\n";
 }
 
 TEST(CliVectorTest, RenderDrawsVectorMapsAndGrids) {

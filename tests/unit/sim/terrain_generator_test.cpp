@@ -56,8 +56,8 @@ TEST_P(TerrainKinds, SameSeedSameTerrainOtherSeedOtherTerrain) {
   EXPECT_NE(a.data(), c.data());
   const TerrainGenerator generator =
       *TerrainGenerator::Create({.kind = GetParam(), .size = 20.0, .seed = 7});
-  EXPECT_EQ(TerrainToGeoJsonString(generator.Generate()),
-            TerrainToGeoJsonString(generator.Generate()));
+  EXPECT_EQ(*TerrainToGeoJsonString(generator.Generate()),
+            *TerrainToGeoJsonString(generator.Generate()));
 }
 
 TEST_P(TerrainKinds, BoundaryIsClosedAndFreeSpaceIsConnected) {

@@ -1,0 +1,43 @@
+#pragma once
+
+// The area fleetmap fills from a set of rings, as valid OGC simple features.
+//
+// fleetmap's rings (a vector map's free polygon, the outlines of a grid's free cells) pass through
+// cell centres and mean what the rasterizer fills from them: every point inside an odd number of
+// rings (even-odd rule, so a hole is simply another ring) plus every ring's own outline. A ring of
+// one vertex is a point (one free cell), a ring of two a line of cells, and a ring may touch or
+// cross itself and its holes. GIS tools want simple features instead: closed rings of at least
+// four positions, no self-intersection, holes inside their shell. FilledAreaOfRings gives the
+// same point set as such features:
+//  - `polygons`: the parts with area, a valid (Multi)Polygon; rings closed (last position repeats
+//    the first), shells counter-clockwise and holes clockwise (RFC 7946), no repeated positions;
+//  - `lines`: outlines that bound no area (a line of cells, a one-cell-wide spike or corridor);
+//  - `points`: one-vertex rings not already on a polygon or line.
+//
+// Thread-safety: stateless; concurrent calls are safe (each call has its own GEOS context).
+
+#include <vector>
+
+#include "common/core/status.hpp"
+#include "common/core/types.hpp"
+
+namespace fleetmap::gis {
+
+struct SimplePolygon {
+  std::vector<Point2> shell;
+  std::vector<std::vector<Point2>> holes;
+};
+
+struct FilledArea {
+  std::vector<SimplePolygon> polygons;
+  std::vector<std::vector<Point2>> lines;
+  std::vector<Point2> points;
+
+  bool empty() const { return polygons.empty() && lines.empty() && points.empty(); }
+};
+
+// Rings are not closed (the last vertex is not the first again); empty rings are ignored.
+// Errors (kInternal) only if GEOS fails on the geometry, with GEOS's message.
+StatusOr<FilledArea> FilledAreaOfRings(const std::vector<std::vector<Point2>>& rings);
+
+}  // namespace fleetmap::gis

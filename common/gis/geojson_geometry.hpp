@@ -1,0 +1,31 @@
+#pragma once
+
+// GeoJSON pieces every fleetmap export shares (docs/file-formats.md, "Vector map pictures and
+// exports"): positions, the `crs` member, and the geometries of a FilledArea.
+//
+// Coordinates are frame metres (the map or fleet frame), not WGS84 degrees. The `crs` member names
+// EPSG:3857 (a projected CRS in metres), as nav2_route's graph files do, so that GIS tools read
+// the numbers as metres on a plane instead of as longitude and latitude.
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/core/types.hpp"
+#include "common/gis/filled_area.hpp"
+
+namespace fleetmap::gis {
+
+inline constexpr const char* kGeoJsonCrsName = "urn:ogc:def:crs:EPSG::3857";
+
+// {"type": "name", "properties": {"name": kGeoJsonCrsName}}: a FeatureCollection's "crs" member.
+nlohmann::json GeoJsonCrs();
+
+nlohmann::json GeoJsonPosition(const Point2& p);
+
+// At most three geometries, in this order: a Polygon (MultiPolygon if the area has several
+// parts), a LineString (MultiLineString) for the lines, a Point (MultiPoint) for the points.
+// None for an empty area.
+std::vector<nlohmann::json> GeoJsonGeometries(const FilledArea& area);
+
+}  // namespace fleetmap::gis
