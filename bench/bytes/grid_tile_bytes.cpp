@@ -90,8 +90,7 @@ StatusOr<GridTileBytes> MeasureGridTileBytes(const grid::OccupancyGrid& grid,
 
 StatusOr<TiledGridBytes> MeasureTiledGridBytes(const grid::OccupancyGrid& grid,
                                                const Transform2& fleet_from_map, double tile_size) {
-  FLEETMAP_ASSIGN_OR_RETURN(const auto rects,
-                            grid::TileCellRects(grid, fleet_from_map, tile_size));
+  FLEETMAP_ASSIGN_OR_RETURN(const auto rects, grid::TileCellRects(grid, fleet_from_map, tile_size));
   TiledGridBytes tiled;
   for (const auto& [tile, cells] : rects) {
     if (cells.empty() || AllUnknown(grid, cells)) continue;

@@ -22,8 +22,7 @@ std::string TilesText(const TileBytesComparison& c) {
   return text.append(std::to_string(c.vector.tiles));
 }
 
-void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold,
-              std::ostream& out) {
+void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold, std::ostream& out) {
   const std::string mark = bold ? "**" : "";
   out << "| " << name << " | " << TilesText(c);
   for (const NamedBytes& baseline : TileBaselines(c.grid.bytes)) out << " | " << Kb(baseline.bytes);
@@ -70,14 +69,11 @@ std::string TileBytesCsvHeader() {
 }
 
 std::vector<std::string> TileBytesCsvFields(const TileBytesComparison& c) {
-  std::vector<std::string> fields = {std::to_string(c.grid.tiles),
-                                     std::to_string(c.vector.tiles),
-                                     std::to_string(c.grid.bytes.raw),
-                                     std::to_string(c.grid.bytes.patch_cdr),
-                                     std::to_string(c.grid.bytes.zstd3),
-                                     std::to_string(c.grid.bytes.zstd19),
-                                     std::to_string(c.grid.bytes.lz4),
-                                     std::to_string(c.vector.payload)};
+  std::vector<std::string> fields = {
+      std::to_string(c.grid.tiles),       std::to_string(c.vector.tiles),
+      std::to_string(c.grid.bytes.raw),   std::to_string(c.grid.bytes.patch_cdr),
+      std::to_string(c.grid.bytes.zstd3), std::to_string(c.grid.bytes.zstd19),
+      std::to_string(c.grid.bytes.lz4),   std::to_string(c.vector.payload)};
   for (const NamedRatio& ratio : c.Ratios()) fields.push_back(Format("%.4f", ratio.ratio));
   const NamedRatio smallest = c.RatioToSmallest();
   fields.push_back(smallest.baseline);

@@ -26,10 +26,9 @@ StatusOr<std::vector<uint8_t>> CompressLz4(std::span<const uint8_t> bytes) {
   }
   const int input_size = static_cast<int>(bytes.size());
   std::vector<uint8_t> out(LZ4_compressBound(input_size));
-  const int size =
-      LZ4_compress_default(reinterpret_cast<const char*>(bytes.data()),
-                           reinterpret_cast<char*>(out.data()), input_size,
-                           static_cast<int>(out.size()));
+  const int size = LZ4_compress_default(reinterpret_cast<const char*>(bytes.data()),
+                                        reinterpret_cast<char*>(out.data()), input_size,
+                                        static_cast<int>(out.size()));
   if (size <= 0 && input_size > 0) return InternalError("lz4: compression failed");
   out.resize(static_cast<size_t>(size));
   return out;

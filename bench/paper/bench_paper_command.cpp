@@ -187,8 +187,8 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
   md << "\nAverages per size (the paper's Fig. 4a; paper at 80 m: P 2532.4 KB, V 39.2 KB, 65x, "
         "obstacles only in one file: compare P / V obst one tile):\n\n"
      << "| size | P KB | PZ KB | V KB | VZ KB | V obst KB | VZ obst KB | V obst one tile KB | "
-        "P / V | P / V obst | P / V obst one tile | PZ / VZ | PZ / VZ obst | grid tiles zstd -19 KB "
-        "| vector tiles KB | vector tiles / smallest tile baseline |\n"
+        "P / V | P / V obst | P / V obst one tile | PZ / VZ | PZ / VZ obst | "
+        "grid tiles zstd -19 KB | vector tiles KB | vector tiles / smallest tile baseline |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (double size : options.sizes) {
     double p = 0, pz = 0, v = 0, vz = 0, vo = 0, vzo = 0, vo1 = 0;
@@ -213,7 +213,8 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
        << Fixed(vz / n / kKilo, 1) << " | " << Fixed(vo / n / kKilo, 1) << " | "
        << Fixed(vzo / n / kKilo, 1) << " | " << Fixed(vo1 / n / kKilo, 1) << " | " << ratio(p, v)
        << " | " << ratio(p, vo) << " | " << ratio(p, vo1) << " | " << ratio(pz, vz) << " | "
-       << ratio(pz, vzo) << " | " << Fixed(static_cast<double>(tiles.grid.bytes.zstd19) / n / kKilo, 1) << " | "
+       << ratio(pz, vzo) << " | "
+       << Fixed(static_cast<double>(tiles.grid.bytes.zstd19) / n / kKilo, 1) << " | "
        << Fixed(static_cast<double>(tiles.vector.payload) / n / kKilo, 1) << " | "
        << Fixed(tiles.RatioToSmallest().ratio, 2) << " (" << tiles.RatioToSmallest().baseline
        << ") |\n";

@@ -48,7 +48,7 @@ struct VectorizeBenchRow {
   std::string name;  // file stem
   int64_t cells = 0;
   double resolution = 0.0;
-  double epsilon = 0.0;  // metres
+  double epsilon = 0.0;    // metres
   double tile_size = 0.0;  // metres, of the .vmap's tiles and the byte comparison's
 
   MethodFigures ours;           // kDefault, obstacles only

@@ -229,10 +229,9 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   const double tile_sum_ratio = tile_total.RatioTo(&GridTileBytes::zstd19);
   targets.push_back({"vector tiles <= 0.5 x grid zstd -19 tiles (10 m, each alone), summed",
                      Ratio(tile_sum_ratio), tile_sum_ratio <= kTileBytesSummedTarget});
-  const auto worst_tile =
-      std::max_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
-        return TileBytesRatio(a) < TileBytesRatio(b);
-      });
+  const auto worst_tile = std::max_element(
+      rows.begin(), rows.end(),
+      [](const Row& a, const Row& b) { return TileBytesRatio(a) < TileBytesRatio(b); });
   const double worst_tile_ratio = worst_tile == rows.end() ? 0.0 : TileBytesRatio(*worst_tile);
   targets.push_back({"vector tiles <= 0.7 x grid zstd -19 tiles (10 m, each alone), every map",
                      "worst " + Ratio(worst_tile_ratio) +
@@ -302,8 +301,8 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out << "| " << r.name << " | " << Kb(r.grid_zstd) << " | " << Kb(r.grid_png) << " | "
-        << Kb(r.vmap_obstacles_raw) << " | " << Kb(r.vmap_raw) << " | " << Kb(r.vmap_zstd)
-        << " | " << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
+        << Kb(r.vmap_obstacles_raw) << " | " << Kb(r.vmap_raw) << " | " << Kb(r.vmap_zstd) << " | "
+        << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
         << Percent(r.round_trip_opdf) << " | " << Percent(r.round_trip_updf) << " | "
         << Ms(r.revectorize_tile_ms) << " | "
         << TilesWithinText(TilesWithinTarget(r), r.tile_updates.size()) << " |\n";

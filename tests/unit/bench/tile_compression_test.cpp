@@ -52,10 +52,9 @@ TEST(TileCompressionTest, Lz4BlockDecompressesToTheInputOfKnownSize) {
   ASSERT_TRUE(compressed.ok()) << compressed.status();
   EXPECT_LT(compressed->size(), cells.size() / 10);
   std::vector<uint8_t> back(cells.size());
-  const int size = LZ4_decompress_safe(reinterpret_cast<const char*>(compressed->data()),
-                                       reinterpret_cast<char*>(back.data()),
-                                       static_cast<int>(compressed->size()),
-                                       static_cast<int>(back.size()));
+  const int size = LZ4_decompress_safe(
+      reinterpret_cast<const char*>(compressed->data()), reinterpret_cast<char*>(back.data()),
+      static_cast<int>(compressed->size()), static_cast<int>(back.size()));
   ASSERT_EQ(size, static_cast<int>(cells.size()));
   EXPECT_EQ(back, cells);
 }
