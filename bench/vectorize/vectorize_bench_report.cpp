@@ -1,11 +1,11 @@
 #include "bench/vectorize/vectorize_bench_report.hpp"
 
-#include "bench/bytes/tile_bytes_table.hpp"
-
 #include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <optional>
+
+#include "bench/bytes/tile_bytes_table.hpp"
 
 namespace fleetmap::bench {
 namespace {
@@ -227,13 +227,16 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   TileBytesComparison tile_total;
   for (const Row& row : rows) tile_total += row.tile_bytes;
   const double tile_sum_ratio = tile_total.RatioTo(&GridTileBytes::zstd19);
-  targets.push_back({"vector tiles <= 0.5 x grid zstd -19 tiles (10 m, each alone), summed",
-                     Ratio(tile_sum_ratio), tile_sum_ratio <= kTileBytesSummedTarget});
+  std::string tiles_text = "grid zstd -19 tiles (";
+  tiles_text.append(Format("%g", rows.empty() ? 0.0 : rows.front().tile_size))
+      .append(" m, each alone)");
+  targets.push_back({"vector tiles <= 0.5 x " + tiles_text + ", summed", Ratio(tile_sum_ratio),
+                     tile_sum_ratio <= kTileBytesSummedTarget});
   const auto worst_tile = std::max_element(
       rows.begin(), rows.end(),
       [](const Row& a, const Row& b) { return TileBytesRatio(a) < TileBytesRatio(b); });
   const double worst_tile_ratio = worst_tile == rows.end() ? 0.0 : TileBytesRatio(*worst_tile);
-  targets.push_back({"vector tiles <= 0.7 x grid zstd -19 tiles (10 m, each alone), every map",
+  targets.push_back({"vector tiles <= 0.7 x " + tiles_text + ", every map",
                      "worst " + Ratio(worst_tile_ratio) +
                          (worst_tile == rows.end() ? "" : " (" + worst_tile->name + ")"),
                      worst_tile_ratio <= kTileBytesEveryMapTarget});
@@ -406,8 +409,8 @@ std::string VectorizeBenchCsv(const std::vector<VectorizeBenchRow>& rows) {
       "paper_uncovered,paper_discontinuous,opencv_vertices,opencv_segments,opencv_ms,"
       "opencv_mask_ms,opencv_uncovered,opencv_discontinuous,vmap_tiles,vmap_raw,vmap_zstd,"
       "vmap_obstacles_raw,vmap_obstacles_zstd,vmap_valid,grid_raw,grid_zstd,grid_png,"
-      "round_trip_ms,round_trip_opdf,round_trip_updf,revectorize_tile_ms," +
-      TileBytesCsvHeader() + "\n";
+      "round_trip_ms,round_trip_opdf,round_trip_updf,revectorize_tile_ms,";
+  csv.append(TileBytesCsvHeader()).append("\n");
   const auto number = [](double value) { return Format("%.6g", value); };
   const auto optional = [&number](const std::optional<double>& value) {
     return value ? number(*value) : std::string();
