@@ -230,13 +230,13 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   std::string tiles_text = "grid zstd -19 tiles (";
   tiles_text.append(Format("%g", rows.empty() ? 0.0 : rows.front().tile_size))
       .append(" m, each alone)");
-  targets.push_back({"vector tiles <= 0.5 x " + tiles_text + ", summed", Ratio(tile_sum_ratio),
-                     tile_sum_ratio <= kTileBytesSummedTarget});
+  targets.push_back({std::string("vector tiles <= 0.5 x ").append(tiles_text).append(", summed"),
+                     Ratio(tile_sum_ratio), tile_sum_ratio <= kTileBytesSummedTarget});
   const auto worst_tile = std::max_element(
       rows.begin(), rows.end(),
       [](const Row& a, const Row& b) { return TileBytesRatio(a) < TileBytesRatio(b); });
   const double worst_tile_ratio = worst_tile == rows.end() ? 0.0 : TileBytesRatio(*worst_tile);
-  targets.push_back({"vector tiles <= 0.7 x " + tiles_text + ", every map",
+  targets.push_back({std::string("vector tiles <= 0.7 x ").append(tiles_text).append(", every map"),
                      "worst " + Ratio(worst_tile_ratio) +
                          (worst_tile == rows.end() ? "" : " (" + worst_tile->name + ")"),
                      worst_tile_ratio <= kTileBytesEveryMapTarget});
