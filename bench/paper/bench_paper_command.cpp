@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/bytes/tile_bytes_table.hpp"
 #include "bench/paper/paper_experiment.hpp"
 #include "bench/report/bar_chart.hpp"
 #include "bench/report/bench_command.hpp"
@@ -82,7 +83,7 @@ std::string ResultsCsv(const std::vector<PaperTerrainResult>& results) {
       if (std::string(from) != to) csv << ",ms_lost_" << from << "_to_" << to;
     }
   }
-  csv << ",seconds_explore,seconds_vectorize,seconds_total\n";
+  csv << ",seconds_explore,seconds_vectorize,seconds_total," << TileBytesCsvHeader() << "\n";
   auto opt = [](const std::optional<double>& v) { return v ? Fixed(*v, 4) : std::string(); };
   for (const PaperTerrainResult& r : results) {
     csv << sim::TerrainKindName(r.kind) << "," << Fixed(r.size, 0) << "," << r.seed << ","
@@ -104,7 +105,9 @@ std::string ResultsCsv(const std::vector<PaperTerrainResult>& results) {
       }
     }
     csv << "," << Fixed(r.seconds_explore, 2) << "," << Fixed(r.seconds_vectorize, 3) << ","
-        << Fixed(r.seconds_total, 2) << "\n";
+        << Fixed(r.seconds_total, 2);
+    for (const std::string& field : TileBytesCsvFields(r.tile_bytes)) csv << "," << field;
+    csv << "\n";
   }
   return csv.str();
 }
@@ -155,7 +158,11 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
         "VZ obst: the same tiles without their free-space polygons (obstacles only, like the "
         "paper's vector map); V obst one tile: obstacles only with the whole terrain as one tile, "
         "one file like the paper's (10 m tiles are what the fleet sends: per-tile headers and "
-        "seams); zstd: level 19. Quality "
+        "seams); zstd: level 19. Per fleet tile (the honest baselines): the robot grid cut into "
+        "the fleet's 10 m tiles (all-unknown tiles left out, as the vector wire leaves them), "
+        "each tile alone as a map_msgs/OccupancyGridUpdate sample (patch CDR) or its cells "
+        "compressed alone (zstd -3, zstd -19, LZ4 block), against V's tiles as the VectorTile "
+        "samples an agent publishes (vector tiles). Quality "
         "metrics (ALGORITHMS.md 1.1, %) against the ground truth of (a) the robot grid, (b) the "
         "vector map of the robot grid rasterized back, (c) the vector map of the ground truth "
         "rasterized back.\n\n";
@@ -180,10 +187,12 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
   md << "\nAverages per size (the paper's Fig. 4a; paper at 80 m: P 2532.4 KB, V 39.2 KB, 65x, "
         "obstacles only in one file: compare P / V obst one tile):\n\n"
      << "| size | P KB | PZ KB | V KB | VZ KB | V obst KB | VZ obst KB | V obst one tile KB | "
-        "P / V | P / V obst | P / V obst one tile | PZ / VZ | PZ / VZ obst |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "P / V | P / V obst | P / V obst one tile | PZ / VZ | PZ / VZ obst | "
+        "grid tiles zstd -19 KB | vector tiles KB | vector tiles / smallest tile baseline |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (double size : options.sizes) {
     double p = 0, pz = 0, v = 0, vz = 0, vo = 0, vzo = 0, vo1 = 0;
+    TileBytesComparison tiles;
     int n = 0;
     for (const PaperTerrainResult& r : results) {
       if (r.size != size) continue;
@@ -194,6 +203,7 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
       vo += r.vmap_obstacles.raw;
       vzo += r.vmap_obstacles.gzip;
       vo1 += r.vmap_obstacles_one_tile;
+      tiles += r.tile_bytes;
       ++n;
     }
     if (n == 0) continue;
@@ -203,8 +213,19 @@ std::string Report(const BenchPaperOptions& options, const std::vector<PaperTerr
        << Fixed(vz / n / kKilo, 1) << " | " << Fixed(vo / n / kKilo, 1) << " | "
        << Fixed(vzo / n / kKilo, 1) << " | " << Fixed(vo1 / n / kKilo, 1) << " | " << ratio(p, v)
        << " | " << ratio(p, vo) << " | " << ratio(p, vo1) << " | " << ratio(pz, vz) << " | "
-       << ratio(pz, vzo) << " |\n";
+       << ratio(pz, vzo) << " | "
+       << Fixed(static_cast<double>(tiles.grid.bytes.zstd19) / n / kKilo, 1) << " | "
+       << Fixed(static_cast<double>(tiles.vector.payload) / n / kKilo, 1) << " | "
+       << Fixed(tiles.RatioToSmallest().ratio, 2) << " (" << tiles.RatioToSmallest().baseline
+       << ") |\n";
   }
+
+  md << "\n### Bytes per fleet tile, each tile alone (the honest baselines)\n\n"
+     << "P and PZ compress the whole grid in one piece, which no wire sends: the fleet sends "
+        "10 m tiles. The same tiles of the robot grid, each alone, against V's tiles:\n\n";
+  std::vector<NamedComparison> tile_rows;
+  for (const PaperTerrainResult& r : results) tile_rows.push_back({Name(r), r.tile_bytes});
+  if (!tile_rows.empty()) PrintTileBytesTable(tile_rows, "terrain", md);
 
   md << "\n## Quality (%): (a) grid / (b) vector of grid / (c) vector of truth\n\n"
      << "| terrain | MS | CC | PC | OPDF | UPDF |\n|---|---|---|---|---|---|\n";

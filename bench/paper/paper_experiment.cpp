@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/bytes/grid_tile_bytes.hpp"
+#include "bench/bytes/vector_tile_bytes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/sim/terrain_generator.hpp"
@@ -124,6 +126,10 @@ StatusOr<PaperTerrainResult> RunPaperTerrain(
       const Vectorized one_tile,
       Vectorize(robot, options.line_refit, /*free_space=*/false, terrain_extent));
   result.vmap_obstacles_one_tile = one_tile.vmap.size();
+  FLEETMAP_ASSIGN_OR_RETURN(result.tile_bytes.vector, MeasureVectorTileBytes(robot_vector.tiled));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      result.tile_bytes.grid,
+      MeasureTiledGridBytes(robot, Transform2::Identity(), robot_vector.tiled.tile_size));
 
   const vector_map::VectorMap robot_merged = robot_vector.tiled.Merged();
   const vector_map::VectorMap truth_merged = truth_vector.tiled.Merged();

@@ -3,14 +3,16 @@
 // The experiment of the Vector Maps paper (seed 002, section 5; ALGORITHMS.md 1.2) on simulated
 // terrains: for one terrain (kind, size, seed) generate the ground truth, let a robot explore and
 // map it, vectorize the robot map and the ground truth, and measure sizes (P, PZ, V, VZ and their
-// zstd variants) and the five quality metrics of (a) the robot grid, (b) the vector map of the
-// robot grid and (c) the vector map of the ground truth, all against the ground truth.
+// zstd variants; the grid's per-tile baselines against the vector tiles) and the five quality
+// metrics of (a) the robot grid, (b) the vector map of the robot grid and (c) the vector map of
+// the ground truth, all against the ground truth.
 // `fleetmap bench paper` runs it over the nine terrains and writes the report.
 
 #include <cstdint>
 #include <functional>
 #include <string>
 
+#include "bench/bytes/tile_bytes_comparison.hpp"
 #include "common/core/status.hpp"
 #include "common/metrics/grid_sizes.hpp"
 #include "common/metrics/map_quality.hpp"
@@ -48,6 +50,9 @@ struct PaperTerrainResult {
   // Obstacles only with the whole terrain as one tile: one vector map of the terrain in one file,
   // as the paper's V is (10 m tiles, above, are what the fleet sends: per-tile headers and seams).
   size_t vmap_obstacles_one_tile = 0;
+  // The honest baselines (issue 17): the robot grid cut into the fleet's 10 m tiles, each tile
+  // alone (patch CDR, zstd -3, zstd -19, LZ4), against V's tiles as the samples an agent sends.
+  TileBytesComparison tile_bytes;
   size_t vertices = 0;
   size_t segments = 0;
   size_t truth_vmap = 0;                // .vmap bytes of the ground truth's vector map

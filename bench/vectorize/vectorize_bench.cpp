@@ -172,6 +172,9 @@ StatusOr<vector_map::TiledVectorMap> MeasureVmap(const grid::OccupancyGrid& grid
   FLEETMAP_ASSIGN_OR_RETURN(const EncodedSizes full, Sizes(bytes));
   row->vmap_raw = full.raw;
   row->vmap_zstd = full.zstd;
+  FLEETMAP_ASSIGN_OR_RETURN(row->tile_bytes.vector, MeasureVectorTileBytes(tiled));
+  FLEETMAP_ASSIGN_OR_RETURN(row->tile_bytes.grid,
+                            MeasureTiledGridBytes(grid, Transform2::Identity(), options.tile_size));
 
   FLEETMAP_ASSIGN_OR_RETURN(const vector_map::TiledVectorMap decoded,
                             transport::DecodeVmap(bytes, row->name + ".vmap"));
@@ -273,6 +276,7 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
   row.cells = grid.cell_count();
   row.resolution = grid.resolution();
   row.epsilon = vector_map::DefaultEpsilon(grid.resolution());
+  row.tile_size = options.tile_size;
 
   using vector_map::VectorizeMethod;
   vector_map::VectorMap ours;
@@ -285,7 +289,6 @@ StatusOr<VectorizeBenchRow> Measure(const std::string& yaml_path,
 
   FLEETMAP_ASSIGN_OR_RETURN(const metrics::GridSizes grid_sizes, metrics::MeasureGridSizes(grid));
   row.grid_raw = grid_sizes.cells.raw;
-  row.grid_gzip = grid_sizes.cells.gzip;
   row.grid_zstd = grid_sizes.cells.zstd;
   row.grid_png = grid_sizes.png;
   FLEETMAP_ASSIGN_OR_RETURN(vector_map::TiledVectorMap tiled, MeasureVmap(grid, options, &row));

@@ -5,6 +5,9 @@
 // thread (median of N runs), their vertex counts and whether both constraints hold, the bytes of
 // the tiled .vmap against the 3-state grid, the round trip rasterize(vectorize(G)) against G, and
 // the time to re-vectorize one changed tile, and where the vertices go (vertex_breakdown.hpp).
+// Bytes are compared two ways: per fleet tile, each tile alone, as the fleet's wire sends them
+// (the vector tiles' samples against the grid tiles' baselines, bench/bytes), and the whole map
+// in one piece, as files.
 // Not a test: it asserts nothing.
 
 #include <cstddef>
@@ -13,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bytes/tile_bytes_comparison.hpp"
 #include "bench/vectorize/vertex_breakdown.hpp"
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
@@ -44,7 +48,8 @@ struct VectorizeBenchRow {
   std::string name;  // file stem
   int64_t cells = 0;
   double resolution = 0.0;
-  double epsilon = 0.0;  // metres
+  double epsilon = 0.0;    // metres
+  double tile_size = 0.0;  // metres, of the .vmap's tiles and the byte comparison's
 
   MethodFigures ours;           // kDefault, obstacles only
   MethodFigures ours_full;      // kDefault with free space; vertices = obstacles + free
@@ -62,10 +67,14 @@ struct VectorizeBenchRow {
   size_t vmap_zstd = 0;
   size_t vmap_obstacles_raw = 0;  // the same without free space
   size_t vmap_obstacles_zstd = 0;
-  size_t grid_raw = 0;  // 3-state grid, one byte per cell
-  size_t grid_gzip = 0;
+  // The 3-state grid whole, in one piece: cells, zstd -19, and map_server's PNG file.
+  size_t grid_raw = 0;
   size_t grid_zstd = 0;
   size_t grid_png = 0;
+
+  // Per fleet tile (tile_size), each tile alone: the .vmap's tiles as the samples a robot agent
+  // publishes against the same tiles of the 3-state grid on the grid's baselines.
+  TileBytesComparison tile_bytes;
 
   // rasterize(decode(.vmap)) over G's geometry against G.
   std::optional<double> round_trip_ms;  // MS

@@ -1,8 +1,9 @@
 #pragma once
 
-// The output of `fleetmap bench vectorize`: two Markdown tables (vertices and time; bytes, round
-// trip and one-tile update) with a summary row each, the targets marked met or missed,
-// and the same figures as JSON and CSV.
+// The output of `fleetmap bench vectorize`: Markdown tables with a summary row each (vertices and
+// time; bytes per fleet tile against the grid's per-tile baselines, bench/bytes; the whole map's
+// bytes as files, round trip and one-tile update; where the vertices go), the issues' targets
+// marked met or missed, and the same figures as JSON and CSV.
 
 #include <nlohmann/json.hpp>
 #include <ostream>

@@ -105,6 +105,15 @@ TEST(CliSimTest, BenchPaperWritesReportCsvAndCharts) {
   EXPECT_EQ(column("V_obst_one_tile"), column("V_obst"));
   EXPECT_GT(std::stoi(column("V_obst")), 0);
   EXPECT_THAT(ReadFile(dir + "/report.md"), HasSubstr("P / V obst one tile"));
+  // The honest baselines: a 10 m terrain is one fleet tile on both sides, sent alone.
+  EXPECT_EQ(column("grid_tiles"), "1");
+  EXPECT_EQ(column("vector_tiles"), "1");
+  EXPECT_EQ(std::stoi(column("grid_tile_raw")), 200 * 200);
+  EXPECT_LT(std::stoi(column("grid_tile_zstd19")), std::stoi(column("grid_tile_patch_cdr")));
+  EXPECT_GT(std::stoi(column("vector_tile_bytes")), 0);
+  EXPECT_NE(column("vector_over_smallest"), "missing");
+  EXPECT_THAT(ReadFile(dir + "/report.md"), HasSubstr("| vector / zstd -19 |"));
+  EXPECT_THAT(run.out, HasSubstr("Vector tiles / smallest baseline"));
   // Same seed, same robot map bytes.
   const std::string again = TempDir("paper_again");
   ASSERT_EQ(RunFleetmap({"bench", "paper", "--out", again, "--sizes", "10", "--kinds", "office",

@@ -475,6 +475,21 @@ TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
   EXPECT_TRUE(room["vmap"]["valid"].get<bool>());
   EXPECT_GT(room["opencv"]["vertices"].get<int>(), 0);
   EXPECT_GT(room["grid"]["zstd"].get<int>(), 0);
+  // Bytes per fleet tile: the same tiles on both sides, every baseline named, zstd -19 of a tile
+  // smaller than the tile's patch.
+  const nlohmann::json& tile_bytes = room["tile_bytes"];
+  EXPECT_EQ(tile_bytes["grid_tiles"], room["vmap"]["tiles"]);
+  EXPECT_EQ(tile_bytes["vector_tiles"], room["vmap"]["tiles"]);
+  EXPECT_GT(tile_bytes["vector"].get<int>(), 0);
+  EXPECT_LT(tile_bytes["grid"]["zstd19"].get<int>(), tile_bytes["grid"]["patch_cdr"].get<int>());
+  ASSERT_EQ(tile_bytes["vector_over"].size(), 4u);
+  EXPECT_EQ(tile_bytes["vector_over"][2]["baseline"], "zstd -19");
+  EXPECT_DOUBLE_EQ(tile_bytes["vector_over"][2]["ratio"].get<double>(),
+                   tile_bytes["vector"].get<double>() / tile_bytes["grid"]["zstd19"].get<double>());
+  EXPECT_EQ(json["tile_bytes_headline"]["worst_map"], "room");
+  EXPECT_THAT(run.out, HasSubstr("| vector / zstd -19 |"));
+  EXPECT_THAT(run.out, HasSubstr("Vector tiles / smallest baseline"));
+  EXPECT_THAT(run.out, HasSubstr("| vector tiles <= 0.5 x grid zstd -19 tiles"));
   EXPECT_TRUE(room["round_trip"]["MS"].is_number());
   EXPECT_EQ(room["revectorize_tile"]["changed_cells"], 5);
   // Every tile with known cells is timed once, the busiest among them.
@@ -509,6 +524,7 @@ TEST(CliVectorTest, BenchVectorizeWritesTablesJsonAndCsv) {
 
   const std::string csv = ReadText(csv_path);
   EXPECT_EQ(csv.rfind("map,cells,", 0), 0u);
+  EXPECT_THAT(csv, HasSubstr(",vector_over_zstd19,"));
   EXPECT_THAT(csv, HasSubstr("\nroom,"));
 }
 

@@ -1,0 +1,58 @@
+#include "bench/bytes/tile_bytes_table.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace fleetmap::bench {
+namespace {
+
+using ::testing::HasSubstr;
+
+TileBytesComparison Comparison(size_t vector, size_t zstd19, size_t tiles) {
+  TileBytesComparison comparison;
+  comparison.grid.tiles = tiles;
+  comparison.grid.bytes = {
+      .raw = 4096, .patch_cdr = 4136, .zstd3 = 3072, .zstd19 = zstd19, .lz4 = 3500};
+  comparison.vector.tiles = tiles;
+  comparison.vector.payload = vector;
+  return comparison;
+}
+
+TEST(TileBytesTableTest, EveryRatioColumnNamesItsBaseline) {
+  std::ostringstream out;
+  PrintTileBytesTable({{"lab", Comparison(1024, 2048, 2)}}, "map", out);
+  const std::string table = out.str();
+  EXPECT_THAT(table,
+              HasSubstr("| map | tiles | grid patch CDR KB | grid zstd -3 KB | grid zstd -19 "
+                        "KB | grid LZ4 KB | vector tiles KB | vector / patch CDR | vector "
+                        "/ zstd -3 | vector / zstd -19 | vector / LZ4 | vector / smallest "
+                        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n"));
+  EXPECT_THAT(table, HasSubstr("| lab | 2 | 4.0 | 3.0 | 2.0 | 3.4 | 1.0 | 0.25 | 0.33 | 0.50 | "
+                               "0.29 | 0.50 (zstd -19) |\n"));
+  EXPECT_THAT(table, HasSubstr("| **sum** | 2 |"));
+  EXPECT_THAT(table, HasSubstr("Vector tiles / smallest baseline: **0.50** summed (vs zstd -19); "
+                               "worst map **0.50** (lab, vs zstd -19)."));
+}
+
+TEST(TileBytesTableTest, SaysWhenTheTwoSidesSentDifferentTiles) {
+  TileBytesComparison comparison = Comparison(1024, 2048, 3);
+  comparison.vector.tiles = 2;
+  std::ostringstream out;
+  PrintTileBytesTable({{"lab", comparison}}, "terrain", out);
+  EXPECT_THAT(out.str(), HasSubstr("| lab | grid 3 / vector 2 |"));
+  EXPECT_THAT(out.str(), HasSubstr("worst terrain"));
+}
+
+TEST(TileBytesTableTest, CsvHasAFieldPerColumn) {
+  const std::string header = TileBytesCsvHeader();
+  const std::vector<std::string> fields = TileBytesCsvFields(Comparison(1024, 2048, 2));
+  EXPECT_EQ(static_cast<size_t>(std::count(header.begin(), header.end(), ',')) + 1, fields.size());
+  EXPECT_EQ(fields.front(), "2");
+  EXPECT_EQ(fields[fields.size() - 2], "zstd -19");
+  EXPECT_EQ(fields.back(), "0.5000");
+}
+
+}  // namespace
+}  // namespace fleetmap::bench
