@@ -126,7 +126,7 @@ Status AgentNode::OnNewMap(const grid::OccupancyGrid& map) {
   if (grid_publisher_ != nullptr) {
     FLEETMAP_ASSIGN_OR_RETURN(const GridWirePublisher::Published published,
                               grid_publisher_->Publish(map));
-    ++status_.maps_published;
+    status_.maps_published = grid_publisher_->maps_published();
     status_.tiles_published = grid_publisher_->patches_published();
     status_.bytes_published = grid_publisher_->bytes_published();
     spdlog::info(

@@ -30,9 +30,10 @@ std::string HeadlineRatio(uint64_t tile_bytes, const WireBaselines& measured) {
   }
   if (tile_bytes == 0) return "no tile bytes";
   const BaselineBytes smallest = SmallestBaseline(measured);
-  return fmt::format("{:.1f}x fewer bytes than the smallest baseline, {} ({} bytes)",
-                     static_cast<double>(smallest.bytes) / tile_bytes, smallest.name,
-                     smallest.bytes);
+  const double ratio = static_cast<double>(smallest.bytes) / static_cast<double>(tile_bytes);
+  return fmt::format("{:.1f}x {} bytes than the smallest baseline, {} ({} bytes)",
+                     ratio >= 1.0 ? ratio : 1.0 / ratio, ratio >= 1.0 ? "fewer" : "more",
+                     smallest.name, smallest.bytes);
 }
 
 std::string BytesAndRatio(uint64_t baseline_bytes, uint64_t tile_bytes) {

@@ -25,8 +25,8 @@ std::vector<BaselineBytes> Baselines(const WireBaselines& measured);
 // The smallest baseline (the fair comparison).
 BaselineBytes SmallestBaseline(const WireBaselines& measured);
 
-// "N.Nx fewer bytes than <smallest baseline> (B bytes)", or why there is no ratio (no tile
-// bytes, nothing measured, accounting unfinished).
+// "N.Nx fewer bytes than the smallest baseline, <name> (B bytes)" ("more" when the tiles are the
+// larger), or why there is no ratio (no tile bytes, nothing measured, accounting unfinished).
 std::string HeadlineRatio(uint64_t tile_bytes, const WireBaselines& measured);
 
 // "B (N.Nx)": a baseline's bytes and how many times the tiles' bytes they are.

@@ -5,6 +5,8 @@
 namespace fleetmap::agent {
 namespace {
 
+const Transform2 kIdentity = Pose2{}.ToTransform();
+
 // 10 m tiles at 1 m cells: a 25 x 12 grid at the fleet origin spans tiles x 0..2, y 0..1.
 grid::OccupancyGrid Grid() {
   return grid::OccupancyGrid(25, 12, 1.0, Pose2{}, grid::kUnknownValue);
@@ -15,14 +17,14 @@ TEST(TilePatchesTest, ChangedTilesAreThoseWhoseCellsDiffer) {
   grid::OccupancyGrid after = before;
   after.at(13, 4) = grid::kOccupiedValue;  // tile (1, 0)
   after.at(24, 11) = grid::kFreeValue;     // tile (2, 1)
-  const auto changed = ChangedTiles(before, after, Transform2{}, 10.0);
+  const auto changed = ChangedTiles(before, after, kIdentity, 10.0);
   ASSERT_TRUE(changed.ok()) << changed.status();
   ASSERT_EQ(changed->size(), 2u);
   EXPECT_EQ((*changed)[0].tile, (TileId{1, 0}));
   EXPECT_EQ((*changed)[0].rect, (grid::CellRect{10, 0, 10, 10}));
   EXPECT_EQ((*changed)[1].tile, (TileId{2, 1}));
   EXPECT_EQ((*changed)[1].rect, (grid::CellRect{20, 10, 5, 2}));
-  const auto none = ChangedTiles(after, after, Transform2{}, 10.0);
+  const auto none = ChangedTiles(after, after, kIdentity, 10.0);
   ASSERT_TRUE(none.ok());
   EXPECT_TRUE(none->empty());
 }
@@ -30,7 +32,7 @@ TEST(TilePatchesTest, ChangedTilesAreThoseWhoseCellsDiffer) {
 TEST(TilePatchesTest, KnownTilesSkipAllUnknownTiles) {
   grid::OccupancyGrid map = Grid();
   map.at(3, 3) = grid::kFreeValue;
-  const auto known = KnownTiles(map, Transform2{}, 10.0);
+  const auto known = KnownTiles(map, kIdentity, 10.0);
   ASSERT_TRUE(known.ok());
   ASSERT_EQ(known->size(), 1u);
   EXPECT_EQ((*known)[0].tile, (TileId{0, 0}));
