@@ -53,12 +53,9 @@ StatusOr<std::unique_ptr<WireBaselineMeter>> WireBaselineMeter::Create(RobotId r
 }
 
 WireBaselineMeter::~WireBaselineMeter() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  changed_.notify_all();
+  stop_.store(true);
   thread_.join();
+  delete inbox_.exchange(nullptr);
 }
 
 Status WireBaselineMeter::Account(const grid::OccupancyGrid& grid) {
@@ -74,41 +71,64 @@ Status WireBaselineMeter::Account(const grid::OccupancyGrid& grid) {
   whole.grid = grid;
   whole.frame_id = frame_id;
   whole.stamp = stamp;
-  const size_t grid_bytes = transport::OccupancyGridPayloadBytes(whole);
+  grid_bytes_ += transport::OccupancyGridPayloadBytes(whole);
+  ++events_;
   last_ = std::move(whole.grid);
 
-  std::unique_lock lock(mutex_);
-  ++totals_.events;
-  totals_.grid_bytes += grid_bytes;
+  auto batch = std::make_unique<Batch>();
+  size_t cells = 0;
   for (const TileCells& tile : tiles) {
     transport::MapUpdate patch = PatchOf(grid, tile.rect);
     patch.stamp = stamp;
     patch.frame_id = frame_id;
-    changed_.wait(lock, [this] { return pending_cells_ <= kMaxPendingCells; });
-    pending_cells_ += patch.data.size();
-    pending_.push_back(std::move(patch));
+    cells += patch.data.size();
+    batch->push_back(std::move(patch));
   }
-  lock.unlock();
-  changed_.notify_all();
+  while (pending_cells_.load() > kMaxPendingCells && !stop_.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  pending_ += static_cast<uint32_t>(batch->size());
+  pending_cells_ += cells;
+  Hand(std::move(batch));
   return Status::Ok();
 }
 
+void WireBaselineMeter::Hand(std::unique_ptr<Batch> batch) {
+  // The thread takes the whole inbox with one exchange; what it has not taken yet joins the new
+  // batch, oldest first. No step waits for the thread.
+  if (std::unique_ptr<Batch> untaken{inbox_.exchange(nullptr)}) {
+    untaken->insert(untaken->end(), std::make_move_iterator(batch->begin()),
+                    std::make_move_iterator(batch->end()));
+    batch = std::move(untaken);
+  }
+  inbox_.store(batch.release());
+}
+
 WireBaselines WireBaselineMeter::totals() const {
-  std::lock_guard lock(mutex_);
-  WireBaselines totals = totals_;
-  totals.patches_pending = static_cast<uint32_t>(pending_.size() + (measuring_ ? 1 : 0));
+  WireBaselines totals;
+  totals.events = events_.load();
+  totals.grid_bytes = grid_bytes_.load();
+  totals.patch_bytes = patch_bytes_.load();
+  totals.zstd3_bytes = zstd3_bytes_.load();
+  totals.zstd19_bytes = zstd19_bytes_.load();
+  totals.lz4_bytes = lz4_bytes_.load();
+  totals.patches_pending = pending_.load();
   return totals;
 }
 
-bool WireBaselineMeter::WaitUntilDone(std::chrono::milliseconds timeout) {
-  std::unique_lock lock(mutex_);
-  return changed_.wait_for(lock, timeout, [this] { return pending_.empty() && !measuring_; });
+bool WireBaselineMeter::WaitUntilDone(std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (pending_.load() > 0) {
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
 }
 
 void WireBaselineMeter::Hurry() {
-  std::lock_guard lock(mutex_);
+  const pid_t thread = thread_id_.load();
   const sched_param param{};
-  if (thread_id_ != 0 && sched_setscheduler(thread_id_, SCHED_OTHER, &param) != 0) {
+  if (thread != 0 && sched_setscheduler(thread, SCHED_OTHER, &param) != 0) {
     spdlog::warn("{}: the byte accounting stays at idle priority: {}", robot_.value,
                  std::strerror(errno));
   }
@@ -121,39 +141,33 @@ void WireBaselineMeter::Run() {
     spdlog::warn("{}: the byte accounting runs at normal priority (SCHED_IDLE: {})", robot_.value,
                  std::strerror(errno));
   }
-  std::unique_lock lock(mutex_);
-  thread_id_ = gettid();
-  while (true) {
-    changed_.wait(lock, [this] { return stop_ || !pending_.empty(); });
-    if (stop_) return;
-    transport::MapUpdate patch = std::move(pending_.front());
-    pending_.pop_front();
-    pending_cells_ -= patch.data.size();
-    measuring_ = true;
-    lock.unlock();
-    changed_.notify_all();  // Account() may be waiting for room
-    Measure(patch);
-    lock.lock();
-    measuring_ = false;
-    changed_.notify_all();
+  thread_id_.store(gettid());
+  while (!stop_.load()) {
+    const std::unique_ptr<Batch> batch{inbox_.exchange(nullptr)};
+    if (!batch) {
+      // Polling keeps the agent's thread free of any wake-up that could wait on this one.
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
+    for (const transport::MapUpdate& patch : *batch) {
+      if (stop_.load()) return;
+      Measure(patch);
+      pending_cells_ -= patch.data.size();
+      --pending_;
+    }
   }
 }
 
 void WireBaselineMeter::Measure(const transport::MapUpdate& patch) {
-  const size_t raw = transport::MapUpdatePayloadBytes(patch);
   const auto live = transport::CompressMapUpdate(patch, kLiveZstdLevel);
   const auto strongest = transport::CompressMapUpdate(patch, kStrongestZstdLevel);
   const auto fast = Lz4Patch(patch);
   // A patch cut from a valid grid always compresses.
   FLEETMAP_CHECK(live.ok() && strongest.ok() && fast.ok(), "compressing a patch failed");
-  const size_t zstd3 = transport::CompressedMapUpdatePayloadBytes(*live);
-  const size_t zstd19 = transport::CompressedMapUpdatePayloadBytes(*strongest);
-  const size_t lz4 = transport::CompressedMapUpdatePayloadBytes(*fast);
-  std::lock_guard lock(mutex_);
-  totals_.patch_bytes += raw;
-  totals_.zstd3_bytes += zstd3;
-  totals_.zstd19_bytes += zstd19;
-  totals_.lz4_bytes += lz4;
+  patch_bytes_ += transport::MapUpdatePayloadBytes(patch);
+  zstd3_bytes_ += transport::CompressedMapUpdatePayloadBytes(*live);
+  zstd19_bytes_ += transport::CompressedMapUpdatePayloadBytes(*strongest);
+  lz4_bytes_ += transport::CompressedMapUpdatePayloadBytes(*fast);
 }
 
 }  // namespace fleetmap::agent

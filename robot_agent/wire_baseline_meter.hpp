@@ -1,13 +1,12 @@
 #pragma once
 
+#include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include <sys/types.h>
 
@@ -32,8 +31,10 @@ namespace fleetmap::agent {
 // Compressing at level 19 costs far more than vectorizing, and must not slow the tiles the
 // figures are compared with: the patches go to a thread of the lowest priority (SCHED_IDLE),
 // which runs when the machine is otherwise idle and may finish after the run; totals() says how
-// many patches are still pending. Account() from the agent's thread; totals() and WaitUntilDone()
-// from any thread.
+// many patches are still pending. That thread may be held off the CPU for seconds at any point,
+// so it shares no lock with the agent's thread: batches of patches are handed over through one
+// atomic pointer and the totals are atomics. Account() and Hurry() from the agent's thread;
+// totals() and WaitUntilDone() from any thread.
 class WireBaselineMeter {
  public:
   static StatusOr<std::unique_ptr<WireBaselineMeter>> Create(RobotId robot, Pose2 fleet_from_map,
@@ -44,7 +45,7 @@ class WireBaselineMeter {
   Status Account(const grid::OccupancyGrid& grid);
   WireBaselines totals() const;
   // True when every patch is accounted for; false if `timeout` passed first.
-  bool WaitUntilDone(std::chrono::milliseconds timeout);
+  bool WaitUntilDone(std::chrono::milliseconds timeout) const;
   // Back to normal priority: once the run is over, what is left competes fairly for the CPU
   // (at idle priority, other work on the machine could hold it off indefinitely).
   void Hurry();
@@ -54,9 +55,13 @@ class WireBaselineMeter {
   static constexpr size_t kMaxPendingCells = 256u << 20;
 
  private:
+  using Batch = std::vector<transport::MapUpdate>;
+
   WireBaselineMeter(RobotId robot, Pose2 fleet_from_map, double tile_size)
       : robot_(std::move(robot)), fleet_from_map_(fleet_from_map), tile_size_(tile_size) {}
 
+  // Adds `batch` to what the thread has not taken yet.
+  void Hand(std::unique_ptr<Batch> batch);
   void Run();
   // The payload bytes of `patch` on each patch wire, added to the totals.
   void Measure(const transport::MapUpdate& patch);
@@ -66,15 +71,18 @@ class WireBaselineMeter {
   const double tile_size_;
   std::optional<grid::OccupancyGrid> last_;  // the agent's thread only
 
-  mutable std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<transport::MapUpdate> pending_;  // guarded by mutex_
-  size_t pending_cells_ = 0;                  // guarded by mutex_
-  bool measuring_ = false;                    // guarded by mutex_: the thread holds a patch
-  bool stop_ = false;                         // guarded by mutex_
-  pid_t thread_id_ = 0;                       // guarded by mutex_: the thread's, once it runs
-  WireBaselines totals_;                      // guarded by mutex_
-  std::thread thread_;                        // last: starts after the rest is made
+  std::atomic<Batch*> inbox_{nullptr};  // owned: patches the thread has not taken yet
+  std::atomic<uint64_t> events_{0};
+  std::atomic<uint64_t> grid_bytes_{0};
+  std::atomic<uint64_t> patch_bytes_{0};
+  std::atomic<uint64_t> zstd3_bytes_{0};
+  std::atomic<uint64_t> zstd19_bytes_{0};
+  std::atomic<uint64_t> lz4_bytes_{0};
+  std::atomic<uint32_t> pending_{0};  // patches handed over and not measured yet
+  std::atomic<size_t> pending_cells_{0};
+  std::atomic<pid_t> thread_id_{0};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;  // last: starts after the rest is made
 };
 
 }  // namespace fleetmap::agent
