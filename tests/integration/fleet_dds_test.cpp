@@ -402,17 +402,18 @@ TEST_F(FleetDdsTest, PatchWiresCarryMapChangesIntoTheFusedMap) {
            Agreement(changed->grid, beta_place, map.grid) > 0.9;
   });
   ASSERT_TRUE(before.has_value()) << server.Output();
-  ASSERT_LT(OccupiedShare(changed->grid, Pose2{}, wall, before->grid), 0.5);
+  ASSERT_LT(OccupiedShare(changed->grid, Pose2{}, wall, before->grid), 0.3);
 
   ASSERT_TRUE(grid::SaveMap(changed->grid, alpha_path).ok());
   ASSERT_TRUE(grid::SaveMap(changed->grid, beta_path).ok());
   const auto after = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
-    return OccupiedShare(changed->grid, Pose2{}, wall, map.grid) > 0.9 &&
-           OccupiedShare(changed->grid, beta_place, wall, map.grid) > 0.9;
+    return OccupiedShare(changed->grid, Pose2{}, wall, map.grid) > 0.8 &&
+           OccupiedShare(changed->grid, beta_place, wall, map.grid) > 0.8;
   });
   ASSERT_TRUE(after.has_value()) << server.Output();
-  EXPECT_GT(OccupiedShare(changed->grid, Pose2{}, wall, after->grid), 0.9) << server.Output();
-  EXPECT_GT(OccupiedShare(changed->grid, beta_place, wall, after->grid), 0.9) << server.Output();
+  // Vectorizing rounds the new wall's ends (epsilon): most of its cells, not all, read occupied.
+  EXPECT_GT(OccupiedShare(changed->grid, Pose2{}, wall, after->grid), 0.8) << server.Output();
+  EXPECT_GT(OccupiedShare(changed->grid, beta_place, wall, after->grid), 0.8) << server.Output();
   EXPECT_GT(Agreement(changed->grid, Pose2{}, after->grid), 0.95);
   EXPECT_GT(Agreement(changed->grid, beta_place, after->grid), 0.95);
 
