@@ -68,6 +68,12 @@ TEST(CliFleetSimTest, BadOptionsExitTwoAndNameTheOption) {
   const auto size = RunFleetmap({"sim", "--size", "-4"});
   EXPECT_EQ(size.exit_code, 2);
   EXPECT_THAT(size.err, HasSubstr("--size"));
+  const auto wire = RunFleetmap({"sim", "--compare-wire", "carrier-pigeon"});
+  EXPECT_NE(wire.exit_code, 0);
+  EXPECT_THAT(wire.output(), HasSubstr("--compare-wire"));
+  const auto bench_wire = RunFleetmap({"bench", "fleet", "--compare-wire", "tiles"});
+  EXPECT_NE(bench_wire.exit_code, 0);
+  EXPECT_THAT(bench_wire.output(), HasSubstr("--compare-wire"));
 }
 
 }  // namespace
