@@ -15,8 +15,6 @@ enum class Wire {
   kGridUpdatesZstd,  // the same patches, zstd -3, as fleetmap_msgs/CompressedGridUpdate
 };
 
-inline constexpr const char* kWireNames = "tiles, grid, grid-updates, grid-updates-zstd";
-
 inline const char* WireName(Wire wire) {
   switch (wire) {
     case Wire::kTiles:
