@@ -34,10 +34,17 @@ Status AgentOptions::Validate() const {
   }
   if (!Finite(fleet_from_map)) return InvalidArgumentError("--fleet-from-map is not finite");
   if (!Finite(map_from_robot)) return InvalidArgumentError("--pose is not finite");
-  if (std::abs(fleet_from_map.yaw) > 1e-9 && wire == Wire::kTiles) {
-    return InvalidArgumentError(
-        "--fleet-from-map with a rotation needs --wire grid (tiles are cut "
-        "from axis-aligned grids)");
+  if (std::abs(fleet_from_map.yaw) > 1e-9 && wire != Wire::kGrid) {
+    return InvalidArgumentError(std::string("--fleet-from-map with a rotation needs --wire grid, "
+                                            "not ")
+                                    .append(WireName(wire))
+                                    .append(" (tiles and patches are cut from axis-aligned "
+                                            "grids)"));
+  }
+  if (measure_baselines && wire != Wire::kTiles) {
+    return InvalidArgumentError(std::string("--measure-baselines measures the grid wires beside "
+                                            "--wire tiles, not --wire ")
+                                    .append(WireName(wire)));
   }
   FLEETMAP_RETURN_IF_ERROR(tiles.Validate());
   if (status_period.count() <= 0) return InvalidArgumentError("the status period must be > 0");
@@ -74,14 +81,20 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   }
   FLEETMAP_ASSIGN_OR_RETURN(node->status_writer_,
                             transport::RobotStatusWriter::Create(*node->participant_));
-  if (o.wire == Wire::kGrid) {
-    FLEETMAP_ASSIGN_OR_RETURN(node->grid_writer_,
-                              transport::OccupancyGridWriter::Create(
-                                  *node->participant_, transport::RobotMapTopic(o.robot)));
+  if (o.wire != Wire::kTiles) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->grid_publisher_,
+        GridWirePublisher::Create(*node->participant_, o.robot, o.fleet_from_map, o.wire,
+                                  o.tiles.tile_size));
   } else {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->tile_publisher_,
         TilePublisher::Create(*node->participant_, o.robot, o.fleet_from_map, o.tiles));
+  }
+  if (o.measure_baselines) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->baseline_meter_,
+        WireBaselineMeter::Create(o.robot, o.fleet_from_map, o.tiles.tile_size));
   }
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fused_reader_,
@@ -100,8 +113,8 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   status.robot = o.robot;
   status.fleet_from_map = o.fleet_from_map;
   status.map_from_robot = o.map_from_robot;
-  status.map_topic = o.wire == Wire::kGrid ? transport::RobotMapTopic(o.robot)
-                                           : std::string(transport::kRobotTilesTopic);
+  status.map_topic = node->grid_publisher_ != nullptr ? node->grid_publisher_->topic()
+                                                      : std::string(transport::kRobotTilesTopic);
   return node;
 }
 
@@ -110,19 +123,22 @@ Status AgentNode::OnNewMap(const grid::OccupancyGrid& map) {
   status_.map_width = static_cast<uint32_t>(map.width());
   status_.map_height = static_cast<uint32_t>(map.height());
   status_.map_resolution = map.resolution();
-  if (grid_writer_ != nullptr) {
-    transport::MapMessage message;
-    message.grid = map;
-    message.frame_id = options_.robot.value + "/map";
-    message.stamp = Clock::now();
-    FLEETMAP_ASSIGN_OR_RETURN(const size_t bytes, grid_writer_->Write(message));
-    ++status_.maps_published;
-    status_.bytes_published += bytes;
-    spdlog::info("{}: published map revision {} ({} x {} cells, {} bytes) on {}",
-                 options_.robot.value, status_.map_revision, map.width(), map.height(), bytes,
-                 status_.map_topic);
+  if (grid_publisher_ != nullptr) {
+    FLEETMAP_ASSIGN_OR_RETURN(const GridWirePublisher::Published published,
+                              grid_publisher_->Publish(map));
+    status_.maps_published = grid_publisher_->maps_published();
+    status_.tiles_published = grid_publisher_->patches_published();
+    status_.bytes_published = grid_publisher_->bytes_published();
+    spdlog::info(
+        "{}: published map revision {} ({} x {} cells) as {}, {} bytes on {}", options_.robot.value,
+        status_.map_revision, map.width(), map.height(),
+        published.whole_grid ? std::string("the whole grid")
+                             : fmt::format("{} patches", published.patches),
+        published.bytes,
+        published.whole_grid ? transport::RobotMapTopic(options_.robot) : grid_publisher_->topic());
     return Status::Ok();
   }
+  if (baseline_meter_ != nullptr) FLEETMAP_RETURN_IF_ERROR(baseline_meter_->Account(map));
   const uint64_t tiles_before = tile_publisher_->tiles_published();
   const uint64_t bytes_before = tile_publisher_->bytes_published();
   FLEETMAP_RETURN_IF_ERROR(tile_publisher_->Update(map));
@@ -142,6 +158,7 @@ Status AgentNode::OnNewMap(const grid::OccupancyGrid& map) {
 Status AgentNode::PublishStatus() {
   status_.stamp = Clock::now();
   if (sim_source_ != nullptr) status_.map_from_robot = sim_source_->pose();
+  if (baseline_meter_ != nullptr) status_.baselines = baseline_meter_->totals();
   ++status_.sequence_number;
   return status_writer_->Write(status_);
 }
@@ -170,7 +187,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
   if (entity_publisher_ != nullptr) FLEETMAP_RETURN_IF_ERROR(entity_publisher_->Poll());
   spdlog::info("{}: in the fleet on DDS domain {}{}, map from {}, wire {}", options_.robot.value,
                participant_->domain_id(), participant_->localhost_only() ? " (localhost only)" : "",
-               source_->Describe(), options_.wire == Wire::kGrid ? "grid" : "tiles");
+               source_->Describe(), WireName(options_.wire));
 
   const auto start = std::chrono::steady_clock::now();
   auto next_status = start + options_.status_period;
@@ -208,9 +225,33 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 
+  if (baseline_meter_ != nullptr) FinishBaselines();
   spdlog::info("{}: leaving the fleet ({} fused tiles received)", options_.robot.value,
                fused_tiles_received_);
   return status_writer_->Leave(options_.robot);
+}
+
+void AgentNode::FinishBaselines() {
+  spdlog::info("{}: finishing the byte accounting ({} patches to compress)", options_.robot.value,
+               baseline_meter_->totals().patches_pending);
+  baseline_meter_->Hurry();
+  while (!baseline_meter_->WaitUntilDone(options_.status_period)) {
+    if (const Status written = PublishStatus(); !written.ok()) {
+      spdlog::warn("{}: {}", options_.robot.value, written.message());
+    }
+  }
+  if (const Status written = PublishStatus(); !written.ok()) {
+    spdlog::warn("{}: {}", options_.robot.value, written.message());
+  }
+  const WireBaselines& b = status_.baselines;
+  spdlog::info(
+      "{}: the {} map changes published as {} bytes of tiles would have cost {} bytes as whole "
+      "grids, {} as patches, {} as zstd -3 patches, {} as zstd -19 patches, {} as LZ4 patches",
+      options_.robot.value, b.events, status_.bytes_published, b.grid_bytes, b.patch_bytes,
+      b.zstd3_bytes, b.zstd19_bytes, b.lz4_bytes);
+  // Leaving disposes the status instance, which can take the place of the final status in a
+  // reader that has not taken it yet: give readers one status period to take it.
+  std::this_thread::sleep_for(options_.status_period);
 }
 
 void AgentOptions::Describe(OptionsPrinter& out) const {
@@ -220,7 +261,8 @@ void AgentOptions::Describe(OptionsPrinter& out) const {
   out.Nested("sim", sim);
   out.Add("entities_path", entities_path);
   out.Nested("map_limits", map_limits);
-  out.Add("wire", wire == Wire::kTiles ? "tiles" : "grid");
+  out.Add("wire", WireName(wire));
+  out.Add("measure_baselines", measure_baselines);
   out.Nested("tiles", tiles);
   out.Add("fleet_from_map", fleet_from_map);
   out.Add("map_from_robot", map_from_robot);

@@ -10,22 +10,19 @@
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
-#include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "robot_agent/entity_publisher.hpp"
+#include "robot_agent/grid_wire_publisher.hpp"
 #include "robot_agent/id_claim_watch.hpp"
 #include "robot_agent/map_source.hpp"
 #include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/tile_publisher.hpp"
+#include "robot_agent/wire.hpp"
+#include "robot_agent/wire_baseline_meter.hpp"
 
 namespace fleetmap::agent {
-
-// What goes on the wire: vector tiles (the product), or the whole grid as nav_msgs/OccupancyGrid
-// on rt/<robot>/map (the baseline every figure is compared with, and what a plain ROS 2 robot
-// sends).
-enum class Wire { kTiles, kGrid };
 
 struct AgentOptions {
   RobotId robot;
@@ -38,6 +35,9 @@ struct AgentOptions {
   // Size limits for the images of map_path (docs/file-formats.md, "Limits").
   grid::MapLoadOptions map_limits;
   Wire wire = Wire::kTiles;
+  // With Wire::kTiles: also measure what the same map changes would have cost on the grid wires
+  // (WireBaselineMeter), reported in the status. Costs idle CPU, and time when the agent stops.
+  bool measure_baselines = false;
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
   Pose2 map_from_robot;  // the robot's pose in its map frame
@@ -55,7 +55,8 @@ struct AgentOptions {
 };
 
 // fleetmap-agent's node: takes the robot's grid from its source, publishes the tiles that changed
-// (or the whole grid with Wire::kGrid), its RobotStatus twice a second, follows the fused tiles,
+// (or, on a grid wire, the grid or its changed patches: GridWirePublisher), its RobotStatus twice
+// a second, follows the fused tiles,
 // and leaves the fleet (disposes its status) when stopped. Run() on one thread; `stop` may be
 // set from any thread.
 class AgentNode {
@@ -74,6 +75,8 @@ class AgentNode {
   // Another participant that starts claiming this robot id once the agent is in the fleet is
   // reported: the server keeps this agent and refuses the other.
   void WatchIdClaims();
+  // Lets the byte accounting finish, still reporting the robot alive, and reports its totals.
+  void FinishBaselines();
 
   AgentOptions options_;
   RobotStatus status_;
@@ -81,8 +84,9 @@ class AgentNode {
   std::unique_ptr<MapSource> source_;
   SimMapSource* sim_source_ = nullptr;  // source_, when it is the simulator (for the pose)
   std::unique_ptr<transport::RobotStatusWriter> status_writer_;
-  std::unique_ptr<transport::OccupancyGridWriter> grid_writer_;  // Wire::kGrid
-  std::unique_ptr<TilePublisher> tile_publisher_;                // Wire::kTiles
+  std::unique_ptr<GridWirePublisher> grid_publisher_;  // a grid wire
+  std::unique_ptr<TilePublisher> tile_publisher_;      // Wire::kTiles
+  std::unique_ptr<WireBaselineMeter> baseline_meter_;  // with measure_baselines
   std::unique_ptr<transport::VectorTileReader> fused_reader_;
   std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
   std::unique_ptr<IdClaimWatch> claim_watch_;

@@ -43,8 +43,15 @@ int main(int argc, char** argv) {
   app.add_option("--entities", options.entities_path,
                  "entities JSON (doors, stairs, people's tracks) to publish (re-read on change)");
   std::string wire = "tiles";
-  app.add_option("--wire", wire, "tiles (vector tiles) or grid (nav_msgs/OccupancyGrid baseline)")
-      ->check(CLI::IsMember({"tiles", "grid"}));
+  app.add_option("--wire", wire,
+                 "tiles (vector tiles), or a ROS-native baseline: grid (the whole "
+                 "nav_msgs/OccupancyGrid at every change), grid-updates (the grid once, then "
+                 "map_msgs/OccupancyGridUpdate per changed tile), grid-updates-zstd (those "
+                 "patches zstd -3)")
+      ->check(CLI::IsMember({"tiles", "grid", "grid-updates", "grid-updates-zstd"}));
+  app.add_flag("--measure-baselines", options.measure_baselines,
+               "with --wire tiles: also measure what the same map changes would cost on the grid "
+               "wires (reported in the robot's status)");
   std::string sim_kind;
   fleetmap::agent::SimOptions sim;
   app.add_option("--sim", sim_kind,
@@ -77,7 +84,7 @@ int main(int argc, char** argv) {
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
 
-  options.wire = wire == "grid" ? fleetmap::agent::Wire::kGrid : fleetmap::agent::Wire::kTiles;
+  options.wire = *fleetmap::agent::WireFromName(wire);  // CLI11 checked the name
   if (!sim_kind.empty()) {
     const auto kind = fleetmap::sim::TerrainKindFromName(sim_kind);
     if (!kind) {

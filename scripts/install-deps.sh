@@ -10,10 +10,8 @@ packages=(
   # Geometry, images, configuration, command line, logging, JSON.
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
-  # Persistence and compression.
-  libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev
-  # The lab's LZ4 baseline for grid tiles (bench/bytes).
-  liblz4-dev
+  # Persistence and compression (LZ4: one of the fleet benchmark's byte baselines).
+  libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev liblz4-dev
   # Tests and benchmarks.
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).

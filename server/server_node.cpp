@@ -109,7 +109,7 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
   prediction_worker_.reset();
   learning_worker_.reset();
   entity_reader_.reset();
-  for (auto& [robot, record] : robots_) record.map_reader.reset();
+  for (auto& [robot, record] : robots_) record.map_feed.reset();
   status_reader_.reset();
   return Status::Ok();
 }
@@ -159,15 +159,16 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
       record.last_status.robot.value.empty() || record.state != RobotRecord::State::kActive;
   record.state = RobotRecord::State::kActive;
   record.last_status = status;
-  const std::string grid_topic = transport::RobotMapTopic(status.robot);
-  const bool grid_wire = status.map_topic == grid_topic;
-  if (grid_wire && record.map_reader == nullptr) {
-    auto reader = transport::OccupancyGridReader::Create(*participant_, grid_topic, wake_up_);
-    if (!reader.ok()) {
-      spdlog::error("server: robot {} is on the grid wire but its map cannot be read: {}",
-                    status.robot.value, reader.status().message());
+  const std::optional<RobotMapFeed::Wire> grid_wire =
+      RobotMapFeed::WireOf(status.robot, status.map_topic);
+  if (grid_wire && record.map_feed == nullptr) {
+    auto feed = RobotMapFeed::Create(*participant_, status.robot, *grid_wire, wake_up_);
+    if (!feed.ok()) {
+      spdlog::error("server: robot {} is on the {} wire but its map cannot be read: {}",
+                    status.robot.value, RobotMapFeed::WireName(*grid_wire),
+                    feed.status().message());
     } else {
-      record.map_reader = std::move(reader).value();
+      record.map_feed = std::move(feed).value();
     }
   }
   const auto configured = options_.transforms.find(status.robot);
@@ -197,8 +198,8 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   if (!joining) return;
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
-               status.robot.value, grid_wire ? "grid" : "tiles", status.map_width,
-               status.map_height, status.map_resolution,
+               status.robot.value, grid_wire ? RobotMapFeed::WireName(*grid_wire) : "tiles",
+               status.map_width, status.map_height, status.map_resolution,
                fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", status.fleet_from_map.x,
                            status.fleet_from_map.y, status.fleet_from_map.yaw));
 }
@@ -219,7 +220,7 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
   RobotRecord& record = it->second;
   HandleMaps();  // keep whatever the robot sent before it went
   record.state = state;
-  record.map_reader.reset();
+  record.map_feed.reset();
   registry_->Release(robot, writer);
   fusion_worker_->RecordRobot(RobotRecordFor(robot, RobotStateName(state)));
   if (state == RobotRecord::State::kLost) {
@@ -238,20 +239,26 @@ Pose2 ServerNode::FleetFromMap(const RobotRecord& record) const {
 
 void ServerNode::HandleMaps() {
   for (auto& [robot, record] : robots_) {
-    if (record.map_reader == nullptr) continue;
-    for (StatusOr<transport::MapMessage>& map : record.map_reader->Drain()) {
-      if (!map.ok()) {
-        ++record.rejected_samples;
-        spdlog::warn("server: dropped a map from {}: {}", robot.value, map.status().message());
-        continue;
-      }
-      ++record.maps_received;
-      record.bytes_received += map->serialized_bytes;
-      spdlog::info("server: map from {}: {} x {} cells at {:.3f} m, {} bytes (total {} bytes)",
-                   robot.value, map->grid.width(), map->grid.height(), map->grid.resolution(),
-                   map->serialized_bytes, record.bytes_received);
-      fusion_worker_->SubmitGrid(robot, std::move(map).value(), FleetFromMap(record));
+    if (record.map_feed == nullptr) continue;
+    RobotMapFeed::Received received = record.map_feed->Poll();
+    for (const Status& error : received.refused) {
+      ++record.rejected_samples;
+      // Through the refusal log: a peer flooding bad samples must not flood the log too.
+      refusals_.Refuse(
+          robot.value, Refusal::kMalformed,
+          fmt::format("dropped a map sample from {}: {}", robot.value, error.message()));
     }
+    record.maps_received += received.maps;
+    record.updates_received += received.updates;
+    record.bytes_received += received.bytes;
+    if (!received.grid) continue;
+    spdlog::info(
+        "server: map from {}: {} x {} cells at {:.3f} m ({} whole, {} updates, {} bytes; total {} "
+        "bytes)",
+        robot.value, received.grid->grid.width(), received.grid->grid.height(),
+        received.grid->grid.resolution(), received.maps, received.updates, received.bytes,
+        record.bytes_received);
+    fusion_worker_->SubmitGrid(robot, std::move(*received.grid), FleetFromMap(record));
   }
 }
 
@@ -324,7 +331,7 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
     for (const auto& [reason, count] : fusion.refusals_by_reason) {
       reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", count, reason);
     }
-    fmt::print("refused: tiles: {}; statuses, disposals and entities: {}\n",
+    fmt::print("refused: tiles: {}; statuses, disposals, entities and map samples: {}\n",
                reasons.empty() ? "none" : reasons, refusals_.total());
   }
   if (learning_worker_) {

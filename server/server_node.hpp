@@ -12,13 +12,13 @@
 #include "common/core/wake_up.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/map_message.hpp"
-#include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "server/fusion_worker.hpp"
 #include "server/object_learning_worker.hpp"
 #include "server/prediction_worker.hpp"
 #include "server/refusal_log.hpp"
+#include "server/robot_map_feed.hpp"
 #include "server/robot_registry.hpp"
 
 namespace fleetmap::server {
@@ -44,13 +44,14 @@ struct RobotRecord {
   enum class State { kActive, kLeft, kLost };
   State state = State::kActive;
   RobotStatus last_status;
-  uint64_t maps_received = 0;
+  uint64_t maps_received = 0;     // whole maps (grid wires)
+  uint64_t updates_received = 0;  // map updates applied (patch wires)
   uint64_t bytes_received = 0;
   uint64_t rejected_samples = 0;
   uint64_t id_clashes = 0;  // status samples from a second agent claiming this robot id
   bool transform_mismatch_reported = false;
-  // While a robot on the grid wire is active: its rt/<robot>/map.
-  std::unique_ptr<transport::OccupancyGridReader> map_reader;
+  // While a robot on a grid wire is active: its rt/<robot>/map (and patches).
+  std::unique_ptr<RobotMapFeed> map_feed;
 };
 
 const char* RobotStateName(RobotRecord::State state);
@@ -59,8 +60,9 @@ const char* RobotStateName(RobotRecord::State state);
 // deaths, two agents claiming one id) and runs the FusionWorker that fuses every robot's tiles
 // and redistributes the fused map, the ObjectLearningWorker that learns movable objects from the
 // finished mapping sessions, and the PredictionWorker that turns the entities robots recognise
-// (rt/fleetmap/entities, taken here to the fleet frame) into the sub-map graph. Robots on the grid
-// wire are read on rt/<robot>/map and their grids fused too. A robot that leaves keeps its
+// (rt/fleetmap/entities, taken here to the fleet frame) into the sub-map graph. Robots on a grid
+// wire are read on rt/<robot>/map, patched by their updates on a patch wire (RobotMapFeed), and
+// their grids fused too. A robot that leaves keeps its
 // contribution. A malformed sample from one robot is logged, counted and dropped; it never stops
 // the server. The control work happens on the thread that calls Run(), fusion on the worker's; DDS
 // listeners only queue samples. `stop` may be set from any thread.

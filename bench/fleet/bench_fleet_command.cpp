@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "bench/fleet/baseline_bytes.hpp"
 #include "bench/fleet/fleet_scenario.hpp"
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
@@ -31,12 +32,15 @@ struct BenchFleetArgs {
   // Also run each fleet with a hostile peer flooding the server, and report what the honest
   // robots see: latency, server memory, what the flood got in.
   bool hostile = false;
+  // The grid wire run for real beside the tile wire, to measure its bytes side by side ("none":
+  // only the baselines the tile run's agents measure).
+  std::string compare_wire = "grid-updates-zstd";
 };
 
 struct Row {
   int robots = 0;
-  FleetRunResult tiles;
-  FleetRunResult grid;
+  FleetRunResult tiles;                    // with the grid wires measured at its map changes
+  std::optional<FleetRunResult> compared;  // --compare-wire, for real
   std::optional<FleetRunResult> attacked;  // tiles, with a hostile flood (--hostile)
   metrics::QualityScores quality;
 };
@@ -123,11 +127,22 @@ int RunBenchFleet(const BenchFleetArgs& args) {
   for (const int robots : args.robots) {
     Row row;
     row.robots = robots;
-    for (const std::string wire : {"tiles", "grid"}) {
+    std::vector<std::string> wires = {"tiles"};
+    if (args.compare_wire != "none") wires.push_back(args.compare_wire);
+    for (const std::string& wire : wires) {
       FleetSimOptions options = base;
       options.robots = robots;
       options.wire = wire;
+      options.measure_baselines = wire == "tiles";
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
+        if (seconds < 0) {
+          std::cerr << fmt::format(
+                           "\r{} robots, {} wire: the agents finish measuring the grid "
+                           "wires   ",
+                           robots, wire)
+                    << std::flush;
+          return;
+        }
         std::cerr << fmt::format("\r{} robots, {} wire: {:.0f} / {:.0f} s   ", robots, wire,
                                  seconds, scenario.duration_s)
                   << std::flush;
@@ -136,7 +151,11 @@ int RunBenchFleet(const BenchFleetArgs& args) {
         std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
         return 1;
       }
-      (wire == std::string("tiles") ? row.tiles : row.grid) = std::move(run).value();
+      if (wire == "tiles") {
+        row.tiles = std::move(run).value();
+      } else {
+        row.compared = std::move(run).value();
+      }
     }
     if (args.hostile) {
       FleetSimOptions options = base;
@@ -162,39 +181,79 @@ int RunBenchFleet(const BenchFleetArgs& args) {
   std::cout << fmt::format(
       "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n",
       scenario.terrain, scenario.size, scenario.seed, scenario.duration_s, scenario.rate);
-  std::cout << "| robots | tile bytes | grid bytes | grid/tiles | tile updates | bytes/update | "
-               "latency p50 / p95 / p99 | server CPU | server MB | MS / OPDF / UPDF |\n"
-               "|---|---|---|---|---|---|---|---|---|---|\n";
+  std::cout << "Bytes: the vector tiles' payload bytes, and what the same map changes would have "
+               "cost on each ROS-native grid wire as the agents measured them (payload bytes of "
+               "the samples; in brackets, how many times the tiles' bytes).\n\n";
+  std::cout << "| robots | tile bytes | map changes |";
+  for (const BaselineBytes& baseline : Baselines({})) std::cout << " " << baseline.name << " |";
+  std::cout << " tiles vs the smallest baseline |\n|---|---|---|---|---|---|---|---|---|\n";
   nlohmann::json json = nlohmann::json::array();
   for (const Row& row : rows) {
+    std::cout << fmt::format("| {} | {} | {} |", row.robots, row.tiles.total_bytes,
+                             row.tiles.baselines.events);
+    nlohmann::json baselines;
+    for (const BaselineBytes& baseline : Baselines(row.tiles.baselines)) {
+      std::cout << " " << BytesAndRatio(baseline.bytes, row.tiles.total_bytes) << " |";
+      baselines[baseline.key] = baseline.bytes;
+    }
+    std::cout << " " << HeadlineRatio(row.tiles.total_bytes, row.tiles.baselines) << " |\n";
+    json.push_back({{"robots", row.robots},
+                    {"tile_bytes", row.tiles.total_bytes},
+                    {"map_changes", row.tiles.baselines.events},
+                    {"baselines", baselines},
+                    {"smallest_baseline", SmallestBaseline(row.tiles.baselines).key},
+                    {"baselines_pending_patches", row.tiles.baselines.patches_pending}});
+  }
+
+  if (args.compare_wire != "none") {
+    std::cout << fmt::format(
+        "\nThe same scenario with `--wire {}` agents, for real (its own map changes, which "
+        "differ from the tile run's with timing):\n\n"
+        "| robots | {} bytes | whole grids | patches | vs the tile run's bytes |\n"
+        "|---|---|---|---|---|\n",
+        args.compare_wire, args.compare_wire);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const Row& row = rows[i];
+      if (!row.compared) continue;
+      uint64_t whole = 0, updates = 0;
+      for (const auto& [name, robot] : row.compared->robots) {
+        whole += robot.whole_grids;
+        updates += robot.updates;
+      }
+      std::cout << fmt::format("| {} | {} | {} | {} | {} |\n", row.robots,
+                               row.compared->total_bytes, whole, updates - whole,
+                               BytesAndRatio(row.compared->total_bytes, row.tiles.total_bytes));
+      json[i]["compared_run"] = {{"wire", args.compare_wire},
+                                 {"total_bytes", row.compared->total_bytes},
+                                 {"whole_grids", whole},
+                                 {"patches", updates - whole}};
+    }
+  }
+
+  std::cout << "\nThe tile wire:\n\n| robots | tile updates | bytes/update | latency p50 / p95 / "
+               "p99 | server CPU | server MB | MS / OPDF / UPDF |\n"
+               "|---|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Row& row = rows[i];
     const uint64_t updates = Updates(row.tiles);
-    const double ratio = row.tiles.total_bytes > 0
-                             ? static_cast<double>(row.grid.total_bytes) / row.tiles.total_bytes
-                             : 0.0;
     const auto p50 = Percentile(row.tiles.latencies_ms, 50);
     const auto p95 = Percentile(row.tiles.latencies_ms, 95);
     const auto p99 = Percentile(row.tiles.latencies_ms, 99);
     const double cpu = 100.0 * row.tiles.server_cpu_seconds / std::max(1e-9, row.tiles.seconds);
     std::cout << fmt::format(
-        "| {} | {} | {} | {:.1f}x | {} | {:.0f} | {} / {} / {} | {:.0f} % | {:.0f} | {} / {} / {} "
-        "|\n",
-        row.robots, row.tiles.total_bytes, row.grid.total_bytes, ratio, updates,
-        updates > 0 ? static_cast<double>(row.tiles.total_bytes) / updates : 0.0, Fmt(p50, " ms"),
-        Fmt(p95, ""), Fmt(p99, ""), cpu, row.tiles.server_peak_rss_bytes / 1e6,
+        "| {} | {} | {:.0f} | {} / {} / {} | {:.0f} % | {:.0f} | {} / {} / {} |\n", row.robots,
+        updates, updates > 0 ? static_cast<double>(row.tiles.total_bytes) / updates : 0.0,
+        Fmt(p50, " ms"), Fmt(p95, ""), Fmt(p99, ""), cpu, row.tiles.server_peak_rss_bytes / 1e6,
         Fmt(row.quality.map_score, ""), Fmt(row.quality.occupied_picture_distance, ""),
         Fmt(row.quality.unoccupied_picture_distance, ""));
-    json.push_back(
-        {{"robots", row.robots},
-         {"tile_bytes", row.tiles.total_bytes},
-         {"grid_bytes", row.grid.total_bytes},
-         {"tile_updates", updates},
-         {"latency_ms",
-          {{"p50", p50.value_or(-1)}, {"p95", p95.value_or(-1)}, {"p99", p99.value_or(-1)}}},
-         {"server_cpu_percent", cpu},
-         {"server_peak_rss_bytes", row.tiles.server_peak_rss_bytes},
-         {"ms", row.quality.map_score.value_or(-1)},
-         {"opdf", row.quality.occupied_picture_distance.value_or(-1)},
-         {"updf", row.quality.unoccupied_picture_distance.value_or(-1)}});
+    json[i]["tile_updates"] = updates;
+    json[i]["latency_ms"] = {
+        {"p50", p50.value_or(-1)}, {"p95", p95.value_or(-1)}, {"p99", p99.value_or(-1)}};
+    json[i]["server_cpu_percent"] = cpu;
+    json[i]["server_peak_rss_bytes"] = row.tiles.server_peak_rss_bytes;
+    json[i]["ms"] = row.quality.map_score.value_or(-1);
+    json[i]["opdf"] = row.quality.occupied_picture_distance.value_or(-1);
+    json[i]["updf"] = row.quality.unoccupied_picture_distance.value_or(-1);
   }
   if (args.hostile) PrintHostileTable(rows, HostileFloodOptions{}, &json);
   if (args.single_robot && !rows.empty()) {
@@ -241,10 +300,17 @@ int RunBenchFleet(const BenchFleetArgs& args) {
 void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<BenchFleetArgs>();
   CLI::App* command = BenchCommand(app)->add_subcommand(
-      "fleet", "Simulated fleets of growing size, tile wire vs grid wire: a scaling table");
+      "fleet",
+      "Simulated fleets of growing size, the tile wire against the grid wires: a scaling table");
   command->add_option("--robots", args->robots, "fleet sizes, e.g. 1 4 16");
   AddFleetScenarioOptions(command, &args->scenario);
   command->add_option("--json", args->json_path, "write the rows as JSON");
+  command
+      ->add_option("--compare-wire", args->compare_wire,
+                   "also run each fleet on this grid wire for real: grid, grid-updates, "
+                   "grid-updates-zstd, or none")
+      ->check(CLI::IsMember({"grid", "grid-updates", "grid-updates-zstd", "none"}))
+      ->capture_default_str();
   command->add_flag("--single-robot", args->single_robot,
                     "also one robot for (largest fleet x duration), to compare map quality");
   command->add_flag("--hostile", args->hostile,

@@ -22,6 +22,9 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::steady_clock;
 
+// How long agents that measure the grid wires may take to finish after the run.
+constexpr std::chrono::seconds kAccountingWait{900};
+
 // What the observer keeps while the fleet runs. One thread (RunFleet's).
 class Observer {
  public:
@@ -57,8 +60,10 @@ class Observer {
       if (event.kind != transport::RobotEvent::Kind::kStatus) continue;
       FleetRobotResult& robot = result->robots[event.robot.value];
       robot.bytes = event.status.bytes_published;
-      robot.updates =
-          event.status.tiles_published + (result->wire == "grid" ? event.status.maps_published : 0);
+      const bool grid_wire = result->wire != "tiles";
+      robot.whole_grids = grid_wire ? event.status.maps_published : 0;
+      robot.updates = event.status.tiles_published + robot.whole_grids;
+      robot.baselines = event.status.baselines;
       if (robot.path.empty() ||
           (robot.path.back().translation() - event.status.map_from_robot.translation()).norm() >
               0.05) {
@@ -100,8 +105,14 @@ Status FleetSimOptions::Validate() const {
   if (robots < 1 || robots > 64) return InvalidArgumentError("--robots must be in 1..64");
   if (duration.count() <= 0) return InvalidArgumentError("--duration must be > 0 seconds");
   if (!(scans_per_second > 0.0)) return InvalidArgumentError("--rate must be > 0 scans/s");
-  if (wire != "tiles" && wire != "grid") {
-    return InvalidArgumentError("--wire must be tiles or grid, not \"" + wire + "\"");
+  if (wire != "tiles" && wire != "grid" && wire != "grid-updates" && wire != "grid-updates-zstd") {
+    return InvalidArgumentError(
+        std::string("the wire must be tiles, grid, grid-updates or grid-updates-zstd, not \"")
+            .append(wire)
+            .append("\""));
+  }
+  if (measure_baselines && wire != "tiles") {
+    return InvalidArgumentError("the grid wires are measured beside the tile wire only");
   }
   if (size < sim::kMinTerrainSize || size > sim::kMaxTerrainSize) {
     return InvalidArgumentError("--size must be in " + std::to_string(sim::kMinTerrainSize) + ".." +
@@ -151,14 +162,25 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   const auto start = steady_clock::now();
   std::vector<std::unique_ptr<process::Subprocess>> agents;
   for (int i = 0; i < options.robots; ++i) {
-    agents.push_back(std::make_unique<process::Subprocess>(
-        std::vector<std::string>{
-            binary("fleetmap-agent", "robot_agent"), "--robot-id", "robot" + std::to_string(i),
-            "--sim", std::string(sim::TerrainKindName(options.kind)), "--sim-size",
-            std::to_string(options.size), "--sim-seed", std::to_string(options.seed),
-            "--sim-robot-index", std::to_string(i), "--sim-robots", std::to_string(options.robots),
-            "--sim-rate", std::to_string(options.scans_per_second), "--wire", options.wire},
-        env));
+    std::vector<std::string> argv = {binary("fleetmap-agent", "robot_agent"),
+                                     "--robot-id",
+                                     "robot" + std::to_string(i),
+                                     "--sim",
+                                     std::string(sim::TerrainKindName(options.kind)),
+                                     "--sim-size",
+                                     std::to_string(options.size),
+                                     "--sim-seed",
+                                     std::to_string(options.seed),
+                                     "--sim-robot-index",
+                                     std::to_string(i),
+                                     "--sim-robots",
+                                     std::to_string(options.robots),
+                                     "--sim-rate",
+                                     std::to_string(options.scans_per_second),
+                                     "--wire",
+                                     options.wire};
+    if (options.measure_baselines) argv.push_back("--measure-baselines");
+    agents.push_back(std::make_unique<process::Subprocess>(std::move(argv), env));
   }
 
   std::unique_ptr<HostileFlood> flood;
@@ -190,14 +212,40 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     result.hostile_tiles_written = flood->tiles_written();
   }
   for (auto& agent : agents) agent->Signal(SIGTERM);
-  for (auto& agent : agents) agent->Wait(std::chrono::seconds(10));
+  // Agents that measure the grid wires finish compressing first, still reporting (their
+  // accounting ran at idle priority and may lag far behind a busy run).
+  const auto agents_deadline =
+      steady_clock::now() +
+      (options.measure_baselines ? kAccountingWait : std::chrono::seconds(10));
+  const auto all_exited = [&] {
+    return std::all_of(agents.begin(), agents.end(),
+                       [](auto& agent) { return agent->Wait(milliseconds(0)).has_value(); });
+  };
+  auto next_note = steady_clock::now();
+  while (!all_exited() && steady_clock::now() < agents_deadline) {
+    observer->Poll(&result);
+    if (progress && options.measure_baselines && steady_clock::now() >= next_note) {
+      progress(-1.0);
+      next_note += std::chrono::seconds(1);
+    }
+  }
   const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);
   while (steady_clock::now() < drain_until) observer->Poll(&result);
   server.Signal(SIGINT);
   server.Wait(std::chrono::seconds(10));
   result.server_output = server.Output();
   result.seconds = std::chrono::duration<double>(steady_clock::now() - start).count();
-  for (const auto& [name, robot] : result.robots) result.total_bytes += robot.bytes;
+  for (const auto& [name, robot] : result.robots) {
+    result.total_bytes += robot.bytes;
+    WireBaselines& sum = result.baselines;
+    sum.events += robot.baselines.events;
+    sum.grid_bytes += robot.baselines.grid_bytes;
+    sum.patch_bytes += robot.baselines.patch_bytes;
+    sum.zstd3_bytes += robot.baselines.zstd3_bytes;
+    sum.zstd19_bytes += robot.baselines.zstd19_bytes;
+    sum.lz4_bytes += robot.baselines.lz4_bytes;
+    sum.patches_pending += robot.baselines.patches_pending;
+  }
   return result;
 }
 

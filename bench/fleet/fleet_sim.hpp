@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bench/fleet/hostile_flood.hpp"
+#include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -27,8 +28,12 @@ struct FleetSimOptions {
   uint32_t seed = 1;
   std::chrono::milliseconds duration{60000};
   double scans_per_second = 25.0;  // each simulated laser
-  std::string wire = "tiles";      // "tiles" or "grid"
-  std::string bin_dir;             // where fleetmap-server and fleetmap-agent are
+  // What the agents send (fleetmap-agent --wire): tiles, grid, grid-updates, grid-updates-zstd.
+  std::string wire = "tiles";
+  // With wire "tiles": the agents also measure the grid wires at the same map changes
+  // (fleetmap-agent --measure-baselines). The run then waits for their accounting to finish.
+  bool measure_baselines = false;
+  std::string bin_dir;  // where fleetmap-server and fleetmap-agent are
   // A hostile peer flooding the server while the fleet runs (bench fleet --hostile).
   std::optional<HostileFloodOptions> hostile;
 
@@ -36,15 +41,18 @@ struct FleetSimOptions {
 };
 
 struct FleetRobotResult {
-  uint64_t bytes = 0;       // published, as the robot's last status says
-  uint64_t updates = 0;     // tiles (or grids) published
-  std::vector<Pose2> path;  // sampled from its statuses
+  uint64_t bytes = 0;        // published, as the robot's last status says
+  uint64_t updates = 0;      // tiles (or grids and patches) published
+  uint64_t whole_grids = 0;  // grids published (the grid wires)
+  WireBaselines baselines;   // as the robot's last status says (measure_baselines)
+  std::vector<Pose2> path;   // sampled from its statuses
 };
 
 struct FleetRunResult {
   std::string wire;
   std::map<std::string, FleetRobotResult> robots;
   uint64_t total_bytes = 0;
+  WireBaselines baselines;           // summed over the robots (measure_baselines)
   std::vector<double> latencies_ms;  // fused tile received - the robot update that caused it
                                      // (the honest robots' tiles only)
   grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map
@@ -58,7 +66,8 @@ struct FleetRunResult {
 };
 
 // Runs the fleet for `options.duration`, then lets the robots leave and stops the server.
-// `progress` (optional) is called about once a second with the elapsed seconds.
+// `progress` (optional) is called about once a second with the elapsed seconds, and with -1 once
+// a second while the agents finish measuring the grid wires after the run.
 StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                   const std::function<void(double)>& progress = {});
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bench/fleet/baseline_bytes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/metrics/map_quality.hpp"
@@ -25,6 +26,12 @@ std::string Ms(const std::optional<double>& value) {
 
 nlohmann::json Json(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+// How many times `tile_bytes` the `bytes` are; null without tile bytes.
+nlohmann::json Ratio(uint64_t bytes, uint64_t tile_bytes) {
+  if (tile_bytes == 0) return nlohmann::json(nullptr);
+  return nlohmann::json(static_cast<double>(bytes) / static_cast<double>(tile_bytes));
 }
 
 // The fused map in grey (occupied black, free white, unknown grey) with each robot's path.
@@ -83,7 +90,7 @@ std::optional<double> Percentile(std::vector<double> values, double p) {
 }
 
 StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const FleetRunResult& tiles,
-                                       const std::optional<FleetRunResult>& grid,
+                                       const std::optional<FleetRunResult>& compared,
                                        const grid::OccupancyGrid& truth,
                                        const std::string& out_dir) {
   std::error_code error;
@@ -95,17 +102,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
   const auto p50 = Percentile(tiles.latencies_ms, 50);
   const auto p95 = Percentile(tiles.latencies_ms, 95);
   const auto p99 = Percentile(tiles.latencies_ms, 99);
-  // A plain double and a flag: GCC 12 sees optional<double> through fmt and nlohmann::json as
-  // maybe-uninitialized.
-  const bool has_ratio = grid.has_value() && tiles.total_bytes > 0;
-  const double ratio = has_ratio ? static_cast<double>(grid->total_bytes) / tiles.total_bytes : 0.0;
-  std::string ratio_text = "n/a";
-  std::string ratio_sentence;
-  if (has_ratio) {
-    ratio_text = fmt::format("{:.1f}x", ratio);
-    ratio_sentence =
-        fmt::format(" ({} fewer than the grid wire's {})", ratio_text, grid->total_bytes);
-  }
+  const std::string headline = HeadlineRatio(tiles.total_bytes, tiles.baselines);
   const std::string png = out_dir + "/fused.png";
   const Status png_written = WriteFusedPng(tiles, png);
 
@@ -116,24 +113,43 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       "s.\n\n",
       options.robots, sim::TerrainKindName(options.kind), options.size, options.seed,
       options.scans_per_second, std::chrono::duration<double>(options.duration).count());
-  md += "## Bytes on the wire\n\n| robot | tiles: bytes | updates |" +
-        std::string(grid ? " grid wire: bytes | ratio |" : "") + "\n|---|---|---|" +
-        std::string(grid ? "---|---|" : "") + "\n";
-  for (const auto& [name, robot] : tiles.robots) {
-    md += fmt::format("| {} | {} | {} |", name, robot.bytes, robot.updates);
-    if (grid) {
-      const auto other = grid->robots.find(name);
-      const uint64_t grid_bytes = other == grid->robots.end() ? 0 : other->second.bytes;
-      md += fmt::format(" {} | {} |", grid_bytes,
-                        robot.bytes > 0
-                            ? fmt::format("{:.1f}x", static_cast<double>(grid_bytes) / robot.bytes)
-                            : std::string("n/a"));
+  md += fmt::format(
+      "## Bytes on the wire\n\nVector tiles against the ROS-native grid wires at the same map "
+      "changes, as each agent measured them (payload bytes of the samples each wire would have "
+      "written; in brackets, how many times the tiles' bytes): {}.\n\n",
+      headline);
+  md += "| robot | tiles: bytes | tile updates | map changes |";
+  for (const BaselineBytes& baseline : Baselines({})) {
+    md.append(" ").append(baseline.name).append(" |");
+  }
+  md += "\n|---|---|---|---|---|---|---|---|---|\n";
+  const auto row = [&](const std::string& name, uint64_t bytes, const std::string& updates,
+                       const WireBaselines& measured) {
+    md += fmt::format("| {} | {} | {} | {} |", name, bytes, updates, measured.events);
+    for (const BaselineBytes& baseline : Baselines(measured)) {
+      md.append(" ").append(BytesAndRatio(baseline.bytes, bytes)).append(" |");
     }
     md += "\n";
+  };
+  for (const auto& [name, robot] : tiles.robots) {
+    row(name, robot.bytes, std::to_string(robot.updates), robot.baselines);
   }
-  md += fmt::format("| **total** | **{}** | |", tiles.total_bytes);
-  if (grid) md += fmt::format(" **{}** | **{}** |", grid->total_bytes, ratio_text);
-  md += "\n\n";
+  row("**total**", tiles.total_bytes, "", tiles.baselines);
+  if (compared) {
+    uint64_t whole = 0, updates = 0;
+    for (const auto& [name, robot] : compared->robots) {
+      whole += robot.whole_grids;
+      updates += robot.updates;
+    }
+    md += fmt::format(
+        "\nThe same scenario run for real with `--wire {}` (its own map changes, which differ "
+        "from the tile run's with timing): {} bytes ({} whole grids and {} patches), {:.1f}x the "
+        "tile run's bytes.\n",
+        compared->wire, compared->total_bytes, whole, updates - whole,
+        tiles.total_bytes > 0 ? static_cast<double>(compared->total_bytes) / tiles.total_bytes
+                              : 0.0);
+  }
+  md += "\n";
   md += fmt::format(
       "## Update latency\n\nRobot tile published -> fused tile received by another process "
       "(the observer), {} samples: p50 {}, p95 {}, p99 {}.\n\n",
@@ -153,41 +169,57 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       png_written.ok() ? "![fused map](fused.png)\n" : "No image: " + png_written.message() + "\n";
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.md", md));
 
-  nlohmann::json json = {
-      {"robots", options.robots},
-      {"terrain", std::string(sim::TerrainKindName(options.kind))},
-      {"size_m", options.size},
-      {"seed", options.seed},
-      {"duration_s", std::chrono::duration<double>(options.duration).count()},
-      {"tiles_total_bytes", tiles.total_bytes},
-      {"grid_total_bytes", grid ? nlohmann::json(grid->total_bytes) : nlohmann::json(nullptr)},
-      {"grid_over_tiles", has_ratio ? nlohmann::json(ratio) : nlohmann::json(nullptr)},
-      {"latency_ms",
-       {{"samples", tiles.latencies_ms.size()},
-        {"p50", Json(p50)},
-        {"p95", Json(p95)},
-        {"p99", Json(p99)}}},
-      {"quality",
-       {{"ms", Json(quality.map_score)},
-        {"cc", Json(quality.cross_correlation)},
-        {"pc", Json(quality.pearson_occupied)},
-        {"opdf", Json(quality.occupied_picture_distance)},
-        {"updf", Json(quality.unoccupied_picture_distance)}}},
-      {"server",
-       {{"cpu_seconds", tiles.server_cpu_seconds},
-        {"peak_rss_bytes", tiles.server_peak_rss_bytes},
-        {"wall_seconds", tiles.seconds}}}};
+  nlohmann::json json = {{"robots", options.robots},
+                         {"terrain", std::string(sim::TerrainKindName(options.kind))},
+                         {"size_m", options.size},
+                         {"seed", options.seed},
+                         {"duration_s", std::chrono::duration<double>(options.duration).count()},
+                         {"tiles_total_bytes", tiles.total_bytes},
+                         {"map_changes", tiles.baselines.events},
+                         {"baselines_pending_patches", tiles.baselines.patches_pending},
+                         {"latency_ms",
+                          {{"samples", tiles.latencies_ms.size()},
+                           {"p50", Json(p50)},
+                           {"p95", Json(p95)},
+                           {"p99", Json(p99)}}},
+                         {"quality",
+                          {{"ms", Json(quality.map_score)},
+                           {"cc", Json(quality.cross_correlation)},
+                           {"pc", Json(quality.pearson_occupied)},
+                           {"opdf", Json(quality.occupied_picture_distance)},
+                           {"updf", Json(quality.unoccupied_picture_distance)}}},
+                         {"server",
+                          {{"cpu_seconds", tiles.server_cpu_seconds},
+                           {"peak_rss_bytes", tiles.server_peak_rss_bytes},
+                           {"wall_seconds", tiles.seconds}}}};
+  for (const BaselineBytes& baseline : Baselines(tiles.baselines)) {
+    json["baselines"][baseline.key] = {{"name", baseline.name},
+                                       {"bytes", baseline.bytes},
+                                       {"over_tiles", Ratio(baseline.bytes, tiles.total_bytes)}};
+  }
+  const BaselineBytes smallest = SmallestBaseline(tiles.baselines);
+  json["smallest_baseline"] = {{"key", smallest.key},
+                               {"bytes", smallest.bytes},
+                               {"over_tiles", Ratio(smallest.bytes, tiles.total_bytes)}};
+  if (compared) {
+    json["compared_run"] = {{"wire", compared->wire},
+                            {"total_bytes", compared->total_bytes},
+                            {"over_tiles", Ratio(compared->total_bytes, tiles.total_bytes)}};
+  }
   for (const auto& [name, robot] : tiles.robots) {
     json["per_robot"][name] = {{"bytes", robot.bytes}, {"updates", robot.updates}};
+    for (const BaselineBytes& baseline : Baselines(robot.baselines)) {
+      json["per_robot"][name]["baselines"][baseline.key] = baseline.bytes;
+    }
   }
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.json", json.dump(2) + "\n"));
 
   return fmt::format(
-      "{} robots, {} {} m, {:.0f} s: {} bytes on the wire{}; latency p50 {} p95 {} p99 {}; fused "
-      "map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\nReport: {}/report.md, "
-      "image: {}",
+      "{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
+      "p95 {} p99 {}; fused map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\n"
+      "Report: {}/report.md, image: {}",
       options.robots, sim::TerrainKindName(options.kind), options.size, tiles.seconds,
-      tiles.total_bytes, ratio_sentence, Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
+      tiles.total_bytes, headline, Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
       Percent(quality.occupied_picture_distance), Percent(quality.unoccupied_picture_distance),
       100.0 * tiles.server_cpu_seconds / std::max(1e-9, tiles.seconds),
       tiles.server_peak_rss_bytes / 1e6, out_dir, png_written.ok() ? png : "none");

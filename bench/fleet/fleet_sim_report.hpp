@@ -9,11 +9,12 @@
 
 namespace fleetmap::bench {
 
-// A fleet run summed up against the ground truth and, if it ran, the same scenario on the grid
-// wire: report.md, report.json and fused.png (the fused map with the robots' paths) in `out_dir`.
-// Returns the short summary printed at the end of `fleetmap sim`.
+// A fleet run on the tile wire summed up against the ground truth and the grid-wire baselines
+// its agents measured (baseline_bytes.hpp) and, if it ran, the same scenario on a grid wire for
+// real (`compared`): report.md, report.json and fused.png (the fused map with the robots' paths)
+// in `out_dir`. Returns the short summary printed at the end of `fleetmap sim`.
 StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const FleetRunResult& tiles,
-                                       const std::optional<FleetRunResult>& grid,
+                                       const std::optional<FleetRunResult>& compared,
                                        const grid::OccupancyGrid& truth,
                                        const std::string& out_dir);
 

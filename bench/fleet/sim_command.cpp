@@ -21,6 +21,7 @@ struct SimArgs {
                              .rate = FleetSimOptions{}.scans_per_second};
   std::string out_dir = "out/sim";
   bool compare = true;
+  std::string compare_wire = "grid-updates-zstd";
 };
 
 int RunSim(const SimArgs& args) {
@@ -45,7 +46,13 @@ int RunSim(const SimArgs& args) {
   const auto run = [&](const std::string& wire) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
     options.wire = wire;
+    options.measure_baselines = wire == "tiles";
     return RunFleet(options, [&](double seconds) {
+      if (seconds < 0) {
+        std::cerr << fmt::format("\r[{} wire] the agents finish measuring the grid wires", wire)
+                  << std::flush;
+        return;
+      }
       std::cerr << fmt::format("\r[{} wire] {:.0f} / {:.0f} s", wire, seconds,
                                args.scenario.duration_s)
                 << std::flush;
@@ -57,18 +64,18 @@ int RunSim(const SimArgs& args) {
     std::cerr << "fleetmap sim: " << tiles.status().message() << "\n";
     return 1;
   }
-  std::optional<FleetRunResult> grid;
+  std::optional<FleetRunResult> compared;
   if (args.compare) {
-    StatusOr<FleetRunResult> grid_run = run("grid");
+    StatusOr<FleetRunResult> compared_run = run(args.compare_wire);
     std::cerr << "\n";
-    if (!grid_run.ok()) {
-      std::cerr << "fleetmap sim: the grid-wire run failed: " << grid_run.status().message()
-                << "\n";
+    if (!compared_run.ok()) {
+      std::cerr << "fleetmap sim: the " << args.compare_wire
+                << " run failed: " << compared_run.status().message() << "\n";
       return 1;
     }
-    grid = std::move(grid_run).value();
+    compared = std::move(compared_run).value();
   }
-  StatusOr<std::string> summary = WriteFleetReport(fleet, *tiles, grid, truth, args.out_dir);
+  StatusOr<std::string> summary = WriteFleetReport(fleet, *tiles, compared, truth, args.out_dir);
   if (!summary.ok()) {
     std::cerr << "fleetmap sim: " << summary.status().message() << "\n";
     return 1;
@@ -86,7 +93,13 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("--robots", args->robots, "robots (1..64)");
   AddFleetScenarioOptions(command, &args->scenario);
   command->add_option("--out", args->out_dir, "report folder");
-  command->add_flag("!--no-compare", args->compare, "skip the same run on the grid wire");
+  command->add_flag("!--no-compare", args->compare,
+                    "skip the same run on a grid wire (--compare-wire) for real");
+  command
+      ->add_option("--compare-wire", args->compare_wire,
+                   "the grid wire of the second run: grid, grid-updates or grid-updates-zstd")
+      ->check(CLI::IsMember({"grid", "grid-updates", "grid-updates-zstd"}))
+      ->capture_default_str();
   command->callback([args, exit_code] { *exit_code = RunSim(*args); });
 }
 

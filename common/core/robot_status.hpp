@@ -8,6 +8,19 @@
 
 namespace fleetmap {
 
+// What the map changes an agent published would have cost on the ROS-native grid wires, in
+// payload bytes (encapsulation + CDR) summed over the changes: a whole nav_msgs/OccupancyGrid per
+// change, or one map_msgs/OccupancyGridUpdate per changed fleet tile, raw or compressed.
+struct WireBaselines {
+  uint64_t events = 0;  // map changes accounted for
+  uint64_t grid_bytes = 0;
+  uint64_t patch_bytes = 0;
+  uint64_t zstd3_bytes = 0;
+  uint64_t zstd19_bytes = 0;
+  uint64_t lz4_bytes = 0;
+  uint32_t patches_pending = 0;  // still being compressed: the figures are not final yet
+};
+
 // What an agent reports about its robot: where it is, where its map sits in the fleet frame,
 // what it has published. Plain data; the wire form is fleetmap_msgs/msg/RobotStatus.
 struct RobotStatus {
@@ -24,6 +37,7 @@ struct RobotStatus {
   uint64_t tiles_published = 0;
   uint64_t bytes_published = 0;
   uint32_t sequence_number = 0;
+  WireBaselines baselines;  // with --measure-baselines only
 };
 
 }  // namespace fleetmap

@@ -27,7 +27,14 @@ struct MapUpdate {
   int height = 0;
   std::vector<int8_t> data;
   Timestamp stamp;
+  std::string frame_id = "map";
+  size_t serialized_bytes = 0;  // payload size, set by readers
 };
+
+// Fails (kInvalidArgument, naming the rectangle) when the rectangle of `update` does not lie
+// inside a map of `map_width` x `map_height` cells: what ApplyMapUpdate checks first, for callers
+// that must judge a rectangle before its cells exist (a compressed update).
+Status CheckUpdateRectangle(int x, int y, int width, int height, int map_width, int map_height);
 
 // Writes `update` into `map`. Fails (kInvalidArgument, naming the rectangle) when the rectangle
 // does not lie inside the map; `map` is unchanged then.

@@ -3,6 +3,7 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 
 #include "common/core/sample_queue.hpp"
+#include "common/transport/internal/cdr_codec.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
@@ -23,6 +24,7 @@ class MapUpdateReader::Listener : public dds::DataReaderListener, public Malform
         reader, this, [this](const OccupancyGridUpdate_& sample, const dds::SampleInfo& info) {
           if (!info.valid_data) return;
           StatusOr<MapUpdate> update = FromIdl(sample);
+          if (update.ok()) update->serialized_bytes = PayloadBytes(sample);
           updates_.Push(update.ok()
                             ? std::move(update)
                             : StatusOr<MapUpdate>(update.status().WithContext(topic_name_)));

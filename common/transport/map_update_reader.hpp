@@ -13,7 +13,8 @@ namespace fleetmap::transport {
 
 class ReaderEndpoint;
 
-// Receives map_msgs/OccupancyGridUpdate samples (a ROS 2 SLAM's /map_updates). The DDS listener
+// Receives map_msgs/OccupancyGridUpdate samples (a ROS 2 SLAM's /map_updates, an agent's
+// rt/<robot>/map_updates). The DDS listener
 // only validates and queues; Drain() hands over each update, or why one was refused, in order.
 // Drain() may be called from one thread.
 class MapUpdateReader {

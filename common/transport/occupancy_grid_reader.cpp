@@ -4,6 +4,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "common/core/sample_queue.hpp"
+#include "common/transport/internal/cdr_codec.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
@@ -25,8 +26,7 @@ class OccupancyGridReader::Listener : public dds::DataReaderListener, public Mal
           if (!info.valid_data) return;
           StatusOr<MapMessage> message = FromIdl(sample);
           if (message.ok()) {
-            message->serialized_bytes =
-                nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
+            message->serialized_bytes = PayloadBytes(sample);
             maps_.Push(std::move(message));
           } else {
             maps_.Push(message.status().WithContext(topic_name_));

@@ -2,6 +2,7 @@
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 
+#include "common/transport/internal/cdr_codec.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
@@ -28,7 +29,7 @@ StatusOr<size_t> OccupancyGridWriter::Write(const MapMessage& message) {
   if (!endpoint_->writer()->write(&sample)) {
     return UnavailableError("could not write the map on " + endpoint_->topic_name());
   }
-  return nav_msgs::msg::dds_::OccupancyGrid_::getCdrSerializedSize(sample);
+  return PayloadBytes(sample);
 }
 
 int OccupancyGridWriter::matched_readers() const {

@@ -20,5 +20,14 @@ inline constexpr char kObjectsTopic[] = "rt/fleetmap/objects";
 
 // Where a robot publishes its own grid: what a ROS 2 robot named `robot` publishes as /<robot>/map.
 inline std::string RobotMapTopic(const RobotId& robot) { return "rt/" + robot.value + "/map"; }
+// Where an agent on the patch wire publishes map_msgs/OccupancyGridUpdate patches of that grid
+// (/<robot>/map_updates, ROS's name for the updates of /<robot>/map), and their zstd twins
+// (fleetmap_msgs/CompressedGridUpdate).
+inline std::string RobotMapUpdatesTopic(const RobotId& robot) {
+  return RobotMapTopic(robot).append("_updates");
+}
+inline std::string RobotCompressedMapUpdatesTopic(const RobotId& robot) {
+  return RobotMapTopic(robot).append("_updates_zstd");
+}
 
 }  // namespace fleetmap::transport

@@ -2,6 +2,7 @@
 
 #include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
 
+#include "common/transport/internal/cdr_codec.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
@@ -29,7 +30,7 @@ StatusOr<size_t> VectorTileWriter::Write(const VectorTileMessage& message) {
   if (!endpoint_->writer()->write(&sample)) {
     return UnavailableError("could not write a vector tile on " + endpoint_->topic_name());
   }
-  return VectorTile_::getCdrSerializedSize(sample) + 4;
+  return PayloadBytes(sample);
 }
 
 Status VectorTileWriter::Dispose(const RobotId& robot_id, const TileId& tile) {

@@ -24,7 +24,7 @@ TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
   const auto result = RunFleetmap({"sim", "--robots", "2", "--terrain", "office", "--size", "10",
                                    "--seed", "3", "--duration", "6", "--rate", "40", "--out", out});
   ASSERT_EQ(result.exit_code, 0) << result.output();
-  EXPECT_THAT(result.out, HasSubstr("fewer than the grid wire"));
+  EXPECT_THAT(result.out, HasSubstr("bytes than the smallest baseline, "));
   EXPECT_TRUE(std::filesystem::exists(out + "/report.md"));
   EXPECT_TRUE(std::filesystem::exists(out + "/fused.png"));
 
@@ -34,8 +34,24 @@ TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
   ASSERT_TRUE(report["per_robot"].contains("robot0"));
   ASSERT_TRUE(report["per_robot"].contains("robot1"));
   EXPECT_GT(report["tiles_total_bytes"].get<uint64_t>(), 0u);
-  // Vector tiles carry the same robots' maps in fewer bytes than whole grids.
-  EXPECT_GT(report["grid_over_tiles"].get<double>(), 1.0);
+  // The agents measured every grid wire at their own map changes, to the last patch.
+  EXPECT_GT(report["map_changes"].get<uint64_t>(), 0u);
+  EXPECT_EQ(report["baselines_pending_patches"].get<uint64_t>(), 0u);
+  for (const char* key :
+       {"whole_grids", "patches", "patches_zstd3", "patches_zstd19", "patches_lz4"}) {
+    EXPECT_GT(report["baselines"][key]["bytes"].get<uint64_t>(), 0u) << key;
+  }
+  // Patches cost less than whole grids, compressed patches less than raw ones; vector tiles
+  // carry the same maps in fewer bytes than whole grids.
+  EXPECT_LT(report["baselines"]["patches"]["bytes"].get<uint64_t>(),
+            report["baselines"]["whole_grids"]["bytes"].get<uint64_t>());
+  EXPECT_LT(report["baselines"]["patches_zstd3"]["bytes"].get<uint64_t>(),
+            report["baselines"]["patches"]["bytes"].get<uint64_t>());
+  EXPECT_GT(report["baselines"]["whole_grids"]["over_tiles"].get<double>(), 1.0);
+  EXPECT_FALSE(report["smallest_baseline"]["key"].get<std::string>().empty());
+  // The zstd patch wire ran for real beside it.
+  EXPECT_EQ(report["compared_run"]["wire"], "grid-updates-zstd");
+  EXPECT_GT(report["compared_run"]["total_bytes"].get<uint64_t>(), 0u);
   EXPECT_GT(report["latency_ms"]["samples"].get<int>(), 0);
   EXPECT_FALSE(report["quality"]["updf"].is_null());
   EXPECT_GT(report["quality"]["updf"].get<double>(), 90.0);
@@ -52,6 +68,12 @@ TEST(CliFleetSimTest, BadOptionsExitTwoAndNameTheOption) {
   const auto size = RunFleetmap({"sim", "--size", "-4"});
   EXPECT_EQ(size.exit_code, 2);
   EXPECT_THAT(size.err, HasSubstr("--size"));
+  const auto wire = RunFleetmap({"sim", "--compare-wire", "carrier-pigeon"});
+  EXPECT_NE(wire.exit_code, 0);
+  EXPECT_THAT(wire.output(), HasSubstr("--compare-wire"));
+  const auto bench_wire = RunFleetmap({"bench", "fleet", "--compare-wire", "tiles"});
+  EXPECT_NE(bench_wire.exit_code, 0);
+  EXPECT_THAT(bench_wire.output(), HasSubstr("--compare-wire"));
 }
 
 }  // namespace

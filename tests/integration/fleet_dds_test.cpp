@@ -357,6 +357,79 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
   EXPECT_GT(Agreement(beta_map->grid, Pose2{30.0, 0.0, 0.0}, fleet_map->grid), 0.95);
 }
 
+// Share of `cells` (map-frame cell indices of `source`) that `fused` shows occupied.
+double OccupiedShare(const grid::OccupancyGrid& source, const Pose2& fleet_from_map,
+                     const std::vector<grid::CellIndex>& cells, const grid::OccupancyGrid& fused) {
+  int64_t occupied = 0;
+  for (const grid::CellIndex& index : cells) {
+    const auto cell =
+        fused.CellAt(fleet_from_map.ToTransform() * source.CellCenter(index.x, index.y));
+    if (cell && fused.StateAt(cell->x, cell->y) == grid::CellState::kOccupied) ++occupied;
+  }
+  return cells.empty() ? 0.0 : static_cast<double>(occupied) / cells.size();
+}
+
+// The two ROS-native patch wires for real: each agent sends its whole map once, then only
+// patches of the tiles that change (raw on one robot, zstd on the other); the server applies
+// them to each robot's grid and the fused map shows the change.
+TEST_F(FleetDdsTest, PatchWiresCarryMapChangesIntoTheFusedMap) {
+  const std::string alpha_path = WriteMap("patch_alpha", 384, 384);
+  const std::string beta_path = WriteMap("patch_beta", 384, 384);
+  Subprocess server({kServer, "--duration", "90", "--map-period", "0.2"}, env_);
+  auto alpha = StartAgent("alpha", alpha_path, {"--wire", "grid-updates"});
+  auto beta = StartAgent("beta", beta_path,
+                         {"--wire", "grid-updates-zstd", "--fleet-from-map", "30", "0", "0"});
+  ASSERT_TRUE(server.WaitForOutput("robot alpha joined (grid-updates wire", kDeadline))
+      << server.Output();
+  ASSERT_TRUE(server.WaitForOutput("robot beta joined (grid-updates-zstd wire", kDeadline))
+      << server.Output();
+  auto participant = MakeParticipant();
+  ASSERT_NE(participant, nullptr);
+
+  // A new wall, 6 cells thick, where both maps were free: written into the map files, which the
+  // agents follow.
+  std::vector<grid::CellIndex> wall;
+  for (int y = 200; y < 206; ++y) {
+    for (int x = 101; x < 139; ++x) wall.push_back(grid::CellIndex{x, y});
+  }
+  auto changed = grid::LoadMap(alpha_path);
+  ASSERT_TRUE(changed.ok()) << changed.status();
+  for (const grid::CellIndex& cell : wall) changed->grid.at(cell.x, cell.y) = grid::kOccupiedValue;
+  const Pose2 beta_place{30.0, 0.0, 0.0};
+  // Before the change, the fused map shows both maps and no wall.
+  const auto before = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return Agreement(changed->grid, Pose2{}, map.grid) > 0.9 &&
+           Agreement(changed->grid, beta_place, map.grid) > 0.9;
+  });
+  ASSERT_TRUE(before.has_value()) << server.Output();
+  ASSERT_LT(OccupiedShare(changed->grid, Pose2{}, wall, before->grid), 0.3);
+
+  ASSERT_TRUE(grid::SaveMap(changed->grid, alpha_path).ok());
+  ASSERT_TRUE(grid::SaveMap(changed->grid, beta_path).ok());
+  const auto after = WaitForFleetMap(*participant, [&](const transport::MapMessage& map) {
+    return OccupiedShare(changed->grid, Pose2{}, wall, map.grid) > 0.8 &&
+           OccupiedShare(changed->grid, beta_place, wall, map.grid) > 0.8;
+  });
+  ASSERT_TRUE(after.has_value()) << server.Output();
+  // Vectorizing rounds the new wall's ends (epsilon): most of its cells, not all, read occupied.
+  EXPECT_GT(OccupiedShare(changed->grid, Pose2{}, wall, after->grid), 0.8) << server.Output();
+  EXPECT_GT(OccupiedShare(changed->grid, beta_place, wall, after->grid), 0.8) << server.Output();
+  EXPECT_GT(Agreement(changed->grid, Pose2{}, after->grid), 0.95);
+  EXPECT_GT(Agreement(changed->grid, beta_place, after->grid), 0.95);
+
+  // The change went as patches of the one tile it touched, not as a whole grid.
+  EXPECT_TRUE(alpha->WaitForOutput("as 1 patches", kDeadline)) << alpha->Output();
+  EXPECT_TRUE(beta->WaitForOutput("as 1 patches", kDeadline)) << beta->Output();
+  EXPECT_NE(server.Output().find("1 updates"), std::string::npos) << server.Output();
+  alpha->Signal(SIGTERM);
+  beta->Signal(SIGTERM);
+  EXPECT_EQ(alpha->Wait(kDeadline), 0) << alpha->Output();
+  EXPECT_EQ(beta->Wait(kDeadline), 0) << beta->Output();
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  EXPECT_EQ(server.Output().find("(malformed)"), std::string::npos) << server.Output();
+}
+
 TEST_F(FleetDdsTest, KilledAgentsTilesStayInTheFusedMap) {
   Subprocess server({kServer, "--duration", "60"}, env_);
   auto alpha = StartAgent("alpha", map_path_);
@@ -509,6 +582,24 @@ TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
   const auto result = process::RunCommand({kAgent, "--robot-id", "no/slash", "--map", map_path_});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output().find("no/slash"), std::string::npos) << result.output();
+}
+
+TEST_F(FleetDdsTest, AgentRefusesWireOptionsThatDoNotGoTogether) {
+  // The grid wires are measured beside the tile wire only; patches are cut from axis-aligned
+  // grids; an unknown wire is named.
+  const auto measured = process::RunCommand(
+      {kAgent, "--robot-id", "alpha", "--map", map_path_, "--wire", "grid", "--measure-baselines"});
+  EXPECT_EQ(measured.exit_code, 2);
+  EXPECT_NE(measured.output().find("--measure-baselines"), std::string::npos) << measured.output();
+  const auto rotated =
+      process::RunCommand({kAgent, "--robot-id", "alpha", "--map", map_path_, "--wire",
+                           "grid-updates-zstd", "--fleet-from-map", "0", "0", "0.5"});
+  EXPECT_EQ(rotated.exit_code, 2);
+  EXPECT_NE(rotated.output().find("not grid-updates-zstd"), std::string::npos) << rotated.output();
+  const auto unknown =
+      process::RunCommand({kAgent, "--robot-id", "alpha", "--map", map_path_, "--wire", "png"});
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.output().find("--wire"), std::string::npos) << unknown.output();
 }
 
 }  // namespace

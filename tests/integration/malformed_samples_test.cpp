@@ -13,12 +13,16 @@
 #include <sstream>
 #include <thread>
 
+#include "common/grid/occupancy_grid.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/transport/compressed_map_update_writer.hpp"
 #include "common/transport/internal/checked_type_support.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/endpoint.hpp"
 #include "common/transport/internal/qos.hpp"
 #include "common/transport/internal/vector_tile_codec.hpp"
+#include "common/transport/map_update_codec.hpp"
+#include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
@@ -144,7 +148,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
   auto short_grid = Grid(10, 10, 5);
   EXPECT_TRUE(WriteUntilServerSays((*map_writer)->writer(), short_grid, server,
-                                   "dropped a map from gamma", gamma_alive))
+                                   "dropped a map sample from gamma", gamma_alive))
       << server.Output();
   EXPECT_NE(server.Output().find("10 x 10 cells but carries 5"), std::string::npos);
 
@@ -185,6 +189,123 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
   EXPECT_NE(server.Output().find("alpha            active"), std::string::npos) << server.Output();
   EXPECT_NE(server.Output().find("gamma            "), std::string::npos) << server.Output();
+}
+
+// Repeats `write` (and renews `keep_alive`) every 200 ms until the server prints `text`.
+bool RepeatUntilServerSays(const std::function<bool()>& write, const process::Subprocess& server,
+                           const std::string& text, const std::function<void()>& keep_alive) {
+  const auto deadline = std::chrono::steady_clock::now() + kDeadline;
+  while (std::chrono::steady_clock::now() < deadline) {
+    keep_alive();
+    if (!write()) return false;
+    if (server.WaitForOutput(text, std::chrono::milliseconds(200))) return true;
+  }
+  return false;
+}
+
+// The server's summary row for `robot`: its rejected samples (the sixth column).
+uint64_t RejectedInSummary(const std::string& output, const std::string& robot) {
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string name, state;
+    uint64_t tiles = 0, maps = 0, bytes = 0, rejected = 0;
+    if (fields >> name >> state >> tiles >> maps >> bytes >> rejected && name == robot) {
+      return rejected;
+    }
+  }
+  return 0;
+}
+
+// A peer on the zstd patch wire (robot gamma, rt/gamma/map_updates_zstd) that sends a patch
+// before its map, then corrupt, lying and misplaced patches: each is refused with the robot and
+// the reason, counted, and a good patch afterwards is still applied; alpha is never disturbed.
+TEST(MalformedSamplesTest, ServerRefusesBadPatchesAndKeepsServing) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server({kServer, "--duration", "60"}, env);
+  process::Subprocess alpha(
+      {kAgent, "--robot-id", "alpha", "--map", kMap, "--wire", "grid-updates-zstd"}, env);
+  ASSERT_TRUE(server.WaitForOutput("map from alpha", kDeadline)) << server.Output();
+
+  auto participant = TestParticipant(domain);
+  ASSERT_NE(participant, nullptr);
+  auto status_writer = transport::WriterEndpoint::Create(
+      *participant, transport::kRobotStatusTopic,
+      dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
+      transport::RobotStatusQos().writer);
+  ASSERT_TRUE(status_writer.ok()) << status_writer.status();
+  auto map_writer = transport::OccupancyGridWriter::Create(
+      *participant, transport::RobotMapTopic(RobotId{"gamma"}));
+  ASSERT_TRUE(map_writer.ok()) << map_writer.status();
+  auto patch_writer = transport::CompressedMapUpdateWriter::Create(
+      *participant, transport::RobotCompressedMapUpdatesTopic(RobotId{"gamma"}));
+  ASSERT_TRUE(patch_writer.ok()) << patch_writer.status();
+
+  auto gamma = StatusOf("gamma");
+  gamma.map_topic(transport::RobotCompressedMapUpdatesTopic(RobotId{"gamma"}));
+  ASSERT_TRUE(WriteUntilServerSays((*status_writer)->writer(), gamma, server,
+                                   "robot gamma joined (grid-updates-zstd wire"))
+      << server.Output();
+  const auto gamma_alive = [&] { (*status_writer)->writer()->write(&gamma); };
+
+  transport::MapUpdate cells;
+  cells.x = 2;
+  cells.y = 1;
+  cells.width = 4;
+  cells.height = 3;
+  cells.data.assign(12, grid::kOccupiedValue);
+  const auto good = transport::CompressMapUpdate(cells, 3);
+  ASSERT_TRUE(good.ok()) << good.status();
+  const auto send = [&](const transport::CompressedMapUpdate& update) {
+    return [&, update] { return (*patch_writer)->Write(update).ok(); };
+  };
+
+  // Before any whole map: nothing to patch.
+  EXPECT_TRUE(RepeatUntilServerSays(send(*good), server, "before any whole map", gamma_alive))
+      << server.Output();
+
+  transport::MapMessage map;
+  map.grid = grid::OccupancyGrid(20, 10, 0.05, Pose2{}, grid::kFreeValue);
+  EXPECT_TRUE(RepeatUntilServerSays([&] { return (*map_writer)->Write(map).ok(); }, server,
+                                    "map from gamma: 20 x 10 cells", gamma_alive))
+      << server.Output();
+
+  transport::CompressedMapUpdate corrupt = *good;
+  corrupt.data = {0x28, 0xb5, 0x2f, 0xfd, 0x20, 0x0c, 0xff, 0xff, 0xff, 0xff};
+  EXPECT_TRUE(RepeatUntilServerSays(send(corrupt), server, "4 x 3: zstd: Data corruption detected",
+                                    gamma_alive))
+      << server.Output();
+  transport::CompressedMapUpdate lying = *good;
+  lying.raw_size = 4'000'000'000u;
+  EXPECT_TRUE(RepeatUntilServerSays(send(lying), server, "raw_size 4000000000 is not", gamma_alive))
+      << server.Output();
+  transport::CompressedMapUpdate outside = *good;
+  outside.x = 18;
+  EXPECT_TRUE(RepeatUntilServerSays(send(outside), server, "outside the 20 x 10 map", gamma_alive))
+      << server.Output();
+  for (const char* refusal : {"refused from gamma (malformed): dropped a map sample from gamma",
+                              "before any whole map", "raw_size 4000000000 is not 4 x 3"}) {
+    EXPECT_NE(server.Output().find(refusal), std::string::npos) << refusal;
+  }
+
+  // A sound patch from the same peer is applied and fused.
+  EXPECT_TRUE(RepeatUntilServerSays(send(*good), server,
+                                    "map from gamma: 20 x 10 cells at 0.050 m (0 "
+                                    "whole, 1 updates",
+                                    gamma_alive))
+      << server.Output();
+
+  patch_writer->reset();
+  map_writer->reset();
+  status_writer->reset();
+  server.Signal(SIGINT);
+  ASSERT_EQ(server.Wait(kDeadline), 0) << server.Output();
+  const std::string output = server.Output();
+  EXPECT_GE(RejectedInSummary(output, "gamma"), 4u) << output;
+  EXPECT_EQ(RejectedInSummary(output, "alpha"), 0u) << output;
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
 }
 
 // A server, one well-behaved agent (alpha), and a peer of the test's own that has joined as

@@ -17,6 +17,13 @@
 
 namespace fleetmap::transport {
 
+// The bytes `sample` takes in a DDS payload: the 4-byte encapsulation header and its CDR. What
+// every writer reports as published, so that all wires are counted alike.
+template <typename Generated>
+size_t PayloadBytes(const Generated& sample) {
+  return Generated::getCdrSerializedSize(sample) + 4;
+}
+
 // Little-endian CDR, as most DDS implementations write it on x86 and ARM.
 template <typename Generated>
 std::string SerializeCdr(const Generated& sample) {

@@ -1,6 +1,7 @@
 #include "common/transport/internal/checked_type_support.hpp"
 
 #include "common/transport/internal/idl_shapes.hpp"
+#include "fleetmap_msgs/msg/CompressedGridUpdatePubSubTypes.h"
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
@@ -39,6 +40,12 @@ eprosima::fastdds::dds::TypeSupport OccupancyGridUpdateTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<map_msgs::msg::dds_::OccupancyGridUpdate_PubSubType>(
           OccupancyGridUpdateShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport CompressedGridUpdateTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::CompressedGridUpdate_PubSubType>(
+          CompressedGridUpdateShape()));
 }
 
 eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport() {

@@ -143,6 +143,7 @@ void TakeAll(eprosima::fastdds::dds::DataReader* reader, MalformedSink* sink, Ha
 eprosima::fastdds::dds::TypeSupport RobotStatusTypeSupport();
 eprosima::fastdds::dds::TypeSupport OccupancyGridTypeSupport();
 eprosima::fastdds::dds::TypeSupport OccupancyGridUpdateTypeSupport();
+eprosima::fastdds::dds::TypeSupport CompressedGridUpdateTypeSupport();
 eprosima::fastdds::dds::TypeSupport VectorTileTypeSupport();
 eprosima::fastdds::dds::TypeSupport EntityTypeSupport();
 eprosima::fastdds::dds::TypeSupport SubmapTypeSupport();

@@ -140,16 +140,53 @@ StatusOr<MapUpdate> FromIdl(const map_msgs::msg::dds_::OccupancyGridUpdate_& upd
   out.height = static_cast<int>(update.height());
   out.data = update.data();
   out.stamp = FromIdl(update.header().stamp());
+  out.frame_id = update.header().frame_id();
   return out;
 }
 
 map_msgs::msg::dds_::OccupancyGridUpdate_ ToIdl(const MapUpdate& update) {
   map_msgs::msg::dds_::OccupancyGridUpdate_ out;
   out.header().stamp(ToIdl(update.stamp));
+  out.header().frame_id(update.frame_id);
   out.x(update.x);
   out.y(update.y);
   out.width(static_cast<uint32_t>(update.width));
   out.height(static_cast<uint32_t>(update.height));
+  out.data(update.data);
+  return out;
+}
+
+StatusOr<CompressedMapUpdate> FromIdl(
+    const fleetmap_msgs::msg::dds_::CompressedGridUpdate_& update) {
+  if (update.width() > static_cast<uint32_t>(INT32_MAX) ||
+      update.height() > static_cast<uint32_t>(INT32_MAX)) {
+    return InvalidArgumentError("CompressedGridUpdate is too large (" +
+                                std::to_string(update.width()) + " x " +
+                                std::to_string(update.height()) + " cells)");
+  }
+  CompressedMapUpdate out;
+  out.x = update.x();
+  out.y = update.y();
+  out.width = static_cast<int>(update.width());
+  out.height = static_cast<int>(update.height());
+  out.compression = update.compression();
+  out.raw_size = update.raw_size();
+  out.data = update.data();
+  out.stamp = FromIdl(update.header().stamp());
+  out.frame_id = update.header().frame_id();
+  return out;
+}
+
+fleetmap_msgs::msg::dds_::CompressedGridUpdate_ ToIdl(const CompressedMapUpdate& update) {
+  fleetmap_msgs::msg::dds_::CompressedGridUpdate_ out;
+  out.header().stamp(ToIdl(update.stamp));
+  out.header().frame_id(update.frame_id);
+  out.x(update.x);
+  out.y(update.y);
+  out.width(static_cast<uint32_t>(update.width));
+  out.height(static_cast<uint32_t>(update.height));
+  out.compression(update.compression);
+  out.raw_size(update.raw_size);
   out.data(update.data);
   return out;
 }
@@ -169,6 +206,13 @@ fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status) {
   out.tiles_published(status.tiles_published);
   out.bytes_published(status.bytes_published);
   out.sequence_number(status.sequence_number);
+  out.baseline_events(status.baselines.events);
+  out.baseline_grid_bytes(status.baselines.grid_bytes);
+  out.baseline_patch_bytes(status.baselines.patch_bytes);
+  out.baseline_zstd3_bytes(status.baselines.zstd3_bytes);
+  out.baseline_zstd19_bytes(status.baselines.zstd19_bytes);
+  out.baseline_lz4_bytes(status.baselines.lz4_bytes);
+  out.baseline_patches_pending(status.baselines.patches_pending);
   return out;
 }
 
@@ -194,6 +238,13 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.tiles_published = status.tiles_published();
   out.bytes_published = status.bytes_published();
   out.sequence_number = status.sequence_number();
+  out.baselines.events = status.baseline_events();
+  out.baselines.grid_bytes = status.baseline_grid_bytes();
+  out.baselines.patch_bytes = status.baseline_patch_bytes();
+  out.baselines.zstd3_bytes = status.baseline_zstd3_bytes();
+  out.baselines.zstd19_bytes = status.baseline_zstd19_bytes();
+  out.baselines.lz4_bytes = status.baseline_lz4_bytes();
+  out.baselines.patches_pending = status.baseline_patches_pending();
   return out;
 }
 

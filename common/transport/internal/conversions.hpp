@@ -9,6 +9,8 @@
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/transport/map_message.hpp"
+#include "common/transport/map_update_codec.hpp"
+#include "fleetmap_msgs/msg/CompressedGridUpdate.h"
 #include "fleetmap_msgs/msg/RobotStatus.h"
 #include "geometry_msgs/msg/Pose.h"
 #include "geometry_msgs/msg/Pose2D.h"
@@ -33,6 +35,12 @@ StatusOr<MapMessage> FromIdl(const nav_msgs::msg::dds_::OccupancyGrid_& message)
 
 StatusOr<MapUpdate> FromIdl(const map_msgs::msg::dds_::OccupancyGridUpdate_& update);
 map_msgs::msg::dds_::OccupancyGridUpdate_ ToIdl(const MapUpdate& update);
+
+// Only the rectangle's size is checked here: the payload (compression, raw_size, the cells) is
+// DecompressMapUpdate's to judge, on the receiver's own thread.
+StatusOr<CompressedMapUpdate> FromIdl(
+    const fleetmap_msgs::msg::dds_::CompressedGridUpdate_& update);
+fleetmap_msgs::msg::dds_::CompressedGridUpdate_ ToIdl(const CompressedMapUpdate& update);
 
 fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status);
 StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& status);

@@ -63,6 +63,14 @@ const CdrShape& OccupancyGridUpdateShape() {
   return shape;
 }
 
+const CdrShape& CompressedGridUpdateShape() {
+  static const CdrShape shape = {
+      Struct("header", HeaderShape()), Primitive("x", 4),      Primitive("y", 4),
+      Primitive("width", 4),           Primitive("height", 4), Primitive("compression", 1),
+      Primitive("raw_size", 4),        Sequence("data", 1)};
+  return shape;
+}
+
 const CdrShape& RobotStatusShape() {
   static const CdrShape shape = {String("robot_id"),
                                  Struct("stamp", TimeShape()),
@@ -76,7 +84,14 @@ const CdrShape& RobotStatusShape() {
                                  Primitive("maps_published", 8),
                                  Primitive("tiles_published", 8),
                                  Primitive("bytes_published", 8),
-                                 Primitive("sequence_number", 4)};
+                                 Primitive("sequence_number", 4),
+                                 Primitive("baseline_events", 8),
+                                 Primitive("baseline_grid_bytes", 8),
+                                 Primitive("baseline_patch_bytes", 8),
+                                 Primitive("baseline_zstd3_bytes", 8),
+                                 Primitive("baseline_zstd19_bytes", 8),
+                                 Primitive("baseline_lz4_bytes", 8),
+                                 Primitive("baseline_patches_pending", 4)};
   return shape;
 }
 

@@ -11,6 +11,7 @@ namespace fleetmap::transport {
 
 const CdrShape& OccupancyGridShape();
 const CdrShape& OccupancyGridUpdateShape();
+const CdrShape& CompressedGridUpdateShape();
 const CdrShape& RobotStatusShape();
 const CdrShape& VectorTileShape();
 const CdrShape& VectorMapShape();

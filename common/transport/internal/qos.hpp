@@ -27,7 +27,8 @@ EndpointQos RobotStatusQos();
 EndpointQos OccupancyGridQos();
 
 // rt/<map>_updates (map_msgs/OccupancyGridUpdate): reliable, volatile, keep last 16, as ROS 2
-// SLAM nodes publish their incremental map updates.
+// SLAM nodes publish their incremental map updates. The agents' patch wires use it too, for
+// rt/<robot>/map_updates and rt/<robot>/map_updates_zstd (fleetmap_msgs/CompressedGridUpdate).
 EndpointQos OccupancyGridUpdateQos();
 
 // rt/fleetmap/robot_tiles and rt/fleetmap/fused_tiles: reliable, transient local, keep last 1

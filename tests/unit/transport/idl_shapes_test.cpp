@@ -6,12 +6,14 @@
 
 #include <string>
 
+#include "fleetmap_msgs/msg/CompressedGridUpdate.h"
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotStatus.h"
 #include "fleetmap_msgs/msg/Submap.h"
 #include "fleetmap_msgs/msg/VectorMap.h"
+#include "map_msgs/msg/OccupancyGridUpdate.h"
 #include "nav_msgs/msg/OccupancyGrid.h"
 
 namespace fleetmap::transport {
@@ -61,7 +63,27 @@ TEST(IdlShapesTest, RobotStatusShapeMatchesGeneratedCode) {
   status.robot_id("r");  // an odd length, so the padding after strings is exercised
   status.map_topic("rt/r/map");
   status.bytes_published(12345);
+  status.baseline_zstd3_bytes(678);
+  status.baseline_patches_pending(3);
   ExpectShapeMatches(status, RobotStatusShape());
+}
+
+TEST(IdlShapesTest, GridUpdateShapesMatchGeneratedCode) {
+  map_msgs::msg::dds_::OccupancyGridUpdate_ update;
+  update.header().frame_id("a/map");
+  update.x(4);
+  update.width(3);
+  update.height(1);
+  update.data({0, 100, -1});
+  ExpectShapeMatches(update, OccupancyGridUpdateShape());
+  fleetmap_msgs::msg::dds_::CompressedGridUpdate_ compressed;
+  compressed.header().frame_id("a/map");
+  compressed.width(3);
+  compressed.height(1);
+  compressed.compression(1);  // a uint8 before a uint32: the padding is exercised
+  compressed.raw_size(3);
+  compressed.data({40, 181, 47});
+  ExpectShapeMatches(compressed, CompressedGridUpdateShape());
 }
 
 TEST(IdlShapesTest, VectorMapShapeMatchesGeneratedCode) {

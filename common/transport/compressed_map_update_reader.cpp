@@ -1,0 +1,65 @@
+#include "common/transport/compressed_map_update_reader.hpp"
+
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+
+#include "common/core/sample_queue.hpp"
+#include "common/transport/internal/cdr_codec.hpp"
+#include "common/transport/internal/checked_type_support.hpp"
+#include "common/transport/internal/conversions.hpp"
+#include "common/transport/internal/endpoint.hpp"
+#include "common/transport/internal/qos.hpp"
+
+namespace fleetmap::transport {
+
+namespace dds = eprosima::fastdds::dds;
+using fleetmap_msgs::msg::dds_::CompressedGridUpdate_;
+
+class CompressedMapUpdateReader::Listener : public dds::DataReaderListener, public MalformedSink {
+ public:
+  Listener(std::string topic_name, std::shared_ptr<WakeUp> wake_up)
+      : topic_name_(std::move(topic_name)), wake_up_(std::move(wake_up)), updates_(1024) {}
+
+  void on_data_available(dds::DataReader* reader) override {
+    TakeAll<CompressedGridUpdate_>(
+        reader, this, [this](const CompressedGridUpdate_& sample, const dds::SampleInfo& info) {
+          if (!info.valid_data) return;
+          StatusOr<CompressedMapUpdate> update = FromIdl(sample);
+          if (update.ok()) update->serialized_bytes = PayloadBytes(sample);
+          updates_.Push(update.ok() ? std::move(update)
+                                    : StatusOr<CompressedMapUpdate>(
+                                          update.status().WithContext(topic_name_)));
+        });
+    if (wake_up_) wake_up_->Notify();
+  }
+
+  std::vector<StatusOr<CompressedMapUpdate>> Drain() { return updates_.Drain(); }
+
+ protected:
+  void OnMalformed(const Status& error) override {
+    updates_.Push(error.WithContext(topic_name_ + ": malformed CompressedGridUpdate payload"));
+  }
+
+ private:
+  const std::string topic_name_;
+  std::shared_ptr<WakeUp> wake_up_;
+  SampleQueue<StatusOr<CompressedMapUpdate>> updates_;
+};
+
+StatusOr<std::unique_ptr<CompressedMapUpdateReader>> CompressedMapUpdateReader::Create(
+    Participant& participant, const std::string& topic_name, std::shared_ptr<WakeUp> wake_up) {
+  std::unique_ptr<CompressedMapUpdateReader> self(new CompressedMapUpdateReader());
+  self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      ReaderEndpoint::Create(participant, topic_name, CompressedGridUpdateTypeSupport(),
+                             OccupancyGridUpdateQos().reader, self->listener_.get()));
+  return self;
+}
+
+CompressedMapUpdateReader::~CompressedMapUpdateReader() { endpoint_.reset(); }
+
+std::vector<StatusOr<CompressedMapUpdate>> CompressedMapUpdateReader::Drain() {
+  return listener_->Drain();
+}
+
+}  // namespace fleetmap::transport
