@@ -4,6 +4,8 @@
 
 #include <limits>
 
+#include "common/transport/internal/zstd_frame.hpp"
+
 namespace fleetmap::transport {
 
 StatusOr<CompressedMapUpdate> CompressMapUpdate(const MapUpdate& update, int level) {
@@ -30,13 +32,9 @@ StatusOr<CompressedMapUpdate> CompressMapUpdate(const MapUpdate& update, int lev
   out.raw_size = static_cast<uint32_t>(cells);
   out.stamp = update.stamp;
   out.frame_id = update.frame_id;
-  out.data.resize(ZSTD_compressBound(update.data.size()));
-  const size_t size = ZSTD_compress(out.data.data(), out.data.size(), update.data.data(),
-                                    update.data.size(), level);
-  if (ZSTD_isError(size)) {
-    return InternalError(std::string("zstd compression failed: ") + ZSTD_getErrorName(size));
-  }
-  out.data.resize(size);
+  out.data = ZstdCompress(
+      {reinterpret_cast<const uint8_t*>(update.data.data()), update.data.size()}, level);
+  if (out.data.empty()) return InternalError("zstd compression failed");
   return out;
 }
 
@@ -60,31 +58,16 @@ StatusOr<MapUpdate> DecompressMapUpdate(const CompressedMapUpdate& update, size_
                                 " is more than the " + std::to_string(max_cells) +
                                 " cells accepted");
   }
-  // The frame's own header must agree before anything is allocated for it.
-  const unsigned long long content =
-      ZSTD_getFrameContentSize(update.data.data(), update.data.size());
-  if (content == ZSTD_CONTENTSIZE_ERROR) {
-    return DataLossError("data is not a zstd frame (" + std::to_string(update.data.size()) +
-                         " bytes)");
-  }
-  if (content == ZSTD_CONTENTSIZE_UNKNOWN) {
-    return DataLossError("the zstd frame does not record its content size");
-  }
-  if (content != cells) {
-    return DataLossError("the zstd frame holds " + std::to_string(content) + " bytes, not the " +
-                         std::to_string(cells) + " of raw_size");
+  // The frame's own header must agree before anything is allocated for it (ZstdDecompress checks
+  // it against `cells`).
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> cells_data,
+                            ZstdDecompress(update.data, cells, "data"));
+  if (cells_data.size() != cells) {
+    return DataLossError("the zstd frame holds " + std::to_string(cells_data.size()) +
+                         " bytes, not the " + std::to_string(cells) + " of raw_size");
   }
   MapUpdate out;
-  out.data.resize(cells);
-  const size_t size =
-      ZSTD_decompress(out.data.data(), out.data.size(), update.data.data(), update.data.size());
-  if (ZSTD_isError(size)) {
-    return DataLossError(std::string("zstd: ") + ZSTD_getErrorName(size));
-  }
-  if (size != cells) {
-    return DataLossError("data decompresses to " + std::to_string(size) + " bytes, not " +
-                         std::to_string(cells));
-  }
+  out.data.assign(cells_data.begin(), cells_data.end());
   for (const int8_t value : out.data) {
     if (value < -1 || value > 100) {
       return InvalidArgumentError("a cell value " + std::to_string(value) + " outside -1..100");

@@ -53,24 +53,40 @@ constexpr double kMaxStepsPerSide = 1 << 20;
 class TileLattice {
  public:
   TileLattice(const TileId& tile, double tile_size, double quantum, Point2 origin)
-      : quantum_(quantum),
-        origin_(origin),
-        steps_per_side_(tile_size / quantum),
-        corner_((tile.x * tile_size - origin.x()) / quantum,
-                (tile.y * tile_size - origin.y()) / quantum) {}
+      : quantum_(quantum), origin_(origin) {
+    // A vertex may sit a little outside its tile (a cell centre beyond a border that is not on
+    // the cell lattice); farther out than a 16th of the side (and a step) means a broken or
+    // hostile tile. Bounds in whole steps, so that each vertex costs two integer comparisons.
+    const double side = tile_size / quantum;
+    const double slack = side / 16 + 1;
+    const double corner_x = (tile.x * tile_size - origin.x()) / quantum;
+    const double corner_y = (tile.y * tile_size - origin.y()) / quantum;
+    min_ = {static_cast<int64_t>(std::ceil(corner_x - slack)),
+            static_cast<int64_t>(std::ceil(corner_y - slack))};
+    max_ = {static_cast<int64_t>(std::floor(corner_x + side + slack)),
+            static_cast<int64_t>(std::floor(corner_y + side + slack))};
+  }
 
   double quantum() const { return quantum_; }
   const Point2& origin() const { return origin_; }
 
   // Steps of the nearest lattice point, which must lie near the tile.
   StatusOr<std::pair<int64_t, int64_t>> Steps(const Point2& point) const {
-    const double i = std::round((point.x() - origin_.x()) / quantum_);
-    const double j = std::round((point.y() - origin_.y()) / quantum_);
-    if (!WithinSlack(i, corner_.x()) || !WithinSlack(j, corner_.y())) {
+    const double i = (point.x() - origin_.x()) / quantum_;
+    const double j = (point.y() - origin_.y()) / quantum_;
+    // Range first (NaN fails it too), then round half away from zero as std::round does.
+    if (!(i >= static_cast<double>(min_.first) - 0.5 && i <= static_cast<double>(max_.first) + 0.5 &&
+          j >= static_cast<double>(min_.second) - 0.5 && j <= static_cast<double>(max_.second) + 0.5)) {
       return InvalidArgumentError("a vertex at (" + std::to_string(point.x()) + ", " +
                                   std::to_string(point.y()) + ") lies outside its tile");
     }
-    return std::pair{static_cast<int64_t>(i), static_cast<int64_t>(j)};
+    const std::pair<int64_t, int64_t> steps{static_cast<int64_t>(i < 0 ? i - 0.5 : i + 0.5),
+                                            static_cast<int64_t>(j < 0 ? j - 0.5 : j + 0.5)};
+    if (!Near(steps.first, steps.second)) {
+      return InvalidArgumentError("a vertex at (" + std::to_string(point.x()) + ", " +
+                                  std::to_string(point.y()) + ") lies outside its tile");
+    }
+    return steps;
   }
 
   Point2 Decode(int64_t i, int64_t j) const {
@@ -78,22 +94,15 @@ class TileLattice {
             static_cast<double>(j) * quantum_ + origin_.y()};
   }
 
-  // A vertex may sit a little outside its tile (a cell centre beyond a border that is not on the
-  // cell lattice); farther out means a broken or hostile tile.
-  bool WithinSlack(double step, double corner) const {
-    const double slack = steps_per_side_ / 16 + 1;
-    return step >= corner - slack && step <= corner + steps_per_side_ + slack;
-  }
   bool Near(int64_t i, int64_t j) const {
-    return WithinSlack(static_cast<double>(i), corner_.x()) &&
-           WithinSlack(static_cast<double>(j), corner_.y());
+    return i >= min_.first && i <= max_.first && j >= min_.second && j <= max_.second;
   }
 
  private:
   double quantum_;
   Point2 origin_;
-  double steps_per_side_;
-  Point2 corner_;  // the tile's corner in steps (not whole)
+  std::pair<int64_t, int64_t> min_;  // the steps a vertex of this tile may take
+  std::pair<int64_t, int64_t> max_;
 };
 
 // Whole HalfWidthStep(epsilon), rounded up so that a reader never paints an obstacle thinner than

@@ -13,7 +13,7 @@
 namespace fleetmap::transport {
 
 // Codes the tile's geometry on the map's lattice (VectorMap::lattice; a map without one gets
-// vector_map::TileQuantum(tile_size, resolution) from the fleet origin, and its vertices are
+// vector_map::TileQuantum(resolution) from the fleet origin, and its vertices are
 // rounded onto it). Fails (kInvalidArgument) when the lattice quantum does not divide the tile side
 // into at most 65535 steps, when the tile side is not a whole number of millimetres, when a
 // coordinate or the tile size is not finite, when a vertex lies too far outside its tile or a half

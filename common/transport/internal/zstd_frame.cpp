@@ -41,7 +41,7 @@ StatusOr<std::vector<uint8_t>> ZstdDecompress(std::span<const uint8_t> frame, si
     return InvalidArgumentError(what + " is not a zstd frame");
   }
   if (declared == ZSTD_CONTENTSIZE_UNKNOWN) {
-    return InvalidArgumentError(what + " is a zstd frame that does not state its size");
+    return InvalidArgumentError(what + " is a zstd frame that does not record its content size");
   }
   if (declared > max_bytes) {
     return InvalidArgumentError(what + " would decompress to " + std::to_string(declared) +
