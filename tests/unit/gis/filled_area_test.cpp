@@ -31,14 +31,18 @@ double Area(const FilledArea& area) {
   return twice / 2.0;
 }
 
-// What GIS tools would say of the area exported as a FeatureCollection.
-std::vector<std::string> Problems(const FilledArea& area) {
+// The area exported as a FeatureCollection.
+nlohmann::json Collection(const FilledArea& area) {
   nlohmann::json features = nlohmann::json::array();
   for (nlohmann::json& geometry : GeoJsonGeometries(area)) {
     features.push_back({{"type", "Feature"}, {"properties", {}}, {"geometry", geometry}});
   }
-  return fleetmap::testing::GeoJsonProblems(
-      {{"type", "FeatureCollection"}, {"crs", GeoJsonCrs()}, {"features", features}});
+  return {{"type", "FeatureCollection"}, {"crs", GeoJsonCrs()}, {"features", features}};
+}
+
+// What GIS tools would say of the area exported as a FeatureCollection.
+std::vector<std::string> Problems(const FilledArea& area) {
+  return fleetmap::testing::GeoJsonProblems(Collection(area));
 }
 
 FilledArea Fill(const std::vector<Ring>& rings) {
@@ -109,6 +113,29 @@ TEST(FilledAreaTest, CrossingRingsFillByTheEvenOddRule) {
       Fill({{{0, 0}, {2, 0}, {2, 2}, {0, 2}}, {{1, 1}, {3, 1}, {3, 3}, {1, 3}}});
   EXPECT_DOUBLE_EQ(Area(crossed), 6.0);
   EXPECT_THAT(Problems(crossed), IsEmpty());
+}
+
+TEST(FilledAreaTest, RingRunningBackAlongItselfStillFillsTheStripBesideIt) {
+  // Cell centres of a 5 cm grid, as the free-space extractor wrote them on aces3_austin: the ring
+  // climbs a diagonal from (50.375, 35.325) to (51.125, 36.075) and comes straight back down it,
+  // past where it started, to (50.025, 34.975). The decimal centres are not exactly collinear in
+  // binary, so the spike's two sides are a rounding error apart and the strip below it is one face
+  // with a sliver on top. The spike up from (50.025, 35.125) makes the ring invalid, so the faces
+  // are classified by the even-odd rule; GEOSPointOnSurface's scan line met only the sliver and
+  // the strip (0.04875 square metres) was left out.
+  const double x0 = 50.025000000000006;  // (1000 + 0.5) * 0.05, as CellCenter computes it
+  const Ring ring = {
+      {x0, 34.975},     {x0, 35.125},    {x0, 35.425}, {x0, 35.125}, {50.325, 35.425000000000004},
+      {50.375, 35.325}, {51.125, 36.075}};
+  const FilledArea area = Fill({ring});
+  EXPECT_NEAR(Area(area), 0.04875, 1e-9);
+  EXPECT_THAT(Problems(area), IsEmpty());
+  const fleetmap::testing::GeoJsonCoverage coverage(Collection(area));
+  for (const Point2& centre :
+       {Point2(50.075, 35.075), Point2(50.125, 35.125), Point2(50.325, 35.375)}) {
+    EXPECT_TRUE(coverage.Covers(centre.x(), centre.y(), 0.0)) << centre.transpose();
+  }
+  EXPECT_FALSE(coverage.Covers(50.075, 34.975, 0.0));
 }
 
 TEST(FilledAreaTest, HoleTouchingItsShellAtAPointStaysOnePolygon) {

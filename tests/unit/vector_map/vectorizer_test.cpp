@@ -297,7 +297,10 @@ TEST(VectorizerTest, LineEndsArePaintedByTheirPolylines) {
   for (const bool tiled : {false, true}) {
     SCOPED_TRACE(tiled ? "on the tile lattice" : "whole map");
     VectorizerOptions options;
-    if (tiled) options.quantum = TileQuantum(1.0);
+    if (tiled) {
+      options.quantum = TileQuantum(grid.resolution());
+      options.lattice_origin = TileLatticeOrigin(grid.origin().translation(), options.quantum);
+    }
     const VectorMap map = VectorizeOrDie(grid, options);
     ExpectValid(map, grid);
     VectorMap obstacles = map;
