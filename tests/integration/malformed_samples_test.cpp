@@ -274,7 +274,7 @@ TEST(MalformedSamplesTest, ServerRefusesBadPatchesAndKeepsServing) {
 
   transport::CompressedMapUpdate corrupt = *good;
   corrupt.data = {0x28, 0xb5, 0x2f, 0xfd, 0x20, 0x0c, 0xff, 0xff, 0xff, 0xff};
-  EXPECT_TRUE(RepeatUntilServerSays(send(corrupt), server, "4 x 3: zstd: Data corruption detected",
+  EXPECT_TRUE(RepeatUntilServerSays(send(corrupt), server, "4 x 3: data: zstd: Data corruption detected",
                                     gamma_alive))
       << server.Output();
   transport::CompressedMapUpdate lying = *good;
