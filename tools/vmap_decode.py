@@ -17,7 +17,7 @@ order of the geometry: the polylines, then the point obstacles (each a one-point
 Float32 fields are printed as the float64 they widen to.
 
 It checks what the page says a reader checks (the CDR lengths and every count against the bytes
-left, layout_version 5, compression 0 or 1, the tile size, quantum and lattice origin, varints of
+left, layout_version 5, compression 0 or 1, the tile size, the geometry's lattice, varints of
 at most 64 bits, vertices within a 16th of the tile side of their tile, closed polylines of >= 3
 vertices, rings and polygons not empty, the string used up exactly, the zstd content size at most
 4 MiB and stated before inflating, no duplicate tile), and that strings end with their NUL and
@@ -151,6 +151,14 @@ class GeometryReader:
         self.pos += 1
         return value
 
+    def float64(self, what):
+        """Eight bytes, an IEEE 754 binary64 value, little-endian."""
+        if self.remaining() < 8:
+            raise Malformed(f"geometry ends at byte {len(self.data)} inside {what}")
+        value = struct.unpack_from("<d", self.data, self.pos)[0]
+        self.pos += 8
+        return value
+
     def varint(self, what):
         start = self.pos
         value = 0
@@ -243,19 +251,40 @@ def zstd_decompress(frame):
     return content
 
 
+def read_lattice(reader, tile):
+    """The lattice at the start of the geometry: the quantum, then a flag byte (1: the origin's
+    two float64 follow; 0: the origin is (0, 0))."""
+    quantum = finite_positive(reader.float64("the lattice quantum"), "the lattice quantum")
+    steps_per_side = tile["_tile_size"] / quantum
+    if not 1 <= steps_per_side <= MAX_STEPS_PER_SIDE:
+        raise Malformed(f"quantum {quantum!r} m makes {steps_per_side!r} steps of the tile side, "
+                        f"not 1 to {MAX_STEPS_PER_SIDE}")
+    flag = reader.byte("the lattice origin flag")
+    if flag not in (0, 1):
+        raise Malformed(f"the lattice origin flag is {flag}, neither 0 nor 1")
+    origin = [0.0, 0.0]
+    if flag == 1:
+        origin = [reader.float64("the lattice origin x"), reader.float64("the lattice origin y")]
+        for value in origin:
+            if not 0.0 <= value < quantum:  # also false for NaN
+                raise Malformed(f"the lattice origin {value!r} is not in [0, quantum {quantum!r})")
+    tile["quantum"], tile["lattice_x"], tile["lattice_y"] = quantum, origin[0], origin[1]
+    return quantum, origin[0], origin[1]
+
+
 def decode_geometry(geometry, tile):
-    """The obstacles and free polygons of one tile's (plain) geometry string."""
-    quantum, lattice_x, lattice_y = tile["quantum"], tile["lattice_x"], tile["lattice_y"]
+    """The lattice, obstacles and free polygons of one tile's (plain) geometry string."""
+    reader = GeometryReader(geometry)
+    quantum, lattice_x, lattice_y = read_lattice(reader, tile)
     tile_size = tile["_tile_size"]
     slack = VERTEX_SLACK * tile_size
     x_range = (tile["tile_x"] * tile_size - slack, (tile["tile_x"] + 1) * tile_size + slack)
     y_range = (tile["tile_y"] * tile_size - slack, (tile["tile_y"] + 1) * tile_size + slack)
     epsilon = tile["_epsilon"]  # the tile's float32, widened
-    reader = GeometryReader(geometry)
     i = j = 0  # lattice coordinates of the previous vertex; the first one steps from (0, 0)
 
     def half_width(steps):
-        return steps * epsilon / HALF_WIDTH_STEPS_PER_EPSILON
+        return steps * (epsilon / HALF_WIDTH_STEPS_PER_EPSILON)
 
     def vertex(what):
         nonlocal i, j
@@ -327,21 +356,11 @@ def decode_tile(cdr, index, allow_zstd, tile_size):
     if tile_size_mm / 1000 != tile_size:
         raise Malformed(f"{name}: tile_size_mm is {tile_size_mm}, but the map's tile_size is "
                         f"{tile_size!r} m (the same for every tile)")
-    quantum = finite_positive(cdr.float64(f"{name} quantum"), f"{name} quantum")
-    steps_per_side = tile_size_mm / 1000 / quantum
-    if not 1 <= steps_per_side <= MAX_STEPS_PER_SIDE:
-        raise Malformed(f"{name}: quantum {quantum!r} m makes {steps_per_side!r} steps of the "
-                        f"tile side, not 1 to {MAX_STEPS_PER_SIDE}")
-    lattice_x = cdr.float64(f"{name} lattice_x")
-    lattice_y = cdr.float64(f"{name} lattice_y")
-    for value, field in ((lattice_x, "lattice_x"), (lattice_y, "lattice_y")):
-        if not 0.0 <= value < quantum:  # also false for NaN
-            raise Malformed(f"{name}: {field} is {value!r}, not in [0, quantum {quantum!r})")
     epsilon = finite_positive(cdr.float32(f"{name} epsilon"), f"{name} epsilon")
     finite_positive(cdr.float32(f"{name} resolution"), f"{name} resolution")
     geometry = cdr.octets(f"{name} geometry")
-    tile = {"tile_x": tile_x, "tile_y": tile_y, "revision": revision, "quantum": quantum,
-            "lattice_x": lattice_x, "lattice_y": lattice_y, "_epsilon": epsilon,
+    tile = {"tile_x": tile_x, "tile_y": tile_y, "revision": revision, "quantum": None,
+            "lattice_x": None, "lattice_y": None, "_epsilon": epsilon,
             "_tile_size": tile_size_mm / 1000}
     try:
         if compression == 1:

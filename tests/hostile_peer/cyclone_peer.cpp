@@ -58,9 +58,6 @@ CTile ToC(const TileSample& tile) {
   out.compression = tile.compression;
   out.revision = tile.revision;
   out.tile_size_mm = tile.tile_size_mm;
-  out.quantum = tile.quantum;
-  out.lattice_x = tile.lattice_x;
-  out.lattice_y = tile.lattice_y;
   out.epsilon = tile.epsilon;
   out.resolution = tile.resolution;
   out.geometry = View<dds_sequence_uint8>(tile.geometry);

@@ -1,6 +1,7 @@
 #include "tests/hostile_peer/hostile_samples.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 
 namespace fleetmap::hostile {
@@ -16,15 +17,22 @@ TileSample Blank(const std::string& robot, TileKey key, double tile_size) {
   tile.key = key;
   tile.stamp = StampFromNow();
   tile.tile_size_mm = static_cast<uint32_t>(tile_size * 1000.0 + 0.5);
-  tile.quantum = tile_size / kStepsPerSide;
   return tile;
 }
 
-// The geometry bytes: LEB128 varints, zigzag for signed ones, and vertices as steps from the one
-// before, the first from step (0, 0) of the fleet frame. Vertices are given from the tile's corner.
+// The geometry bytes: the lattice (the quantum's eight bytes, little-endian, and 0: origin (0, 0)),
+// then LEB128 varints, zigzag for signed ones, and vertices as steps from the one before, the first
+// from step (0, 0) of the fleet frame. Vertices are given from the tile's corner.
 class GeometryWriter {
  public:
-  explicit GeometryWriter(TileKey key) : corner_x_(key.x * kSide), corner_y_(key.y * kSide) {}
+  GeometryWriter(TileKey key, double tile_size)
+      : corner_x_(key.x * kSide), corner_y_(key.y * kSide) {
+    const double quantum = tile_size / kStepsPerSide;
+    uint64_t bits;
+    std::memcpy(&bits, &quantum, sizeof bits);
+    for (int i = 0; i < 8; ++i) bytes_.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+    bytes_.push_back(0);
+  }
 
   void Unsigned(uint64_t value) {
     for (; value >= 0x80; value >>= 7) bytes_.push_back(static_cast<uint8_t>(value | 0x80));
@@ -75,7 +83,7 @@ TileSample WallTile(const std::string& robot, TileKey key, double tile_size) {
   TileSample tile = Blank(robot, key, tile_size);
   constexpr int64_t kLow = kSide / 8;
   constexpr int64_t kHigh = kSide - kSide / 8;
-  GeometryWriter out(key);
+  GeometryWriter out(key, tile_size);
   out.Unsigned(1);                // one polyline:
   out.Unsigned((4 - 2) << 1 | 1);  // 4 vertices, closed
   out.Byte(0);                    // half width 0
@@ -93,7 +101,7 @@ TileSample WallTile(const std::string& robot, TileKey key, double tile_size) {
 
 TileSample AllFreeTile(const std::string& robot, TileKey key, double tile_size) {
   TileSample tile = Blank(robot, key, tile_size);
-  GeometryWriter out(key);
+  GeometryWriter out(key, tile_size);
   out.Unsigned(0);  // no polyline
   out.Unsigned(0);  // no point
   out.FreeRectangle(0, 0, kSide, kSide);
@@ -110,7 +118,7 @@ TileSample HeavyTile(const std::string& robot, TileKey key, double tile_size, in
   for (int left = std::max(vertices, 2); left >= 2; left -= sizes.back()) {
     sizes.push_back(std::min(left, kMaxPolyline));
   }
-  GeometryWriter out(key);
+  GeometryWriter out(key, tile_size);
   out.Unsigned(sizes.size());
   for (const int n : sizes) {
     out.Unsigned(static_cast<uint64_t>(n - 2) << 1);  // open

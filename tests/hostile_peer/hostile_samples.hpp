@@ -44,12 +44,10 @@ struct TileSample {
   uint8_t compression = 0;  // plain geometry
   uint32_t revision = 1;
   uint32_t tile_size_mm = 10000;
-  double quantum = 10.0 / kStepsPerSide;
-  double lattice_x = 0.0;
-  double lattice_y = 0.0;
   float epsilon = 0.07f;
   float resolution = 0.05f;
-  std::vector<uint8_t> geometry = {0, 0, 0};  // no polyline, no point, no polygon
+  // The lattice (quantum 0.025 m, origin (0, 0)), then no polyline, no point, no polygon.
+  std::vector<uint8_t> geometry = {0x9a, 0x99, 0x99, 0x99, 0x99, 0x99, 0x99, 0x3f, 0, 0, 0, 0};
 };
 
 // fleetmap_msgs/RobotStatus, field for field (poses as x, y, theta).

@@ -409,8 +409,17 @@ fleetmap_msgs::msg::dds_::VectorTile_ Tile(const std::string& robot, int32_t x =
   return tile.ok() ? *tile : fleetmap_msgs::msg::dds_::VectorTile_();
 }
 
-// The geometry of no element: decodes anywhere, whatever the keys say.
-constexpr uint8_t kNoGeometry[] = {0, 0, 0};
+// The lattice at the start of every geometry here: quantum 0.025 m (eight bytes, little-endian),
+// origin (0, 0).
+constexpr uint8_t kLattice[] = {0x9a, 0x99, 0x99, 0x99, 0x99, 0x99, 0x99, 0x3f, 0};
+
+// `body` after that lattice.
+std::vector<uint8_t> OnLattice(std::initializer_list<uint8_t> body) {
+  std::vector<uint8_t> bytes;
+  for (const uint8_t byte : kLattice) bytes.push_back(byte);
+  for (const uint8_t byte : body) bytes.push_back(byte);
+  return bytes;
+}
 
 TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
   auto tile_writer = Writer(transport::kRobotTilesTopic, transport::VectorTileTypeSupport(),
@@ -424,7 +433,7 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
       {"the polyline count is 100, more than",
        [](auto& t) {
          t.compression(0);
-         t.geometry()[0] = 100;
+         t.geometry()[std::size(kLattice)] = 100;
        }},
       {"layout_version is 4, this fleetmap reads 5", [](auto& t) { t.layout_version(4); }},
       {"epsilon 0.000000 is not a positive distance", [](auto& t) { t.epsilon(0.0f); }},
@@ -432,14 +441,14 @@ TEST_F(TileWirePeerTest, ServerRejectsBadTilesCountsThemAndKeepsFusing) {
       {"outside its tile",
        [](auto& t) {
          t.compression(0);
-         t.geometry({1, 0, 0, 0x80, 0x89, 0x7a, 0, 2, 0, 0, 0, 0});
+         t.geometry(OnLattice({1, 0, 0, 0x80, 0x89, 0x7a, 0, 2, 0, 0, 0, 0}));
        }},
       {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
       {"compression 9 is neither 0 (plain) nor 1 (zstd)", [](auto& t) { t.compression(9); }},
       {"a free polygon has no outer ring",
        [](auto& t) {
          t.compression(0);
-         t.geometry({0, 0, 1, 0, 0, 0, 0});
+         t.geometry(OnLattice({0, 0, 1, 0, 0, 0, 0}));
        }},
   };
   int32_t x = 0;
@@ -491,7 +500,7 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
          t.tile_x(INT32_MAX);
          t.tile_y(INT32_MAX);
          t.compression(0);
-         t.geometry({std::begin(kNoGeometry), std::end(kNoGeometry)});
+         t.geometry(OnLattice({0, 0, 0}));  // no element: decodes anywhere
        }},
       {"ahead of this server's clock",
        [](auto& t) { t.stamp(transport::ToIdl(Clock::now() + std::chrono::hours(24 * 365))); }},
@@ -506,7 +515,7 @@ TEST_F(TileWirePeerTest, ServerRefusesFarKeysOddStampsAndForeignSettingsAndKeeps
        [](auto& t) {
          t.tile_size_mm(20000);  // geometry coded for 10 m tiles would lie outside a 20 m one
          t.compression(0);
-         t.geometry({std::begin(kNoGeometry), std::end(kNoGeometry)});
+         t.geometry(OnLattice({0, 0, 0}));  // no element: decodes anywhere
        }},
   };
   int32_t x = 0;

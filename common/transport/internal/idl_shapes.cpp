@@ -104,9 +104,6 @@ const CdrShape& VectorTileShape() {
                                  Primitive("compression", 1),
                                  Primitive("revision", 4),
                                  Primitive("tile_size_mm", 4),
-                                 Primitive("quantum", 8),
-                                 Primitive("lattice_x", 8),
-                                 Primitive("lattice_y", 8),
                                  Primitive("epsilon", 4),
                                  Primitive("resolution", 4),
                                  Sequence("geometry", 1)};

@@ -2,13 +2,14 @@
 
 // The byte strings of the tile layout (docs/file-formats.md, "The geometry bytes"): unsigned
 // LEB128 varints (7 bits per byte, low bits first, the high bit set on every byte but the last),
-// zigzag for signed values (0, -1, 1, -2, ... as 0, 1, 2, 3, ...), and plain bytes. Values are
-// 64-bit.
+// zigzag for signed values (0, -1, 1, -2, ... as 0, 1, 2, 3, ...), plain bytes, and doubles as
+// their eight IEEE 754 bytes, little-endian. Varint values are 64-bit.
 //
 // The reader never trusts the bytes: a varint with bits beyond 64, or a
 // read past the end is an error naming the offset, never a crash.
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,12 @@ class VarintWriter {
     Unsigned((static_cast<uint64_t>(value) << 1) ^ static_cast<uint64_t>(value >> 63));
   }
   void Byte(uint8_t value) { bytes_.push_back(value); }
+  // Eight bytes, the IEEE 754 binary64 value little-endian.
+  void Double(double value) {
+    uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int i = 0; i < 8; ++i) bytes_.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+  }
 
   std::vector<uint8_t>& bytes() { return bytes_; }
 
@@ -61,6 +68,17 @@ class VarintReader {
   StatusOr<uint8_t> Byte(const char* what) {
     if (offset_ >= bytes_.size()) return Truncated(what);
     return static_cast<uint8_t>(bytes_[offset_++]);
+  }
+
+  StatusOr<double> Double(const char* what) {
+    if (remaining() < 8) return Truncated(what);
+    uint64_t bits = 0;
+    for (int i = 0; i < 8; ++i) {
+      bits |= static_cast<uint64_t>(static_cast<uint8_t>(bytes_[offset_++])) << (8 * i);
+    }
+    double value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
   }
 
   size_t remaining() const { return bytes_.size() - offset_; }

@@ -175,9 +175,22 @@ class VertexWriter {
   std::pair<int64_t, int64_t> last_{0, 0};
 };
 
+// The lattice comes first: the quantum, then a byte that says whether the origin follows (most
+// maps' origin is (0, 0): their cell corners lie on the fleet frame's half-cell lattice).
+void WriteLattice(const TileLattice& lattice, VarintWriter* out) {
+  out->Double(lattice.quantum());
+  const bool has_origin = lattice.origin() != Point2::Zero();
+  out->Byte(has_origin ? 1 : 0);
+  if (has_origin) {
+    out->Double(lattice.origin().x());
+    out->Double(lattice.origin().y());
+  }
+}
+
 StatusOr<std::vector<uint8_t>> EncodeGeometry(const vector_map::VectorMap& map,
                                               const TileLattice& lattice) {
   VarintWriter out;
+  WriteLattice(lattice, &out);
   VertexWriter vertices(lattice, &out);
   std::vector<const Polyline*> polylines;
   std::vector<const Polyline*> points;
@@ -340,15 +353,6 @@ Status CheckHeader(const VectorTile_& tile) {
                                 " is neither 0 (plain) nor 1 (zstd)");
   }
   if (tile.tile_size_mm() == 0) return InvalidArgumentError("tile_size_mm is 0");
-  const double quantum = tile.quantum();
-  FLEETMAP_RETURN_IF_ERROR(CheckQuantum(quantum, tile.tile_size_mm() / 1000.0));
-  for (const double origin : {tile.lattice_x(), tile.lattice_y()}) {
-    if (!(origin >= 0.0) || !(origin < quantum)) {
-      return InvalidArgumentError("lattice origin " + std::to_string(origin) +
-                                  " m is not within [0, quantum " + std::to_string(quantum) +
-                                  " m)");
-    }
-  }
   if (!std::isfinite(tile.epsilon()) || tile.epsilon() <= 0.0f) {
     return InvalidArgumentError("epsilon " + std::to_string(tile.epsilon()) +
                                 " is not a positive distance");
@@ -358,6 +362,31 @@ Status CheckHeader(const VectorTile_& tile) {
                                 " is not a positive distance");
   }
   return Status::Ok();
+}
+
+// The lattice at the start of the geometry, every number checked.
+StatusOr<TileLattice> ReadLattice(VarintReader& in, const TileId& tile, double tile_size) {
+  FLEETMAP_ASSIGN_OR_RETURN(const double quantum, in.Double("the lattice quantum"));
+  FLEETMAP_RETURN_IF_ERROR(CheckQuantum(quantum, tile_size));
+  FLEETMAP_ASSIGN_OR_RETURN(const uint8_t has_origin, in.Byte("the lattice origin flag"));
+  if (has_origin > 1) {
+    return InvalidArgumentError("the lattice origin flag is " + std::to_string(has_origin) +
+                                ", neither 0 nor 1");
+  }
+  Point2 origin = Point2::Zero();
+  if (has_origin == 1) {
+    FLEETMAP_ASSIGN_OR_RETURN(const double x, in.Double("the lattice origin"));
+    FLEETMAP_ASSIGN_OR_RETURN(const double y, in.Double("the lattice origin"));
+    for (const double value : {x, y}) {
+      if (!(value >= 0.0) || !(value < quantum)) {
+        return InvalidArgumentError("lattice origin " + std::to_string(value) +
+                                    " m is not within [0, quantum " + std::to_string(quantum) +
+                                    " m)");
+      }
+    }
+    origin = Point2(x, y);
+  }
+  return TileLattice(tile, tile_size, quantum, origin);
 }
 
 }  // namespace
@@ -374,9 +403,6 @@ StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   out.layout_version(kTileLayoutVersion);
   out.revision(message.revision);
   out.tile_size_mm(tile_size_mm);
-  out.quantum(lattice.quantum());
-  out.lattice_x(lattice.origin().x());
-  out.lattice_y(lattice.origin().y());
   out.epsilon(static_cast<float>(message.map.epsilon));
   out.resolution(static_cast<float>(message.map.resolution));
   if (geometry.size() > kMaxGeometryBytes) {
@@ -404,10 +430,6 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   out.map.frame_id = "fleet";
   out.map.epsilon = tile.epsilon();
   out.map.resolution = tile.resolution();
-  const TileLattice lattice(out.tile, out.tile_size, tile.quantum(),
-                            Point2(tile.lattice_x(), tile.lattice_y()));
-  out.map.lattice = {lattice.quantum(), lattice.origin()};
-
   std::vector<uint8_t> decompressed;
   if (tile.compression() == kZstd) {
     FLEETMAP_ASSIGN_OR_RETURN(decompressed,
@@ -417,6 +439,8 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
       tile.compression() == kZstd ? decompressed : tile.geometry();
   VarintReader in(
       std::string_view(reinterpret_cast<const char*>(geometry.data()), geometry.size()));
+  FLEETMAP_ASSIGN_OR_RETURN(const TileLattice lattice, ReadLattice(in, out.tile, out.tile_size));
+  out.map.lattice = {lattice.quantum(), lattice.origin()};
   VertexReader vertices(lattice, &in);
   FLEETMAP_RETURN_IF_ERROR(
       DecodeObstacles(in, vertices, vector_map::HalfWidthStep(out.map.epsilon), &out.map));

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <cstring>
+#include <optional>
 #include <random>
 
 #include "common/transport/internal/zstd_frame.hpp"
@@ -79,6 +81,30 @@ std::vector<uint8_t> PlainGeometry(const VectorTileIdl& idl) {
   return plain.ok() ? *plain : std::vector<uint8_t>();
 }
 
+// The lattice that starts a geometry: the quantum's eight bytes, then the origin flag (and origin).
+std::vector<uint8_t> LatticeBytes(double quantum, std::optional<Point2> origin = std::nullopt) {
+  std::vector<uint8_t> bytes;
+  const auto append = [&bytes](double value) {
+    uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<uint8_t>(bits >> (8 * i)));
+  };
+  append(quantum);
+  bytes.push_back(origin ? 1 : 0);
+  if (origin) {
+    append(origin->x());
+    append(origin->y());
+  }
+  return bytes;
+}
+
+// `body` after the tiles' usual lattice (half-cell steps from the fleet origin).
+std::vector<uint8_t> OnLattice(std::vector<uint8_t> body) {
+  std::vector<uint8_t> bytes = LatticeBytes(kQuantum);
+  bytes.insert(bytes.end(), body.begin(), body.end());
+  return bytes;
+}
+
 // A tile whose geometry is `bytes` as they are, uncompressed.
 VectorTileIdl WithGeometry(std::vector<uint8_t> bytes) {
   VectorTileIdl idl = Encoded(TileWith({}));
@@ -130,8 +156,11 @@ TEST(VectorTileCodecTest, EveryKindOfElementRoundTripsOnTheLattice) {
   const VectorTileIdl idl = Encoded(message);
   EXPECT_EQ(idl.layout_version(), 5);
   EXPECT_EQ(idl.tile_size_mm(), 10000u);
-  EXPECT_EQ(idl.quantum(), kQuantum);
-  EXPECT_EQ(idl.lattice_x(), kLatticeOrigin.x());
+  // The geometry starts with the lattice: quantum, origin flag 1, origin.
+  const std::vector<uint8_t> plain = PlainGeometry(idl);
+  ASSERT_GE(plain.size(), 25u);
+  EXPECT_EQ(std::vector<uint8_t>(plain.begin(), plain.begin() + 25),
+            LatticeBytes(kQuantum, kLatticeOrigin));
   const StatusOr<VectorTileMessage> back = FromIdl(idl);
   ASSERT_TRUE(back.ok()) << back.status();
   ExpectSameMap(back->map, message.map, "tile");
@@ -142,10 +171,16 @@ TEST(VectorTileCodecTest, EveryKindOfElementRoundTripsOnTheLattice) {
   EXPECT_NEAR(back->map.lattice.origin.x(), kLatticeOrigin.x(), 1e-9);
 }
 
-TEST(VectorTileCodecTest, AnEmptyTileIsThreeBytesOfGeometry) {
+TEST(VectorTileCodecTest, AnEmptyTileIsItsLatticeAndThreeZeros) {
   const VectorTileIdl idl = Encoded(TileWith({}));
   EXPECT_EQ(idl.compression(), 0);
-  EXPECT_EQ(idl.geometry(), (std::vector<uint8_t>{0, 0, 0}));
+  std::vector<uint8_t> expected = LatticeBytes(kQuantum, kLatticeOrigin);
+  expected.insert(expected.end(), {0, 0, 0});
+  EXPECT_EQ(idl.geometry(), expected);
+  // The origin (0, 0), most maps' origin, costs one byte: 8 + 1 + 3.
+  VectorTileMessage at_fleet_origin = TileWith({});
+  at_fleet_origin.map.lattice.origin = Point2::Zero();
+  EXPECT_EQ(Encoded(at_fleet_origin).geometry(), OnLattice({0, 0, 0}));
   const vector_map::VectorMap back = Decoded(idl);
   EXPECT_TRUE(back.obstacles.empty());
   EXPECT_TRUE(back.free_space.empty());
@@ -226,9 +261,9 @@ TEST(VectorTileCodecTest, AMapWithoutLatticeIsSentOnHalfCellStepsFromTheFleetOri
   VectorTileMessage message = TileWith({Polyline{{{10.012, -19.99}, {11.0, -19.0}}, false, 0.0}});
   message.map.lattice = {};
   const VectorTileIdl idl = Encoded(message);
-  EXPECT_EQ(idl.quantum(), 0.025);
-  EXPECT_EQ(idl.lattice_x(), 0.0);
   const vector_map::VectorMap back = Decoded(idl);
+  EXPECT_EQ(back.lattice.quantum, 0.025);
+  EXPECT_EQ(back.lattice.origin, Point2::Zero());
   ASSERT_EQ(back.obstacles.size(), 1u);
   EXPECT_NEAR(back.obstacles[0].points[0].x(), 10.0, 1e-12);  // rounded onto the lattice
   EXPECT_NEAR(back.obstacles[0].points[0].y(), -20.0, 1e-12);
@@ -297,13 +332,6 @@ TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
       {"layout_version is 0", [](auto& t) { t.layout_version(0); }},
       {"compression 7 is neither", [](auto& t) { t.compression(7); }},
       {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
-      {"quantum 0.000000 m", [](auto& t) { t.quantum(0.0); }},
-      {"quantum nan", [](auto& t) { t.quantum(std::nan("")); }},
-      {"quantum -0.025", [](auto& t) { t.quantum(-0.025); }},
-      {"quantum 20.000000 m", [](auto& t) { t.quantum(20.0); }},
-      {"lattice origin 0.030000 m is not within", [](auto& t) { t.lattice_x(0.03); }},
-      {"lattice origin -0.001", [](auto& t) { t.lattice_y(-0.001); }},
-      {"lattice origin nan", [](auto& t) { t.lattice_y(std::nan("")); }},
       {"epsilon nan", [](auto& t) { t.epsilon(std::nanf("")); }},
       {"resolution -0.05", [](auto& t) { t.resolution(-0.05f); }},
       {"the geometry is not a zstd frame",
@@ -320,20 +348,34 @@ TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
 
 TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaims) {
   const std::vector<std::pair<std::string, std::vector<uint8_t>>> cases = {
-      {"the geometry ends at byte 0", {}},
+      {"the lattice quantum is cut off: the geometry ends at byte 0", {}},
+      {"quantum 0.000000 m", LatticeBytes(0.0)},
+      {"quantum nan", LatticeBytes(std::nan(""))},
+      {"quantum -0.025", LatticeBytes(-0.025)},
+      {"quantum 20.000000 m", LatticeBytes(20.0)},
+      {"the lattice origin flag is 2, neither 0 nor 1", [] {
+         std::vector<uint8_t> bytes = LatticeBytes(kQuantum);
+         bytes.back() = 2;
+         return bytes;
+       }()},
+      {"lattice origin 0.030000 m is not within", LatticeBytes(kQuantum, Point2(0.03, 0.0))},
+      {"lattice origin -0.001", LatticeBytes(kQuantum, Point2(0.0, -0.001))},
+      {"lattice origin nan", LatticeBytes(kQuantum, Point2(0.0, std::nan("")))},
+      {"the polyline count is cut off: the geometry ends at byte 9", OnLattice({})},
       {"the polyline count is 4294967295, more than the 2 bytes left",
-       {0xff, 0xff, 0xff, 0xff, 0x0f, 0, 0}},
+       OnLattice({0xff, 0xff, 0xff, 0xff, 0x0f, 0, 0})},
       {"is a varint of more than 64 bits",
-       {0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01}},
+       OnLattice({0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x80, 0x01})},
       {"is a varint of more than 64 bits",
-       {0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x02}},
+       OnLattice({0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x02})},
       // One polyline claiming 2^31 vertices.
-      {"more than the", {1, 0xfe, 0xff, 0xff, 0xff, 0x0f, 0, 2, 2, 2, 2}},
-      {"is closed with 2 vertices", {1, 1, 0, 2, 2, 2, 2, 0, 0}},
-      {"outside its tile", {1, 0, 0, 2, 2, 2, 2, 0, 0}},  // a vertex near the fleet origin
-      {"a free polygon has no outer ring", {0, 0, 1, 0, 0, 0, 0}},
-      {"a free ring has no vertex", {0, 0, 1, 1, 0, 0, 0}},
-      {"bytes after its last polygon", {0, 0, 0, 0}},
+      {"more than the", OnLattice({1, 0xfe, 0xff, 0xff, 0xff, 0x0f, 0, 2, 2, 2, 2})},
+      {"is closed with 2 vertices", OnLattice({1, 1, 0, 2, 2, 2, 2, 0, 0})},
+      // A vertex near the fleet origin, far from the tile.
+      {"outside its tile", OnLattice({1, 0, 0, 2, 2, 2, 2, 0, 0})},
+      {"a free polygon has no outer ring", OnLattice({0, 0, 1, 0, 0, 0, 0})},
+      {"a free ring has no vertex", OnLattice({0, 0, 1, 1, 0, 0, 0})},
+      {"bytes after its last polygon", OnLattice({0, 0, 0, 0})},
   };
   for (const auto& [message, bytes] : cases) {
     const StatusOr<VectorTileMessage> back = FromIdl(WithGeometry(bytes));

@@ -137,12 +137,11 @@ std::string DocumentedExample() {
       "00 00",                                                        // padding
       "00 00 00 00",                                                  // revision
       "10 27 00 00",                                                  // tile_size_mm 10000
-      "9a 99 99 99 99 99 99 3f",                                      // quantum 0.025
-      "00 00 00 00 00 00 00 00",                                      // lattice_x
-      "00 00 00 00 00 00 00 00",                                      // lattice_y
       "29 cb 90 3d",                                                  // epsilon
       "cd cc 4c 3d",                                                  // resolution
-      "27 00 00 00",                                                  // geometry: 39 bytes
+      "30 00 00 00",                                                  // geometry: 48 bytes
+      "9a 99 99 99 99 99 99 3f",                                      // quantum 0.025
+      "00",                                                           // origin (0, 0)
       "02",                                                           // 2 polylines
       "00 b4 00 00 a0 06 00",        // open, 2 vertices, half width 180: (0, 0) (400, 0)
       "03 00 d7 04 c8 01 c8 01 00 00 c8 01",  // closed, 3: (100, 100) (200, 100) (200, 200)
@@ -175,7 +174,7 @@ TEST(VmapFileTest, TheDocumentedExampleIsWhatTheCodecWrites) {
       Polyline{{At(id, 10, 250, 350)}, false, 0.0}};
   tile.free_space = {FreePolygon{{At(id, 10, 0, 0), At(id, 10, 400, 0), At(id, 10, 0, 400)}, {}}}; 
   const std::string documented = DocumentedExample();
-  ASSERT_EQ(documented.size(), 167u);
+  ASSERT_EQ(documented.size(), 152u);
   EXPECT_EQ(Encoded(map), documented);
   const auto decoded = DecodeVmap(documented, "example.vmap");
   ASSERT_TRUE(decoded.ok()) << decoded.status();
@@ -284,7 +283,7 @@ TEST(VmapFileTest, RefusesLengthsThatClaimMoreThanTheFileHolds) {
 TEST(VmapFileTest, RefusesCountsThatDoNotAddUp) {
   std::string bytes = DocumentedExample();
   // The geometry's first byte: 2 polylines. 3 would claim more than the bytes hold.
-  const size_t polylines = 4 + 124;
+  const size_t polylines = 4 + 100 + 9;
   ASSERT_EQ(bytes[polylines], 2);
   bytes[polylines] = 3;
   EXPECT_THAT(DecodeVmap(bytes, "counts.vmap").status().message(),
@@ -381,7 +380,7 @@ TEST(VmapFileTest, SeededMutationsOfTheGeometryNeverCrash) {
   // Byte edits only in the geometry of the documented example, where counts, half widths and
   // coordinate steps sit side by side; a quarter are random bytes, the rest flip one bit.
   const std::string bytes = DocumentedExample();
-  const size_t geometry = 4 + 124;
+  const size_t geometry = 4 + 100;
   std::mt19937 random(4321);
   int decoded_ok = 0;
   for (int round = 0; round < 5000; ++round) {
@@ -395,7 +394,7 @@ TEST(VmapFileTest, SeededMutationsOfTheGeometryNeverCrash) {
     if (decoded.ok()) {
       ++decoded_ok;
       // Each vertex takes at least two bytes.
-      EXPECT_LE(decoded->ObstacleVertexCount() + decoded->FreeVertexCount(), 39u / 2);
+      EXPECT_LE(decoded->ObstacleVertexCount() + decoded->FreeVertexCount(), 48u / 2);
     } else {
       EXPECT_THAT(decoded.status().message(), HasSubstr("geometry.vmap"));
     }
