@@ -26,6 +26,7 @@ run vectorize "$fleetmap" bench vectorize --maps "$maps" --runs 7 \
   --json "$out/vectorize.json" --csv "$out/vectorize.csv"
 if [[ -x $build/bench/kernels/vectorize_benchmark ]]; then
   run kernels "$build/bench/kernels/vectorize_benchmark" --benchmark_min_time=0.2
+  run tile_codec "$build/bench/kernels/tile_codec_benchmark" --benchmark_min_time=0.2
 fi
 run paper "$fleetmap" bench paper --out "$out/paper" --seed 1 --no-progress
 run fleet "$fleetmap" bench fleet --robots 1 4 16 --terrain office --size 80 --duration 45 \

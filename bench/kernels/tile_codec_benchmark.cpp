@@ -8,37 +8,18 @@
 
 #include <benchmark/benchmark.h>
 
-#include <map>
 #include <string>
 #include <vector>
 
-#include "common/grid/map_io.hpp"
+#include "bench/kernels/real_maps.hpp"
 #include "common/transport/tile_payload.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 
 namespace fleetmap {
 namespace {
 
-const std::vector<std::string>& MapNames() {
-  static const std::vector<std::string> names = {
-      "intel_lab",   "aces3_austin",    "nav2_warehouse", "willow_garage_2010",
-      "strands_kth", "aws_small_house", "tb3_world"};
-  return names;
-}
-
-const grid::OccupancyGrid* LoadCached(const std::string& name) {
-  static std::map<std::string, grid::OccupancyGrid> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    auto loaded = grid::LoadMap(std::string(FLEETMAP_SHARED_MAPS_DIR) + "/" + name + ".yaml");
-    if (!loaded.ok()) return nullptr;
-    it = cache.emplace(name, std::move(loaded->grid)).first;
-  }
-  return &it->second;
-}
-
 void BM_VectorizeTiles(benchmark::State& state, const std::string& name) {
-  const grid::OccupancyGrid* grid = LoadCached(name);
+  const grid::OccupancyGrid* grid = bench::LoadRealMap(name);
   if (grid == nullptr) {
     state.SkipWithError("cannot load map");
     return;
@@ -53,7 +34,7 @@ void BM_VectorizeTiles(benchmark::State& state, const std::string& name) {
 }
 
 void BM_EncodeDecodeTiles(benchmark::State& state, const std::string& name) {
-  const grid::OccupancyGrid* grid = LoadCached(name);
+  const grid::OccupancyGrid* grid = bench::LoadRealMap(name);
   if (grid == nullptr) {
     state.SkipWithError("cannot load map");
     return;
@@ -86,7 +67,7 @@ void BM_EncodeDecodeTiles(benchmark::State& state, const std::string& name) {
 }
 
 const bool kRegistered = [] {
-  for (const std::string& name : MapNames()) {
+  for (const std::string& name : bench::RealMapNames()) {
     benchmark::RegisterBenchmark(("vectorize_tiles/" + name).c_str(), BM_VectorizeTiles, name)
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("encode_decode_tiles/" + name).c_str(), BM_EncodeDecodeTiles,

@@ -7,39 +7,20 @@
 
 #include <benchmark/benchmark.h>
 
-#include <map>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
-#include "common/grid/map_io.hpp"
+#include "bench/kernels/real_maps.hpp"
 #include "common/vector_map/vectorizer.hpp"
 
 namespace fleetmap::vector_map {
 namespace {
 
-const std::vector<std::string>& MapNames() {
-  static const std::vector<std::string> names = {
-      "intel_lab",   "aces3_austin",    "nav2_warehouse", "willow_garage_2010",
-      "strands_kth", "aws_small_house", "tb3_world"};
-  return names;
-}
-
-const grid::OccupancyGrid* LoadCached(const std::string& name) {
-  static std::map<std::string, grid::OccupancyGrid> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    auto loaded = grid::LoadMap(std::string(FLEETMAP_SHARED_MAPS_DIR) + "/" + name + ".yaml");
-    if (!loaded.ok()) return nullptr;
-    it = cache.emplace(name, std::move(loaded->grid)).first;
-  }
-  return &it->second;
-}
-
 void BM_Vectorize(benchmark::State& state, const std::string& name, VectorizeMethod method,
                   bool refit_lines) {
-  const grid::OccupancyGrid* grid = LoadCached(name);
+  const grid::OccupancyGrid* grid = bench::LoadRealMap(name);
   if (grid == nullptr) {
     state.SkipWithError("cannot load map");
     return;
@@ -63,7 +44,7 @@ void BM_Vectorize(benchmark::State& state, const std::string& name, VectorizeMet
 }
 
 void BM_OpenCv(benchmark::State& state, const std::string& name) {
-  const grid::OccupancyGrid* grid = LoadCached(name);
+  const grid::OccupancyGrid* grid = bench::LoadRealMap(name);
   if (grid == nullptr) {
     state.SkipWithError("cannot load map");
     return;
@@ -91,7 +72,7 @@ void BM_OpenCv(benchmark::State& state, const std::string& name) {
 }
 
 const bool kRegistered = [] {
-  for (const std::string& name : MapNames()) {
+  for (const std::string& name : bench::RealMapNames()) {
     benchmark::RegisterBenchmark(("default/" + name).c_str(), BM_Vectorize, name,
                                  VectorizeMethod::kDefault, true)
         ->Unit(benchmark::kMillisecond);
