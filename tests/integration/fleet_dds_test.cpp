@@ -539,6 +539,26 @@ std::string VersionThreeTilePayload(const std::string& robot) {
   return bytes;
 }
 
+// A tile of layout 4 (int16 arrays, layout_version 4 after frame_id), as a store written by the
+// previous fleetmap holds it.
+std::string VersionFourTilePayload(const std::string& robot) {
+  std::string bytes(512, '\0');
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::LITTLE_ENDIANNESS,
+                             eprosima::fastcdr::Cdr::DDS_CDR);
+  cdr.serialize_encapsulation();
+  cdr << robot << int32_t{2} << int32_t{0} << int32_t{0} << uint32_t{0};  // key, stamp
+  cdr << std::string("fleet") << uint32_t{1} << uint8_t{4} << 10.0 << 10.0 / 16000 << 0.0707f
+      << 0.05f;
+  cdr << std::vector<uint8_t>{2} << std::vector<uint8_t>{};  // sizes, half widths
+  cdr << std::vector<int16_t>{0, 8000} << std::vector<int16_t>{4000, 4000};
+  cdr << std::vector<int16_t>{} << std::vector<int16_t>{} << std::vector<uint8_t>{};
+  cdr << std::vector<uint16_t>{} << std::vector<uint16_t>{} << std::vector<int16_t>{}
+      << std::vector<int16_t>{};
+  bytes.resize(cdr.getSerializedDataLength());
+  return bytes;
+}
+
 TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored) {
   const std::string path = ::testing::TempDir() + "/fleet_old_store_" + std::to_string(getpid()) +
                            "_" + std::to_string(domain_) + ".db";
@@ -557,12 +577,18 @@ TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored)
     ASSERT_TRUE(good.ok()) << good.status();
     ASSERT_TRUE((*store)
                     ->PutTiles({{"alpha", TileId{0, 0}, 1, 1, *good},
-                                {"beta", TileId{1, 0}, 1, 1, VersionThreeTilePayload("beta")}})
+                                {"beta", TileId{1, 0}, 1, 1, VersionThreeTilePayload("beta")},
+                                {"gamma", TileId{2, 0}, 1, 1, VersionFourTilePayload("gamma")}})
                     .ok());
   }
   Subprocess server({kServer, "--duration", "30", "--store", path}, env_);
   EXPECT_TRUE(server.WaitForOutput("restored 1 robot tiles", kDeadline)) << server.Output();
   EXPECT_NE(server.Output().find("skipping a stored tile: " + path + ": beta's tile (1, 0)"),
+            std::string::npos)
+      << server.Output();
+  // Layout 4's frame_id length lands where layout 5 has layout_version: refused by name.
+  EXPECT_NE(server.Output().find("gamma's tile (2, 0) revision 1: layout_version is 6 (layouts "
+                                 "3 and 4 read so), this fleetmap reads 5"),
             std::string::npos)
       << server.Output();
   server.Signal(SIGINT);
