@@ -1,6 +1,5 @@
 #include "common/transport/internal/vector_tile_codec.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -42,8 +41,8 @@ constexpr size_t kMinPointBytes = 1 + kMinVertexBytes;
 constexpr size_t kMinRingBytes = 1 + kMinVertexBytes;
 constexpr size_t kMinPolygonBytes = 1 + kMinRingBytes;
 
-// A lattice of fewer steps than this per tile side would not hold half a cell; more would mean
-// a quantum no grid has (10 m tiles of 10 micrometre steps).
+// Steps per tile side: at least one, and at most 2^20 (10 m tiles of 10 micrometre steps, finer
+// than any grid), so that step counts stay far from the limits of int64 and of exact doubles.
 constexpr double kMinStepsPerSide = 1.0;
 constexpr double kMaxStepsPerSide = 1 << 20;
 
