@@ -81,20 +81,8 @@ int CellCentresFilledDifferently(const VectorMap& map, const grid::OccupancyGrid
   return differ;
 }
 
-VectorMap SampleMap() {
-  VectorMap map;
-  map.epsilon = 0.07;
-  map.resolution = 0.05;
-  map.obstacles.push_back(Polyline{{Point2(0, 0), Point2(1, 0), Point2(1, 1)}, false, 0.035});
-  map.obstacles.push_back(Polyline{{Point2(2, 2), Point2(3, 2), Point2(3, 3)}, true});
-  map.obstacles.push_back(Polyline{{Point2(5, 5)}});
-  map.free_space.push_back(FreePolygon{{Point2(0, 0), Point2(4, 0), Point2(4, 4), Point2(0, 4)},
-                                       {{Point2(1, 1), Point2(2, 1), Point2(2, 2)}}});
-  return map;
-}
-
 TEST(GeoJsonTest, WritesObstaclesAndFreeSpace) {
-  const nlohmann::json json = Exported(SampleMap());
+  const nlohmann::json json = Exported(testing::SmallVectorMap());
   EXPECT_EQ(json["type"], "FeatureCollection");
   EXPECT_EQ(json["crs"]["properties"]["name"], "urn:ogc:def:crs:EPSG::3857");
   EXPECT_DOUBLE_EQ(json["properties"]["epsilon"].get<double>(), 0.07);
@@ -119,7 +107,7 @@ TEST(GeoJsonTest, WritesObstaclesAndFreeSpace) {
   EXPECT_EQ(free["geometry"]["coordinates"][0][0], free["geometry"]["coordinates"][0][4]);
   EXPECT_EQ(free["geometry"]["coordinates"][1].size(), 4u);
   EXPECT_THAT(GeoJsonProblems(json), IsEmpty());
-  EXPECT_EQ(nlohmann::json::parse(*ToGeoJsonString(SampleMap())), json);
+  EXPECT_EQ(nlohmann::json::parse(*ToGeoJsonString(testing::SmallVectorMap())), json);
 }
 
 // Rings as the free-space extractor makes them, through cell centres of a 1 m grid: a lone free

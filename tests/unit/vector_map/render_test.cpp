@@ -8,20 +8,8 @@
 namespace fleetmap::vector_map {
 namespace {
 
-VectorMap SampleMap() {
-  VectorMap map;
-  map.epsilon = 0.07;
-  map.resolution = 0.05;
-  map.obstacles.push_back(Polyline{{Point2(0, 0), Point2(1, 0), Point2(1, 1)}, false, 0.035});
-  map.obstacles.push_back(Polyline{{Point2(2, 2), Point2(3, 2), Point2(3, 3)}, true});
-  map.obstacles.push_back(Polyline{{Point2(5, 5)}});
-  map.free_space.push_back(FreePolygon{{Point2(0, 0), Point2(4, 0), Point2(4, 4), Point2(0, 4)},
-                                       {{Point2(1, 1), Point2(2, 1), Point2(2, 2)}}});
-  return map;
-}
-
 TEST(SvgTest, DrawsEveryPolyline) {
-  const std::string svg = ToSvg(SampleMap());
+  const std::string svg = ToSvg(testing::SmallVectorMap());
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_NE(svg.find("<polygon"), std::string::npos);

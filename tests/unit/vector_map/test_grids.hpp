@@ -143,6 +143,20 @@ inline int OccupiedLeftUnpainted(const grid::OccupancyGrid& grid, const grid::Oc
   return count;
 }
 
+// A small vector map with every kind of element: an open polyline with a half width, a closed
+// one, a point obstacle, and a free polygon with a hole (for the picture and export tests).
+inline VectorMap SmallVectorMap() {
+  VectorMap map;
+  map.epsilon = 0.07;
+  map.resolution = 0.05;
+  map.obstacles.push_back(Polyline{{Point2(0, 0), Point2(1, 0), Point2(1, 1)}, false, 0.035});
+  map.obstacles.push_back(Polyline{{Point2(2, 2), Point2(3, 2), Point2(3, 3)}, true});
+  map.obstacles.push_back(Polyline{{Point2(5, 5)}});
+  map.free_space.push_back(FreePolygon{{Point2(0, 0), Point2(4, 0), Point2(4, 4), Point2(0, 4)},
+                                       {{Point2(1, 1), Point2(2, 1), Point2(2, 2)}}});
+  return map;
+}
+
 // The real maps of ../shared/data/maps (SOURCES.md); those absent from FLEETMAP_SHARED_MAPS_DIR
 // (in a lone clone all but tb3_world, strands_kth and aws_small_house) are skipped.
 inline const std::vector<std::string>& RealMapNames() {
