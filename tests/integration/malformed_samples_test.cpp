@@ -113,6 +113,15 @@ class RawOccupancyGridType : public dds::TopicDataType {
   bool getKey(void*, eprosima::fastrtps::rtps::InstanceHandle_t*, bool) override { return false; }
 };
 
+// A RobotStatus writer of the plain generated type, so a test writes any sample it likes.
+StatusOr<std::unique_ptr<transport::WriterEndpoint>> RawStatusWriter(
+    transport::Participant& participant) {
+  return transport::WriterEndpoint::Create(
+      participant, transport::kRobotStatusTopic,
+      dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
+      transport::RobotStatusQos().writer);
+}
+
 TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
   const int domain = process::RandomDomainId();
   const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
@@ -123,10 +132,7 @@ TEST(MalformedSamplesTest, ServerDropsBadSamplesAndKeepsServing) {
 
   auto participant = TestParticipant(domain);
   ASSERT_NE(participant, nullptr);
-  auto status_writer = transport::WriterEndpoint::Create(
-      *participant, transport::kRobotStatusTopic,
-      dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
-      transport::RobotStatusQos().writer);
+  auto status_writer = RawStatusWriter(*participant);
   ASSERT_TRUE(status_writer.ok()) << status_writer.status();
   auto map_writer = transport::WriterEndpoint::Create(
       *participant, transport::RobotMapTopic(RobotId{"gamma"}),
@@ -231,10 +237,7 @@ TEST(MalformedSamplesTest, ServerRefusesBadPatchesAndKeepsServing) {
 
   auto participant = TestParticipant(domain);
   ASSERT_NE(participant, nullptr);
-  auto status_writer = transport::WriterEndpoint::Create(
-      *participant, transport::kRobotStatusTopic,
-      dds::TypeSupport(new fleetmap_msgs::msg::dds_::RobotStatus_PubSubType()),
-      transport::RobotStatusQos().writer);
+  auto status_writer = RawStatusWriter(*participant);
   ASSERT_TRUE(status_writer.ok()) << status_writer.status();
   auto map_writer = transport::OccupancyGridWriter::Create(
       *participant, transport::RobotMapTopic(RobotId{"gamma"}));
