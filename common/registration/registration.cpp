@@ -14,6 +14,9 @@ namespace fleetmap::registration {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
+// The second peak is looked for only above this fraction of the best: lower peaks do not make a
+// match ambiguous, and a low floor would let the search visit most of the space again.
+constexpr double kSecondPeakFloor = 0.7;
 
 std::string Num(double value) {
   char buffer[32];
@@ -390,7 +393,9 @@ Status RegistrationOptions::Validate() const {
   if (pyramid_levels < 1 || pyramid_levels > 12) {
     return InvalidArgumentError("registration pyramid_levels must be in 1..12");
   }
-  if (max_points < 10) return InvalidArgumentError("registration max_points must be >= 10");
+  if (max_search_points < 10 || max_refine_points < 10) {
+    return InvalidArgumentError("registration max_search_points and max_refine_points must be >= 10");
+  }
   if (!(distinct_cells > 0.0) || !(distinct_yaw_deg > 0.0)) {
     return InvalidArgumentError("registration distinct_cells and distinct_yaw_deg must be > 0");
   }
@@ -421,7 +426,8 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("field_sigma_cells", field_sigma_cells);
   out.Add("free_penalty", free_penalty);
   out.Add("pyramid_levels", pyramid_levels);
-  out.Add("max_points", max_points);
+  out.Add("max_search_points", max_search_points);
+  out.Add("max_refine_points", max_refine_points);
   out.Add("distinct_cells", distinct_cells);
   out.Add("distinct_yaw_deg", distinct_yaw_deg);
   out.Add("max_peak_ratio", max_peak_ratio);
@@ -467,10 +473,10 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
       if (coarse_b.occupied[static_cast<size_t>(y) * coarse_b.width + x]) b_cells.emplace_back(x, y);
     }
   }
-  if (static_cast<int>(b_cells.size()) > options.max_points) {
+  if (static_cast<int>(b_cells.size()) > options.max_search_points) {
     std::vector<Point2> thinned;
-    const double stride = static_cast<double>(b_cells.size()) / options.max_points;
-    for (int i = 0; i < options.max_points; ++i) {
+    const double stride = static_cast<double>(b_cells.size()) / options.max_search_points;
+    for (int i = 0; i < options.max_search_points; ++i) {
       thinned.push_back(b_cells[static_cast<size_t>(i * stride)]);
     }
     b_cells.swap(thinned);
@@ -509,17 +515,17 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     result.why_not = "no placement of B's occupied cells meets A's";
     return result;
   }
-  // The best clearly different hypothesis; one below half the best is not looked for exactly.
+  // The best clearly different hypothesis, if it scores at least kSecondPeakFloor of the best.
   const double distinct_cells2 = options.distinct_cells * options.distinct_cells;
   const int distinct_yaw_steps =
       static_cast<int>(std::ceil(options.distinct_yaw_deg * kDegree / yaw_step));
-  const Candidate second = search.Search(0.5f * best.score, [&](const Candidate& c) {
+  const Candidate second = search.Search(static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
     int dyaw = std::abs(c.yaw_index - best.yaw_index);
     dyaw = std::min(dyaw, yaw_count - dyaw);
     const double dx = c.x - best.x, dy = c.y - best.y;
     return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
   });
-  result.peak_ratio = std::max(0.5, static_cast<double>(second.score) / best.score);
+  result.peak_ratio = std::max(kSecondPeakFloor, static_cast<double>(second.score) / best.score);
 
   // The coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
   // coarse cell u's centre is at (u + 0.5) * coarse_res.
@@ -531,7 +537,7 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
 
   // Refinement at full resolution on a finer likelihood field.
   const CoarseOccupancy full_a = Reduce(a, 1, th);
-  const std::vector<Point2> b_points = OccupiedCentres(b, options.max_points, th);
+  const std::vector<Point2> b_points = OccupiedCentres(b, options.max_refine_points, th);
   Point2 pivot(0.0, 0.0);
   for (const Point2& p : b_points) pivot += p;
   pivot /= static_cast<double>(b_points.size());
@@ -569,7 +575,7 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
           ? result.contradicting_cells / (agree_both + result.contradicting_cells)
           : 1.0;
   const double distinctness = 1.0 - result.peak_ratio;
-  result.confidence = std::clamp((1.0 - contradiction) * distinctness / 0.5, 0.0, 1.0);
+  result.confidence = std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
 
   if (result.agreeing_cells < options.min_agreeing_cells) {
     result.why_not = std::string("too little shared structure: ")

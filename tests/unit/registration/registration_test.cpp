@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -252,7 +255,12 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
   const auto maps = RealMaps();
   ASSERT_FALSE(maps.empty()) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
   int cases = 0;
+  int placed = 0;
+  double slowest_ms = 0.0, total_ms = 0.0;
   for (const auto& [name, map] : maps) {
+    // tb3_world's arena is point-symmetric: turned by 180 degrees, crop B covers crop A exactly,
+    // so that pair has two equally good answers and is no test of recovery.
+    if (name == "tb3_world") continue;
     const Box box = KnownBox(map);
     const int w = box.x1 - box.x0 + 1, h = box.y1 - box.y0 + 1;
     // Two crops across the longer side, each 5/8 of it: they share 60 % of a crop.
@@ -270,14 +278,25 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
       Transform2 truth;
       const Pose2 origin{-250.0 + 117.3 * quadrant, 480.0 - 91.7 * quadrant, 1.3 - quadrant};
       const grid::OccupancyGrid b = Turn(crop_b, yaw_deg * kDegree, origin, &truth);
+      const auto start = std::chrono::steady_clock::now();
       const StatusOr<Registration> r = Register(a, b, {});
+      const double ms = std::chrono::duration<double, std::milli>(
+                            std::chrono::steady_clock::now() - start)
+                            .count();
       ASSERT_TRUE(r.ok()) << r.status();
       EXPECT_THAT(*r, IsNearTruth(b, truth));
+      placed += ::testing::Matches(IsNearTruth(b, truth))(*r) ? 1 : 0;
+      slowest_ms = std::max(slowest_ms, ms);
+      total_ms += ms;
       ++quadrant;
       ++cases;
     }
   }
   EXPECT_GT(cases, 0);
+  // For docs/registration.md (printed, not asserted: a test asserts no wall-clock time).
+  std::cout << "real-map crops: " << placed << " of " << cases << " placed within 3 cells and 2 deg; "
+            << "mean " << total_ms / std::max(cases, 1) << " ms, slowest " << slowest_ms
+            << " ms per pair\n";
 }
 
 }  // namespace
