@@ -525,17 +525,18 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     const double dx = c.x - best.x, dy = c.y - best.y;
     return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
   });
-  result.peak_ratio = std::max(kSecondPeakFloor, static_cast<double>(second.score) / best.score);
 
-  // The coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
+  // A coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
   // coarse cell u's centre is at (u + 0.5) * coarse_res.
-  const double yaw0 = rotations[best.yaw_index].yaw;
-  const double c0 = std::cos(yaw0), s0 = std::sin(yaw0);
-  const Point2 q(0.5 + centroid.x(), 0.5 + centroid.y());
-  GridTransform grid_a_from_b{yaw0, coarse_res * (best.x + 0.5 - (c0 * q.x() - s0 * q.y())),
-                              coarse_res * (best.y + 0.5 - (s0 * q.x() + c0 * q.y()))};
+  const auto to_grid = [&](const Candidate& c) {
+    const double yaw = rotations[c.yaw_index].yaw;
+    const double cy = std::cos(yaw), sy = std::sin(yaw);
+    const Point2 q(0.5 + centroid.x(), 0.5 + centroid.y());
+    return GridTransform{yaw, coarse_res * (c.x + 0.5 - (cy * q.x() - sy * q.y())),
+                         coarse_res * (c.y + 0.5 - (sy * q.x() + cy * q.y()))};
+  };
 
-  // Refinement at full resolution on a finer likelihood field.
+  // Refinement at full resolution: a wide likelihood field first, then one a cell wide.
   const CoarseOccupancy full_a = Reduce(a, 1, th);
   const std::vector<Point2> b_points = OccupiedCentres(b, options.max_refine_points, th);
   Point2 pivot(0.0, 0.0);
@@ -544,16 +545,27 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   const cv::Mat wide_field =
       LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
                       std::max(1.0, factor * 0.75), options.free_penalty);
-  grid_a_from_b = LocalSearch(wide_field, res, b_points, pivot, grid_a_from_b,
-                              options.coarse_yaw_step_deg * kDegree, 0.25 * options.coarse_yaw_step_deg * kDegree,
-                              coarse_res, std::max(res, coarse_res / 4.0));
-  const cv::Mat fine_field = LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free, 1.0, options.free_penalty);
-  grid_a_from_b = LocalSearch(fine_field, res, b_points, pivot, grid_a_from_b,
-                              0.5 * options.coarse_yaw_step_deg * kDegree, 0.1 * options.coarse_yaw_step_deg * kDegree,
-                              std::max(res, coarse_res / 4.0), 0.5 * res);
-  grid_a_from_b = LocalSearch(fine_field, res, b_points, pivot, grid_a_from_b,
-                              0.1 * options.coarse_yaw_step_deg * kDegree, options.fine_yaw_step_deg * kDegree,
-                              0.5 * res, 0.25 * res);
+  const cv::Mat fine_field = LikelihoodField(a.width(), a.height(), full_a.occupied,
+                                             full_a.free, 1.0, options.free_penalty);
+  const double coarse_step = options.coarse_yaw_step_deg * kDegree;
+  const double mid_shift = std::max(res, coarse_res / 4.0);
+  const auto refine = [&](GridTransform t) {
+    t = LocalSearch(wide_field, res, b_points, pivot, t, coarse_step, 0.25 * coarse_step,
+                    coarse_res, mid_shift);
+    t = LocalSearch(fine_field, res, b_points, pivot, t, 0.5 * coarse_step, 0.1 * coarse_step,
+                    mid_shift, 0.5 * res);
+    return LocalSearch(fine_field, res, b_points, pivot, t, 0.1 * coarse_step,
+                       options.fine_yaw_step_deg * kDegree, 0.5 * res, 0.25 * res);
+  };
+  const GridTransform grid_a_from_b = refine(to_grid(best));
+  // The peaks are compared refined, on the fine field: at the coarse resolution a door or a
+  // pillar that tells two places apart may be blurred away.
+  const double best_score = FieldScore(fine_field, res, b_points, grid_a_from_b);
+  double ratio = kSecondPeakFloor;
+  if (second.score > 0.0f && best_score > 0.0) {
+    ratio = FieldScore(fine_field, res, b_points, refine(to_grid(second))) / best_score;
+  }
+  result.peak_ratio = std::clamp(ratio, kSecondPeakFloor, 1.0);
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
   const Transform2 grid_transform =
