@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <numbers>
@@ -17,6 +18,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 // The second peak is looked for only above this fraction of the best: lower peaks do not make a
 // match ambiguous, and a low floor would let the search visit most of the space again.
 constexpr double kSecondPeakFloor = 0.7;
+// Coarse peaks refined and compared on the fine field.
+constexpr int kPeaks = 3;
 
 std::string Num(double value) {
   char buffer[32];
@@ -80,52 +83,50 @@ cv::Mat LikelihoodField(int width, int height, const std::vector<uint8_t>& occup
   return field;
 }
 
-// Level h holds, at (x, y), the max of the field over [x, x + 2^h) x [y, y + 2^h); x and y run
-// from -(2^(levels-1)) so that windows reaching in from outside the field keep their bound.
+// Level h holds, at (x, y), the max of the field over [x, x + 2^h) x [y, y + 2^h) (0 outside the
+// field). The levels are padded by `pad` cells on every side, so that every lookup the search
+// makes (B's cells never reach further than `pad` beyond the field) is a plain array read.
 class MaxPyramid {
  public:
-  MaxPyramid(const cv::Mat& field, int levels)
-      : pad_(1 << (levels - 1)), width_(field.cols + pad_), height_(field.rows + pad_) {
+  MaxPyramid(const cv::Mat& field, int levels, int pad)
+      : pad_(pad), stride_(field.cols + 2 * pad), rows_(field.rows + 2 * pad) {
     levels_.resize(levels);
-    levels_[0].assign(static_cast<size_t>(width_) * height_, 0.0f);
+    levels_[0].assign(static_cast<size_t>(stride_) * rows_, 0.0f);
     for (int y = 0; y < field.rows; ++y) {
-      for (int x = 0; x < field.cols; ++x) levels_[0][Index(x, y)] = field.at<float>(y, x);
+      for (int x = 0; x < field.cols; ++x) levels_[0][Offset(x, y)] = field.at<float>(y, x);
     }
     for (int h = 1; h < levels; ++h) {
       const int s = 1 << (h - 1);
       const std::vector<float>& below = levels_[h - 1];
       std::vector<float>& level = levels_[h];
       level.assign(below.size(), 0.0f);
-      for (int iy = 0; iy < height_; ++iy) {
-        for (int ix = 0; ix < width_; ++ix) {
-          float m = below[static_cast<size_t>(iy) * width_ + ix];
-          if (ix + s < width_) m = std::max(m, below[static_cast<size_t>(iy) * width_ + ix + s]);
-          if (iy + s < height_) {
-            m = std::max(m, below[static_cast<size_t>(iy + s) * width_ + ix]);
-            if (ix + s < width_) {
-              m = std::max(m, below[static_cast<size_t>(iy + s) * width_ + ix + s]);
-            }
+      for (int iy = 0; iy < rows_; ++iy) {
+        for (int ix = 0; ix < stride_; ++ix) {
+          const size_t i = static_cast<size_t>(iy) * stride_ + ix;
+          float m = below[i];
+          if (ix + s < stride_) m = std::max(m, below[i + s]);
+          if (iy + s < rows_) {
+            m = std::max(m, below[i + static_cast<size_t>(s) * stride_]);
+            if (ix + s < stride_) m = std::max(m, below[i + static_cast<size_t>(s) * stride_ + s]);
           }
-          level[static_cast<size_t>(iy) * width_ + ix] = m;
+          level[i] = m;
         }
       }
     }
   }
 
-  float At(int level, int x, int y) const {
-    const int ix = x + pad_;
-    const int iy = y + pad_;
-    if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return 0.0f;
-    return levels_[level][static_cast<size_t>(iy) * width_ + ix];
+  // The array index of field cell (x, y), and the linear step of (dx, dy).
+  size_t Offset(int x, int y) const {
+    return static_cast<size_t>(y + pad_) * stride_ + static_cast<size_t>(x + pad_);
   }
+  ptrdiff_t Step(int dx, int dy) const { return static_cast<ptrdiff_t>(dy) * stride_ + dx; }
+  const float* Level(int level) const { return levels_[level].data(); }
   int levels() const { return static_cast<int>(levels_.size()); }
 
  private:
-  size_t Index(int x, int y) const { return static_cast<size_t>(y + pad_) * width_ + x + pad_; }
-
   int pad_;
-  int width_;
-  int height_;
+  int stride_;
+  int rows_;
   std::vector<std::vector<float>> levels_;
 };
 
@@ -138,6 +139,7 @@ struct CellPoint {
 struct RotatedPoints {
   double yaw = 0.0;
   std::vector<CellPoint> points;
+  std::vector<ptrdiff_t> steps;  // the points as pyramid index steps
   int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
 };
 
@@ -186,11 +188,11 @@ class BranchAndBound {
 
  private:
   float Score(const Candidate& c) const {
+    const float* base = pyramid_.Level(c.level) + pyramid_.Offset(c.x, c.y);
+    const std::vector<ptrdiff_t>& steps = rotations_[c.yaw_index].steps;
     float sum = 0.0f;
-    for (const CellPoint& p : rotations_[c.yaw_index].points) {
-      sum += pyramid_.At(c.level, p.x + c.x, p.y + c.y);
-    }
-    return sum / static_cast<float>(rotations_[c.yaw_index].points.size());
+    for (const ptrdiff_t step : steps) sum += base[step];
+    return sum / static_cast<float>(steps.size());
   }
 
   template <typename Excluded>
@@ -456,16 +458,17 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   if (a.CountStates(th).occupied == 0) return InvalidArgumentError("map A has no occupied cell");
   if (b.CountStates(th).occupied == 0) return InvalidArgumentError("map B has no occupied cell");
 
-  // Coarse grids: the longer side of either map at most max_search_cells.
-  const int longest = std::max({a.width(), a.height(), b.width(), b.height()});
-  const int factor = std::max(1, (longest + options.max_search_cells - 1) / options.max_search_cells);
+  // Coarse grids of at most max_search_cells^2 cells each (by area, so that a long corridor map
+  // keeps the resolution its doors need): the search's cost grows with the area.
+  const double largest_area = static_cast<double>(std::max(a.cell_count(), b.cell_count()));
+  const int factor = std::max(
+      1, static_cast<int>(std::ceil(std::sqrt(largest_area) / options.max_search_cells)));
   const double coarse_res = res * factor;
   const CoarseOccupancy coarse_a = Reduce(a, factor, th);
   const CoarseOccupancy coarse_b = Reduce(b, factor, th);
   const cv::Mat coarse_field =
       LikelihoodField(coarse_a.width, coarse_a.height, coarse_a.occupied, coarse_a.free,
                       options.field_sigma_cells, options.free_penalty);
-  const MaxPyramid pyramid(coarse_field, options.pyramid_levels);
 
   std::vector<Point2> b_cells;  // coarse cell indices, as doubles
   for (int y = 0; y < coarse_b.height; ++y) {
@@ -508,6 +511,16 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     }
   }
 
+  // Placements keep B's cells within one B extent of A's field (some cell overlaps it).
+  int extent = 1 << (options.pyramid_levels - 1);
+  for (const RotatedPoints& rot : rotations) {
+    extent = std::max({extent, rot.max_x - rot.min_x + 1, rot.max_y - rot.min_y + 1});
+  }
+  const MaxPyramid pyramid(coarse_field, options.pyramid_levels, extent + 1);
+  for (RotatedPoints& rot : rotations) {
+    rot.steps.reserve(rot.points.size());
+    for (const CellPoint& p : rot.points) rot.steps.push_back(pyramid.Step(p.x, p.y));
+  }
   const BranchAndBound search(pyramid, rotations, coarse_a.width, coarse_a.height);
   const Candidate best = search.Search(0.02f, [](const Candidate&) { return false; });
   Registration result;
@@ -519,12 +532,23 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   const double distinct_cells2 = options.distinct_cells * options.distinct_cells;
   const int distinct_yaw_steps =
       static_cast<int>(std::ceil(options.distinct_yaw_deg * kDegree / yaw_step));
-  const Candidate second = search.Search(static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
-    int dyaw = std::abs(c.yaw_index - best.yaw_index);
-    dyaw = std::min(dyaw, yaw_count - dyaw);
-    const double dx = c.x - best.x, dy = c.y - best.y;
-    return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
-  });
+  // Up to kPeaks - 1 further peaks, each clearly different from those before (and scoring at
+  // least kSecondPeakFloor of the best on the coarse field).
+  std::vector<Candidate> peaks = {best};
+  for (int k = 1; k < kPeaks; ++k) {
+    const Candidate next = search.Search(
+        static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
+          for (const Candidate& p : peaks) {
+            int dyaw = std::abs(c.yaw_index - p.yaw_index);
+            dyaw = std::min(dyaw, yaw_count - dyaw);
+            const double dx = c.x - p.x, dy = c.y - p.y;
+            if (dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2) return true;
+          }
+          return false;
+        });
+    if (next.score <= 0.0f) break;
+    peaks.push_back(next);
+  }
 
   // A coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
   // coarse cell u's centre is at (u + 0.5) * coarse_res.
@@ -557,14 +581,23 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     return LocalSearch(fine_field, res, b_points, pivot, t, 0.1 * coarse_step,
                        options.fine_yaw_step_deg * kDegree, 0.5 * res, 0.25 * res);
   };
-  const GridTransform grid_a_from_b = refine(to_grid(best));
   // The peaks are compared refined, on the fine field: at the coarse resolution a door or a
-  // pillar that tells two places apart may be blurred away.
-  const double best_score = FieldScore(fine_field, res, b_points, grid_a_from_b);
-  double ratio = kSecondPeakFloor;
-  if (second.score > 0.0f && best_score > 0.0) {
-    ratio = FieldScore(fine_field, res, b_points, refine(to_grid(second))) / best_score;
+  // pillar that tells two places apart may be blurred away, so a lower coarse peak may be the
+  // better one.
+  GridTransform grid_a_from_b = refine(to_grid(best));
+  double best_score = FieldScore(fine_field, res, b_points, grid_a_from_b);
+  double second_score = -1.0;
+  for (size_t k = 1; k < peaks.size(); ++k) {
+    GridTransform other = refine(to_grid(peaks[k]));
+    double other_score = FieldScore(fine_field, res, b_points, other);
+    if (other_score > best_score) {
+      std::swap(grid_a_from_b, other);
+      std::swap(best_score, other_score);
+    }
+    second_score = std::max(second_score, other_score);
   }
+  double ratio = kSecondPeakFloor;
+  if (peaks.size() > 1 && best_score > 0.0) ratio = second_score / best_score;
   result.peak_ratio = std::clamp(ratio, kSecondPeakFloor, 1.0);
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.

@@ -16,9 +16,9 @@
 namespace fleetmap::registration {
 
 struct RegistrationOptions {
-  // The coarse search works on grids whose longer side has at most this many cells (each coarse
-  // cell is the max of f x f map cells, f an integer >= 1).
-  int max_search_cells = 200;
+  // The coarse search works on grids of at most this many cells squared (each coarse cell is
+  // the max of f x f map cells, f an integer >= 1).
+  int max_search_cells = 160;
   // Yaw step of the exhaustive coarse search (degrees) and of the final refinement.
   double coarse_yaw_step_deg = 1.0;
   double fine_yaw_step_deg = 0.05;
@@ -30,7 +30,7 @@ struct RegistrationOptions {
   // Levels of the branch-and-bound max-pyramid (the top level spans 2^(levels-1) coarse cells).
   int pyramid_levels = 7;
   // Most of B's occupied cells the coarse search and the refinement score (evenly thinned).
-  int max_search_points = 600;
+  int max_search_points = 500;
   int max_refine_points = 4000;
   // Two hypotheses are "clearly different" when B's centroid lands farther apart than this (in
   // coarse cells) or their yaws differ by more than distinct_yaw_deg.
