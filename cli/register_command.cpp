@@ -92,8 +92,7 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
 
 void AddRegisterCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<RegisterOptions>();
-  CLI::App* command =
-      app.add_subcommand("register", "Find the transform between two robots' maps");
+  CLI::App* command = app.add_subcommand("register", "Find the transform between two robots' maps");
   command->footer(kDescription);
   command->add_option("a", options->map_a_yaml, "map_server YAML file of map A")->required();
   command->add_option("b", options->map_b_yaml, "map_server YAML file of map B")->required();

@@ -396,7 +396,8 @@ Status RegistrationOptions::Validate() const {
     return InvalidArgumentError("registration pyramid_levels must be in 1..12");
   }
   if (max_search_points < 10 || max_refine_points < 10) {
-    return InvalidArgumentError("registration max_search_points and max_refine_points must be >= 10");
+    return InvalidArgumentError(
+        "registration max_search_points and max_refine_points must be >= 10");
   }
   if (!(distinct_cells > 0.0) || !(distinct_yaw_deg > 0.0)) {
     return InvalidArgumentError("registration distinct_cells and distinct_yaw_deg must be > 0");
@@ -461,8 +462,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   // Coarse grids of at most max_search_cells^2 cells each (by area, so that a long corridor map
   // keeps the resolution its doors need): the search's cost grows with the area.
   const double largest_area = static_cast<double>(std::max(a.cell_count(), b.cell_count()));
-  const int factor = std::max(
-      1, static_cast<int>(std::ceil(std::sqrt(largest_area) / options.max_search_cells)));
+  const int factor =
+      std::max(1, static_cast<int>(std::ceil(std::sqrt(largest_area) / options.max_search_cells)));
   const double coarse_res = res * factor;
   const CoarseOccupancy coarse_a = Reduce(a, factor, th);
   const CoarseOccupancy coarse_b = Reduce(b, factor, th);
@@ -473,7 +474,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   std::vector<Point2> b_cells;  // coarse cell indices, as doubles
   for (int y = 0; y < coarse_b.height; ++y) {
     for (int x = 0; x < coarse_b.width; ++x) {
-      if (coarse_b.occupied[static_cast<size_t>(y) * coarse_b.width + x]) b_cells.emplace_back(x, y);
+      if (coarse_b.occupied[static_cast<size_t>(y) * coarse_b.width + x])
+        b_cells.emplace_back(x, y);
     }
   }
   if (static_cast<int>(b_cells.size()) > options.max_search_points) {
@@ -488,7 +490,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   for (const Point2& p : b_cells) centroid += p;
   centroid /= static_cast<double>(b_cells.size());
 
-  const int yaw_count = std::max(1, static_cast<int>(std::round(360.0 / options.coarse_yaw_step_deg)));
+  const int yaw_count =
+      std::max(1, static_cast<int>(std::round(360.0 / options.coarse_yaw_step_deg)));
   const double yaw_step = 2.0 * std::numbers::pi / yaw_count;
   std::vector<RotatedPoints> rotations(yaw_count);
   for (int r = 0; r < yaw_count; ++r) {
@@ -536,8 +539,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   // least kSecondPeakFloor of the best on the coarse field).
   std::vector<Candidate> peaks = {best};
   for (int k = 1; k < kPeaks; ++k) {
-    const Candidate next = search.Search(
-        static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
+    const Candidate next =
+        search.Search(static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
           for (const Candidate& p : peaks) {
             int dyaw = std::abs(c.yaw_index - p.yaw_index);
             dyaw = std::min(dyaw, yaw_count - dyaw);
@@ -566,11 +569,10 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   Point2 pivot(0.0, 0.0);
   for (const Point2& p : b_points) pivot += p;
   pivot /= static_cast<double>(b_points.size());
-  const cv::Mat wide_field =
-      LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
-                      std::max(1.0, factor * 0.75), options.free_penalty);
-  const cv::Mat fine_field = LikelihoodField(a.width(), a.height(), full_a.occupied,
-                                             full_a.free, 1.0, options.free_penalty);
+  const cv::Mat wide_field = LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
+                                             std::max(1.0, factor * 0.75), options.free_penalty);
+  const cv::Mat fine_field = LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
+                                             1.0, options.free_penalty);
   const double coarse_step = options.coarse_yaw_step_deg * kDegree;
   const double mid_shift = std::max(res, coarse_res / 4.0);
   const auto refine = [&](GridTransform t) {
@@ -620,7 +622,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
           ? result.contradicting_cells / (agree_both + result.contradicting_cells)
           : 1.0;
   const double distinctness = 1.0 - result.peak_ratio;
-  result.confidence = std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
+  result.confidence =
+      std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
 
   if (result.agreeing_cells < options.min_agreeing_cells) {
     result.why_not = std::string("too little shared structure: ")

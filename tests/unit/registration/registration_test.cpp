@@ -47,7 +47,7 @@ grid::OccupancyGrid Floor() {
   Fill(g, 80, 5, 80, 100, grid::kOccupiedValue);
   Fill(g, 80, 40, 80, 52, grid::kFreeValue);  // door
   Fill(g, 80, 100, 160, 100, grid::kOccupiedValue);
-  Fill(g, 120, 100, 131, 100, grid::kFreeValue);  // door
+  Fill(g, 120, 100, 131, 100, grid::kFreeValue);    // door
   Fill(g, 30, 110, 37, 117, grid::kOccupiedValue);  // pillar
   Fill(g, 150, 20, 195, 22, grid::kOccupiedValue);  // shelf
   Fill(g, 193, 22, 195, 70, grid::kOccupiedValue);
@@ -58,9 +58,9 @@ grid::OccupancyGrid Floor() {
 
 // The cells [x0, x0 + w) x [y0, y0 + h) of `g`, with the origin of the crop's corner.
 grid::OccupancyGrid Crop(const grid::OccupancyGrid& g, int x0, int y0, int w, int h) {
-  grid::OccupancyGrid out(w, h, g.resolution(),
-                          Pose2{g.origin().x + x0 * g.resolution(),
-                                g.origin().y + y0 * g.resolution(), 0.0});
+  grid::OccupancyGrid out(
+      w, h, g.resolution(),
+      Pose2{g.origin().x + x0 * g.resolution(), g.origin().y + y0 * g.resolution(), 0.0});
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       if (g.Contains(x0 + x, y0 + y)) out.at(x, y) = g.at(x0 + x, y0 + y);
@@ -267,11 +267,10 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
     const bool along_x = w >= h;
     const int crop_len = (along_x ? w : h) * 5 / 8;
     const int shift = (along_x ? w : h) - crop_len;
-    const grid::OccupancyGrid a = along_x ? Crop(map, box.x0, box.y0, crop_len, h)
-                                          : Crop(map, box.x0, box.y0, w, crop_len);
-    const grid::OccupancyGrid crop_b = along_x
-                                           ? Crop(map, box.x0 + shift, box.y0, crop_len, h)
-                                           : Crop(map, box.x0, box.y0 + shift, w, crop_len);
+    const grid::OccupancyGrid a =
+        along_x ? Crop(map, box.x0, box.y0, crop_len, h) : Crop(map, box.x0, box.y0, w, crop_len);
+    const grid::OccupancyGrid crop_b = along_x ? Crop(map, box.x0 + shift, box.y0, crop_len, h)
+                                               : Crop(map, box.x0, box.y0 + shift, w, crop_len);
     int quadrant = 0;
     for (const double yaw_deg : {23.0, 118.0, -157.0, -64.0}) {
       SCOPED_TRACE(name + " yaw " + std::to_string(yaw_deg));
@@ -280,9 +279,9 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
       const grid::OccupancyGrid b = Turn(crop_b, yaw_deg * kDegree, origin, &truth);
       const auto start = std::chrono::steady_clock::now();
       const StatusOr<Registration> r = Register(a, b, {});
-      const double ms = std::chrono::duration<double, std::milli>(
-                            std::chrono::steady_clock::now() - start)
-                            .count();
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
       ASSERT_TRUE(r.ok()) << r.status();
       EXPECT_THAT(*r, IsNearTruth(b, truth));
       placed += ::testing::Matches(IsNearTruth(b, truth))(*r) ? 1 : 0;
