@@ -34,6 +34,23 @@ std::string Num(double value) {
   return buffer;
 }
 
+// The map's cells as 100 / 0 / -1, read with the thresholds of its YAML.
+grid::OccupancyGrid Trinary(const grid::LoadedMap& map) {
+  const grid::StateThresholds thresholds{.occupied = map.metadata.occupied_thresh,
+                                         .free = map.metadata.free_thresh};
+  grid::OccupancyGrid out = map.grid;
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      const grid::CellState state = map.grid.StateAt(x, y, thresholds);
+      out.at(x, y) =
+          state == grid::CellState::kOccupied
+              ? grid::kOccupiedValue
+              : (state == grid::CellState::kFree ? grid::kFreeValue : grid::kUnknownValue);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
@@ -47,13 +64,14 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     err << "fleetmap register: " << b.status().message() << "\n";
     return kExitBadInput;
   }
-  // Cells read as occupied / free with map A's own thresholds (those of its YAML).
-  registration::RegistrationOptions registration_options;
-  registration_options.thresholds = {.occupied = a->metadata.occupied_thresh,
-                                     .free = a->metadata.free_thresh};
+  // Each map's cells read as occupied / free with its own YAML's thresholds; the registration
+  // then sees trinary grids.
+  const grid::OccupancyGrid grid_a = Trinary(*a);
+  const grid::OccupancyGrid grid_b = Trinary(*b);
+  const registration::RegistrationOptions registration_options;
   const auto start = std::chrono::steady_clock::now();
   const StatusOr<registration::Registration> result =
-      registration::Register(a->grid, b->grid, registration_options);
+      registration::Register(grid_a, grid_b, registration_options);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!result.ok()) {

@@ -265,14 +265,22 @@ std::vector<Point2> OccupiedCentres(const grid::OccupancyGrid& g, int max_points
   return thinned;
 }
 
+// The mean field value at `points` moved by `t`, interpolated bilinearly between cell centres
+// (a nearest-cell read would score every shift within a cell alike).
 double FieldScore(const cv::Mat& field, double res, const std::vector<Point2>& points,
                   const GridTransform& t) {
+  const auto at = [&field](int x, int y) {
+    return x >= 0 && y >= 0 && x < field.cols && y < field.rows ? field.at<float>(y, x) : 0.0f;
+  };
   double sum = 0.0;
   for (const Point2& p : points) {
     const Point2 q = t.Apply(p);
-    const int x = static_cast<int>(std::floor(q.x() / res));
-    const int y = static_cast<int>(std::floor(q.y() / res));
-    if (x >= 0 && y >= 0 && x < field.cols && y < field.rows) sum += field.at<float>(y, x);
+    const double u = q.x() / res - 0.5, v = q.y() / res - 0.5;
+    const int x = static_cast<int>(std::floor(u));
+    const int y = static_cast<int>(std::floor(v));
+    const double fx = u - x, fy = v - y;
+    sum += (1.0 - fy) * ((1.0 - fx) * at(x, y) + fx * at(x + 1, y)) +
+           fy * ((1.0 - fx) * at(x, y + 1) + fx * at(x + 1, y + 1));
   }
   return sum / static_cast<double>(points.size());
 }

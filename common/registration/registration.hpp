@@ -20,7 +20,7 @@ struct RegistrationOptions {
   // the max of f x f map cells, f an integer >= 1).
   int max_search_cells = 160;
   // Yaw step of the exhaustive coarse search (degrees) and of the final refinement.
-  double coarse_yaw_step_deg = 1.0;
+  double coarse_yaw_step_deg = 1.5;
   double fine_yaw_step_deg = 0.05;
   // Width (in coarse cells) of the Gaussian likelihood field around A's occupied cells.
   double field_sigma_cells = 1.2;
