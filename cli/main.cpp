@@ -17,6 +17,7 @@
 #include "cli/info_command.hpp"
 #include "cli/learn_objects_command.hpp"
 #include "cli/rasterize_command.hpp"
+#include "cli/register_command.hpp"
 #include "cli/render_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchExtrapolationCommand(app, &exit_code);
   fleetmap::cli::AddLearnObjectsCommand(app, &exit_code);
   fleetmap::bench::AddBenchObjectsCommand(app, &exit_code);
+  fleetmap::cli::AddRegisterCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -1,0 +1,661 @@
+#include "common/registration/registration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+namespace fleetmap::registration {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+// The second peak is looked for only above this fraction of the best: lower peaks do not make a
+// match ambiguous, and a low floor would let the search visit most of the space again.
+constexpr double kSecondPeakFloor = 0.7;
+// Coarse peaks refined and compared on the fine field.
+constexpr int kPeaks = 3;
+
+std::string Num(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.4g", value);
+  return buffer;
+}
+
+// A grid reduced by an integer factor: a coarse cell is occupied when any of its cells is.
+struct CoarseOccupancy {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> occupied;  // row-major, row 0 at the origin
+  std::vector<uint8_t> free;      // some cell free, none occupied
+};
+
+CoarseOccupancy Reduce(const grid::OccupancyGrid& g, int factor,
+                       const grid::StateThresholds& thresholds) {
+  CoarseOccupancy out;
+  out.width = (g.width() + factor - 1) / factor;
+  out.height = (g.height() + factor - 1) / factor;
+  out.occupied.assign(static_cast<size_t>(out.width) * out.height, 0);
+  out.free.assign(out.occupied.size(), 0);
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      const size_t i = static_cast<size_t>(y / factor) * out.width + x / factor;
+      const grid::CellState state = g.StateAt(x, y, thresholds);
+      if (state == grid::CellState::kOccupied) out.occupied[i] = 1;
+      if (state == grid::CellState::kFree) out.free[i] = 1;
+    }
+  }
+  for (size_t i = 0; i < out.free.size(); ++i) {
+    if (out.occupied[i]) out.free[i] = 0;
+  }
+  return out;
+}
+
+// What a point of B scores on each cell of A: exp(-d^2 / 2 sigma^2) of the distance d (cells) to
+// A's nearest occupied cell, less free_penalty * (1 - that) on A's free cells, so that B's walls
+// crossing A's known free space cost what they would contradict.
+cv::Mat LikelihoodField(int width, int height, const std::vector<uint8_t>& occupied,
+                        const std::vector<uint8_t>& free, double sigma, double free_penalty) {
+  cv::Mat free_mask(height, width, CV_8U);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      free_mask.at<uint8_t>(y, x) = occupied[static_cast<size_t>(y) * width + x] ? 0 : 255;
+    }
+  }
+  cv::Mat distance;
+  cv::distanceTransform(free_mask, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::Mat field(height, width, CV_32F);
+  const float k = static_cast<float>(-0.5 / (sigma * sigma));
+  const float penalty = static_cast<float>(free_penalty);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float d = distance.at<float>(y, x);
+      const float near = std::exp(k * d * d);
+      field.at<float>(y, x) =
+          free[static_cast<size_t>(y) * width + x] ? near - penalty * (1.0f - near) : near;
+    }
+  }
+  return field;
+}
+
+// Level h holds, at (x, y), the max of the field over [x, x + 2^h) x [y, y + 2^h) (0 outside the
+// field). The levels are padded by `pad` cells on every side, so that every lookup the search
+// makes (B's cells never reach further than `pad` beyond the field) is a plain array read.
+class MaxPyramid {
+ public:
+  MaxPyramid(const cv::Mat& field, int levels, int pad)
+      : pad_(pad), stride_(field.cols + 2 * pad), rows_(field.rows + 2 * pad) {
+    levels_.resize(levels);
+    levels_[0].assign(static_cast<size_t>(stride_) * rows_, 0.0f);
+    for (int y = 0; y < field.rows; ++y) {
+      for (int x = 0; x < field.cols; ++x) levels_[0][Offset(x, y)] = field.at<float>(y, x);
+    }
+    for (int h = 1; h < levels; ++h) {
+      const int s = 1 << (h - 1);
+      const std::vector<float>& below = levels_[h - 1];
+      std::vector<float>& level = levels_[h];
+      level.assign(below.size(), 0.0f);
+      for (int iy = 0; iy < rows_; ++iy) {
+        for (int ix = 0; ix < stride_; ++ix) {
+          const size_t i = static_cast<size_t>(iy) * stride_ + ix;
+          float m = below[i];
+          if (ix + s < stride_) m = std::max(m, below[i + s]);
+          if (iy + s < rows_) {
+            m = std::max(m, below[i + static_cast<size_t>(s) * stride_]);
+            if (ix + s < stride_) m = std::max(m, below[i + static_cast<size_t>(s) * stride_ + s]);
+          }
+          level[i] = m;
+        }
+      }
+    }
+  }
+
+  // The array index of field cell (x, y), and the linear step of (dx, dy).
+  size_t Offset(int x, int y) const {
+    return static_cast<size_t>(y + pad_) * stride_ + static_cast<size_t>(x + pad_);
+  }
+  ptrdiff_t Step(int dx, int dy) const { return static_cast<ptrdiff_t>(dy) * stride_ + dx; }
+  const float* Level(int level) const { return levels_[level].data(); }
+  int levels() const { return static_cast<int>(levels_.size()); }
+
+ private:
+  int pad_;
+  int stride_;
+  int rows_;
+  std::vector<std::vector<float>> levels_;
+};
+
+struct CellPoint {
+  int x;
+  int y;
+};
+
+// B's coarse points rotated by one yaw about their centroid, rounded to cells.
+struct RotatedPoints {
+  double yaw = 0.0;
+  std::vector<CellPoint> points;
+  std::vector<ptrdiff_t> steps;  // the points as pyramid index steps
+  int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+};
+
+struct Candidate {
+  int yaw_index = 0;
+  int x = 0;
+  int y = 0;
+  int level = 0;
+  float score = 0.0f;
+};
+
+// Cartographer-style branch and bound over translations, for every yaw at once.
+class BranchAndBound {
+ public:
+  BranchAndBound(const MaxPyramid& pyramid, const std::vector<RotatedPoints>& rotations,
+                 int field_width, int field_height)
+      : pyramid_(pyramid), rotations_(rotations), width_(field_width), height_(field_height) {}
+
+  // The best leaf scoring above `floor` that `excluded` lets through; score 0 if none.
+  template <typename Excluded>
+  Candidate Search(float floor, const Excluded& excluded) const {
+    const int top = pyramid_.levels() - 1;
+    const int step = 1 << top;
+    std::vector<Candidate> roots;
+    for (int r = 0; r < static_cast<int>(rotations_.size()); ++r) {
+      const RotatedPoints& rot = rotations_[r];
+      for (int y = -rot.max_y; y <= height_ - 1 - rot.min_y; y += step) {
+        for (int x = -rot.max_x; x <= width_ - 1 - rot.min_x; x += step) {
+          Candidate c{r, x, y, top, 0.0f};
+          c.score = Score(c);
+          if (c.score > floor) roots.push_back(c);
+        }
+      }
+    }
+    std::sort(roots.begin(), roots.end(),
+              [](const Candidate& l, const Candidate& r) { return l.score > r.score; });
+    Candidate best{0, 0, 0, 0, floor};
+    bool any = false;
+    for (const Candidate& root : roots) {
+      if (root.score <= best.score) break;
+      Descend(root, excluded, best, any);
+    }
+    if (!any) best.score = 0.0f;
+    return best;
+  }
+
+ private:
+  float Score(const Candidate& c) const {
+    const float* base = pyramid_.Level(c.level) + pyramid_.Offset(c.x, c.y);
+    const std::vector<ptrdiff_t>& steps = rotations_[c.yaw_index].steps;
+    float sum = 0.0f;
+    for (const ptrdiff_t step : steps) sum += base[step];
+    return sum / static_cast<float>(steps.size());
+  }
+
+  template <typename Excluded>
+  void Descend(const Candidate& node, const Excluded& excluded, Candidate& best, bool& any) const {
+    if (node.level == 0) {
+      if (node.score > best.score && !excluded(node)) {
+        best = node;
+        any = true;
+      }
+      return;
+    }
+    const RotatedPoints& rot = rotations_[node.yaw_index];
+    const int half = 1 << (node.level - 1);
+    Candidate children[4];
+    int count = 0;
+    for (int dy = 0; dy < 2; ++dy) {
+      for (int dx = 0; dx < 2; ++dx) {
+        Candidate c{node.yaw_index, node.x + dx * half, node.y + dy * half, node.level - 1, 0.0f};
+        if (c.x > width_ - 1 - rot.min_x || c.y > height_ - 1 - rot.min_y) continue;
+        c.score = Score(c);
+        children[count++] = c;
+      }
+    }
+    // Best first (an insertion sort: std::sort on four elements trips GCC 12's -Warray-bounds).
+    for (int i = 1; i < count; ++i) {
+      for (int j = i; j > 0 && children[j].score > children[j - 1].score; --j) {
+        std::swap(children[j], children[j - 1]);
+      }
+    }
+    for (int i = 0; i < count; ++i) {
+      if (children[i].score <= best.score) break;
+      Descend(children[i], excluded, best, any);
+    }
+  }
+
+  const MaxPyramid& pyramid_;
+  const std::vector<RotatedPoints>& rotations_;
+  int width_;
+  int height_;
+};
+
+// A rigid transform between the grids' own frames (metres from cell (0, 0)'s outer corner).
+struct GridTransform {
+  double yaw = 0.0;
+  double tx = 0.0;
+  double ty = 0.0;
+  Point2 Apply(const Point2& p) const {
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    return {c * p.x() - s * p.y() + tx, s * p.x() + c * p.y() + ty};
+  }
+};
+
+// B's occupied cell centres (grid metres), evenly thinned to at most `max_points`.
+std::vector<Point2> OccupiedCentres(const grid::OccupancyGrid& g, int max_points,
+                                    const grid::StateThresholds& thresholds) {
+  std::vector<Point2> all;
+  const double res = g.resolution();
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      if (g.StateAt(x, y, thresholds) == grid::CellState::kOccupied) {
+        all.emplace_back((x + 0.5) * res, (y + 0.5) * res);
+      }
+    }
+  }
+  if (static_cast<int>(all.size()) <= max_points) return all;
+  std::vector<Point2> thinned;
+  thinned.reserve(max_points);
+  const double stride = static_cast<double>(all.size()) / max_points;
+  for (int i = 0; i < max_points; ++i) thinned.push_back(all[static_cast<size_t>(i * stride)]);
+  return thinned;
+}
+
+// The mean field value at `points` moved by `t`, interpolated bilinearly between cell centres
+// (a nearest-cell read would score every shift within a cell alike).
+double FieldScore(const cv::Mat& field, double res, const std::vector<Point2>& points,
+                  const GridTransform& t) {
+  const auto at = [&field](int x, int y) {
+    return x >= 0 && y >= 0 && x < field.cols && y < field.rows ? field.at<float>(y, x) : 0.0f;
+  };
+  double sum = 0.0;
+  for (const Point2& p : points) {
+    const Point2 q = t.Apply(p);
+    const double u = q.x() / res - 0.5, v = q.y() / res - 0.5;
+    const int x = static_cast<int>(std::floor(u));
+    const int y = static_cast<int>(std::floor(v));
+    const double fx = u - x, fy = v - y;
+    sum += (1.0 - fy) * ((1.0 - fx) * at(x, y) + fx * at(x + 1, y)) +
+           fy * ((1.0 - fx) * at(x, y + 1) + fx * at(x + 1, y + 1));
+  }
+  return sum / static_cast<double>(points.size());
+}
+
+// Exhaustive local search around `start` on a yaw x translation lattice.
+GridTransform LocalSearch(const cv::Mat& field, double res, const std::vector<Point2>& points,
+                          const Point2& pivot, GridTransform start, double yaw_half,
+                          double yaw_step, double shift_half, double shift_step) {
+  // Rotating about the pivot's image keeps yaw and shift decoupled.
+  const Point2 pivot_a = start.Apply(pivot);
+  GridTransform best = start;
+  double best_score = FieldScore(field, res, points, start);
+  const int yaw_steps = static_cast<int>(std::round(yaw_half / yaw_step));
+  const int shift_steps = static_cast<int>(std::round(shift_half / shift_step));
+  for (int iy = -yaw_steps; iy <= yaw_steps; ++iy) {
+    const double yaw = start.yaw + iy * yaw_step;
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    for (int sy = -shift_steps; sy <= shift_steps; ++sy) {
+      for (int sx = -shift_steps; sx <= shift_steps; ++sx) {
+        const Point2 target(pivot_a.x() + sx * shift_step, pivot_a.y() + sy * shift_step);
+        GridTransform t{yaw, target.x() - (c * pivot.x() - s * pivot.y()),
+                        target.y() - (s * pivot.x() + c * pivot.y())};
+        const double score = FieldScore(field, res, points, t);
+        if (score > best_score) {
+          best_score = score;
+          best = t;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+// Occupied cells within `radius` cells of an occupied cell.
+std::vector<uint8_t> NearOccupied(const grid::OccupancyGrid& g, int radius,
+                                  const grid::StateThresholds& thresholds) {
+  cv::Mat occupied(g.height(), g.width(), CV_8U, cv::Scalar(0));
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < g.width(); ++x) {
+      if (g.StateAt(x, y, thresholds) == grid::CellState::kOccupied) occupied.at<uint8_t>(y, x) = 1;
+    }
+  }
+  cv::Mat near;
+  cv::dilate(occupied, near,
+             cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1)));
+  return std::vector<uint8_t>(near.datastart, near.dataend);
+}
+
+struct Evidence {
+  int64_t known = 0;         // `from` cells known
+  int64_t known_shared = 0;  // ... landing on a known `to` cell
+  int64_t agree = 0;         // `from` occupied cells with a `to` occupied cell near
+  int64_t contradict = 0;    // `from` occupied cells on a free `to` cell with none near
+};
+
+// What `from`'s cells find in `to` when moved by to_from_from (grid metres).
+Evidence Compare(const grid::OccupancyGrid& from, const grid::OccupancyGrid& to,
+                 const std::vector<uint8_t>& to_near_occupied, const GridTransform& to_from_from,
+                 const grid::StateThresholds& thresholds) {
+  Evidence e;
+  const double res = from.resolution();
+  const double c = std::cos(to_from_from.yaw), s = std::sin(to_from_from.yaw);
+  for (int y = 0; y < from.height(); ++y) {
+    for (int x = 0; x < from.width(); ++x) {
+      const grid::CellState state = from.StateAt(x, y, thresholds);
+      if (state == grid::CellState::kUnknown) continue;
+      ++e.known;
+      const double px = (x + 0.5) * res, py = (y + 0.5) * res;
+      const int tx = static_cast<int>(std::floor((c * px - s * py + to_from_from.tx) / res));
+      const int ty = static_cast<int>(std::floor((s * px + c * py + to_from_from.ty) / res));
+      if (!to.Contains(tx, ty)) continue;
+      const grid::CellState to_state = to.StateAt(tx, ty, thresholds);
+      if (to_state == grid::CellState::kUnknown) continue;
+      ++e.known_shared;
+      if (state != grid::CellState::kOccupied) continue;
+      if (to_near_occupied[static_cast<size_t>(ty) * to.width() + tx]) {
+        ++e.agree;
+      } else if (to_state == grid::CellState::kFree) {
+        ++e.contradict;
+      }
+    }
+  }
+  return e;
+}
+
+GridTransform Inverse(const GridTransform& t) {
+  const double c = std::cos(t.yaw), s = std::sin(t.yaw);
+  return {-t.yaw, -(c * t.tx + s * t.ty), -(-s * t.tx + c * t.ty)};
+}
+
+Status CheckGrid(const grid::OccupancyGrid& g, const char* name) {
+  std::string which(name);
+  if (g.empty()) return InvalidArgumentError(which.append(" is empty (no cells)"));
+  if (!std::isfinite(g.resolution()) || g.resolution() <= 0.0) {
+    return InvalidArgumentError(which.append(" has a resolution that is not a positive number"));
+  }
+  const Pose2& o = g.origin();
+  if (!std::isfinite(o.x) || !std::isfinite(o.y) || !std::isfinite(o.yaw)) {
+    return InvalidArgumentError(which.append(" has a non-finite origin"));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status RegistrationOptions::Validate() const {
+  if (max_search_cells < 16) return InvalidArgumentError("registration max_search_cells < 16");
+  if (!(coarse_yaw_step_deg > 0.0 && coarse_yaw_step_deg <= 10.0)) {
+    return InvalidArgumentError("registration coarse_yaw_step_deg must be in (0, 10]");
+  }
+  if (!(fine_yaw_step_deg > 0.0 && fine_yaw_step_deg <= coarse_yaw_step_deg)) {
+    return InvalidArgumentError("registration fine_yaw_step_deg must be in (0, coarse step]");
+  }
+  if (!(field_sigma_cells > 0.0 && field_sigma_cells <= 10.0)) {
+    return InvalidArgumentError("registration field_sigma_cells must be in (0, 10]");
+  }
+  if (!(free_penalty >= 0.0 && free_penalty <= 10.0)) {
+    return InvalidArgumentError("registration free_penalty must be in [0, 10]");
+  }
+  if (pyramid_levels < 1 || pyramid_levels > 12) {
+    return InvalidArgumentError("registration pyramid_levels must be in 1..12");
+  }
+  if (max_search_points < 10 || max_refine_points < 10) {
+    return InvalidArgumentError(
+        "registration max_search_points and max_refine_points must be >= 10");
+  }
+  if (!(distinct_cells > 0.0) || !(distinct_yaw_deg > 0.0)) {
+    return InvalidArgumentError("registration distinct_cells and distinct_yaw_deg must be > 0");
+  }
+  if (!(max_peak_ratio > 0.0 && max_peak_ratio < 1.0)) {
+    return InvalidArgumentError("registration max_peak_ratio must be in (0, 1)");
+  }
+  if (tolerance_cells < 0 || tolerance_cells > 10) {
+    return InvalidArgumentError("registration tolerance_cells must be in 0..10");
+  }
+  if (min_agreeing_cells < 1) return InvalidArgumentError("registration min_agreeing_cells < 1");
+  if (!(max_contradiction >= 0.0 && max_contradiction <= 1.0)) {
+    return InvalidArgumentError("registration max_contradiction must be in [0, 1]");
+  }
+  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
+    return InvalidArgumentError("registration min_confidence must be in [0, 1]");
+  }
+  if (!(thresholds.free >= 0.0 && thresholds.free <= thresholds.occupied &&
+        thresholds.occupied <= 1.0)) {
+    return InvalidArgumentError("registration thresholds need 0 <= free <= occupied <= 1");
+  }
+  return Status::Ok();
+}
+
+void RegistrationOptions::Describe(OptionsPrinter& out) const {
+  out.Add("max_search_cells", max_search_cells);
+  out.Add("coarse_yaw_step_deg", coarse_yaw_step_deg);
+  out.Add("fine_yaw_step_deg", fine_yaw_step_deg);
+  out.Add("field_sigma_cells", field_sigma_cells);
+  out.Add("free_penalty", free_penalty);
+  out.Add("pyramid_levels", pyramid_levels);
+  out.Add("max_search_points", max_search_points);
+  out.Add("max_refine_points", max_refine_points);
+  out.Add("distinct_cells", distinct_cells);
+  out.Add("distinct_yaw_deg", distinct_yaw_deg);
+  out.Add("max_peak_ratio", max_peak_ratio);
+  out.Add("tolerance_cells", tolerance_cells);
+  out.Add("min_agreeing_cells", min_agreeing_cells);
+  out.Add("max_contradiction", max_contradiction);
+  out.Add("min_confidence", min_confidence);
+  out.Nested("thresholds", thresholds);
+}
+
+StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b,
+                                const RegistrationOptions& options) {
+  if (Status s = options.Validate(); !s.ok()) return s;
+  if (Status s = CheckGrid(a, "map A"); !s.ok()) return s;
+  if (Status s = CheckGrid(b, "map B"); !s.ok()) return s;
+  const double res = a.resolution();
+  if (std::abs(a.resolution() - b.resolution()) > 1e-9 * res) {
+    return InvalidArgumentError(std::string("map A's resolution ")
+                                    .append(Num(a.resolution()))
+                                    .append(" m differs from map B's ")
+                                    .append(Num(b.resolution()))
+                                    .append(" m; registration does not resample: resample one "
+                                            "map first"));
+  }
+  const grid::StateThresholds& th = options.thresholds;
+  if (a.CountStates(th).occupied == 0) return InvalidArgumentError("map A has no occupied cell");
+  if (b.CountStates(th).occupied == 0) return InvalidArgumentError("map B has no occupied cell");
+
+  // Coarse grids of at most max_search_cells^2 cells each (by area, so that a long corridor map
+  // keeps the resolution its doors need): the search's cost grows with the area.
+  const double largest_area = static_cast<double>(std::max(a.cell_count(), b.cell_count()));
+  const int factor =
+      std::max(1, static_cast<int>(std::ceil(std::sqrt(largest_area) / options.max_search_cells)));
+  const double coarse_res = res * factor;
+  const CoarseOccupancy coarse_a = Reduce(a, factor, th);
+  const CoarseOccupancy coarse_b = Reduce(b, factor, th);
+  const cv::Mat coarse_field =
+      LikelihoodField(coarse_a.width, coarse_a.height, coarse_a.occupied, coarse_a.free,
+                      options.field_sigma_cells, options.free_penalty);
+
+  std::vector<Point2> b_cells;  // coarse cell indices, as doubles
+  for (int y = 0; y < coarse_b.height; ++y) {
+    for (int x = 0; x < coarse_b.width; ++x) {
+      if (coarse_b.occupied[static_cast<size_t>(y) * coarse_b.width + x])
+        b_cells.emplace_back(x, y);
+    }
+  }
+  if (static_cast<int>(b_cells.size()) > options.max_search_points) {
+    std::vector<Point2> thinned;
+    const double stride = static_cast<double>(b_cells.size()) / options.max_search_points;
+    for (int i = 0; i < options.max_search_points; ++i) {
+      thinned.push_back(b_cells[static_cast<size_t>(i * stride)]);
+    }
+    b_cells.swap(thinned);
+  }
+  Point2 centroid(0.0, 0.0);
+  for (const Point2& p : b_cells) centroid += p;
+  centroid /= static_cast<double>(b_cells.size());
+
+  const int yaw_count =
+      std::max(1, static_cast<int>(std::round(360.0 / options.coarse_yaw_step_deg)));
+  const double yaw_step = 2.0 * std::numbers::pi / yaw_count;
+  std::vector<RotatedPoints> rotations(yaw_count);
+  for (int r = 0; r < yaw_count; ++r) {
+    RotatedPoints& rot = rotations[r];
+    rot.yaw = NormalizeAngle(r * yaw_step);
+    const double c = std::cos(rot.yaw), s = std::sin(rot.yaw);
+    rot.points.reserve(b_cells.size());
+    for (const Point2& p : b_cells) {
+      const Point2 d = p - centroid;
+      rot.points.push_back({static_cast<int>(std::lround(c * d.x() - s * d.y())),
+                            static_cast<int>(std::lround(s * d.x() + c * d.y()))});
+    }
+    rot.min_x = rot.max_x = rot.points[0].x;
+    rot.min_y = rot.max_y = rot.points[0].y;
+    for (const CellPoint& p : rot.points) {
+      rot.min_x = std::min(rot.min_x, p.x);
+      rot.max_x = std::max(rot.max_x, p.x);
+      rot.min_y = std::min(rot.min_y, p.y);
+      rot.max_y = std::max(rot.max_y, p.y);
+    }
+  }
+
+  // Placements keep B's cells within one B extent of A's field (some cell overlaps it).
+  int extent = 1 << (options.pyramid_levels - 1);
+  for (const RotatedPoints& rot : rotations) {
+    extent = std::max({extent, rot.max_x - rot.min_x + 1, rot.max_y - rot.min_y + 1});
+  }
+  const MaxPyramid pyramid(coarse_field, options.pyramid_levels, extent + 1);
+  for (RotatedPoints& rot : rotations) {
+    rot.steps.reserve(rot.points.size());
+    for (const CellPoint& p : rot.points) rot.steps.push_back(pyramid.Step(p.x, p.y));
+  }
+  const BranchAndBound search(pyramid, rotations, coarse_a.width, coarse_a.height);
+  const Candidate best = search.Search(0.02f, [](const Candidate&) { return false; });
+  Registration result;
+  if (best.score <= 0.0f) {
+    result.why_not = "no placement of B's occupied cells meets A's";
+    return result;
+  }
+  // The best clearly different hypothesis, if it scores at least kSecondPeakFloor of the best.
+  const double distinct_cells2 = options.distinct_cells * options.distinct_cells;
+  const int distinct_yaw_steps =
+      static_cast<int>(std::ceil(options.distinct_yaw_deg * kDegree / yaw_step));
+  // Up to kPeaks - 1 further peaks, each clearly different from those before (and scoring at
+  // least kSecondPeakFloor of the best on the coarse field).
+  std::vector<Candidate> peaks = {best};
+  for (int k = 1; k < kPeaks; ++k) {
+    const Candidate next =
+        search.Search(static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
+          for (const Candidate& p : peaks) {
+            int dyaw = std::abs(c.yaw_index - p.yaw_index);
+            dyaw = std::min(dyaw, yaw_count - dyaw);
+            const double dx = c.x - p.x, dy = c.y - p.y;
+            if (dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2) return true;
+          }
+          return false;
+        });
+    if (next.score <= 0.0f) break;
+    peaks.push_back(next);
+  }
+
+  // A coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
+  // coarse cell u's centre is at (u + 0.5) * coarse_res.
+  const auto to_grid = [&](const Candidate& c) {
+    const double yaw = rotations[c.yaw_index].yaw;
+    const double cy = std::cos(yaw), sy = std::sin(yaw);
+    const Point2 q(0.5 + centroid.x(), 0.5 + centroid.y());
+    return GridTransform{yaw, coarse_res * (c.x + 0.5 - (cy * q.x() - sy * q.y())),
+                         coarse_res * (c.y + 0.5 - (sy * q.x() + cy * q.y()))};
+  };
+
+  // Refinement at full resolution: a wide likelihood field first, then one a cell wide.
+  const CoarseOccupancy full_a = Reduce(a, 1, th);
+  const std::vector<Point2> b_points = OccupiedCentres(b, options.max_refine_points, th);
+  Point2 pivot(0.0, 0.0);
+  for (const Point2& p : b_points) pivot += p;
+  pivot /= static_cast<double>(b_points.size());
+  const cv::Mat wide_field = LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
+                                             std::max(1.0, factor * 0.75), options.free_penalty);
+  const cv::Mat fine_field = LikelihoodField(a.width(), a.height(), full_a.occupied, full_a.free,
+                                             1.0, options.free_penalty);
+  const double coarse_step = options.coarse_yaw_step_deg * kDegree;
+  const double mid_shift = std::max(res, coarse_res / 4.0);
+  const auto refine = [&](GridTransform t) {
+    t = LocalSearch(wide_field, res, b_points, pivot, t, coarse_step, 0.25 * coarse_step,
+                    coarse_res, mid_shift);
+    t = LocalSearch(fine_field, res, b_points, pivot, t, 0.5 * coarse_step, 0.1 * coarse_step,
+                    mid_shift, 0.5 * res);
+    return LocalSearch(fine_field, res, b_points, pivot, t, 0.1 * coarse_step,
+                       options.fine_yaw_step_deg * kDegree, 0.5 * res, 0.25 * res);
+  };
+  // The peaks are compared refined, on the fine field: at the coarse resolution a door or a
+  // pillar that tells two places apart may be blurred away, so a lower coarse peak may be the
+  // better one.
+  GridTransform grid_a_from_b = refine(to_grid(best));
+  double best_score = FieldScore(fine_field, res, b_points, grid_a_from_b);
+  double second_score = -1.0;
+  for (size_t k = 1; k < peaks.size(); ++k) {
+    GridTransform other = refine(to_grid(peaks[k]));
+    double other_score = FieldScore(fine_field, res, b_points, other);
+    if (other_score > best_score) {
+      std::swap(grid_a_from_b, other);
+      std::swap(best_score, other_score);
+    }
+    second_score = std::max(second_score, other_score);
+  }
+  double ratio = kSecondPeakFloor;
+  if (peaks.size() > 1 && best_score > 0.0) ratio = second_score / best_score;
+  result.peak_ratio = std::clamp(ratio, kSecondPeakFloor, 1.0);
+
+  // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
+  const Transform2 grid_transform =
+      Pose2{grid_a_from_b.tx, grid_a_from_b.ty, grid_a_from_b.yaw}.ToTransform();
+  result.a_from_b = Pose2::FromTransform(a.origin().ToTransform() * grid_transform *
+                                         b.origin().ToTransform().inverse());
+
+  // Verification, both ways, at full resolution.
+  const Evidence b_in_a =
+      Compare(b, a, NearOccupied(a, options.tolerance_cells, th), grid_a_from_b, th);
+  const Evidence a_in_b =
+      Compare(a, b, NearOccupied(b, options.tolerance_cells, th), Inverse(grid_a_from_b), th);
+  result.agreeing_cells = static_cast<int>(b_in_a.agree);
+  result.contradicting_cells = static_cast<int>(b_in_a.contradict + a_in_b.contradict);
+  result.overlap = b_in_a.known > 0 ? static_cast<double>(b_in_a.known_shared) / b_in_a.known : 0.0;
+  const double agree_both = static_cast<double>(b_in_a.agree + a_in_b.agree);
+  const double contradiction =
+      agree_both + result.contradicting_cells > 0
+          ? result.contradicting_cells / (agree_both + result.contradicting_cells)
+          : 1.0;
+  const double distinctness = 1.0 - result.peak_ratio;
+  result.confidence =
+      std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
+
+  if (result.agreeing_cells < options.min_agreeing_cells) {
+    result.why_not = std::string("too little shared structure: ")
+                         .append(std::to_string(result.agreeing_cells))
+                         .append(" of B's occupied cells agree with A (at least ")
+                         .append(std::to_string(options.min_agreeing_cells))
+                         .append(" needed)");
+  } else if (contradiction > options.max_contradiction) {
+    result.why_not = std::string("the best placement contradicts the maps: ")
+                         .append(Num(100.0 * contradiction))
+                         .append(" % of the occupied cells in the overlap land on free cells");
+  } else if (result.peak_ratio >= options.max_peak_ratio) {
+    result.why_not = std::string("ambiguous: a clearly different placement scores ")
+                         .append(Num(100.0 * result.peak_ratio))
+                         .append(" % of the best (symmetric or repeated structure)");
+  } else if (result.confidence < options.min_confidence) {
+    result.why_not = std::string("confidence ")
+                         .append(Num(result.confidence))
+                         .append(" is below ")
+                         .append(Num(options.min_confidence));
+  } else {
+    result.found = true;
+  }
+  return result;
+}
+
+}  // namespace fleetmap::registration

@@ -1,0 +1,82 @@
+#pragma once
+
+// Map-to-map registration: the rigid transform (x, y, yaw) that takes map B's frame into map A's
+// frame, estimated from two occupancy grids, with a verification that refuses ambiguous or
+// unsupported matches. See docs/registration.md for the method and what confidence means.
+//
+// Register() is a pure function of its inputs: any thread may call it, concurrently too.
+
+#include <string>
+
+#include "common/core/options_printer.hpp"
+#include "common/core/status.hpp"
+#include "common/core/types.hpp"
+#include "common/grid/occupancy_grid.hpp"
+
+namespace fleetmap::registration {
+
+struct RegistrationOptions {
+  // The coarse search works on grids of at most this many cells squared (each coarse cell is
+  // the max of f x f map cells, f an integer >= 1).
+  int max_search_cells = 160;
+  // Yaw step of the exhaustive coarse search (degrees) and of the final refinement.
+  double coarse_yaw_step_deg = 1.5;
+  double fine_yaw_step_deg = 0.05;
+  // Width (in coarse cells) of the Gaussian likelihood field around A's occupied cells.
+  double field_sigma_cells = 1.2;
+  // What one of B's occupied cells costs on A's free space, far from A's walls (a field value of
+  // 1 is a perfect hit).
+  double free_penalty = 1.0;
+  // Levels of the branch-and-bound max-pyramid (the top level spans 2^(levels-1) coarse cells).
+  int pyramid_levels = 7;
+  // Most of B's occupied cells the coarse search and the refinement score (evenly thinned).
+  int max_search_points = 500;
+  int max_refine_points = 4000;
+  // Two hypotheses are "clearly different" when B's centroid lands farther apart than this (in
+  // coarse cells) or their yaws differ by more than distinct_yaw_deg.
+  double distinct_cells = 4.0;
+  double distinct_yaw_deg = 5.0;
+  // A match is refused when the best clearly different hypothesis scores at least this fraction
+  // of the best one (symmetric corridors, repeated rooms).
+  double max_peak_ratio = 0.85;
+  // Verification at full resolution: occupied cells agree when the other map has an occupied cell
+  // within tolerance_cells; they contradict when they land on a free cell with none within it.
+  int tolerance_cells = 1;
+  // Least number of B's occupied cells that must agree with A (the shared structure).
+  int min_agreeing_cells = 150;
+  // Most contradicting occupied cells (both directions) as a fraction of agreeing + contradicting.
+  double max_contradiction = 0.25;
+  // Least confidence a match must have to be found.
+  double min_confidence = 0.15;
+  // How a cell value reads as occupied / free.
+  grid::StateThresholds thresholds;
+
+  Status Validate() const;
+  void Describe(OptionsPrinter& out) const;
+};
+
+struct Registration {
+  bool found = false;
+  // Takes a point in B's map frame to A's map frame: p_a = a_from_b * p_b. The best hypothesis,
+  // also when it is refused (then a hint only).
+  Pose2 a_from_b;
+  // In [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells, both ways)
+  // times distinctness (1 - second peak / best peak). 0 when nothing was matched.
+  double confidence = 0.0;
+  // Fraction of B's known cells that land on A's known cells under a_from_b.
+  double overlap = 0.0;
+  // Why found is false, for people; empty when found.
+  std::string why_not;
+  // The figures behind the decision.
+  int agreeing_cells = 0;
+  int contradicting_cells = 0;
+  double peak_ratio = 0.0;
+};
+
+// Estimates a_from_b. Errors (kInvalidArgument): options invalid, an empty map, a map without
+// occupied cells, a non-finite origin or resolution, or resolutions that differ (refused, not
+// resampled: resample one map first, e.g. with the tool that made it).
+StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b,
+                                const RegistrationOptions& options);
+
+}  // namespace fleetmap::registration
