@@ -1,18 +1,11 @@
 #include "bench/bytes/tile_bytes_table.hpp"
 
-#include <cstdio>
+#include "bench/report/report_format.hpp"
 
 namespace fleetmap::bench {
 namespace {
 
-std::string Format(const char* format, double value) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
-
-std::string Kb(size_t bytes) { return Format("%.1f", static_cast<double>(bytes) / 1024.0); }
-std::string Ratio(double ratio) { return Format("%.2f", ratio); }
+std::string Ratio(double ratio) { return Fixed(ratio, 2); }
 
 // "12" when both sides sent the same tiles, else "grid 12 / vector 11".
 std::string TilesText(const TileBytesComparison& c) {
@@ -25,8 +18,8 @@ std::string TilesText(const TileBytesComparison& c) {
 void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold, std::ostream& out) {
   const std::string mark = bold ? "**" : "";
   out << "| " << name << " | " << TilesText(c);
-  for (const NamedBytes& baseline : TileBaselines(c.grid.bytes)) out << " | " << Kb(baseline.bytes);
-  out << " | " << Kb(c.vector.payload);
+  for (const NamedBytes& baseline : TileBaselines(c.grid.bytes)) out << " | " << Kilobytes(baseline.bytes);
+  out << " | " << Kilobytes(c.vector.payload);
   for (const NamedRatio& ratio : c.Ratios()) out << " | " << Ratio(ratio.ratio);
   const NamedRatio smallest = c.RatioToSmallest();
   out << " | " << mark << Ratio(smallest.ratio) << mark << " (" << smallest.baseline << ") |\n";
@@ -74,10 +67,10 @@ std::vector<std::string> TileBytesCsvFields(const TileBytesComparison& c) {
       std::to_string(c.grid.bytes.raw),   std::to_string(c.grid.bytes.patch_cdr),
       std::to_string(c.grid.bytes.zstd3), std::to_string(c.grid.bytes.zstd19),
       std::to_string(c.grid.bytes.lz4),   std::to_string(c.vector.payload)};
-  for (const NamedRatio& ratio : c.Ratios()) fields.push_back(Format("%.4f", ratio.ratio));
+  for (const NamedRatio& ratio : c.Ratios()) fields.push_back(FormatDouble("%.4f", ratio.ratio));
   const NamedRatio smallest = c.RatioToSmallest();
   fields.push_back(smallest.baseline);
-  fields.push_back(Format("%.4f", smallest.ratio));
+  fields.push_back(FormatDouble("%.4f", smallest.ratio));
   return fields;
 }
 

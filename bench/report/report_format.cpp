@@ -12,6 +12,14 @@ std::string Fixed(double value, int digits) {
   return buffer;
 }
 
+std::string FormatDouble(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+std::string Kilobytes(size_t bytes) { return Fixed(static_cast<double>(bytes) / 1024.0, 1); }
+
 std::string MachineDescription() {
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line, model = "unknown CPU";

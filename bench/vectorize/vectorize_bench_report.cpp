@@ -1,26 +1,19 @@
 #include "bench/vectorize/vectorize_bench_report.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <functional>
 #include <optional>
 
 #include "bench/bytes/tile_bytes_table.hpp"
+#include "bench/report/report_format.hpp"
 
 namespace fleetmap::bench {
 namespace {
 
-std::string Format(const char* format, double value) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
-
-std::string Kb(size_t bytes) { return Format("%.1f", static_cast<double>(bytes) / 1024.0); }
-std::string Ms(double ms) { return Format(ms < 1.0 ? "%.3f" : "%.1f", ms); }
-std::string Ratio(double ratio) { return Format("%.2f", ratio); }
+std::string Ms(double ms) { return FormatDouble(ms < 1.0 ? "%.3f" : "%.1f", ms); }
+std::string Ratio(double ratio) { return Fixed(ratio, 2); }
 std::string Percent(const std::optional<double>& value) {
-  return value ? Format("%.2f", *value) : "undefined";
+  return value ? FormatDouble("%.2f", *value) : "undefined";
 }
 
 double SafeRatio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
@@ -165,7 +158,7 @@ void PrintVertexBreakdown(const std::vector<VectorizeBenchRow>& rows, std::ostre
     out << "| " << ComponentClassName(c) << " | " << total.components[c] << " | "
         << total.opencv_vertices[c] << " | " << total.ours_vertices[c] << " | "
         << Ratio(SafeRatio(total.ours_vertices[c], total.opencv_vertices[c])) << " | "
-        << Format("%.1f %%", 100.0 * SafeRatio(total.opencv_vertices[c], opencv_sum)) << " |\n";
+        << FormatDouble("%.1f %%", 100.0 * SafeRatio(total.opencv_vertices[c], opencv_sum)) << " |\n";
   }
   if (total.ours_unattributed > 0) {
     out << "| (no occupied cell within epsilon) | | | " << total.ours_unattributed << " | | |\n";
@@ -228,7 +221,7 @@ std::vector<BenchTarget> EvaluateVectorizeTargets(const std::vector<VectorizeBen
   for (const Row& row : rows) tile_total += row.tile_bytes;
   const double tile_sum_ratio = tile_total.RatioTo(&GridTileBytes::zstd19);
   std::string tiles_text = "grid zstd -19 tiles (";
-  tiles_text.append(Format("%g", rows.empty() ? 0.0 : rows.front().tile_size))
+  tiles_text.append(FormatDouble("%g", rows.empty() ? 0.0 : rows.front().tile_size))
       .append(" m, each alone)");
   targets.push_back({std::string("vector tiles <= 0.5 x ").append(tiles_text).append(", summed"),
                      Ratio(tile_sum_ratio), tile_sum_ratio <= kTileBytesSummedTarget});
@@ -288,7 +281,7 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
       << Ratio(Median(Collect<double>(rows, TimeRatio))) << " | ours ok on " << valid << "/"
       << rows.size() << " |\n\n";
 
-  out << "Bytes per fleet tile (" << Format("%g", rows.empty() ? 0.0 : rows.front().tile_size)
+  out << "Bytes per fleet tile (" << FormatDouble("%g", rows.empty() ? 0.0 : rows.front().tile_size)
       << " m), each tile alone, as the wire sends them: the grid tile as a "
          "map_msgs/OccupancyGridUpdate sample (patch CDR) or its cells compressed alone (zstd -3, "
          "zstd -19, LZ4 block); vector tiles = the .vmap's tiles as the VectorTile samples a "
@@ -303,15 +296,15 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
          "tiles updated <= 1 ms |\n"
       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
-    out << "| " << r.name << " | " << Kb(r.grid_zstd) << " | " << Kb(r.grid_png) << " | "
-        << Kb(r.vmap_obstacles_raw) << " | " << Kb(r.vmap_raw) << " | " << Kb(r.vmap_zstd) << " | "
+    out << "| " << r.name << " | " << Kilobytes(r.grid_zstd) << " | " << Kilobytes(r.grid_png) << " | "
+        << Kilobytes(r.vmap_obstacles_raw) << " | " << Kilobytes(r.vmap_raw) << " | " << Kilobytes(r.vmap_zstd) << " | "
         << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
         << Percent(r.round_trip_opdf) << " | " << Percent(r.round_trip_updf) << " | "
         << Ms(r.revectorize_tile_ms) << " | "
         << TilesWithinText(TilesWithinTarget(r), r.tile_updates.size()) << " |\n";
   }
   const auto kb_sum = [&](const std::function<double(const Row&)>& get) {
-    return Kb(static_cast<size_t>(sum(get)));
+    return Kilobytes(static_cast<size_t>(sum(get)));
   };
   const double vmap_zstd = sum([](const Row& r) { return r.vmap_zstd; });
   const double grid_zstd = sum([](const Row& r) { return r.grid_zstd; });
@@ -411,7 +404,7 @@ std::string VectorizeBenchCsv(const std::vector<VectorizeBenchRow>& rows) {
       "vmap_obstacles_raw,vmap_obstacles_zstd,vmap_valid,grid_raw,grid_zstd,grid_png,"
       "round_trip_ms,round_trip_opdf,round_trip_updf,revectorize_tile_ms,";
   csv.append(TileBytesCsvHeader()).append("\n");
-  const auto number = [](double value) { return Format("%.6g", value); };
+  const auto number = [](double value) { return FormatDouble("%.6g", value); };
   const auto optional = [&number](const std::optional<double>& value) {
     return value ? number(*value) : std::string();
   };
