@@ -8,14 +8,6 @@
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::agent {
-namespace {
-
-bool Finite(const Pose2& pose) {
-  return std::isfinite(pose.x) && std::isfinite(pose.y) && std::isfinite(pose.yaw);
-}
-
-}  // namespace
-
 Status AgentOptions::Validate() const {
   if (!IsValidRobotName(robot.value)) {
     return InvalidArgumentError("--robot-id \"" + robot.value +
@@ -32,8 +24,12 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError("--ros-topic \"" + ros_topic +
                                 "\" is not a DDS topic of a ROS 2 topic (it starts with rt/)");
   }
-  if (!Finite(fleet_from_map)) return InvalidArgumentError("--fleet-from-map is not finite");
-  if (!Finite(map_from_robot)) return InvalidArgumentError("--pose is not finite");
+  if (!fleet_from_map.finite()) return InvalidArgumentError("--fleet-from-map is not finite");
+  if (!map_from_robot.finite()) return InvalidArgumentError("--pose is not finite");
+  if (unplaced && !(fleet_from_map == Pose2{})) {
+    return InvalidArgumentError(
+        "--unplaced says the robot's fleet_from_map is not known: do not give one too");
+  }
   if (std::abs(fleet_from_map.yaw) > 1e-9 && wire != Wire::kGrid) {
     return InvalidArgumentError(std::string("--fleet-from-map with a rotation needs --wire grid, "
                                             "not ")
@@ -99,6 +95,8 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fused_reader_,
       transport::VectorTileReader::Create(*node->participant_, transport::kFusedTilesTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(node->frame_reader_,
+                            transport::RobotFrameReader::Create(*node->participant_));
   if (!o.entities_path.empty()) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->entity_publisher_,
@@ -112,6 +110,7 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   RobotStatus& status = node->status_;
   status.robot = o.robot;
   status.fleet_from_map = o.fleet_from_map;
+  status.tiles_in_map_frame = o.unplaced;
   status.map_from_robot = o.map_from_robot;
   status.map_topic = node->grid_publisher_ != nullptr ? node->grid_publisher_->topic()
                                                       : std::string(transport::kRobotTilesTopic);
@@ -181,6 +180,28 @@ void AgentNode::DrainFusedTiles() {
   }
 }
 
+void AgentNode::DrainRobotFrames() {
+  for (const transport::RobotFrameEvent& event : frame_reader_->Drain()) {
+    if (event.kind != transport::RobotFrameEvent::Kind::kSample ||
+        event.message.robot != options_.robot) {
+      continue;
+    }
+    const transport::RobotFrameMessage& frame = event.message;
+    if (!options_.unplaced || !frame.placed()) continue;
+    if (frame.fleet_from_map == status_.fleet_from_map && placed_) continue;
+    placed_ = true;
+    status_.fleet_from_map = frame.fleet_from_map;
+    spdlog::info("{}: this robot's map frame is at ({:.2f}, {:.2f}, {:.1f} deg) in the fleet "
+                 "frame ({} by the server, confidence {:.2f}, against {})",
+                 options_.robot.value,
+                 frame.fleet_from_map.x, frame.fleet_from_map.y,
+                 frame.fleet_from_map.yaw * 180.0 / M_PI,
+                 transport::RobotFrameStateName(frame.state), frame.confidence,
+                 frame.placed_against.empty() ? "nothing: it anchors the fleet"
+                                              : frame.placed_against);
+  }
+}
+
 Status AgentNode::Run(const std::atomic<bool>& stop) {
   if (auto first = source_->Poll()) FLEETMAP_RETURN_IF_ERROR(OnNewMap(*first));
   FLEETMAP_RETURN_IF_ERROR(PublishStatus());
@@ -221,6 +242,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
       next_status += options_.status_period;
     }
     DrainFusedTiles();
+    DrainRobotFrames();
     WatchIdClaims();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -265,6 +287,7 @@ void AgentOptions::Describe(OptionsPrinter& out) const {
   out.Add("measure_baselines", measure_baselines);
   out.Nested("tiles", tiles);
   out.Add("fleet_from_map", fleet_from_map);
+  out.Add("unplaced", unplaced);
   out.Add("map_from_robot", map_from_robot);
   out.Add("status_period", status_period);
   out.Add("map_check_period", map_check_period);

@@ -10,6 +10,7 @@
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
 #include "common/transport/vector_tile_reader.hpp"
@@ -40,6 +41,10 @@ struct AgentOptions {
   bool measure_baselines = false;
   TilePublisherOptions tiles;
   Pose2 fleet_from_map;  // where the robot's map frame sits in the fleet frame
+  // The robot does not know fleet_from_map: its tiles are cut in its own map frame and the
+  // server places them by registration; the agent learns its placement from
+  // rt/fleetmap/robot_frames.
+  bool unplaced = false;
   Pose2 map_from_robot;  // the robot's pose in its map frame
   std::chrono::milliseconds status_period{500};  // a quarter of the 2 s liveliness lease
   std::chrono::milliseconds map_check_period{200};
@@ -72,6 +77,8 @@ class AgentNode {
   Status OnNewMap(const grid::OccupancyGrid& map);
   Status PublishStatus();
   void DrainFusedTiles();
+  // Learns the robot's map frame from rt/fleetmap/robot_frames.
+  void DrainRobotFrames();
   // Another participant that starts claiming this robot id once the agent is in the fleet is
   // reported: the server keeps this agent and refuses the other.
   void WatchIdClaims();
@@ -88,9 +95,11 @@ class AgentNode {
   std::unique_ptr<TilePublisher> tile_publisher_;      // Wire::kTiles
   std::unique_ptr<WireBaselineMeter> baseline_meter_;  // with measure_baselines
   std::unique_ptr<transport::VectorTileReader> fused_reader_;
+  std::unique_ptr<transport::RobotFrameReader> frame_reader_;
   std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
   std::unique_ptr<IdClaimWatch> claim_watch_;
   uint64_t fused_tiles_received_ = 0;
+  bool placed_ = false;  // with unplaced: the server has placed the robot's map frame
 };
 
 }  // namespace fleetmap::agent

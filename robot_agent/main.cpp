@@ -72,6 +72,11 @@ int main(int argc, char** argv) {
   app.add_option("--transforms", transforms_path,
                  "YAML of every robot's fleet_from_map (robots: {name: [x, y, yaw]})")
       ->excludes(fleet_option);
+  app.add_flag("--unplaced", options.unplaced,
+               "the robot's map frame is not known in the fleet: publish tiles in the map frame "
+               "and let the server place it by registration (rt/fleetmap/robot_frames)")
+      ->excludes(fleet_option)
+      ->excludes("--transforms");
   app.add_option("--pose", pose, "x y yaw of the robot in its map frame")->expected(3);
   app.add_option("--duration", duration_s, "seconds to run before leaving (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);

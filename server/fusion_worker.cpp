@@ -3,11 +3,22 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "common/transport/tile_payload.hpp"
 #include "common/transport/topics.hpp"
 #include "common/vector_map/tiled_vector_map.hpp"
 
 namespace fleetmap::server {
+namespace {
+
+bool HasOccupiedCell(const grid::OccupancyGrid& grid) {
+  return std::find(grid.data().begin(), grid.data().end(), grid::kOccupiedValue) !=
+         grid.data().end();
+}
+
+}  // namespace
+
 void FusionWorker::Remember(const std::string& owner, const transport::VectorTileMessage& tile) {
   StatusOr<std::string> payload = transport::EncodeTilePayload(tile);
   if (!payload.ok()) return;  // it was decoded from the wire; it encodes
@@ -46,6 +57,7 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
                                                        participant, transport::kFusedTilesTopic));
   FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
                                                      participant, transport::kFleetMapTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->placer_, RobotPlacer::Create(participant, options.placement));
   if (!options.store_path.empty()) {
     store::StoreOptions store_options;
     store_options.max_history_rows = options.history_rows;
@@ -75,6 +87,7 @@ FusionWorker::~FusionWorker() {
   tile_reader_.reset();
   fused_writer_.reset();
   map_writer_.reset();
+  placer_.reset();
 }
 
 Status FusionWorker::Restore() {
@@ -112,8 +125,13 @@ void FusionWorker::Start() {
 void FusionWorker::Stop() { thread_.Stop(); }
 
 void FusionWorker::SubmitGrid(const RobotId& robot, transport::MapMessage map,
-                              Pose2 fleet_from_map) {
+                              std::optional<Pose2> fleet_from_map) {
   grids_.Push(GridUpdate{robot, std::move(map), fleet_from_map});
+  thread_.Wake();
+}
+
+void FusionWorker::NoteRobotFrame(const RobotId& robot, std::optional<Pose2> fleet_from_map) {
+  frame_notes_.Push(RobotFrameNote{robot, fleet_from_map});
   thread_.Wake();
 }
 
@@ -134,6 +152,7 @@ bool FusionWorker::Round() {
   // Bounded, so that new samples are drained (and a flood coalesced) while a backlog lasts.
   FuseQueuedTiles(kFusionSlice);
   HandleGrids();
+  HandlePlacements(std::chrono::steady_clock::now());
   PublishFused(std::chrono::steady_clock::now());
   HandleRobotRecords();
   Persist();
@@ -281,10 +300,14 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
 
 void FusionWorker::RemoveTile(const RobotId& robot, const TileId& tile) {
   queue_.Erase(robot, tile);
+  admission_.Forget(robot, tile);
+  if (registry_->TilesInMapFrame(robot)) {
+    RefuseMapFrameRobot(robot, map_frames_.RemoveTile(robot, tile));
+    return;
+  }
   fusion_.RemoveRobotTile(robot, tile);
   RememberContribution(robot, tile);
   sessions_->RemoveTile(robot, tile);
-  admission_.Forget(robot, tile);
 }
 
 void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady) {
@@ -333,6 +356,14 @@ void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
 
 void FusionWorker::ApplyTile(const RobotId& robot, PendingTile pending) {
   const transport::VectorTileMessage& tile = pending.tile;
+  if (registry_->TilesInMapFrame(robot)) {
+    ApplyMapFrameTile(robot, tile, pending.evidence_stamp);
+    std::lock_guard lock(stats_mutex_);
+    FusionStats::Robot& stats = stats_.robots[robot];
+    ++stats.tiles;
+    stats.bytes += pending.bytes;
+    return;
+  }
   const Status updated =
       fusion_.UpdateRobotTile(robot, tile.tile, tile.map, pending.evidence_stamp);
   if (!updated.ok()) {
@@ -352,13 +383,24 @@ void FusionWorker::HandleGrids() {
   for (GridUpdate& update : grids_.Drain()) {
     vector_map::TiledVectorizeOptions options;
     options.tile_size = options_.fusion.tile_size;
+    // A grid whose frame is not known is tiled in its own frame and placed like tiles.
+    const Pose2 fleet_from_map = update.fleet_from_map.value_or(Pose2{});
     const auto tiled =
-        vector_map::VectorizeTiled(update.map.grid, update.fleet_from_map.ToTransform(), options);
+        vector_map::VectorizeTiled(update.map.grid, fleet_from_map.ToTransform(), options);
     if (!tiled.ok()) {
       spdlog::warn("server: cannot fuse the grid of {}: {}", update.robot.value,
                    tiled.status().message());
       std::lock_guard lock(stats_mutex_);
       ++stats_.robots[update.robot].rejected;
+      continue;
+    }
+    if (!update.fleet_from_map) {
+      for (const auto& [tile, map] : tiled->tiles) {
+        transport::VectorTileMessage message;
+        message.tile = tile;
+        message.map = map;
+        ApplyMapFrameTile(update.robot, message, update.map.stamp);
+      }
       continue;
     }
     for (const auto& [tile, map] : tiled->tiles) {
@@ -431,6 +473,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
 
 Status FusionWorkerOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
+  FLEETMAP_RETURN_IF_ERROR(placement.Validate());
   return admission.Validate();
 }
 
@@ -441,6 +484,104 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
   out.Add("map_period", map_period);
   out.Nested("admission", admission);
   out.Add("unclaimed_wait", unclaimed_wait);
+  out.Nested("placement", placement);
+}
+
+void FusionWorker::ApplyMapFrameTile(const RobotId& robot,
+                                     const transport::VectorTileMessage& tile, Timestamp stamp) {
+  RefuseMapFrameRobot(robot, map_frames_.UpdateTile(robot, tile.tile, tile.map, stamp));
+}
+
+void FusionWorker::RefuseMapFrameRobot(const RobotId& robot, const std::set<TileId>& changed) {
+  for (const TileId& tile : changed) {
+    std::optional<MapFrameRobots::FleetTile> contribution = map_frames_.Contribution(robot, tile);
+    if (!contribution) {
+      fusion_.RemoveRobotTile(robot, tile);
+      sessions_->RemoveTile(robot, tile);
+    } else if (const Status updated =
+                   fusion_.UpdateRobotTile(robot, tile, contribution->map, contribution->stamp);
+               !updated.ok()) {
+      // Placed beyond the fleet map's range: that part of the robot's map is not fused.
+      spdlog::warn("server: robot {}: {}", robot.value, updated.message());
+      continue;
+    } else {
+      sessions_->RecordTile(robot, tile, contribution->map, contribution->stamp);
+    }
+    RememberContribution(robot, tile);
+  }
+}
+
+void FusionWorker::HandlePlacements(std::chrono::steady_clock::time_point now) {
+  for (const RobotFrameNote& note : frame_notes_.Drain()) {
+    if (note.fleet_from_map) {
+      placer_->Given(note.robot, *note.fleet_from_map);
+    } else {
+      placer_->Unplaced(note.robot);
+    }
+  }
+  const auto placement_of = [this](const RobotId& robot) { return map_frames_.placement(robot); };
+  for (const RobotPlacer::Decision& decision : placer_->Decide(placement_of)) {
+    RefuseMapFrameRobot(decision.robot, map_frames_.Place(decision.robot, decision.fleet_from_map));
+  }
+  ScheduleRegistration(now);
+  placer_->PublishTf(now);
+  std::lock_guard lock(stats_mutex_);
+  stats_.frames = placer_->frames();
+}
+
+std::optional<Pose2> FusionWorker::PlacementOf(const RobotId& robot) const {
+  std::lock_guard lock(stats_mutex_);
+  const auto frame = stats_.frames.find(robot);
+  if (frame == stats_.frames.end() || !frame->second.placed()) return std::nullopt;
+  return frame->second.fleet_from_map;
+}
+
+void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point now) {
+  if (placer_->Busy()) return;
+  const std::vector<RobotId> robots = map_frames_.robots();
+  // With no frame known yet, the first robot with a map anchors the fleet frame.
+  if (!placer_->AnyPlaced() && fusion_.contribution_count() == 0) {
+    for (const RobotId& robot : robots) {
+      if (map_frames_.tile_count(robot) == 0) continue;
+      const RobotPlacer::Decision anchor = placer_->Anchor(robot);
+      RefuseMapFrameRobot(robot, map_frames_.Place(robot, anchor.fleet_from_map));
+      return;
+    }
+    return;
+  }
+  const double resolution = options_.fusion.FusedResolution();
+  for (const RobotId& robot : robots) {
+    const uint64_t changes = map_frames_.changes(robot);
+    if (map_frames_.tile_count(robot) == 0) continue;
+    const std::optional<Pose2> placement = map_frames_.placement(robot);
+    if (placer_->Due(robot, RobotId{}, changes, now)) {
+      grid::OccupancyGrid others = fusion_.FusedGrid(nullptr, &robot);
+      if (!HasOccupiedCell(others)) continue;  // the robot alone: nothing to register on
+      PlacementJob job;
+      job.robot = robot;
+      job.map = map_frames_.MapOf(robot);
+      job.target = std::move(others);
+      job.resolution = resolution;
+      job.current = placement;
+      job.map_changes = changes;
+      placer_->Submit(std::move(job), now);
+      return;
+    }
+    if (placement) continue;
+    // Not on the fleet map (yet): perhaps on another unplaced robot's.
+    for (const RobotId& other : placer_->UnplacedOthers(robot)) {
+      if (map_frames_.tile_count(other) == 0 || !placer_->Due(robot, other, changes, now)) continue;
+      PlacementJob job;
+      job.robot = robot;
+      job.map = map_frames_.MapOf(robot);
+      job.target_map = map_frames_.MapOf(other);
+      job.target_robot = other;
+      job.resolution = resolution;
+      job.map_changes = changes;
+      placer_->Submit(std::move(job), now);
+      return;
+    }
+  }
 }
 
 }  // namespace fleetmap::server

@@ -21,7 +21,9 @@
 #include "common/transport/vector_tile_reader.hpp"
 #include "common/transport/vector_tile_writer.hpp"
 #include "server/fair_tile_queue.hpp"
+#include "server/map_frame_robots.hpp"
 #include "server/refusal_log.hpp"
+#include "server/robot_placer.hpp"
 #include "server/robot_registry.hpp"
 #include "server/session_archive.hpp"
 #include "server/store_sync.hpp"
@@ -43,6 +45,8 @@ struct FusionWorkerOptions {
   AdmissionOptions admission;
   // Tiles of a robot id that no live status claims yet wait this long for the claim.
   std::chrono::milliseconds unclaimed_wait{std::chrono::seconds(10)};
+  // How robots whose tiles come in their own map frame are placed.
+  PlacementOptions placement;
 
   // The fusion and admission options' own checks.
   Status Validate() const;
@@ -74,6 +78,8 @@ struct FusionStats {
   uint64_t tile_events_dropped = 0;
   uint64_t grids_dropped = 0;
   uint64_t robot_records_dropped = 0;
+  // Every robot's map frame as rt/fleetmap/robot_frames last said.
+  std::map<RobotId, transport::RobotFrameMessage> frames;
 };
 
 // The server's fusion worker: drains robot tiles (and grids of robots on the grid wire), fuses
@@ -101,17 +107,27 @@ class FusionWorker {
   void Start();
   void Stop();
 
-  // A whole grid from a robot on the grid wire, with its fleet_from_map.
-  void SubmitGrid(const RobotId& robot, transport::MapMessage map, Pose2 fleet_from_map);
+  // A whole grid from a robot on the grid wire, with its fleet_from_map (nullopt: not known, the
+  // server places the robot's map frame).
+  void SubmitGrid(const RobotId& robot, transport::MapMessage map,
+                  std::optional<Pose2> fleet_from_map);
+  // A robot joined: its map frame is given (fleet_from_map) or must be placed (nullopt).
+  void NoteRobotFrame(const RobotId& robot, std::optional<Pose2> fleet_from_map);
   // A robot's state for the store ("active", "left", "lost").
   void RecordRobot(store::RobotRecord robot);
   FusionStats stats() const;
+  // Where the worker placed (or was given) a robot's map frame; nullopt while unplaced.
+  std::optional<Pose2> PlacementOf(const RobotId& robot) const;
 
  private:
   struct GridUpdate {
     RobotId robot;
     transport::MapMessage map;
-    Pose2 fleet_from_map;
+    std::optional<Pose2> fleet_from_map;
+  };
+  struct RobotFrameNote {
+    RobotId robot;
+    std::optional<Pose2> fleet_from_map;
   };
   // An admitted robot tile waiting for its robot's turn.
   struct PendingTile {
@@ -160,6 +176,14 @@ class FusionWorker {
   // Persist() at `now`; a final attempt at stop ignores the retry period and says what is lost.
   void Persist(std::chrono::steady_clock::time_point now);
   void HandleGrids();
+  // A tile of a robot whose tiles are in its own map frame: kept, and fused once placed.
+  void ApplyMapFrameTile(const RobotId& robot, const transport::VectorTileMessage& tile,
+                         Timestamp stamp);
+  // Placement: frames of new robots, registration results, due registrations, rt/tf.
+  void HandlePlacements(std::chrono::steady_clock::time_point now);
+  void ScheduleRegistration(std::chrono::steady_clock::time_point now);
+  // Fuses `robot`'s contributions to the fleet tiles `changed` anew from map_frames_.
+  void RefuseMapFrameRobot(const RobotId& robot, const std::set<TileId>& changed);
   void PublishFused(std::chrono::steady_clock::time_point now);
 
   FusionWorkerOptions options_;
@@ -169,6 +193,9 @@ class FusionWorker {
   std::unique_ptr<transport::VectorTileWriter> fused_writer_;
   std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
   SampleQueue<GridUpdate> grids_{64};
+  SampleQueue<RobotFrameNote> frame_notes_{1024};
+  MapFrameRobots map_frames_{options_.fusion.tile_size};  // worker thread only
+  std::unique_ptr<RobotPlacer> placer_;                   // worker thread only (after Create)
   SampleQueue<store::RobotRecord> robot_records_{1024};
   std::unique_ptr<store::MapStore> store_;    // worker thread only (after Create)
   std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)

@@ -70,9 +70,22 @@ int main(int argc, char** argv) {
   app.add_option("--max-map-cells", options.fusion.fusion.max_grid_cells,
                  "cells of the one grid on rt/fleetmap/map (the fused tiles carry everything)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--placement-confidence", options.fusion.placement.min_confidence,
+                 "least registration confidence that places a robot started with --unplaced")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  double check_period_s = 5.0;
+  app.add_option("--placement-check-period", check_period_s,
+                 "a placed robot's placement is checked against the rest of the fleet at most "
+                 "this often, in seconds, once its map changed (a contradiction revises it)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
+
+  options.fusion.placement.check_period =
+      std::chrono::milliseconds(static_cast<int64_t>(check_period_s * 1000.0));
 
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   options.fusion.admission.max_clock_ahead =

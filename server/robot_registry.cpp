@@ -2,7 +2,8 @@
 
 namespace fleetmap::server {
 
-RobotRegistry::Claim RobotRegistry::ClaimRobot(const RobotId& robot, const std::string& writer) {
+RobotRegistry::Claim RobotRegistry::ClaimRobot(const RobotId& robot, const std::string& writer,
+                                               bool tiles_in_map_frame) {
   std::lock_guard lock(mutex_);
   const std::string participant = ParticipantOf(writer);
   const auto it = participant_by_robot_.find(robot);
@@ -13,6 +14,11 @@ RobotRegistry::Claim RobotRegistry::ClaimRobot(const RobotId& robot, const std::
   if (owned >= max_robots_per_participant_) return Claim::kTooMany;
   ++owned;
   participant_by_robot_.emplace(robot, participant);
+  if (tiles_in_map_frame) {
+    tiles_in_map_frame_.insert(robot);
+  } else {
+    tiles_in_map_frame_.erase(robot);
+  }
   return Claim::kNew;
 }
 
@@ -40,6 +46,11 @@ std::string RobotRegistry::OwnerOf(const RobotId& robot) const {
   std::lock_guard lock(mutex_);
   const auto it = participant_by_robot_.find(robot);
   return it == participant_by_robot_.end() ? std::string() : it->second;
+}
+
+bool RobotRegistry::TilesInMapFrame(const RobotId& robot) const {
+  std::lock_guard lock(mutex_);
+  return tiles_in_map_frame_.count(robot) > 0;
 }
 
 }  // namespace fleetmap::server

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
 
 #include "common/core/ids.hpp"
@@ -28,8 +29,11 @@ class RobotRegistry {
   explicit RobotRegistry(size_t max_robots_per_participant = 16)
       : max_robots_per_participant_(max_robots_per_participant) {}
 
-  // Claims `robot` for the participant of `writer`.
-  Claim ClaimRobot(const RobotId& robot, const std::string& writer);
+  // Claims `robot` for the participant of `writer`. A new claim also records whether the robot's
+  // tiles come in its own map frame (its agent does not know where that frame sits in the fleet;
+  // the server places it): with the claim, so the fusion worker never sees one without the other.
+  Claim ClaimRobot(const RobotId& robot, const std::string& writer,
+                   bool tiles_in_map_frame = false);
   // Frees the id when its robot left or was lost, if `writer` speaks for its owner; returns
   // whether it did.
   bool Release(const RobotId& robot, const std::string& writer);
@@ -37,6 +41,8 @@ class RobotRegistry {
   Speaker WhoSpeaks(const RobotId& robot, const std::string& writer) const;
   // The participant owning `robot`, or empty.
   std::string OwnerOf(const RobotId& robot) const;
+  // Whether the robot's tiles come in its own map frame (as its last new claim said).
+  bool TilesInMapFrame(const RobotId& robot) const;
 
   static std::string ParticipantOf(const std::string& writer) { return writer.substr(0, 24); }
 
@@ -45,6 +51,7 @@ class RobotRegistry {
   mutable std::mutex mutex_;
   std::map<RobotId, std::string> participant_by_robot_;  // guarded by mutex_
   std::map<std::string, size_t> robots_by_participant_;  // guarded by mutex_
+  std::set<RobotId> tiles_in_map_frame_;                  // guarded by mutex_
 };
 
 }  // namespace fleetmap::server

@@ -99,6 +99,7 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
     HandleRobotEvents();
     HandleMaps();
     HandleEntities();
+    SubmitEntitiesOfPlacedRobots();
   }
   fusion_worker_->Stop();
   if (prediction_worker_) prediction_worker_->Stop();
@@ -135,7 +136,8 @@ void ServerNode::HandleRobotEvents() {
 }
 
 void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writer) {
-  const RobotRegistry::Claim claim = registry_->ClaimRobot(status.robot, writer);
+  const RobotRegistry::Claim claim =
+      registry_->ClaimRobot(status.robot, writer, status.tiles_in_map_frame);
   if (claim == RobotRegistry::Claim::kClash) {
     ++robots_[status.robot].id_clashes;
     refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
@@ -197,11 +199,14 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   }
   if (!joining) return;
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
+  const std::optional<Pose2> fleet_from_map = FleetFromMap(record);
+  fusion_worker_->NoteRobotFrame(status.robot, fleet_from_map);
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
                status.robot.value, grid_wire ? RobotMapFeed::WireName(*grid_wire) : "tiles",
                status.map_width, status.map_height, status.map_resolution,
-               fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", status.fleet_from_map.x,
-                           status.fleet_from_map.y, status.fleet_from_map.yaw));
+               fleet_from_map ? fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", fleet_from_map->x,
+                                            fleet_from_map->y, fleet_from_map->yaw)
+                              : std::string("unknown: the server places its map frame"));
 }
 
 void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
@@ -231,8 +236,12 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
   }
 }
 
-Pose2 ServerNode::FleetFromMap(const RobotRecord& record) const {
+std::optional<Pose2> ServerNode::FleetFromMap(const RobotRecord& record) const {
   const auto configured = options_.transforms.find(record.last_status.robot);
+  // An agent that does not know its frame tiles its own map frame, whatever the file says.
+  if (record.last_status.tiles_in_map_frame) {
+    return fusion_worker_->PlacementOf(record.last_status.robot);
+  }
   return configured != options_.transforms.end() ? configured->second
                                                  : record.last_status.fleet_from_map;
 }
@@ -258,7 +267,10 @@ void ServerNode::HandleMaps() {
         robot.value, received.grid->grid.width(), received.grid->grid.height(),
         received.grid->grid.resolution(), received.maps, received.updates, received.bytes,
         record.bytes_received);
-    fusion_worker_->SubmitGrid(robot, std::move(*received.grid), FleetFromMap(record));
+    // A robot that does not know its frame is placed from its own frame, like tiles.
+    const std::optional<Pose2> fleet_from_map =
+        record.last_status.tiles_in_map_frame ? std::nullopt : FleetFromMap(record);
+    fusion_worker_->SubmitGrid(robot, std::move(*received.grid), fleet_from_map);
   }
 }
 
@@ -304,9 +316,30 @@ void ServerNode::HandleEntities() {
 }
 
 void ServerNode::SubmitEntity(transport::EntityMessage entity, const RobotRecord& record) {
-  entity.entity = ToFleetFrame(entity.entity, FleetFromMap(record).ToTransform());
+  const std::optional<Pose2> fleet_from_map = FleetFromMap(record);
+  if (!fleet_from_map) {
+    // Not placed yet: kept (bounded) until the server places the robot's map frame.
+    auto& waiting = awaiting_placement_[entity.robot];
+    if (waiting.size() < kMaxEntitiesAwaitingPlacement) waiting.push_back(std::move(entity));
+    return;
+  }
+  entity.entity = ToFleetFrame(entity.entity, fleet_from_map->ToTransform());
   entity.frame_id = "fleet";
   prediction_worker_->SubmitEntity(std::move(entity));
+}
+
+void ServerNode::SubmitEntitiesOfPlacedRobots() {
+  for (auto it = awaiting_placement_.begin(); it != awaiting_placement_.end();) {
+    const auto record = robots_.find(it->first);
+    if (record == robots_.end() || !FleetFromMap(record->second)) {
+      ++it;
+      continue;
+    }
+    for (transport::EntityMessage& entity : it->second) {
+      SubmitEntity(std::move(entity), record->second);
+    }
+    it = awaiting_placement_.erase(it);
+  }
 }
 
 void ServerNode::PrintSummary(const FusionStats& fusion) const {

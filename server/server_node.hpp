@@ -82,8 +82,11 @@ class ServerNode {
   void OnRobotAlive(const RobotStatus& status, const std::string& writer);
   // `writer` sent the disposal or lost its liveliness: only the robot's owner ends it.
   void OnRobotGone(const RobotId& robot, RobotRecord::State state, const std::string& writer);
-  // Where the robot's map frame sits in the fleet: the configured transform, else its own word.
-  Pose2 FleetFromMap(const RobotRecord& record) const;
+  // Where the robot's map frame sits in the fleet: the configured transform, else its own word;
+  // for a robot that does not know it, where the server placed it (nullopt: not yet).
+  std::optional<Pose2> FleetFromMap(const RobotRecord& record) const;
+  // Entities of robots that were not placed when they came, once their robot is.
+  void SubmitEntitiesOfPlacedRobots();
   void HandleMaps();
   void HandleEntities();
   // Hands an entity of a known robot to the prediction worker, in the fleet frame.
@@ -103,6 +106,8 @@ class ServerNode {
   // the writer that sent each: only the owner's are used once a status claims the robot.
   static constexpr size_t kMaxEarlyRobots = 64;
   std::map<RobotId, std::vector<std::pair<std::string, transport::EntityMessage>>> early_entities_;
+  static constexpr size_t kMaxEntitiesAwaitingPlacement = 1024;  // per robot
+  std::map<RobotId, std::vector<transport::EntityMessage>> awaiting_placement_;
   RefusalLog refusals_{"server"};
   uint64_t rejected_entities_ = 0;
   std::map<RobotId, RobotRecord> robots_;

@@ -38,6 +38,10 @@ struct RobotStatus {
   uint64_t bytes_published = 0;
   uint32_t sequence_number = 0;
   WireBaselines baselines;  // with --measure-baselines only
+  // The agent does not know where its map frame sits (--unplaced): its tiles are in its own map
+  // frame, the server places them, and fleet_from_map is the placement learned from
+  // rt/fleetmap/robot_frames (identity until then).
+  bool tiles_in_map_frame = false;
 };
 
 }  // namespace fleetmap

@@ -5,6 +5,8 @@
 
 namespace fleetmap {
 
+bool Pose2::finite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(yaw); }
+
 Transform2 Pose2::ToTransform() const {
   Transform2 transform = Transform2::Identity();
   transform.translate(Point2(x, y));

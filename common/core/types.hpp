@@ -27,6 +27,7 @@ struct Pose2 {
   double yaw = 0.0;
 
   Point2 translation() const { return {x, y}; }
+  bool finite() const;
   Transform2 ToTransform() const;
   static Pose2 FromTransform(const Transform2& transform);
 

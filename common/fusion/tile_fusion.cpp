@@ -135,11 +135,12 @@ Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
   return Status::Ok();
 }
 
-bool TileFusion::Refuse(const TileId& tile, TileState* state) {
-  const int cells = options_.CellsPerTile();
+grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& state,
+                                          const RobotId* without) const {
   grid::OccupancyGrid fused = EmptyTileGrid(tile);
   std::vector<uint32_t> best(static_cast<size_t>(fused.cell_count()), 0);
-  for (const auto& [robot, contribution] : state->robots) {
+  for (const auto& [robot, contribution] : state.robots) {
+    if (without != nullptr && robot == *without) continue;
     const int8_t* values = contribution.cells.data().data();
     for (size_t i = 0; i < best.size(); ++i) {
       const int8_t value = values[i];
@@ -152,6 +153,12 @@ bool TileFusion::Refuse(const TileId& tile, TileState* state) {
       }
     }
   }
+  return fused;
+}
+
+bool TileFusion::Refuse(const TileId& tile, TileState* state) {
+  const int cells = options_.CellsPerTile();
+  grid::OccupancyGrid fused = FuseCells(tile, *state, nullptr);
   // Which borders the change reached decides which neighbours must be re-vectorized too.
   int min_x = cells, min_y = cells, max_x = -1, max_y = -1;
   for (int y = 0; y < cells; ++y) {
@@ -230,7 +237,7 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   return changed;
 }
 
-grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
+grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown, const RobotId* without) const {
   if (tiles_.empty()) {
     if (shown != nullptr) *shown = GridWindow{};
     return grid::OccupancyGrid();
@@ -256,10 +263,15 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown) const {
       Pose2{rect.min.x * options_.tile_size, rect.min.y * options_.tile_size, 0.0}, kUnknownValue);
   for (const auto& [tile, state] : tiles_) {
     if (state.fused.empty() || !rect.Contains(tile)) continue;
+    std::optional<grid::OccupancyGrid> others;  // the tile without `without`, when it is there
+    if (without != nullptr && state.robots.count(*without) > 0) {
+      others = FuseCells(tile, state, without);
+    }
+    const grid::OccupancyGrid& fused = others ? *others : state.fused;
     const int x0 = static_cast<int>((int64_t{tile.x} - rect.min.x) * cells);
     const int y0 = static_cast<int>((int64_t{tile.y} - rect.min.y) * cells);
     for (int y = 0; y < cells; ++y) {
-      std::memcpy(&out.at(x0, y0 + y), &state.fused.data()[static_cast<size_t>(y) * cells],
+      std::memcpy(&out.at(x0, y0 + y), &fused.data()[static_cast<size_t>(y) * cells],
                   static_cast<size_t>(cells));
     }
   }

@@ -70,8 +70,10 @@ class TileFusion {
   // The fused cells as one fleet-frame grid (yaw 0): the smallest that holds every tile when it
   // has at most options().max_grid_cells cells, else the window ChooseGridWindow() picks (the
   // largest group of nearby tiles). `shown`, if given, says which tiles it holds and how many
-  // it leaves out.
-  grid::OccupancyGrid FusedGrid(GridWindow* shown = nullptr) const;
+  // it leaves out. With `without`, the cells as if that robot had contributed nothing (what the
+  // rest of the fleet says, to check the robot's placement against).
+  grid::OccupancyGrid FusedGrid(GridWindow* shown = nullptr,
+                                const RobotId* without = nullptr) const;
   // The fused vector map of one tile, if any.
   const FusedTile* FindFusedTile(const TileId& tile) const;
   const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }
@@ -100,6 +102,9 @@ class TileFusion {
   // The tile's state, created (all unknown) when it is new.
   TileState& StateOf(const TileId& tile);
   uint32_t Deciseconds(Timestamp stamp) const;
+  // A tile's fused cells from its contributions, leaving out `without`'s if given.
+  grid::OccupancyGrid FuseCells(const TileId& tile, const TileState& state,
+                                const RobotId* without) const;
   // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
   // border margin changed.
   bool Refuse(const TileId& tile, TileState* state);

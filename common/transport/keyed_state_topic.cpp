@@ -88,6 +88,21 @@ struct TopicTraits<ObjectModelMessage> {
   }
 };
 
+template <>
+struct TopicTraits<RobotFrameMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::RobotFrame_;
+  static constexpr const char* kTopic = kRobotFramesTopic;
+  static dds::TypeSupport Type() { return RobotFrameTypeSupport(); }
+  static RobotFrameMessage KeyOf(const RobotFrameMessage& message) {
+    RobotFrameMessage key;
+    key.robot = message.robot;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "robot frame " + sample.robot_id().substr(0, 64);
+  }
+};
+
 }  // namespace
 
 template <typename Message>
@@ -237,5 +252,7 @@ template class KeyedStateWriter<ObjectTemplateMessage>;
 template class KeyedStateReader<ObjectTemplateMessage>;
 template class KeyedStateWriter<ObjectModelMessage>;
 template class KeyedStateReader<ObjectModelMessage>;
+template class KeyedStateWriter<RobotFrameMessage>;
+template class KeyedStateReader<RobotFrameMessage>;
 
 }  // namespace fleetmap::transport

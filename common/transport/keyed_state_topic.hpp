@@ -2,9 +2,10 @@
 
 // Readers and writers of the keyed state topics that carry one instance per thing: the entities
 // agents recognise (rt/fleetmap/entities), the sub-map graph (rt/fleetmap/submap_graph) and the
-// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects). All four share one
-// QoS (KeyedStateQos: reliable, transient local, keep last 1 per instance) and one behaviour, so
-// they are one template, instantiated in keyed_state_topic.cpp for the four message types.
+// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects) and the robots' map
+// frames (rt/fleetmap/robot_frames). All five share one QoS (KeyedStateQos: reliable, transient
+// local, keep last 1 per instance) and one behaviour, so they are one template, instantiated in
+// keyed_state_topic.cpp for the five message types.
 
 #include <memory>
 #include <string>
@@ -82,5 +83,8 @@ using ObjectTemplateReader = KeyedStateReader<ObjectTemplateMessage>;
 using ObjectModelEvent = KeyedEvent<ObjectModelMessage>;
 using ObjectModelWriter = KeyedStateWriter<ObjectModelMessage>;
 using ObjectModelReader = KeyedStateReader<ObjectModelMessage>;
+using RobotFrameEvent = KeyedEvent<RobotFrameMessage>;
+using RobotFrameWriter = KeyedStateWriter<RobotFrameMessage>;
+using RobotFrameReader = KeyedStateReader<RobotFrameMessage>;
 
 }  // namespace fleetmap::transport

@@ -57,4 +57,29 @@ struct ObjectModelMessage {
   Timestamp stamp{};
 };
 
+// Where a robot's map frame sits in the fleet frame, as the server knows it
+// (rt/fleetmap/robot_frames, one instance per robot).
+struct RobotFrameMessage {
+  enum class State : uint8_t {
+    kUnplaced = 0,  // tiles in the robot's own map frame, not placed yet
+    kPlaced = 1,    // registered against the fleet map (or another robot's) and fused
+    kRevised = 2,   // placed, then moved because the old placement contradicted the map
+    kGiven = 3,     // the transform was given to the agent (--fleet-from-map)
+    kAnchor = 4,    // the first robot: its map frame became the fleet frame
+  };
+  RobotId robot;
+  Timestamp stamp{};
+  State state = State::kUnplaced;
+  Pose2 fleet_from_map;
+  double confidence = 0.0;  // in [0, 1]
+  double overlap = 0.0;     // share of the robot's known cells on the map it was placed on
+  uint32_t placements = 0;  // times the server placed the robot (revisions + 1)
+  std::string placed_against;  // "fleet", or the robot whose map it was registered to
+
+  // The robot's frame is known: every state but kUnplaced.
+  bool placed() const { return state != State::kUnplaced; }
+};
+
+const char* RobotFrameStateName(RobotFrameMessage::State state);
+
 }  // namespace fleetmap::transport

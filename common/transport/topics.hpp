@@ -17,6 +17,9 @@ inline constexpr char kEntitiesTopic[] = "rt/fleetmap/entities";
 inline constexpr char kSubmapGraphTopic[] = "rt/fleetmap/submap_graph";
 inline constexpr char kObjectTemplatesTopic[] = "rt/fleetmap/object_templates";
 inline constexpr char kObjectsTopic[] = "rt/fleetmap/objects";
+inline constexpr char kRobotFramesTopic[] = "rt/fleetmap/robot_frames";
+// ROS 2's transform tree (/tf): the server publishes fleet -> <robot>/map there.
+inline constexpr char kTfTopic[] = "rt/tf";
 
 // Where a robot publishes its own grid: what a ROS 2 robot named `robot` publishes as /<robot>/map.
 inline std::string RobotMapTopic(const RobotId& robot) { return "rt/" + robot.value + "/map"; }

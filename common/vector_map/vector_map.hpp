@@ -6,6 +6,8 @@
 // explains the constraints a vector map made by the Vectorizer satisfies.
 
 #include <cstddef>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,15 @@ struct VectorMap {
   // this map's.
   void Append(const VectorMap& other);
 };
+
+// The map's geometry carried into another frame by a rigid transform (p_to = to_from_map * p).
+// Lengths are kept, so half widths and epsilon still hold; the vertices leave the lattice, so the
+// result has none.
+VectorMap Transformed(const VectorMap& map, const Transform2& to_from_map, std::string frame_id);
+
+// The axis-aligned box (min, max corners) that holds the map's geometry, obstacles grown by their
+// half widths; nullopt for a map without geometry.
+std::optional<std::pair<Point2, Point2>> Bounds(const VectorMap& map);
 
 // sqrt(2) * resolution: the smallest distance joining a cell centre to its 8 neighbours.
 double DefaultEpsilon(double resolution);

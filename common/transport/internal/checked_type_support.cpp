@@ -4,6 +4,8 @@
 #include "fleetmap_msgs/msg/CompressedGridUpdatePubSubTypes.h"
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
+#include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
@@ -72,6 +74,16 @@ eprosima::fastdds::dds::TypeSupport ObjectTemplateTypeSupport() {
 eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<fleetmap_msgs::msg::dds_::ObjectModel_PubSubType>(ObjectModelShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport RobotFrameTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::RobotFrame_PubSubType>(RobotFrameShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<tf2_msgs::msg::dds_::TFMessage_PubSubType>(TfMessageShape()));
 }
 
 }  // namespace fleetmap::transport

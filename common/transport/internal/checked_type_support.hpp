@@ -149,5 +149,7 @@ eprosima::fastdds::dds::TypeSupport EntityTypeSupport();
 eprosima::fastdds::dds::TypeSupport SubmapTypeSupport();
 eprosima::fastdds::dds::TypeSupport ObjectTemplateTypeSupport();
 eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport();
+eprosima::fastdds::dds::TypeSupport RobotFrameTypeSupport();
+eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport();
 
 }  // namespace fleetmap::transport

@@ -5,14 +5,6 @@
 #include <string>
 
 namespace fleetmap::transport {
-namespace {
-
-bool Finite(const Pose2& pose) {
-  return std::isfinite(pose.x) && std::isfinite(pose.y) && std::isfinite(pose.yaw);
-}
-
-}  // namespace
-
 builtin_interfaces::msg::dds_::Time_ ToIdl(Timestamp stamp) {
   const auto since_epoch =
       std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch());
@@ -65,7 +57,7 @@ StatusOr<Pose2> FromIdl(const geometry_msgs::msg::dds_::Pose_& pose) {
   }
   const Pose2 out{pose.position().x(), pose.position().y(),
                   NormalizeAngle(2.0 * std::atan2(q.z(), q.w()))};
-  if (!Finite(out)) return InvalidArgumentError("position is not finite");
+  if (!out.finite()) return InvalidArgumentError("position is not finite");
   return out;
 }
 
@@ -213,6 +205,7 @@ fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status) {
   out.baseline_zstd19_bytes(status.baselines.zstd19_bytes);
   out.baseline_lz4_bytes(status.baselines.lz4_bytes);
   out.baseline_patches_pending(status.baselines.patches_pending);
+  out.tiles_in_map_frame(status.tiles_in_map_frame);
   return out;
 }
 
@@ -226,7 +219,7 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.stamp = FromIdl(status.stamp());
   out.map_from_robot = FromIdl(status.map_from_robot());
   out.fleet_from_map = FromIdl(status.fleet_from_map());
-  if (!Finite(out.map_from_robot) || !Finite(out.fleet_from_map)) {
+  if (!out.map_from_robot.finite() || !out.fleet_from_map.finite()) {
     return InvalidArgumentError("RobotStatus from " + status.robot_id() + " has a non-finite pose");
   }
   out.map_topic = status.map_topic();
@@ -245,6 +238,7 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.baselines.zstd19_bytes = status.baseline_zstd19_bytes();
   out.baselines.lz4_bytes = status.baseline_lz4_bytes();
   out.baselines.patches_pending = status.baseline_patches_pending();
+  out.tiles_in_map_frame = status.tiles_in_map_frame();
   return out;
 }
 

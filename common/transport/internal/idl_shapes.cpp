@@ -91,7 +91,8 @@ const CdrShape& RobotStatusShape() {
                                  Primitive("baseline_zstd3_bytes", 8),
                                  Primitive("baseline_zstd19_bytes", 8),
                                  Primitive("baseline_lz4_bytes", 8),
-                                 Primitive("baseline_patches_pending", 4)};
+                                 Primitive("baseline_patches_pending", 4),
+                                 Primitive("tiles_in_map_frame", 1)};
   return shape;
 }
 
@@ -167,6 +168,31 @@ const CdrShape& ObjectModelShape() {
       Primitive("template_id", 4), Primitive("resolution", 4),   Primitive("width", 4),
       Primitive("height", 4),      Sequence("data", 1),          Sequence("sighting_session", 4),
       Sequence("sighting_x", 8),   Sequence("sighting_y", 8),    Sequence("sighting_theta", 8)};
+  return shape;
+}
+
+const CdrShape& RobotFrameShape() {
+  static const CdrShape shape = {String("robot_id"),
+                                 Struct("stamp", TimeShape()),
+                                 Primitive("state", 1),
+                                 Struct("fleet_from_map", Pose2DShape()),
+                                 Primitive("confidence", 8),
+                                 Primitive("overlap", 4),
+                                 Primitive("placements", 4),
+                                 String("placed_against")};
+  return shape;
+}
+
+const CdrShape& TfMessageShape() {
+  static const CdrShape vector3 = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8)};
+  static const CdrShape quaternion = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8),
+                                      Primitive("w", 8)};
+  static const CdrShape transform = {Struct("translation", vector3),
+                                     Struct("rotation", quaternion)};
+  static const CdrShape stamped = {Struct("header", HeaderShape()), String("child_frame_id"),
+                                   Struct("transform", transform)};
+  static const CdrShape shape = {
+      CdrField{"transforms", CdrField::Kind::kStructSequence, 0, &stamped}};
   return shape;
 }
 

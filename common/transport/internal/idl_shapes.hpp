@@ -22,5 +22,7 @@ const CdrShape& EntityShape();
 const CdrShape& SubmapShape();
 const CdrShape& ObjectTemplateShape();
 const CdrShape& ObjectModelShape();
+const CdrShape& RobotFrameShape();
+const CdrShape& TfMessageShape();
 
 }  // namespace fleetmap::transport

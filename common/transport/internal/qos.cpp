@@ -105,4 +105,17 @@ EndpointQos KeyedStateQos() {
 
 EndpointQos VectorTileQos() { return KeyedStateQos(); }
 
+EndpointQos TfQos() {
+  EndpointQos qos;
+  for (auto* history : {&qos.writer.history(), &qos.reader.history()}) {
+    history->kind = dds::KEEP_LAST_HISTORY_QOS;
+    history->depth = 100;
+  }
+  qos.writer.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  qos.reader.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  qos.writer.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  qos.reader.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  return WithLossyNetworkTimings(qos);
+}
+
 }  // namespace fleetmap::transport

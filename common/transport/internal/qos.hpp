@@ -35,9 +35,12 @@ EndpointQos OccupancyGridUpdateQos();
 // per tile instance, no instance limit (a map has thousands of tiles).
 EndpointQos VectorTileQos();
 
-// rt/fleetmap/entities, rt/fleetmap/submap_graph, rt/fleetmap/object_templates and
-// rt/fleetmap/objects: state topics like the tiles (reliable, transient local, keep last 1 per
+// rt/fleetmap/entities, rt/fleetmap/submap_graph, rt/fleetmap/object_templates,
+// rt/fleetmap/objects and rt/fleetmap/robot_frames: state topics like the tiles (reliable, transient local, keep last 1 per
 // instance, no instance limit), so a late joiner gets the current entities, graph and models.
 EndpointQos KeyedStateQos();
+
+// rt/tf: ROS 2's /tf QoS (reliable, volatile, keep last 100), so tf2 listeners (RViz) match.
+EndpointQos TfQos();
 
 }  // namespace fleetmap::transport

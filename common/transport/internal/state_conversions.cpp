@@ -12,6 +12,7 @@ namespace {
 using fleetmap_msgs::msg::dds_::Entity_;
 using fleetmap_msgs::msg::dds_::ObjectModel_;
 using fleetmap_msgs::msg::dds_::ObjectTemplate_;
+using fleetmap_msgs::msg::dds_::RobotFrame_;
 using fleetmap_msgs::msg::dds_::Submap_;
 
 // Ids are names a log can print: bounded, printable, no spaces.
@@ -220,6 +221,29 @@ StatusOr<scene::Entity> EntityFromIdl(const Entity_& sample) {
   }
 }
 
+// A frame a reader can use: a robot name, finite numbers in range.
+Status CheckRobotFrame(const RobotFrameMessage& message) {
+  if (!IsValidRobotName(message.robot.value)) {
+    return InvalidArgumentError("RobotFrame robot_id \"" + message.robot.value.substr(0, 80) +
+                                "\" is not a valid robot name");
+  }
+  if (!message.fleet_from_map.finite()) {
+    return InvalidArgumentError("RobotFrame of " + message.robot.value +
+                                " has a non-finite fleet_from_map");
+  }
+  if (!(message.confidence >= 0.0 && message.confidence <= 1.0) ||
+      !(message.overlap >= 0.0 && message.overlap <= 1.0)) {
+    return InvalidArgumentError("RobotFrame of " + message.robot.value +
+                                " has a confidence or overlap outside [0, 1]");
+  }
+  if (message.placed_against.size() > kMaxIdLength) {
+    return InvalidArgumentError("RobotFrame of " + message.robot.value +
+                                " has a placed_against longer than " +
+                                std::to_string(kMaxIdLength) + " characters");
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 StatusOr<Entity_> ToIdl(const EntityMessage& message) {
@@ -410,6 +434,55 @@ StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
          Pose2{sample.sighting_x()[k], sample.sighting_y()[k], sample.sighting_theta()[k]}});
   }
   message.stamp = FromIdl(sample.stamp());
+  return message;
+}
+
+const char* RobotFrameStateName(RobotFrameMessage::State state) {
+  switch (state) {
+    case RobotFrameMessage::State::kUnplaced:
+      return "unplaced";
+    case RobotFrameMessage::State::kPlaced:
+      return "placed";
+    case RobotFrameMessage::State::kRevised:
+      return "revised";
+    case RobotFrameMessage::State::kGiven:
+      return "given";
+    case RobotFrameMessage::State::kAnchor:
+      return "anchor";
+  }
+  return "unknown";
+}
+
+StatusOr<RobotFrame_> ToIdl(const RobotFrameMessage& message) {
+  FLEETMAP_RETURN_IF_ERROR(CheckRobotFrame(message));
+  RobotFrame_ sample;
+  sample.robot_id(message.robot.value);
+  sample.stamp(ToIdl(message.stamp));
+  sample.state(static_cast<uint8_t>(message.state));
+  sample.fleet_from_map(ToIdl(message.fleet_from_map));
+  sample.confidence(message.confidence);
+  sample.overlap(static_cast<float>(message.overlap));
+  sample.placements(message.placements);
+  sample.placed_against(message.placed_against);
+  return sample;
+}
+
+StatusOr<RobotFrameMessage> FromIdl(const RobotFrame_& sample) {
+  if (sample.state() > static_cast<uint8_t>(RobotFrameMessage::State::kAnchor)) {
+    return InvalidArgumentError("RobotFrame of \"" + sample.robot_id().substr(0, 80) +
+                                "\" has state " + std::to_string(sample.state()) +
+                                " (known: 0 to 4)");
+  }
+  RobotFrameMessage message;
+  message.robot = RobotId{sample.robot_id()};
+  message.stamp = FromIdl(sample.stamp());
+  message.state = static_cast<RobotFrameMessage::State>(sample.state());
+  message.fleet_from_map = FromIdl(sample.fleet_from_map());
+  message.confidence = sample.confidence();
+  message.overlap = sample.overlap();
+  message.placements = sample.placements();
+  message.placed_against = sample.placed_against();
+  FLEETMAP_RETURN_IF_ERROR(CheckRobotFrame(message));
   return message;
 }
 

@@ -10,6 +10,7 @@
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
+#include "fleetmap_msgs/msg/RobotFrame.h"
 #include "fleetmap_msgs/msg/Submap.h"
 
 namespace fleetmap::transport {
@@ -30,5 +31,8 @@ StatusOr<ObjectTemplateMessage> FromIdl(const fleetmap_msgs::msg::dds_::ObjectTe
 
 StatusOr<fleetmap_msgs::msg::dds_::ObjectModel_> ToIdl(const ObjectModelMessage& message);
 StatusOr<ObjectModelMessage> FromIdl(const fleetmap_msgs::msg::dds_::ObjectModel_& sample);
+
+StatusOr<fleetmap_msgs::msg::dds_::RobotFrame_> ToIdl(const RobotFrameMessage& message);
+StatusOr<RobotFrameMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotFrame_& sample);
 
 }  // namespace fleetmap::transport

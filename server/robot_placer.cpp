@@ -1,0 +1,328 @@
+#include "server/robot_placer.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/vector_map/rasterizer.hpp"
+
+namespace fleetmap::server {
+namespace {
+
+// The largest robot map registered (cells per side): beyond, the registration is refused.
+constexpr int kMaxRegisteredCells = 8000;
+
+double Degrees(double radians) { return radians * 180.0 / M_PI; }
+
+// The robot's map as a grid at `resolution` (vector maps rasterize at any resolution, so the two
+// maps of a registration always agree on theirs).
+StatusOr<grid::OccupancyGrid> RasterizeForRegistration(const vector_map::VectorMap& map,
+                                                       double resolution) {
+  const auto bounds = vector_map::Bounds(map);
+  if (!bounds) return InvalidArgumentError("the robot's map has no geometry yet");
+  const double x0 = (std::floor(bounds->first.x() / resolution) - 1) * resolution;
+  const double y0 = (std::floor(bounds->first.y() / resolution) - 1) * resolution;
+  const double width = std::ceil((bounds->second.x() - x0) / resolution) + 1;
+  const double height = std::ceil((bounds->second.y() - y0) / resolution) + 1;
+  if (width > kMaxRegisteredCells || height > kMaxRegisteredCells) {
+    return InvalidArgumentError(fmt::format(
+        "the robot's map spans {:.0f} x {:.0f} cells; registration takes at most {} per side",
+        width, height, kMaxRegisteredCells));
+  }
+  return vector_map::Rasterizer().Rasterize(map, static_cast<int>(width), static_cast<int>(height),
+                                            resolution, Pose2{x0, y0, 0.0});
+}
+
+}  // namespace
+
+StatusOr<std::unique_ptr<RobotPlacer>> RobotPlacer::Create(transport::Participant& participant,
+                                                           const PlacementOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  std::unique_ptr<RobotPlacer> self(new RobotPlacer(options));
+  FLEETMAP_ASSIGN_OR_RETURN(self->frame_writer_, transport::RobotFrameWriter::Create(participant));
+  FLEETMAP_ASSIGN_OR_RETURN(self->tf_writer_, transport::TfWriter::Create(participant));
+  self->thread_.Start([raw = self.get()] {
+    raw->Work();
+    return false;
+  });
+  return self;
+}
+
+RobotPlacer::~RobotPlacer() {
+  thread_.Stop();
+  frame_writer_.reset();
+  tf_writer_.reset();
+}
+
+void RobotPlacer::Publish(transport::RobotFrameMessage frame) {
+  frame.stamp = Clock::now();
+  if (StatusOr<size_t> written = frame_writer_->Write(frame); !written.ok()) {
+    spdlog::warn("server: {}", written.status().message());
+  }
+  frames_[frame.robot] = std::move(frame);
+}
+
+void RobotPlacer::Unplaced(const RobotId& robot) {
+  if (frames_.count(robot) > 0) return;
+  transport::RobotFrameMessage frame;
+  frame.robot = robot;
+  frame.state = transport::RobotFrameMessage::State::kUnplaced;
+  Publish(std::move(frame));
+}
+
+void RobotPlacer::Given(const RobotId& robot, const Pose2& fleet_from_map) {
+  const auto it = frames_.find(robot);
+  if (it != frames_.end() && it->second.state == transport::RobotFrameMessage::State::kGiven &&
+      it->second.fleet_from_map == fleet_from_map) {
+    return;
+  }
+  transport::RobotFrameMessage frame;
+  frame.robot = robot;
+  frame.state = transport::RobotFrameMessage::State::kGiven;
+  frame.fleet_from_map = fleet_from_map;
+  frame.confidence = 1.0;
+  frame.overlap = 0.0;
+  frame.placements = 1;
+  Publish(std::move(frame));
+}
+
+RobotPlacer::Decision RobotPlacer::Anchor(const RobotId& robot) {
+  transport::RobotFrameMessage frame;
+  frame.robot = robot;
+  frame.state = transport::RobotFrameMessage::State::kAnchor;
+  frame.confidence = 1.0;
+  frame.placements = 1;
+  frame.placed_against = "fleet";
+  Publish(std::move(frame));
+  spdlog::info("server: robot {} anchors the fleet frame (no robot was placed)", robot.value);
+  return Decision{robot, Pose2{}};
+}
+
+void RobotPlacer::Forget(const RobotId& robot) {
+  const auto it = frames_.find(robot);
+  if (it == frames_.end()) return;
+  if (const Status disposed = frame_writer_->Dispose(it->second); !disposed.ok()) {
+    spdlog::warn("server: {}", disposed.message());
+  }
+  frames_.erase(it);
+  followers_.erase(robot);
+  std::erase_if(attempts_, [&](const auto& entry) { return entry.first.first == robot; });
+}
+
+bool RobotPlacer::Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
+                      std::chrono::steady_clock::time_point now) const {
+  if (busy_) return false;
+  const auto frame = frames_.find(robot);
+  const bool placed = frame != frames_.end() && frame->second.placed();
+  const auto attempt = attempts_.find({robot, target});
+  if (attempt == attempts_.end()) return true;
+  if (attempt->second.map_changes == map_changes) return false;
+  return now - attempt->second.at >= (placed ? options_.check_period : options_.retry_period);
+}
+
+void RobotPlacer::Submit(PlacementJob job, std::chrono::steady_clock::time_point now) {
+  attempts_[{job.robot, job.target_robot}] = Attempt{job.map_changes, now};
+  busy_ = true;
+  {
+    std::lock_guard lock(mutex_);
+    pending_ = std::move(job);
+  }
+  thread_.Wake();
+}
+
+void RobotPlacer::Work() {
+  std::optional<PlacementJob> job;
+  {
+    std::lock_guard lock(mutex_);
+    job.swap(pending_);
+  }
+  if (!job) return;
+  const auto start = std::chrono::steady_clock::now();
+  PlacementResult result;
+  if (const auto bounds = vector_map::Bounds(job->map)) {
+    result.map_centre = (bounds->first + bounds->second) / 2.0;
+  }
+  StatusOr<grid::OccupancyGrid> map = RasterizeForRegistration(job->map, job->resolution);
+  if (job->target.empty()) {
+    StatusOr<grid::OccupancyGrid> target =
+        RasterizeForRegistration(job->target_map, job->resolution);
+    if (target.ok()) {
+      job->target = *std::move(target);
+    } else {
+      result.registration = target.status();
+    }
+  }
+  if (!map.ok()) {
+    result.registration = map.status();
+  } else if (!job->target.empty()) {
+    result.registration = registration::Register(job->target, *map, options_.registration);
+  }
+  result.took = std::chrono::duration_cast<std::chrono::milliseconds>(
+      std::chrono::steady_clock::now() - start);
+  job->map = vector_map::VectorMap();
+  job->target = grid::OccupancyGrid();
+  job->target_map = vector_map::VectorMap();
+  result.job = *std::move(job);
+  results_.Push(std::move(result));
+}
+
+std::vector<RobotPlacer::Decision> RobotPlacer::Decide(const PlacementOf& placement_of) {
+  std::vector<Decision> decisions;
+  for (const PlacementResult& result : results_.Drain()) {
+    busy_ = false;
+    if (std::optional<Decision> decision = DecideOne(result, placement_of)) {
+      decisions.push_back(*decision);
+      PlaceFollowers(decision->robot, decision->fleet_from_map, &decisions);
+    }
+  }
+  return decisions;
+}
+
+std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResult& result,
+                                                            const PlacementOf& placement_of) {
+  const PlacementJob& job = result.job;
+  const std::string against = job.target_robot.value.empty() ? "the fleet map"
+                                                             : "robot " + job.target_robot.value;
+  if (!result.registration.ok()) {
+    spdlog::info("server: cannot register robot {} on {} yet: {}", job.robot.value, against,
+                 result.registration.status().message());
+    return std::nullopt;
+  }
+  const registration::Registration& found = *result.registration;
+  if (!found.found || found.confidence < options_.min_confidence) {
+    spdlog::debug("server: robot {} not placed on {} ({} ms): {}", job.robot.value, against,
+                  result.took.count(),
+                  found.found ? fmt::format("confidence {:.2f}", found.confidence) : found.why_not);
+    return std::nullopt;
+  }
+  const auto frame = frames_.find(job.robot);
+  if (frame == frames_.end()) return std::nullopt;  // forgotten meanwhile
+  const std::optional<Pose2> now_placed = placement_of(job.robot);
+
+  Pose2 fleet_from_map = found.a_from_b;
+  if (!job.target_robot.value.empty()) {
+    // Registered to another robot's map: follow it once (or as soon as) it is placed.
+    followers_[job.robot] = Follower{job.target_robot, found.a_from_b, found.confidence,
+                                     found.overlap};
+    const std::optional<Pose2> leader = placement_of(job.target_robot);
+    if (!leader || now_placed) {
+      spdlog::info("server: robot {} registered to robot {} (confidence {:.2f}); placed with it",
+                   job.robot.value, job.target_robot.value, found.confidence);
+      return std::nullopt;
+    }
+    fleet_from_map = Pose2::FromTransform(leader->ToTransform() * found.a_from_b.ToTransform());
+  }
+
+  transport::RobotFrameMessage placed = frame->second;
+  placed.fleet_from_map = fleet_from_map;
+  placed.confidence = found.confidence;
+  placed.overlap = found.overlap;
+  placed.placed_against = job.target_robot.value.empty() ? "fleet" : job.target_robot.value;
+  if (now_placed) {
+    // A check: the same placement confirms it; a confident different one revises it.
+    const Point2 was = now_placed->ToTransform() * result.map_centre;
+    const Point2 is = fleet_from_map.ToTransform() * result.map_centre;
+    const double yaw = std::abs(NormalizeAngle(fleet_from_map.yaw - now_placed->yaw));
+    if ((was - is).norm() <= options_.revise_distance &&
+        Degrees(yaw) <= options_.revise_yaw_deg) {
+      return std::nullopt;
+    }
+    placed.state = transport::RobotFrameMessage::State::kRevised;
+    spdlog::warn(
+        "server: robot {}'s placement contradicts the fleet map: moved by {:.2f} m and {:.1f} "
+        "degrees (confidence {:.2f}); its contribution is fused again",
+        job.robot.value, (was - is).norm(), Degrees(yaw), found.confidence);
+  } else {
+    placed.state = transport::RobotFrameMessage::State::kPlaced;
+    spdlog::info(
+        "server: robot {} placed on {} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}, "
+        "overlap {:.2f} ({} ms)",
+        job.robot.value, against, fleet_from_map.x, fleet_from_map.y,
+        Degrees(fleet_from_map.yaw), found.confidence, found.overlap, result.took.count());
+  }
+  ++placed.placements;
+  Publish(std::move(placed));
+  return Decision{job.robot, fleet_from_map};
+}
+
+void RobotPlacer::PlaceFollowers(const RobotId& leader, const Pose2& leader_placement,
+                                 std::vector<Decision>* decisions) {
+  for (const auto& [robot, follower] : followers_) {
+    if (follower.leader != leader) continue;
+    const auto frame = frames_.find(robot);
+    if (frame == frames_.end() || frame->second.placed()) continue;
+    const Pose2 fleet_from_map = Pose2::FromTransform(leader_placement.ToTransform() *
+                                                      follower.leader_from_map.ToTransform());
+    transport::RobotFrameMessage placed = frame->second;
+    placed.state = transport::RobotFrameMessage::State::kPlaced;
+    placed.fleet_from_map = fleet_from_map;
+    placed.confidence = follower.confidence;
+    placed.overlap = follower.overlap;
+    placed.placed_against = leader.value;
+    ++placed.placements;
+    Publish(std::move(placed));
+    spdlog::info("server: robot {} placed with robot {} at ({:.2f}, {:.2f}, {:.1f} deg)",
+                 robot.value, leader.value, fleet_from_map.x, fleet_from_map.y,
+                 Degrees(fleet_from_map.yaw));
+    decisions->push_back(Decision{robot, fleet_from_map});
+    PlaceFollowers(robot, fleet_from_map, decisions);
+  }
+}
+
+std::vector<RobotId> RobotPlacer::UnplacedOthers(const RobotId& robot) const {
+  std::vector<RobotId> out;
+  for (const auto& [other, frame] : frames_) {
+    if (other != robot && !frame.placed()) out.push_back(other);
+  }
+  return out;
+}
+
+bool RobotPlacer::AnyPlaced() const {
+  return std::any_of(frames_.begin(), frames_.end(),
+                     [](const auto& entry) { return entry.second.placed(); });
+}
+
+void RobotPlacer::PublishTf(std::chrono::steady_clock::time_point now) {
+  if (now - last_tf_ < options_.tf_period) return;
+  last_tf_ = now;
+  std::vector<transport::FrameTransform> transforms;
+  const Timestamp stamp = Clock::now();
+  for (const auto& [robot, frame] : frames_) {
+    if (!frame.placed()) continue;
+    transforms.push_back(transport::FrameTransform{stamp, "fleet",
+                                                   transport::RobotMapFrame(robot.value),
+                                                   frame.fleet_from_map});
+  }
+  if (transforms.empty()) return;
+  if (StatusOr<size_t> written = tf_writer_->Write(transforms); !written.ok()) {
+    spdlog::warn("server: {}", written.status().message());
+  }
+}
+
+Status PlacementOptions::Validate() const {
+  FLEETMAP_RETURN_IF_ERROR(registration.Validate());
+  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
+    return InvalidArgumentError("placement min_confidence must be in [0, 1]");
+  }
+  if (retry_period.count() < 0 || check_period.count() < 0 || tf_period.count() <= 0) {
+    return InvalidArgumentError("placement periods must not be negative (tf_period > 0)");
+  }
+  if (!(revise_distance > 0.0) || !(revise_yaw_deg > 0.0)) {
+    return InvalidArgumentError("placement revise_distance and revise_yaw_deg must be > 0");
+  }
+  return Status::Ok();
+}
+
+void PlacementOptions::Describe(OptionsPrinter& out) const {
+  out.Nested("registration", registration);
+  out.Add("min_confidence", min_confidence);
+  out.Add("retry_period", retry_period);
+  out.Add("check_period", check_period);
+  out.Add("revise_distance", revise_distance);
+  out.Add("revise_yaw_deg", revise_yaw_deg);
+  out.Add("tf_period", tf_period);
+}
+
+}  // namespace fleetmap::server
