@@ -91,6 +91,7 @@ TEST(ConversionsTest, RobotStatusRoundTripsAndValidatesName) {
   status.maps_published = 3;
   status.bytes_published = 1ull << 40;
   status.sequence_number = 7;
+  status.tiles_in_map_frame = true;
   const auto back = FromIdl(ToIdl(status));
   ASSERT_TRUE(back.ok()) << back.status();
   EXPECT_EQ(back->robot, status.robot);
@@ -98,6 +99,7 @@ TEST(ConversionsTest, RobotStatusRoundTripsAndValidatesName) {
   EXPECT_EQ(back->map_from_robot, status.map_from_robot);
   EXPECT_EQ(back->bytes_published, status.bytes_published);
   EXPECT_EQ(back->sequence_number, 7u);
+  EXPECT_TRUE(back->tiles_in_map_frame);
 
   auto bad = ToIdl(status);
   bad.robot_id("../etc");

@@ -10,11 +10,13 @@
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
+#include "fleetmap_msgs/msg/RobotFrame.h"
 #include "fleetmap_msgs/msg/RobotStatus.h"
 #include "fleetmap_msgs/msg/Submap.h"
 #include "fleetmap_msgs/msg/VectorMap.h"
 #include "map_msgs/msg/OccupancyGridUpdate.h"
 #include "nav_msgs/msg/OccupancyGrid.h"
+#include "tf2_msgs/msg/TFMessage.h"
 
 namespace fleetmap::transport {
 namespace {
@@ -177,6 +179,26 @@ TEST(IdlShapesTest, ObjectShapesMatchGeneratedCode) {
   object.sighting_y({1.0, 2.0});
   object.sighting_theta({0.0, 1.5});
   ExpectShapeMatches(object, ObjectModelShape());
+}
+
+TEST(IdlShapesTest, RobotFrameAndTfShapesMatchGeneratedCode) {
+  fleetmap_msgs::msg::dds_::RobotFrame_ frame;
+  frame.robot_id("beta");
+  frame.state(2);
+  frame.fleet_from_map().x(3.5);
+  frame.confidence(0.9);
+  frame.placements(2);
+  frame.placed_against("fleet");
+  ExpectShapeMatches(frame, RobotFrameShape());
+  tf2_msgs::msg::dds_::TFMessage_ tf;
+  for (const char* child : {"alpha/map", "beta/map"}) {
+    geometry_msgs::msg::dds_::TransformStamped_ transform;
+    transform.header().frame_id("fleet");
+    transform.child_frame_id(child);
+    transform.transform().rotation().w(1.0);
+    tf.transforms().push_back(transform);
+  }
+  ExpectShapeMatches(tf, TfMessageShape());
 }
 
 }  // namespace

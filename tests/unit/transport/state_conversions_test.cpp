@@ -195,6 +195,44 @@ TEST(StateConversionsTest, ObjectModelRoundTripsAsPercent) {
   EXPECT_FALSE(FromIdl(sample).ok());
 }
 
+TEST(StateConversionsTest, RobotFrameRoundTripsAndRefusesWhatAReaderCannotUse) {
+  RobotFrameMessage frame;
+  frame.robot = RobotId{"beta"};
+  frame.state = RobotFrameMessage::State::kRevised;
+  frame.fleet_from_map = Pose2{12.5, -3.0, 1.2};
+  frame.confidence = 0.93;
+  frame.overlap = 0.4;
+  frame.placements = 2;
+  frame.placed_against = "fleet";
+  auto sample = ToIdl(frame);
+  ASSERT_TRUE(sample.ok()) << sample.status();
+  auto back = FromIdl(*sample);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->robot, frame.robot);
+  EXPECT_EQ(back->state, frame.state);
+  EXPECT_EQ(back->fleet_from_map, frame.fleet_from_map);
+  EXPECT_DOUBLE_EQ(back->confidence, 0.93);
+  EXPECT_NEAR(back->overlap, 0.4, 1e-6);
+  EXPECT_EQ(back->placements, 2u);
+  EXPECT_EQ(back->placed_against, "fleet");
+  EXPECT_TRUE(back->placed());
+
+  auto bad = *sample;
+  bad.state(9);
+  EXPECT_FALSE(FromIdl(bad).ok());
+  bad = *sample;
+  bad.fleet_from_map().theta(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_FALSE(FromIdl(bad).ok());
+  bad = *sample;
+  bad.confidence(1.5);
+  EXPECT_FALSE(FromIdl(bad).ok());
+  bad = *sample;
+  bad.robot_id("not a name");
+  EXPECT_FALSE(FromIdl(bad).ok());
+  frame.robot = RobotId{""};
+  EXPECT_FALSE(ToIdl(frame).ok());
+}
+
 TEST(StateConversionsTest, ObjectTemplateRefusesMissingCells) {
   ObjectTemplateMessage message;
   message.patch.width = 3;
