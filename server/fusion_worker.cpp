@@ -32,7 +32,10 @@ void FusionWorker::Remember(const std::string& owner, const transport::VectorTil
     ++stats_.store_errors;
     return;
   }
-  if (owner != store::kFleetOwner) RememberContribution(RobotId{owner}, tile.tile);
+  // A robot's own tile is its contribution; its map-frame tiles and fused tiles are not.
+  if (IsValidRobotName(owner) && owner != store::kFleetOwner) {
+    RememberContribution(RobotId{owner}, tile.tile);
+  }
 }
 
 void FusionWorker::RememberContribution(const RobotId& robot, const TileId& tile) {
@@ -97,6 +100,7 @@ Status FusionWorker::Restore() {
   }
   // Restored tiles count towards their robots' quotas, as if they had just been admitted.
   for (const auto& [robot, tile] : fusion_.contributions()) admission_.Adopt(robot, tile);
+  RestoreMapFrameTiles(restored.map_frame_tiles);
   const size_t restored_tiles = restored.from_evidence + restored.from_history;
   if (restored_tiles > 0) {
     spdlog::info(
@@ -397,7 +401,10 @@ void FusionWorker::HandleGrids() {
     if (!update.fleet_from_map) {
       for (const auto& [tile, map] : tiled->tiles) {
         transport::VectorTileMessage message;
+        message.robot_id = update.robot;
         message.tile = tile;
+        message.stamp = update.map.stamp;
+        message.tile_size = options_.fusion.tile_size;
         message.map = map;
         ApplyMapFrameTile(update.robot, message, update.map.stamp);
       }
@@ -490,6 +497,39 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
 void FusionWorker::ApplyMapFrameTile(const RobotId& robot,
                                      const transport::VectorTileMessage& tile, Timestamp stamp) {
   RefuseMapFrameRobot(robot, map_frames_.UpdateTile(robot, tile.tile, tile.map, stamp));
+  if (store_ == nullptr) return;
+  // Kept in the store apart from the fleet-frame rows: the fused map is not rebuilt from them.
+  transport::VectorTileMessage stored = tile;
+  stored.robot_id = robot;
+  Remember(store::MapFrameOwner(robot), stored);
+}
+
+void FusionWorker::RestoreMapFrameTiles(const std::vector<store::TileRecord>& rows) {
+  size_t restored = 0;
+  for (const store::TileRecord& row : rows) {
+    const RobotId robot = *store::MapFrameRobot(row.owner);
+    const std::string name = options_.store_path + ": map-frame tile " + row.owner + " (" +
+                             std::to_string(row.tile.x) + ", " + std::to_string(row.tile.y) + ")";
+    StatusOr<transport::VectorTileMessage> tile = transport::DecodeTilePayload(row.payload, name);
+    if (!tile.ok()) {
+      spdlog::warn("server: skipping a stored tile: {}", tile.status().message());
+      continue;
+    }
+    if (tile->tile != row.tile || tile->robot_id != robot) {
+      spdlog::warn("server: skipping a stored tile: {}: its payload is another robot's or tile's",
+                   name);
+      continue;
+    }
+    // Unplaced until registration places the robot again (its placement is not stored: it is
+    // found again from the map, against the restored fleet map).
+    map_frames_.UpdateTile(robot, tile->tile, std::move(tile->map), tile->stamp);
+    admission_.Adopt(robot, tile->tile);
+    placer_->Unplaced(robot);
+    ++restored;
+  }
+  if (restored > 0) {
+    spdlog::info("server: restored {} map-frame tiles of robots the server places", restored);
+  }
 }
 
 void FusionWorker::RefuseMapFrameRobot(const RobotId& robot, const std::set<TileId>& changed) {

@@ -179,6 +179,8 @@ class FusionWorker {
   // A tile of a robot whose tiles are in its own map frame: kept, and fused once placed.
   void ApplyMapFrameTile(const RobotId& robot, const transport::VectorTileMessage& tile,
                          Timestamp stamp);
+  // The map-frame tiles the store held, back in map_frames_ (unplaced).
+  void RestoreMapFrameTiles(const std::vector<store::TileRecord>& rows);
   // Placement: frames of new robots, registration results, due registrations, rt/tf.
   void HandlePlacements(std::chrono::steady_clock::time_point now);
   void ScheduleRegistration(std::chrono::steady_clock::time_point now);

@@ -68,6 +68,10 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
       fused_revision_base_[row.tile] = row.revision;
       continue;
     }
+    if (store::MapFrameRobot(row.owner)) {
+      restored.map_frame_tiles.push_back(row);
+      continue;
+    }
     if (done.count({row.owner, row.tile}) > 0) continue;
     FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> revisions,
                               store_->TileHistory(row.owner, row.tile));

@@ -36,6 +36,9 @@ class StoreSync {
     size_t from_evidence = 0;  // contributions read back exactly
     size_t from_history = 0;   // tiles of an older store, their revisions fused again in order
     std::vector<std::string> skipped;  // rows that could not be used, each with its reason
+    // The latest tiles of robots placed by registration, in their own map frames (owners
+    // store::MapFrameOwner): not fused here; the fusion worker places them again.
+    std::vector<store::TileRecord> map_frame_tiles;
   };
   enum class FlushResult {
     kIdle,     // nothing to write

@@ -20,13 +20,30 @@ Status CheckOwnerAndStamp(const std::string& owner, int64_t stamp_ns, const std:
   return InvalidArgumentError(where + ": " + what.str());
 }
 
+constexpr char kMapFrameSuffix[] = "/map";
+
 }  // namespace
+
+std::string MapFrameOwner(const RobotId& robot) { return robot.value + kMapFrameSuffix; }
+
+std::optional<RobotId> MapFrameRobot(const std::string& owner) {
+  const size_t suffix = sizeof(kMapFrameSuffix) - 1;
+  if (owner.size() <= suffix || owner.compare(owner.size() - suffix, suffix, kMapFrameSuffix)) {
+    return std::nullopt;
+  }
+  RobotId robot{owner.substr(0, owner.size() - suffix)};
+  if (!IsValidRobotName(robot.value)) return std::nullopt;
+  return robot;
+}
 
 Status ValidateTileRecord(const TileRecord& record) {
   std::ostringstream where;
   where << "tile record (owner '" << record.owner << "', " << record.tile << ", revision "
         << record.revision << ")";
-  return CheckOwnerAndStamp(record.owner, record.stamp_ns, where.str());
+  // A robot's map-frame tiles are its own: the robot's name must be valid.
+  const std::optional<RobotId> map_frame = MapFrameRobot(record.owner);
+  return CheckOwnerAndStamp(map_frame ? map_frame->value : record.owner, record.stamp_ns,
+                            where.str());
 }
 
 Status ValidateEvidenceRecord(const EvidenceRecord& record) {

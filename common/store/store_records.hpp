@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,10 +17,17 @@ namespace fleetmap::store {
 // tiles and evidence to the fusion (server/store_sync.cpp).
 inline constexpr char kFleetOwner[] = "fleet";
 
+// The owner of a robot's tiles in its own map frame (a robot the server places by registration):
+// "<robot>/map", the ROS name of that frame. They are kept apart from the robot's fleet-frame
+// rows, which the fused map is rebuilt from.
+std::string MapFrameOwner(const RobotId& robot);
+// The robot whose map-frame tiles `owner` holds, if it is such an owner.
+std::optional<RobotId> MapFrameRobot(const std::string& owner);
+
 // One revision of one tile. The payload is opaque to the store: the server encodes tiles with its
 // own codec.
 struct TileRecord {
-  std::string owner;  // robot id, or kFleetOwner for fused tiles
+  std::string owner;  // robot id, kFleetOwner for fused tiles, or a MapFrameOwner
   TileId tile;
   uint32_t revision = 0;  // newer content has a higher revision
   int64_t stamp_ns = 0;   // when this revision was made, ns since the Unix epoch
@@ -87,7 +95,8 @@ struct SessionRecord {
   friend bool operator==(const SessionRecord&, const SessionRecord&) = default;
 };
 
-// OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one), stamp_ns >= 0.
+// OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one) or a
+// MapFrameOwner, stamp_ns >= 0.
 Status ValidateTileRecord(const TileRecord& record);
 // OK when `record` may be stored: owner is a valid robot name, stamp_ns >= 0.
 Status ValidateEvidenceRecord(const EvidenceRecord& record);

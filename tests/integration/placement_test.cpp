@@ -6,9 +6,11 @@
 // random domain per test.
 
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -268,6 +270,41 @@ TEST_F(PlacementTest, PlacementThatTheMapContradictsIsRevised) {
   EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
   EXPECT_EQ(revised->placements, 2u);
   EXPECT_TRUE(beta->WaitForOutput("revised by the server", kDeadline)) << beta->Output();
+}
+
+TEST_F(PlacementTest, AServerKilledMidRunPlacesAGoneRobotAgainFromItsStore) {
+  const std::string store =
+      ::testing::TempDir() + "/placement_" + std::to_string(getpid()) + "_store.sqlite";
+  std::remove(store.c_str());
+  const std::vector<std::string> server_argv = {testing::kServerBinary,  "--store", store,
+                                                "--no-object-learning", "--no-extrapolation",
+                                                "--duration",           "90"};
+  auto server = Start(server_argv);
+  auto alpha = StartAgent("alpha", alpha_path_);
+  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
+      << server->Output();
+  auto beta = StartAgent("beta", beta_path_);
+  ASSERT_TRUE(WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); }))
+      << server->Output();
+  // beta leaves; then the server dies without a word. Its store keeps beta's own-frame tiles.
+  beta->Signal(SIGINT);
+  ASSERT_TRUE(beta->Wait(kDeadline).has_value());
+  std::this_thread::sleep_for(seconds(2));  // past a store flush
+  server->Signal(SIGKILL);
+  ASSERT_EQ(server->Wait(kDeadline), 128 + SIGKILL);
+
+  auto restarted = Start(server_argv);
+  ASSERT_TRUE(restarted->WaitForOutput("restored", kDeadline)) << restarted->Output();
+  // Placed by the restarted server (not the frame the dead one published before).
+  ASSERT_TRUE(restarted->WaitForOutput("robot beta placed", kDeadline)) << restarted->Output();
+  const auto placed =
+      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  ASSERT_TRUE(placed && placed->placed()) << restarted->Output();
+  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
+  EXPECT_LE(distance, 2 * beta_.resolution()) << restarted->Output();
+  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  EXPECT_NE(restarted->Output().find("map-frame tiles"), std::string::npos)
+      << restarted->Output();
 }
 
 }  // namespace
