@@ -446,6 +446,7 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
     if (store_ != nullptr) Remember(store::kFleetOwner, message);
   }
   if (!changed->empty()) map_dirty_ = true;
+  fused_revisions_ += changed->size();
   bool map_sent = false;
   if (map_dirty_ && now - last_map_ >= options_.map_period) {
     transport::MapMessage map;
@@ -594,7 +595,7 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
     const uint64_t changes = map_frames_.changes(robot);
     if (map_frames_.tile_count(robot) == 0) continue;
     const std::optional<Pose2> placement = map_frames_.placement(robot);
-    if (placer_->Due(robot, RobotId{}, changes, now)) {
+    if (placer_->Due(robot, RobotId{}, changes, fused_revisions_, now)) {
       grid::OccupancyGrid others = fusion_.FusedGrid(nullptr, &robot);
       if (!HasOccupiedCell(others)) continue;  // the robot alone: nothing to register on
       PlacementJob job;
@@ -604,13 +605,18 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
       job.resolution = resolution;
       job.current = placement;
       job.map_changes = changes;
+      job.target_changes = fused_revisions_;
       placer_->Submit(std::move(job), now);
       return;
     }
     if (placement) continue;
     // Not on the fleet map (yet): perhaps on another unplaced robot's.
     for (const RobotId& other : placer_->UnplacedOthers(robot)) {
-      if (map_frames_.tile_count(other) == 0 || !placer_->Due(robot, other, changes, now)) continue;
+      const uint64_t other_changes = map_frames_.changes(other);
+      if (map_frames_.tile_count(other) == 0 ||
+          !placer_->Due(robot, other, changes, other_changes, now)) {
+        continue;
+      }
       PlacementJob job;
       job.robot = robot;
       job.map = map_frames_.MapOf(robot);
@@ -618,6 +624,7 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
       job.target_robot = other;
       job.resolution = resolution;
       job.map_changes = changes;
+      job.target_changes = other_changes;
       placer_->Submit(std::move(job), now);
       return;
     }

@@ -112,18 +112,20 @@ void RobotPlacer::Forget(const RobotId& robot) {
 }
 
 bool RobotPlacer::Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
-                      std::chrono::steady_clock::time_point now) const {
+                      uint64_t target_changes, std::chrono::steady_clock::time_point now) const {
   if (busy_) return false;
   const auto frame = frames_.find(robot);
   const bool placed = frame != frames_.end() && frame->second.placed();
   const auto attempt = attempts_.find({robot, target});
   if (attempt == attempts_.end()) return true;
-  if (attempt->second.map_changes == map_changes) return false;
-  return now - attempt->second.at >= (placed ? options_.check_period : options_.retry_period);
+  const bool map_changed = attempt->second.map_changes != map_changes;
+  if (placed) return map_changed && now - attempt->second.at >= options_.check_period;
+  const bool target_changed = attempt->second.target_changes != target_changes;
+  return (map_changed || target_changed) && now - attempt->second.at >= options_.retry_period;
 }
 
 void RobotPlacer::Submit(PlacementJob job, std::chrono::steady_clock::time_point now) {
-  attempts_[{job.robot, job.target_robot}] = Attempt{job.map_changes, now};
+  attempts_[{job.robot, job.target_robot}] = Attempt{job.map_changes, job.target_changes, now};
   busy_ = true;
   {
     std::lock_guard lock(mutex_);

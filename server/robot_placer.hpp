@@ -55,6 +55,7 @@ struct PlacementJob {
   RobotId target_robot;  // empty: the fleet map
   std::optional<Pose2> current;  // the robot's placement when checking it
   uint64_t map_changes = 0;      // MapFrameRobots::changes() when the job was made
+  uint64_t target_changes = 0;   // the target's, likewise (fused tile revisions for the fleet)
 };
 
 struct PlacementResult {
@@ -89,10 +90,11 @@ class RobotPlacer {
   // The robot left the fleet's map for good (its frame is withdrawn).
   void Forget(const RobotId& robot);
 
-  // Whether registering `robot`'s map on `target` (empty: the fleet map) is due: its map changed
-  // since the last try on that target and the period passed (the check period once placed).
+  // Whether registering `robot`'s map on `target` (empty: the fleet map) is due. A placed robot is
+  // checked when its map changed since the last check and the check period passed; an unplaced
+  // one is tried again when its map or the target changed and the retry period passed.
   bool Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
-           std::chrono::steady_clock::time_point now) const;
+           uint64_t target_changes, std::chrono::steady_clock::time_point now) const;
   bool Busy() const { return busy_; }
   void Submit(PlacementJob job, std::chrono::steady_clock::time_point now);
 
@@ -123,6 +125,7 @@ class RobotPlacer {
 
   struct Attempt {
     uint64_t map_changes = 0;
+    uint64_t target_changes = 0;
     std::chrono::steady_clock::time_point at{};
   };
   // An unplaced robot registered to another unplaced one: where it sits in that robot's frame.

@@ -272,6 +272,66 @@ TEST_F(PlacementTest, PlacementThatTheMapContradictsIsRevised) {
   EXPECT_TRUE(beta->WaitForOutput("revised by the server", kDeadline)) << beta->Output();
 }
 
+TEST_F(PlacementTest, ARobotOnAGridWireIsPlacedToo) {
+  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
+                       "--no-extrapolation"});
+  auto alpha = StartAgent("alpha", alpha_path_);
+  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
+      << server->Output();
+  auto beta = Start({testing::kAgentBinary, "--robot-id", "beta", "--map", beta_path_,
+                     "--unplaced", "--wire", "grid-updates-zstd"});
+  const auto placed =
+      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  ASSERT_TRUE(placed && placed->placed()) << server->Output();
+  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
+  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
+  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+}
+
+TEST_F(PlacementTest, RobotsRegisteredToEachOtherArePlacedTogether) {
+  // gamma shares nothing with alpha (the anchor) but half its map with beta, and beta shares
+  // nothing with alpha until its map grows: gamma is registered to beta first, and placed with
+  // beta when beta reaches alpha's part of the house.
+  const auto house =
+      grid::LoadMap(std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml");
+  ASSERT_TRUE(house.ok()) << house.status();
+  const grid::OccupancyGrid& g = house->grid;
+  const int w = g.width();
+  const grid::OccupancyGrid east = Columns(g, w * 7 / 10, w - w * 7 / 10, Pose2{0.0, 0.0, 0.0});
+  const grid::OccupancyGrid middle = Columns(g, w * 2 / 10, w * 4 / 10, Pose2{-30.0, 5.0, 0.0});
+  const grid::OccupancyGrid grown = Columns(g, w * 2 / 10, w * 6 / 10, Pose2{-30.0, 5.0, 0.0});
+  const grid::OccupancyGrid west_columns = Columns(g, 0, w * 4 / 10, g.origin());
+  const grid::OccupancyGrid west = QuarterTurn(west_columns, Pose2{60.0, 60.0, 0.0});
+  // house <- east: east's cell 0 is house column 0.7 w, and east's origin is (0, 0).
+  const double r = g.resolution();
+  const Transform2 house_from_east =
+      Pose2{g.origin().x + (w * 7 / 10) * r, g.origin().y, 0.0}.ToTransform();
+  const Transform2 truth =
+      house_from_east.inverse() * QuarterTurnFrame(west_columns, west.origin());
+  const std::string east_path = Save(east, "east");
+  const std::string middle_path = Save(middle, "middle");
+  const std::string west_path = Save(west, "west");
+
+  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
+                       "--no-extrapolation"});
+  auto alpha = StartAgent("alpha", east_path);
+  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
+      << server->Output();
+  auto beta = StartAgent("beta", middle_path);
+  auto gamma = StartAgent("gamma", west_path);
+  ASSERT_TRUE(server->WaitForOutput("robot gamma registered to robot beta", kDeadline))
+      << server->Output();
+  ASSERT_TRUE(grid::SaveMap(grown, middle_path).ok());  // beta explores east
+  const auto placed = WaitForFrame("gamma", [](const RobotFrameMessage& frame) {
+    return frame.placed();
+  });
+  ASSERT_TRUE(placed && placed->placed()) << server->Output();
+  EXPECT_EQ(placed->placed_against, "beta");
+  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, truth, west);
+  EXPECT_LE(distance, 3 * r) << server->Output();
+  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+}
+
 TEST_F(PlacementTest, AServerKilledMidRunPlacesAGoneRobotAgainFromItsStore) {
   const std::string store =
       ::testing::TempDir() + "/placement_" + std::to_string(getpid()) + "_store.sqlite";
