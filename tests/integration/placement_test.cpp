@@ -288,6 +288,28 @@ TEST_F(PlacementTest, ARobotOnAGridWireIsPlacedToo) {
   EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
 }
 
+TEST_F(PlacementTest, ARobotMappingAtAnotherResolutionIsPlacedOnTheFleetMap) {
+  // beta's SLAM runs at 2.5 cm: its map is rasterized at the fleet's 5 cm for registration.
+  grid::OccupancyGrid fine(beta_.width() * 2, beta_.height() * 2, beta_.resolution() / 2,
+                           beta_.origin());
+  for (int y = 0; y < fine.height(); ++y) {
+    for (int x = 0; x < fine.width(); ++x) fine.at(x, y) = beta_.at(x / 2, y / 2);
+  }
+  const std::string fine_path = Save(fine, "beta_fine");
+  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
+                       "--no-extrapolation"});
+  auto alpha = StartAgent("alpha", alpha_path_);
+  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
+      << server->Output();
+  auto beta = StartAgent("beta", fine_path);
+  const auto placed =
+      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  ASSERT_TRUE(placed && placed->placed()) << server->Output();
+  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
+  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
+  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+}
+
 TEST_F(PlacementTest, RobotsRegisteredToEachOtherArePlacedTogether) {
   // gamma shares nothing with alpha (the anchor) but half its map with beta, and beta shares
   // nothing with alpha until its map grows: gamma is registered to beta first, and placed with
