@@ -191,14 +191,13 @@ void AgentNode::DrainRobotFrames() {
     if (frame.fleet_from_map == status_.fleet_from_map && placed_) continue;
     placed_ = true;
     status_.fleet_from_map = frame.fleet_from_map;
-    spdlog::info("{}: this robot's map frame is at ({:.2f}, {:.2f}, {:.1f} deg) in the fleet "
-                 "frame ({} by the server, confidence {:.2f}, against {})",
-                 options_.robot.value,
-                 frame.fleet_from_map.x, frame.fleet_from_map.y,
-                 frame.fleet_from_map.yaw * 180.0 / M_PI,
-                 transport::RobotFrameStateName(frame.state), frame.confidence,
-                 frame.placed_against.empty() ? "nothing: it anchors the fleet"
-                                              : frame.placed_against);
+    spdlog::info(
+        "{}: this robot's map frame is at ({:.2f}, {:.2f}, {:.1f} deg) in the fleet "
+        "frame ({} by the server, confidence {:.2f}, against {})",
+        options_.robot.value, frame.fleet_from_map.x, frame.fleet_from_map.y,
+        frame.fleet_from_map.yaw * 180.0 / M_PI, transport::RobotFrameStateName(frame.state),
+        frame.confidence,
+        frame.placed_against.empty() ? "nothing: it anchors the fleet" : frame.placed_against);
   }
 }
 

@@ -45,7 +45,7 @@ struct AgentOptions {
   // server places them by registration; the agent learns its placement from
   // rt/fleetmap/robot_frames.
   bool unplaced = false;
-  Pose2 map_from_robot;  // the robot's pose in its map frame
+  Pose2 map_from_robot;                          // the robot's pose in its map frame
   std::chrono::milliseconds status_period{500};  // a quarter of the 2 s liveliness lease
   std::chrono::milliseconds map_check_period{200};
   std::chrono::milliseconds duration{0};  // run this long, then leave; 0: until stopped

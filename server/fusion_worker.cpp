@@ -495,8 +495,8 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
   out.Nested("placement", placement);
 }
 
-void FusionWorker::ApplyMapFrameTile(const RobotId& robot,
-                                     const transport::VectorTileMessage& tile, Timestamp stamp) {
+void FusionWorker::ApplyMapFrameTile(const RobotId& robot, const transport::VectorTileMessage& tile,
+                                     Timestamp stamp) {
   RefuseMapFrameRobot(robot, map_frames_.UpdateTile(robot, tile.tile, tile.map, stamp));
   if (store_ == nullptr) return;
   // Kept in the store apart from the fleet-frame rows: the fused map is not rebuilt from them.
@@ -577,6 +577,14 @@ std::optional<Pose2> FusionWorker::PlacementOf(const RobotId& robot) const {
   return frame->second.fleet_from_map;
 }
 
+PlacementJob FusionWorker::MakePlacementJob(const RobotId& robot) const {
+  PlacementJob job;
+  job.robot = robot;
+  job.resolution = options_.fusion.FusedResolution();
+  job.map_changes = map_frames_.changes(robot);
+  return job;
+}
+
 void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point now) {
   if (placer_->Busy()) return;
   const std::vector<RobotId> robots = map_frames_.robots();
@@ -590,41 +598,30 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
     }
     return;
   }
-  const double resolution = options_.fusion.FusedResolution();
   for (const RobotId& robot : robots) {
-    const uint64_t changes = map_frames_.changes(robot);
     if (map_frames_.tile_count(robot) == 0) continue;
-    const std::optional<Pose2> placement = map_frames_.placement(robot);
-    if (placer_->Due(robot, RobotId{}, changes, fused_revisions_, now)) {
-      grid::OccupancyGrid others = fusion_.FusedGrid(nullptr, &robot);
-      if (!HasOccupiedCell(others)) continue;  // the robot alone: nothing to register on
-      PlacementJob job;
-      job.robot = robot;
+    // Against the fleet map without the robot (unplaced: to place it; placed: to check it).
+    PlacementJob job = MakePlacementJob(robot);
+    job.current = map_frames_.placement(robot);
+    job.target_changes = fused_revisions_;
+    if (placer_->Due(robot, RobotId{}, job.map_changes, job.target_changes, now)) {
+      job.target = fusion_.FusedGrid(nullptr, &robot);
+      if (!HasOccupiedCell(job.target)) continue;  // the robot alone: nothing to register on
       job.map = map_frames_.MapOf(robot);
-      job.target = std::move(others);
-      job.resolution = resolution;
-      job.current = placement;
-      job.map_changes = changes;
-      job.target_changes = fused_revisions_;
       placer_->Submit(std::move(job), now);
       return;
     }
-    if (placement) continue;
+    if (job.current) continue;
     // Not on the fleet map (yet): perhaps on another unplaced robot's.
     for (const RobotId& other : placer_->UnplacedOthers(robot)) {
-      const uint64_t other_changes = map_frames_.changes(other);
+      job.target_robot = other;
+      job.target_changes = map_frames_.changes(other);
       if (map_frames_.tile_count(other) == 0 ||
-          !placer_->Due(robot, other, changes, other_changes, now)) {
+          !placer_->Due(robot, other, job.map_changes, job.target_changes, now)) {
         continue;
       }
-      PlacementJob job;
-      job.robot = robot;
       job.map = map_frames_.MapOf(robot);
       job.target_map = map_frames_.MapOf(other);
-      job.target_robot = other;
-      job.resolution = resolution;
-      job.map_changes = changes;
-      job.target_changes = other_changes;
       placer_->Submit(std::move(job), now);
       return;
     }

@@ -184,6 +184,8 @@ class FusionWorker {
   // Placement: frames of new robots, registration results, due registrations, rt/tf.
   void HandlePlacements(std::chrono::steady_clock::time_point now);
   void ScheduleRegistration(std::chrono::steady_clock::time_point now);
+  // A job for `robot` without its maps (they are copied only once it is due).
+  PlacementJob MakePlacementJob(const RobotId& robot) const;
   // Fuses `robot`'s contributions to the fleet tiles `changed` anew from map_frames_.
   void RefuseMapFrameRobot(const RobotId& robot, const std::set<TileId>& changed);
   void PublishFused(std::chrono::steady_clock::time_point now);
@@ -210,7 +212,7 @@ class FusionWorker {
   std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)
   bool map_dirty_ = false;                              // worker thread only
   uint64_t fused_revisions_ = 0;  // fused tile revisions made: the fleet map changed
-  size_t tiles_outside_map_ = 0;                        // worker thread only
+  size_t tiles_outside_map_ = 0;  // worker thread only
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;

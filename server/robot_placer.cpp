@@ -185,8 +185,8 @@ std::vector<RobotPlacer::Decision> RobotPlacer::Decide(const PlacementOf& placem
 std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResult& result,
                                                             const PlacementOf& placement_of) {
   const PlacementJob& job = result.job;
-  const std::string against = job.target_robot.value.empty() ? "the fleet map"
-                                                             : "robot " + job.target_robot.value;
+  const std::string against =
+      job.target_robot.value.empty() ? "the fleet map" : "robot " + job.target_robot.value;
   if (!result.registration.ok()) {
     spdlog::info("server: cannot register robot {} on {} yet: {}", job.robot.value, against,
                  result.registration.status().message());
@@ -206,8 +206,8 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   Pose2 fleet_from_map = found.a_from_b;
   if (!job.target_robot.value.empty()) {
     // Registered to another robot's map: follow it once (or as soon as) it is placed.
-    followers_[job.robot] = Follower{job.target_robot, found.a_from_b, found.confidence,
-                                     found.overlap};
+    followers_[job.robot] =
+        Follower{job.target_robot, found.a_from_b, found.confidence, found.overlap};
     const std::optional<Pose2> leader = placement_of(job.target_robot);
     if (!leader || now_placed) {
       spdlog::info("server: robot {} registered to robot {} (confidence {:.2f}); placed with it",
@@ -227,8 +227,7 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
     const Point2 was = now_placed->ToTransform() * result.map_centre;
     const Point2 is = fleet_from_map.ToTransform() * result.map_centre;
     const double yaw = std::abs(NormalizeAngle(fleet_from_map.yaw - now_placed->yaw));
-    if ((was - is).norm() <= options_.revise_distance &&
-        Degrees(yaw) <= options_.revise_yaw_deg) {
+    if ((was - is).norm() <= options_.revise_distance && Degrees(yaw) <= options_.revise_yaw_deg) {
       return std::nullopt;
     }
     placed.state = transport::RobotFrameMessage::State::kRevised;
@@ -241,8 +240,8 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
     spdlog::info(
         "server: robot {} placed on {} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}, "
         "overlap {:.2f} ({} ms)",
-        job.robot.value, against, fleet_from_map.x, fleet_from_map.y,
-        Degrees(fleet_from_map.yaw), found.confidence, found.overlap, result.took.count());
+        job.robot.value, against, fleet_from_map.x, fleet_from_map.y, Degrees(fleet_from_map.yaw),
+        found.confidence, found.overlap, result.took.count());
   }
   ++placed.placements;
   Publish(std::move(placed));
@@ -293,9 +292,8 @@ void RobotPlacer::PublishTf(std::chrono::steady_clock::time_point now) {
   const Timestamp stamp = Clock::now();
   for (const auto& [robot, frame] : frames_) {
     if (!frame.placed()) continue;
-    transforms.push_back(transport::FrameTransform{stamp, "fleet",
-                                                   transport::RobotMapFrame(robot.value),
-                                                   frame.fleet_from_map});
+    transforms.push_back(transport::FrameTransform{
+        stamp, "fleet", transport::RobotMapFrame(robot.value), frame.fleet_from_map});
   }
   if (transforms.empty()) return;
   if (StatusOr<size_t> written = tf_writer_->Write(transforms); !written.ok()) {

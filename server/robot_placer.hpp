@@ -52,14 +52,14 @@ struct PlacementJob {
   grid::OccupancyGrid target;
   vector_map::VectorMap target_map;
   double resolution = 0.05;
-  RobotId target_robot;  // empty: the fleet map
+  RobotId target_robot;          // empty: the fleet map
   std::optional<Pose2> current;  // the robot's placement when checking it
   uint64_t map_changes = 0;      // MapFrameRobots::changes() when the job was made
   uint64_t target_changes = 0;   // the target's, likewise (fused tile revisions for the fleet)
 };
 
 struct PlacementResult {
-  PlacementJob job;  // `map` and `target` are released
+  PlacementJob job;                    // `map` and `target` are released
   Point2 map_centre = Point2::Zero();  // of the robot's map, its frame: where placements compare
   StatusOr<registration::Registration> registration = registration::Registration{};
   std::chrono::milliseconds took{0};

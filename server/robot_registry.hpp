@@ -51,7 +51,7 @@ class RobotRegistry {
   mutable std::mutex mutex_;
   std::map<RobotId, std::string> participant_by_robot_;  // guarded by mutex_
   std::map<std::string, size_t> robots_by_participant_;  // guarded by mutex_
-  std::set<RobotId> tiles_in_map_frame_;                  // guarded by mutex_
+  std::set<RobotId> tiles_in_map_frame_;                 // guarded by mutex_
 };
 
 }  // namespace fleetmap::server

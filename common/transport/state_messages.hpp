@@ -71,9 +71,9 @@ struct RobotFrameMessage {
   Timestamp stamp{};
   State state = State::kUnplaced;
   Pose2 fleet_from_map;
-  double confidence = 0.0;  // in [0, 1]
-  double overlap = 0.0;     // share of the robot's known cells on the map it was placed on
-  uint32_t placements = 0;  // times the server placed the robot (revisions + 1)
+  double confidence = 0.0;     // in [0, 1]
+  double overlap = 0.0;        // share of the robot's known cells on the map it was placed on
+  uint32_t placements = 0;     // times the server placed the robot (revisions + 1)
   std::string placed_against;  // "fleet", or the robot whose map it was registered to
 
   // The robot's frame is known: every state but kUnplaced.

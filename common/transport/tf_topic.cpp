@@ -1,9 +1,9 @@
 #include "common/transport/tf_topic.hpp"
 
-#include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <atomic>
 #include <cmath>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "common/core/sample_queue.hpp"
 #include "common/transport/internal/cdr_codec.hpp"
@@ -57,9 +57,9 @@ std::string RobotMapFrame(const std::string& robot) { return robot + "/map"; }
 
 StatusOr<std::unique_ptr<TfWriter>> TfWriter::Create(Participant& participant) {
   std::unique_ptr<TfWriter> self(new TfWriter());
-  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_, WriterEndpoint::Create(participant, kTfTopic,
-                                                                    TfMessageTypeSupport(),
-                                                                    TfQos().writer));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      WriterEndpoint::Create(participant, kTfTopic, TfMessageTypeSupport(), TfQos().writer));
   return self;
 }
 

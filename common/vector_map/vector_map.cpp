@@ -48,8 +48,8 @@ VectorMap Transformed(const VectorMap& map, const Transform2& to_from_map, std::
   };
   out.obstacles.reserve(map.obstacles.size());
   for (const Polyline& polyline : map.obstacles) {
-    out.obstacles.push_back(Polyline{move_all(polyline.points), polyline.closed,
-                                     polyline.half_width});
+    out.obstacles.push_back(
+        Polyline{move_all(polyline.points), polyline.closed, polyline.half_width});
   }
   out.free_space.reserve(map.free_space.size());
   for (const FreePolygon& polygon : map.free_space) {

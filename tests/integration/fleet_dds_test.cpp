@@ -26,6 +26,7 @@
 #include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "tests/integration/fleet_binaries.hpp"
+#include "tests/integration/map_agreement.hpp"
 
 namespace fleetmap {
 namespace {
@@ -284,21 +285,10 @@ std::optional<transport::MapMessage> WaitForFleetMap(
   return newest;
 }
 
-// Share of the known cells of `source` (map frame, placed by `fleet_from_map`) that `fused`
-// (fleet frame) gives the same state.
+// testing::Agreement with the robot's map placed by a pose.
 double Agreement(const grid::OccupancyGrid& source, const Pose2& fleet_from_map,
                  const grid::OccupancyGrid& fused) {
-  int64_t known = 0, same = 0;
-  for (int y = 0; y < source.height(); ++y) {
-    for (int x = 0; x < source.width(); ++x) {
-      const grid::CellState state = source.StateAt(x, y);
-      if (state == grid::CellState::kUnknown) continue;
-      ++known;
-      const auto cell = fused.CellAt(fleet_from_map.ToTransform() * source.CellCenter(x, y));
-      if (cell && fused.StateAt(cell->x, cell->y) == state) ++same;
-    }
-  }
-  return known == 0 ? 0.0 : static_cast<double>(same) / known;
+  return testing::Agreement(source, fleet_from_map.ToTransform(), fused);
 }
 
 void FleetDdsTest::ExpectFleetMapShowsMap(const std::string& map_path, const Subprocess& server) {

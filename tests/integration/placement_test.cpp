@@ -1,17 +1,17 @@
 // Issue 18, live: agents started with --unplaced do not know where their map frames sit in the
 // fleet. A real fleetmap-server anchors the fleet on the first, registers the second robot's map
-// (turned by 90 degrees and offset by tens of metres in its own frame) onto the fused map, fuses it,
-// publishes the placement on rt/fleetmap/robot_frames and rt/tf, and revises it when the robot's
-// map moves in its frame (as after a SLAM relocalisation). Real processes, DDS over loopback, a
-// random domain per test.
+// (turned by 90 degrees and offset by tens of metres in its own frame) onto the fused map, fuses
+// it, publishes the placement on rt/fleetmap/robot_frames and rt/tf, and revises it when the
+// robot's map moves in its frame (as after a SLAM relocalisation). Real processes, DDS over
+// loopback, a random domain per test.
 
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <optional>
@@ -26,6 +26,7 @@
 #include "common/transport/tf_topic.hpp"
 #include "common/transport/topics.hpp"
 #include "tests/integration/fleet_binaries.hpp"
+#include "tests/integration/map_agreement.hpp"
 
 namespace fleetmap {
 namespace {
@@ -75,23 +76,6 @@ std::string Save(const grid::OccupancyGrid& map, const std::string& name) {
   return path;
 }
 
-// Share of `source`'s known cells (its frame, carried by `fleet_from_source`) that `fused` (the
-// fleet frame) gives the same state.
-double Agreement(const grid::OccupancyGrid& source, const Transform2& fleet_from_source,
-                 const grid::OccupancyGrid& fused) {
-  int64_t known = 0, same = 0;
-  for (int y = 0; y < source.height(); ++y) {
-    for (int x = 0; x < source.width(); ++x) {
-      const grid::CellState state = source.StateAt(x, y);
-      if (state == grid::CellState::kUnknown) continue;
-      ++known;
-      const auto cell = fused.CellAt(fleet_from_source * source.CellCenter(x, y));
-      if (cell && fused.StateAt(cell->x, cell->y) == state) ++same;
-    }
-  }
-  return known == 0 ? 0.0 : static_cast<double>(same) / known;
-}
-
 // How far `placed` puts the centre of `map` from where `truth` does (metres), and the yaw error.
 std::pair<double, double> PlacementError(const Pose2& placed, const Transform2& truth,
                                          const grid::OccupancyGrid& map) {
@@ -100,6 +84,14 @@ std::pair<double, double> PlacementError(const Pose2& placed, const Transform2& 
   const double yaw =
       std::abs(NormalizeAngle(placed.yaw - std::atan2(truth.linear()(1, 0), truth.linear()(0, 0))));
   return {distance, yaw};
+}
+
+// Expects `placed` within `cells` cells of `truth` at the centre of `map`, and within a degree.
+void ExpectPlacedAt(const Pose2& placed, const Transform2& truth, const grid::OccupancyGrid& map,
+                    double cells, const Subprocess& server) {
+  const auto [distance, yaw] = PlacementError(placed, truth, map);
+  EXPECT_LE(distance, cells * map.resolution()) << server.Output();
+  EXPECT_LE(yaw, 1.0 * M_PI / 180.0) << server.Output();
 }
 
 class PlacementTest : public ::testing::Test {
@@ -144,8 +136,18 @@ class PlacementTest : public ::testing::Test {
     EXPECT_TRUE(process->started());
     return process;
   }
+  std::unique_ptr<Subprocess> StartServer(const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> argv = {testing::kServerBinary, "--duration", "90",
+                                     "--no-object-learning", "--no-extrapolation"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return Start(std::move(argv));
+  }
   std::unique_ptr<Subprocess> StartAgent(const std::string& robot, const std::string& map) {
     return Start({testing::kAgentBinary, "--robot-id", robot, "--map", map, "--unplaced"});
+  }
+
+  std::optional<RobotFrameMessage> WaitUntilPlaced(const std::string& robot) {
+    return WaitForFrame(robot, [](const RobotFrameMessage& frame) { return frame.placed(); });
   }
 
   // Waits for a frame of `robot` that satisfies `done`; returns the last frame of `robot` seen.
@@ -177,8 +179,7 @@ class PlacementTest : public ::testing::Test {
 };
 
 TEST_F(PlacementTest, UnplacedRobotIsPlacedFusedAndPublishedOnRobotFramesAndTf) {
-  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
-                       "--no-extrapolation"});
+  auto server = StartServer();
   auto alpha = StartAgent("alpha", alpha_path_);
   const auto anchor = WaitForFrame("alpha", [](const RobotFrameMessage& frame) {
     return frame.state == RobotFrameMessage::State::kAnchor;
@@ -193,9 +194,7 @@ TEST_F(PlacementTest, UnplacedRobotIsPlacedFusedAndPublishedOnRobotFramesAndTf) 
     return frame.state == RobotFrameMessage::State::kPlaced;
   });
   ASSERT_TRUE(placed && placed->state == RobotFrameMessage::State::kPlaced) << server->Output();
-  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
-  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  ExpectPlacedAt(placed->fleet_from_map, alpha_from_beta_, beta_, 2, *server);
   EXPECT_GE(placed->confidence, 0.5);
   EXPECT_GT(placed->overlap, 0.1);
   EXPECT_EQ(placed->placed_against, "fleet");
@@ -222,8 +221,8 @@ TEST_F(PlacementTest, UnplacedRobotIsPlacedFusedAndPublishedOnRobotFramesAndTf) 
 
   // The fused map holds both robots' maps where they belong, once each: a wall counted twice or
   // a map in the wrong place would disagree with one of them.
-  auto map_reader = transport::OccupancyGridReader::Create(
-      *participant_, transport::kFleetMapTopic, std::make_shared<WakeUp>());
+  auto map_reader = transport::OccupancyGridReader::Create(*participant_, transport::kFleetMapTopic,
+                                                           std::make_shared<WakeUp>());
   ASSERT_TRUE(map_reader.ok()) << map_reader.status();
   double alpha_agrees = 0.0, beta_agrees = 0.0;
   const auto map_deadline = std::chrono::steady_clock::now() + kDeadline;
@@ -232,8 +231,8 @@ TEST_F(PlacementTest, UnplacedRobotIsPlacedFusedAndPublishedOnRobotFramesAndTf) 
     std::this_thread::sleep_for(milliseconds(200));
     for (auto& map : (*map_reader)->Drain()) {
       if (!map.ok()) continue;
-      alpha_agrees = Agreement(alpha_, Transform2::Identity(), map->grid);
-      beta_agrees = Agreement(beta_, alpha_from_beta_, map->grid);
+      alpha_agrees = testing::Agreement(alpha_, Transform2::Identity(), map->grid);
+      beta_agrees = testing::Agreement(beta_, alpha_from_beta_, map->grid);
     }
   }
   EXPECT_GE(alpha_agrees, 0.95) << server->Output();
@@ -241,14 +240,11 @@ TEST_F(PlacementTest, UnplacedRobotIsPlacedFusedAndPublishedOnRobotFramesAndTf) 
 }
 
 TEST_F(PlacementTest, PlacementThatTheMapContradictsIsRevised) {
-  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
-                       "--no-extrapolation", "--placement-check-period", "1"});
+  auto server = StartServer({"--placement-check-period", "1"});
   auto alpha = StartAgent("alpha", alpha_path_);
-  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
+  ASSERT_TRUE(WaitUntilPlaced("alpha")) << server->Output();
   auto beta = StartAgent("beta", beta_path_);
-  const auto placed =
-      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  const auto placed = WaitUntilPlaced("beta");
   ASSERT_TRUE(placed && placed->placed()) << server->Output();
 
   // beta's SLAM moves its whole map 1.5 m along its x axis (a relocalisation): the old placement
@@ -263,29 +259,21 @@ TEST_F(PlacementTest, PlacementThatTheMapContradictsIsRevised) {
   const auto revised = WaitForFrame("beta", [](const RobotFrameMessage& frame) {
     return frame.state == RobotFrameMessage::State::kRevised;
   });
-  ASSERT_TRUE(revised && revised->state == RobotFrameMessage::State::kRevised)
-      << server->Output();
-  const auto [distance, yaw] = PlacementError(revised->fleet_from_map, truth, moved);
-  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  ASSERT_TRUE(revised && revised->state == RobotFrameMessage::State::kRevised) << server->Output();
+  ExpectPlacedAt(revised->fleet_from_map, truth, moved, 2, *server);
   EXPECT_EQ(revised->placements, 2u);
   EXPECT_TRUE(beta->WaitForOutput("revised by the server", kDeadline)) << beta->Output();
 }
 
 TEST_F(PlacementTest, ARobotOnAGridWireIsPlacedToo) {
-  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
-                       "--no-extrapolation"});
+  auto server = StartServer();
   auto alpha = StartAgent("alpha", alpha_path_);
-  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
-  auto beta = Start({testing::kAgentBinary, "--robot-id", "beta", "--map", beta_path_,
-                     "--unplaced", "--wire", "grid-updates-zstd"});
-  const auto placed =
-      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  ASSERT_TRUE(WaitUntilPlaced("alpha")) << server->Output();
+  auto beta = Start({testing::kAgentBinary, "--robot-id", "beta", "--map", beta_path_, "--unplaced",
+                     "--wire", "grid-updates-zstd"});
+  const auto placed = WaitUntilPlaced("beta");
   ASSERT_TRUE(placed && placed->placed()) << server->Output();
-  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
-  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  ExpectPlacedAt(placed->fleet_from_map, alpha_from_beta_, beta_, 2, *server);
 }
 
 TEST_F(PlacementTest, ARobotMappingAtAnotherResolutionIsPlacedOnTheFleetMap) {
@@ -296,18 +284,13 @@ TEST_F(PlacementTest, ARobotMappingAtAnotherResolutionIsPlacedOnTheFleetMap) {
     for (int x = 0; x < fine.width(); ++x) fine.at(x, y) = beta_.at(x / 2, y / 2);
   }
   const std::string fine_path = Save(fine, "beta_fine");
-  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
-                       "--no-extrapolation"});
+  auto server = StartServer();
   auto alpha = StartAgent("alpha", alpha_path_);
-  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
+  ASSERT_TRUE(WaitUntilPlaced("alpha")) << server->Output();
   auto beta = StartAgent("beta", fine_path);
-  const auto placed =
-      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  const auto placed = WaitUntilPlaced("beta");
   ASSERT_TRUE(placed && placed->placed()) << server->Output();
-  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
-  EXPECT_LE(distance, 2 * beta_.resolution()) << server->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  ExpectPlacedAt(placed->fleet_from_map, alpha_from_beta_, beta_, 2, *server);
 }
 
 TEST_F(PlacementTest, RobotsRegisteredToEachOtherArePlacedTogether) {
@@ -334,40 +317,33 @@ TEST_F(PlacementTest, RobotsRegisteredToEachOtherArePlacedTogether) {
   const std::string middle_path = Save(middle, "middle");
   const std::string west_path = Save(west, "west");
 
-  auto server = Start({testing::kServerBinary, "--duration", "90", "--no-object-learning",
-                       "--no-extrapolation"});
+  auto server = StartServer();
   auto alpha = StartAgent("alpha", east_path);
-  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
+  ASSERT_TRUE(WaitUntilPlaced("alpha")) << server->Output();
   auto beta = StartAgent("beta", middle_path);
   auto gamma = StartAgent("gamma", west_path);
   ASSERT_TRUE(server->WaitForOutput("robot gamma registered to robot beta", kDeadline))
       << server->Output();
   ASSERT_TRUE(grid::SaveMap(grown, middle_path).ok());  // beta explores east
-  const auto placed = WaitForFrame("gamma", [](const RobotFrameMessage& frame) {
-    return frame.placed();
-  });
+  const auto placed =
+      WaitForFrame("gamma", [](const RobotFrameMessage& frame) { return frame.placed(); });
   ASSERT_TRUE(placed && placed->placed()) << server->Output();
   EXPECT_EQ(placed->placed_against, "beta");
-  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, truth, west);
-  EXPECT_LE(distance, 3 * r) << server->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
+  ExpectPlacedAt(placed->fleet_from_map, truth, west, 3, *server);
 }
 
 TEST_F(PlacementTest, AServerKilledMidRunPlacesAGoneRobotAgainFromItsStore) {
   const std::string store =
       ::testing::TempDir() + "/placement_" + std::to_string(getpid()) + "_store.sqlite";
   std::remove(store.c_str());
-  const std::vector<std::string> server_argv = {testing::kServerBinary,  "--store", store,
-                                                "--no-object-learning", "--no-extrapolation",
-                                                "--duration",           "90"};
+  const std::vector<std::string> server_argv = {
+      testing::kServerBinary, "--store",    store, "--no-object-learning",
+      "--no-extrapolation",   "--duration", "90"};
   auto server = Start(server_argv);
   auto alpha = StartAgent("alpha", alpha_path_);
-  ASSERT_TRUE(WaitForFrame("alpha", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
+  ASSERT_TRUE(WaitUntilPlaced("alpha")) << server->Output();
   auto beta = StartAgent("beta", beta_path_);
-  ASSERT_TRUE(WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); }))
-      << server->Output();
+  ASSERT_TRUE(WaitUntilPlaced("beta")) << server->Output();
   // beta leaves; then the server dies without a word. Its store keeps beta's own-frame tiles.
   beta->Signal(SIGINT);
   ASSERT_TRUE(beta->Wait(kDeadline).has_value());
@@ -379,14 +355,10 @@ TEST_F(PlacementTest, AServerKilledMidRunPlacesAGoneRobotAgainFromItsStore) {
   ASSERT_TRUE(restarted->WaitForOutput("restored", kDeadline)) << restarted->Output();
   // Placed by the restarted server (not the frame the dead one published before).
   ASSERT_TRUE(restarted->WaitForOutput("robot beta placed", kDeadline)) << restarted->Output();
-  const auto placed =
-      WaitForFrame("beta", [](const RobotFrameMessage& frame) { return frame.placed(); });
+  const auto placed = WaitUntilPlaced("beta");
   ASSERT_TRUE(placed && placed->placed()) << restarted->Output();
-  const auto [distance, yaw] = PlacementError(placed->fleet_from_map, alpha_from_beta_, beta_);
-  EXPECT_LE(distance, 2 * beta_.resolution()) << restarted->Output();
-  EXPECT_LE(yaw, 1.0 * M_PI / 180.0);
-  EXPECT_NE(restarted->Output().find("map-frame tiles"), std::string::npos)
-      << restarted->Output();
+  ExpectPlacedAt(placed->fleet_from_map, alpha_from_beta_, beta_, 2, *restarted);
+  EXPECT_NE(restarted->Output().find("map-frame tiles"), std::string::npos) << restarted->Output();
 }
 
 }  // namespace

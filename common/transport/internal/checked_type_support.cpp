@@ -4,14 +4,14 @@
 #include "fleetmap_msgs/msg/CompressedGridUpdatePubSubTypes.h"
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
-#include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
-#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
+#include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
 #include "map_msgs/msg/OccupancyGridUpdatePubSubTypes.h"
 #include "nav_msgs/msg/OccupancyGridPubSubTypes.h"
+#include "tf2_msgs/msg/TFMessagePubSubTypes.h"
 
 namespace fleetmap::transport {
 namespace {

@@ -97,17 +97,11 @@ const CdrShape& RobotStatusShape() {
 }
 
 const CdrShape& VectorTileShape() {
-  static const CdrShape shape = {String("robot_id"),
-                                 Primitive("tile_x", 4),
-                                 Primitive("tile_y", 4),
-                                 Struct("stamp", TimeShape()),
-                                 Primitive("layout_version", 1),
-                                 Primitive("compression", 1),
-                                 Primitive("revision", 4),
-                                 Primitive("tile_size_mm", 4),
-                                 Primitive("epsilon", 4),
-                                 Primitive("resolution", 4),
-                                 Sequence("geometry", 1)};
+  static const CdrShape shape = {
+      String("robot_id"),           Primitive("tile_x", 4),         Primitive("tile_y", 4),
+      Struct("stamp", TimeShape()), Primitive("layout_version", 1), Primitive("compression", 1),
+      Primitive("revision", 4),     Primitive("tile_size_mm", 4),   Primitive("epsilon", 4),
+      Primitive("resolution", 4),   Sequence("geometry", 1)};
   return shape;
 }
 
@@ -172,14 +166,11 @@ const CdrShape& ObjectModelShape() {
 }
 
 const CdrShape& RobotFrameShape() {
-  static const CdrShape shape = {String("robot_id"),
-                                 Struct("stamp", TimeShape()),
-                                 Primitive("state", 1),
-                                 Struct("fleet_from_map", Pose2DShape()),
-                                 Primitive("confidence", 8),
-                                 Primitive("overlap", 4),
-                                 Primitive("placements", 4),
-                                 String("placed_against")};
+  static const CdrShape shape = {
+      String("robot_id"),         Struct("stamp", TimeShape()),
+      Primitive("state", 1),      Struct("fleet_from_map", Pose2DShape()),
+      Primitive("confidence", 8), Primitive("overlap", 4),
+      Primitive("placements", 4), String("placed_against")};
   return shape;
 }
 

@@ -36,8 +36,9 @@ EndpointQos OccupancyGridUpdateQos();
 EndpointQos VectorTileQos();
 
 // rt/fleetmap/entities, rt/fleetmap/submap_graph, rt/fleetmap/object_templates,
-// rt/fleetmap/objects and rt/fleetmap/robot_frames: state topics like the tiles (reliable, transient local, keep last 1 per
-// instance, no instance limit), so a late joiner gets the current entities, graph and models.
+// rt/fleetmap/objects and rt/fleetmap/robot_frames: state topics like the tiles (reliable,
+// transient local, keep last 1 per instance, no instance limit), so a late joiner gets the current
+// entities, graph and models.
 EndpointQos KeyedStateQos();
 
 // rt/tf: ROS 2's /tf QoS (reliable, volatile, keep last 100), so tf2 listeners (RViz) match.
