@@ -60,11 +60,13 @@ MexploreRegistration Estimate(const grid::OccupancyGrid& a, const grid::Occupanc
   adjuster.setConfThresh(options.confidence);
   if (!adjuster(features, pairwise, cameras)) return result;
 
-  // Each camera's R takes its image's pixels into the common (reference image's) pixels.
+  // Each camera's R takes the common (reference image's) pixels into its image's pixels: the
+  // estimator chains R_to = R_from * H(from -> to) from the reference, and m-explore's warper
+  // places an image by R's inverse.
   cv::Mat r_a, r_b;
   cameras[0].R.convertTo(r_a, CV_64F);
   cameras[1].R.convertTo(r_b, CV_64F);
-  const cv::Mat pixel_a_from_b = r_a.inv() * r_b;
+  const cv::Mat pixel_a_from_b = r_a * r_b.inv();
   if (!cv::checkRange(pixel_a_from_b)) return result;
   Eigen::Matrix3d m;
   for (int r = 0; r < 3; ++r) {
