@@ -62,10 +62,13 @@ nlohmann::json ToJson(const MethodSummary& s) {
 nlohmann::json ToJson(const MethodOutcome& o) {
   return {{"found", o.found},
           {"success", o.success},
+          {"right", o.right},
           {"translation_error_cells", o.translation_error_cells},
           {"yaw_error_deg", o.yaw_error_deg},
           {"seconds", o.seconds},
-          {"confidence", o.confidence}};
+          {"confidence", o.confidence},
+          {"score", o.score},
+          {"why_not", o.why_not}};
 }
 
 }  // namespace
@@ -103,7 +106,7 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
 
   const std::string source = options.synthetic_maps > 0
-                                 ? std::to_string(options.synthetic_maps) + " synthetic office terrains"
+                                 ? std::to_string(options.synthetic_maps) + " synthetic terrains"
                                  : std::to_string(maps->size()) + " maps in " + options.maps_dir;
   out << "Map registration, " << source << ", " << options.pairs_per_overlap
       << " pairs per map and overlap (seed " << options.seed << "): " << run.pairs.size()
@@ -143,14 +146,14 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   out << "\nExpected calibration error: " << Fixed(ExpectedCalibrationError(bins), 3) << "\n";
 
   if (options.synthetic_maps > 0) {
+    // Every pair, found or not, labelled by whether its placement (the best guess when refused)
+    // is right: refused pairs carry most of the wrong placements the score must learn from.
     std::vector<registration::ConfidenceCalibration::Sample> samples;
-    for (const PairOutcome& p : run.pairs) {
-      if (p.fleetmap.found) samples.push_back({p.fleetmap.score, p.fleetmap.success});
-    }
+    for (const PairOutcome& p : run.pairs) samples.push_back({p.fleetmap.score, p.fleetmap.right});
     if (!samples.empty()) {
       const auto fit = registration::ConfidenceCalibration::Fit(samples, 20);
-      out << "\nCalibration fit (isotonic, score -> probability, " << samples.size()
-          << " found pairs):\n{";
+      out << "\nCalibration fit (isotonic, score -> probability the placement is right, "
+          << samples.size() << " pairs):\n{";
       for (size_t k = 0; k < fit.knots().size(); ++k) {
         out << (k > 0 ? ", " : "") << "{" << FormatDouble("%.4f", fit.knots()[k].score) << ", "
             << FormatDouble("%.4f", fit.knots()[k].probability) << "}";
@@ -229,8 +232,8 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
       "Map registration on map pairs at 20-70 % overlap: fleetmap against m-explore's pipeline");
   command->add_option("--maps", options->maps_dir, "directory of map_server maps (*.yaml)");
   command->add_option("--synthetic", options->synthetic_maps,
-                      "use this many synthetic office terrains instead of --maps, and print the "
-                      "confidence calibration fit");
+                      "use this many synthetic terrains (office, maze, unstructured) instead of "
+                      "--maps, and print the confidence calibration fit");
   command->add_option("--pairs-per-overlap", options->pairs_per_overlap,
                       "pairs per map and overlap")
       ->capture_default_str();

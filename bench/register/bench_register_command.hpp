@@ -5,7 +5,7 @@
 // at 20 / 35 / 50 / 70 % overlap (bench/register/map_pair_generator.hpp), registers each with
 // fleetmap and with m-explore's pipeline in the same run (one core), and prints per overlap and
 // in total: success %, false accepts %, median and worst time per pair; then the reliability of
-// fleetmap's confidence. `--synthetic K` uses K office terrains of common/sim instead of DIR and
+// fleetmap's confidence. `--synthetic K` uses K terrains of common/sim instead of DIR and
 // prints the isotonic fit of the confidence calibration (how its default knots were made).
 // Progress goes to stderr.
 

@@ -26,9 +26,9 @@ void Judge(const MapPair& pair, const Point2& centroid_b, const Pose2& estimate,
   outcome->translation_error_cells = d.norm() / pair.b.resolution();
   outcome->yaw_error_deg =
       std::abs(NormalizeAngle(estimate.yaw - Pose2::FromTransform(pair.a_from_b).yaw)) / kDegree;
-  outcome->success = outcome->found &&
-                     outcome->translation_error_cells <= options.max_translation_cells &&
-                     outcome->yaw_error_deg <= options.max_yaw_deg;
+  outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
+                   outcome->yaw_error_deg <= options.max_yaw_deg;
+  outcome->success = outcome->found && outcome->right;
 }
 
 double Median(std::vector<double> values) {
@@ -59,14 +59,18 @@ StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed) {
   std::vector<SourceMap> maps;
   for (int k = 0; k < count; ++k) {
     sim::TerrainOptions terrain_options;
-    terrain_options.kind = sim::TerrainKind::kOffice;
+    constexpr sim::TerrainKind kKinds[] = {sim::TerrainKind::kOffice, sim::TerrainKind::kMaze,
+                                           sim::TerrainKind::kUnstructured};
+    terrain_options.kind = kKinds[k % 3];
     terrain_options.size = 30.0;
     terrain_options.seed = seed * 7919u + static_cast<uint32_t>(k);
     FLEETMAP_ASSIGN_OR_RETURN(const sim::TerrainGenerator generator,
                               sim::TerrainGenerator::Create(terrain_options));
     FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid grid,
                               sim::RasterizeTerrain(generator.Generate(), 0.05));
-    maps.push_back({"office_" + std::to_string(terrain_options.seed), std::move(grid)});
+    maps.push_back({std::string(sim::TerrainKindName(terrain_options.kind)) + "_" +
+                        std::to_string(terrain_options.seed),
+                    std::move(grid)});
   }
   return maps;
 }
@@ -94,7 +98,7 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
         if (!pair.ok()) {
           ++run.not_generated;
           if (progress != nullptr) {
-            *progress << "bench register: " << maps[m].name << " overlap " << options.overlaps[o]
+            *progress << "\nbench register: " << maps[m].name << " overlap " << options.overlaps[o]
                       << ": " << pair.status().message() << "\n";
           }
           continue;
@@ -115,6 +119,7 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
           outcome.fleetmap.found = r->found;
           outcome.fleetmap.confidence = r->confidence;
           outcome.fleetmap.score = r->score;
+          outcome.fleetmap.why_not = r->why_not;
           Judge(*pair, centroid_b, r->a_from_b, options, &outcome.fleetmap);
         }
         if (options.run_mexplore) {

@@ -23,8 +23,9 @@ struct SourceMap {
   grid::OccupancyGrid grid;
 };
 
-// `count` office terrains of common/sim (30 m, 5 cm cells), seeds derived from `seed`: source maps
-// that are not the evaluation maps, for fitting the confidence calibration.
+// `count` terrains of common/sim (office, maze and unstructured in turn; 30 m, 5 cm cells), seeds
+// derived from `seed`: source maps that are not the evaluation maps, for fitting the confidence
+// calibration.
 StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed);
 
 struct RegisterBenchOptions {
@@ -42,11 +43,13 @@ struct RegisterBenchOptions {
 struct MethodOutcome {
   bool found = false;
   bool success = false;  // found, and within the tolerances of the truth
+  bool right = false;    // the estimate (or best guess) is within the tolerances, found or not
   double translation_error_cells = 0.0;
   double yaw_error_deg = 0.0;
   double seconds = 0.0;
   double confidence = 0.0;  // fleetmap: Registration::confidence; m-explore: match confidence
   double score = 0.0;       // fleetmap: Registration::score (the uncalibrated evidence)
+  std::string why_not;      // fleetmap: why it was refused
 };
 
 struct PairOutcome {

@@ -1,11 +1,12 @@
 #pragma once
 
 // Turns Registration::score (consistency x distinctness, a score with a stated meaning but no
-// probability) into Registration::confidence: an estimate of the probability that a found
+// probability) into Registration::confidence: an estimate of the probability that the
 // placement is right (within 3 cells at B's known centroid and 2 degrees). A monotone,
 // piecewise-linear map through knots fitted by isotonic regression (pool adjacent violators) on
-// labelled pairs; the default knots were fitted on synthetic pairs (office terrains of
-// common/sim), never on the real evaluation maps: docs/registration.md says how to refit them.
+// labelled pairs; the default knots were fitted on synthetic pairs (office, maze and unstructured
+// terrains of common/sim, every pair labelled by whether its placement, found or refused, is
+// right), never on the real evaluation maps: docs/registration.md says how to refit them.
 //
 // Immutable after construction: any thread may call its const methods.
 

@@ -61,7 +61,7 @@ struct Registration {
   // also when it is refused (then a hint only).
   Pose2 a_from_b;
   // The estimated probability that a_from_b is right (within 3 cells at B's known centroid and
-  // 2 degrees): `score` through ConfidenceCalibration::Default(), fitted on found synthetic pairs.
+  // 2 degrees): `score` through ConfidenceCalibration::Default(), fitted on synthetic pairs.
   double confidence = 0.0;
   // The evidence in [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells,
   // both ways) times distinctness (1 - second peak / best peak, scaled). 0 when nothing matched.
