@@ -48,23 +48,43 @@ Mask ExploredRegion(const grid::OccupancyGrid& map, const Mask& known,
                     const std::vector<int>& order, size_t count, const MapPairOptions& options,
                     std::mt19937& rng) {
   const int w = map.width(), h = map.height();
-  cv::Mat driven(h, w, CV_8U, cv::Scalar(0));
-  for (size_t k = 0; k < count && k < order.size(); ++k) {
-    driven.at<uint8_t>(order[k] / w, order[k] % w) = 255;
-  }
   constexpr int kSight = 3;
+  // Work in the window around the driven cells that the sight and the frontier can reach.
+  const int reach = kSight + static_cast<int>(std::ceil(options.frontier_amplitude_cells)) + 2;
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (size_t k = 0; k < count && k < order.size(); ++k) {
+    x0 = std::min(x0, order[k] % w);
+    x1 = std::max(x1, order[k] % w);
+    y0 = std::min(y0, order[k] / w);
+    y1 = std::max(y1, order[k] / w);
+  }
+  Mask region(known.size(), 0);
+  if (x1 < 0) return region;
+  x0 = std::max(0, x0 - reach);
+  y0 = std::max(0, y0 - reach);
+  x1 = std::min(w - 1, x1 + reach);
+  y1 = std::min(h - 1, y1 + reach);
+  const int ww = x1 - x0 + 1, wh = y1 - y0 + 1;
+  // A one-pixel unseen border, so distances inside measure to the window's edge too.
+  cv::Mat driven(wh + 2, ww + 2, CV_8U, cv::Scalar(0));
+  for (size_t k = 0; k < count && k < order.size(); ++k) {
+    driven.at<uint8_t>(order[k] / w - y0 + 1, order[k] % w - x0 + 1) = 255;
+  }
   cv::Mat seen;
   cv::dilate(driven, seen,
              cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * kSight + 1, 2 * kSight + 1}));
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!known[y * w + x]) seen.at<uint8_t>(y, x) = 0;
+  for (int y = 0; y < wh + 2; ++y) {
+    for (int x = 0; x < ww + 2; ++x) {
+      const int sx = x + x0 - 1, sy = y + y0 - 1;
+      if (sx < 0 || sy < 0 || sx >= w || sy >= h || !known[sy * w + sx]) {
+        seen.at<uint8_t>(y, x) = 0;
+      }
     }
   }
   // Smooth noise in [-amplitude, amplitude]: random values on a coarse lattice, interpolated.
   const double wavelength = std::max(2.0, options.frontier_wavelength_cells);
-  const int lw = static_cast<int>(std::ceil(w / wavelength)) + 2;
-  const int lh = static_cast<int>(std::ceil(h / wavelength)) + 2;
+  const int lw = static_cast<int>(std::ceil((ww + 2) / wavelength)) + 2;
+  const int lh = static_cast<int>(std::ceil((wh + 2) / wavelength)) + 2;
   cv::Mat lattice(lh, lw, CV_32F);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   for (int y = 0; y < lh; ++y) {
@@ -78,11 +98,10 @@ Mask ExploredRegion(const grid::OccupancyGrid& map, const Mask& known,
   cv::bitwise_not(seen, not_seen);
   cv::distanceTransform(not_seen, outside, cv::DIST_L2, 3);
   const float amplitude = static_cast<float>(options.frontier_amplitude_cells);
-  Mask region(known.size(), 0);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
+  for (int y = 1; y <= wh; ++y) {
+    for (int x = 1; x <= ww; ++x) {
       const float n = amplitude * noise.at<float>(y, x);
-      const int i = y * w + x;
+      const int i = (y + y0 - 1) * w + (x + x0 - 1);
       region[i] = seen.at<uint8_t>(y, x) ? inside.at<float>(y, x) > n
                                          : known[i] && outside.at<float>(y, x) <= -n;
     }
