@@ -7,6 +7,7 @@
 #include <random>
 
 #include "bench/register/mexplore_registration.hpp"
+#include "bench/report/report_format.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
 
@@ -29,13 +30,6 @@ void Judge(const MapPair& pair, const Point2& centroid_b, const Pose2& estimate,
   outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
                    outcome->yaw_error_deg <= options.max_yaw_deg;
   outcome->success = outcome->found && outcome->right;
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 MethodSummary SummarizeMethod(const std::vector<const MethodOutcome*>& outcomes) {
