@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every figure of docs/results.md, in one run: bash bench/run_all.sh [BUILD_DIR] [OUT_DIR]
 # Each command's stdout goes to OUT_DIR/<name>.txt (and its JSON/CSV beside it); the commands are
-# the ones docs/results.md names. About 40 minutes on the 2-core reference machine. The lossy
+# the ones docs/results.md names. About 50 minutes on the 2-core reference machine. The lossy
 # network run needs root (a network namespace and an nftables rule) and is skipped otherwise.
 set -euo pipefail
 
@@ -50,4 +50,6 @@ run extrapolation_1 "$fleetmap" bench extrapolation --out "$out/extrapolation_1"
   --seed 1 --no-progress
 run extrapolation_1001 "$fleetmap" bench extrapolation --out "$out/extrapolation_1001" \
   --scenes 100 --seed 1001 --no-progress
+run register "$fleetmap" bench register --maps "$maps" --pairs-per-overlap 12 --seed 1 \
+  --json "$out/register.json" --csv "$out/register.csv"
 echo "all figures in $out" >&2

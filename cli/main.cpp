@@ -10,6 +10,7 @@
 #include "bench/fleet/sim_command.hpp"
 #include "bench/objects/bench_objects_command.hpp"
 #include "bench/paper/bench_paper_command.hpp"
+#include "bench/register/bench_register_command.hpp"
 #include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddLearnObjectsCommand(app, &exit_code);
   fleetmap::bench::AddBenchObjectsCommand(app, &exit_code);
   fleetmap::cli::AddRegisterCommand(app, &exit_code);
+  fleetmap::bench::AddBenchRegisterCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

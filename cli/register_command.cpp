@@ -21,10 +21,13 @@ constexpr const char* kDescription =
     "agree with A (too little shared structure), when the placement puts many occupied cells on "
     "the other map's free space, or when a clearly different placement scores nearly as well "
     "(a symmetric corridor, repeated rooms).\n"
-    "confidence (0..1): consistency times distinctness. Consistency is the share of occupied "
-    "cells in the overlap (both ways) that land on or next to an occupied cell of the other map "
-    "rather than on its free space; distinctness is how far the best clearly different placement "
-    "falls below the best (1 when it scores 70 % of the best or less, 0 at a tie).\n"
+    "confidence (0..1): the estimated probability that the placement is right (within 3 cells "
+    "and 2 degrees), calibrated on synthetic map pairs (docs/registration.md).\n"
+    "score (0..1): the evidence confidence is computed from: consistency times distinctness. "
+    "Consistency is the share of occupied cells in the overlap (both ways) that land on or next "
+    "to an occupied cell of the other map rather than on its free space; distinctness is how far "
+    "the best clearly different placement falls below the best (1 when it scores 70 % of the "
+    "best or less, 0 at a tie).\n"
     "overlap (0..1): the share of B's known cells that land on A's known cells.\n"
     "Exit status 0 whether found or not, 2 on bad input.";
 
@@ -85,6 +88,7 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     json["found"] = r.found;
     json["a_from_b"] = {{"x", r.a_from_b.x}, {"y", r.a_from_b.y}, {"yaw", r.a_from_b.yaw}};
     json["confidence"] = r.confidence;
+    json["score"] = r.score;
     json["overlap"] = r.overlap;
     json["ms"] = ms;
     if (!r.found) json["why_not"] = r.why_not;
@@ -97,7 +101,8 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     out << (r.found ? "a_from_b:   " : "best guess: ") << "x " << Num(r.a_from_b.x) << " m, y "
         << Num(r.a_from_b.y) << " m, yaw " << Num(r.a_from_b.yaw) << " rad ("
         << Num(r.a_from_b.yaw * 180.0 / 3.14159265358979323846) << " deg)\n"
-        << "confidence: " << Num(r.confidence) << "\n"
+        << "confidence: " << Num(r.confidence) << " (probability the placement is right)\n"
+        << "score:      " << Num(r.score) << " (consistency x distinctness)\n"
         << "overlap:    " << Num(r.overlap) << " of B's known cells on A's\n"
         << "evidence:   " << r.agreeing_cells << " of B's occupied cells agree, "
         << r.contradicting_cells << " occupied cells contradict, second peak at "

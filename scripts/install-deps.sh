@@ -9,6 +9,8 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # Geometry, images, configuration, command line, logging, JSON.
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  # The m-explore baseline of `fleetmap bench register` (AKAZE, the stitching pipeline).
+  libopencv-features2d-dev libopencv-flann-dev libopencv-calib3d-dev libopencv-stitching-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   # Persistence and compression (LZ4: one of the fleet benchmark's byte baselines).
   libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev liblz4-dev

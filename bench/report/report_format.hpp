@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace fleetmap::bench {
 
@@ -12,6 +13,9 @@ std::string Fixed(double value, int digits);
 
 // `value` through a printf format of one double ("%.1f %%", "%g").
 std::string FormatDouble(const char* format, double value);
+
+// The median of `values` (the mean of the middle two for an even count; 0 for none).
+double Median(std::vector<double> values);
 
 // Bytes as KB (1024 bytes) with one decimal, as the byte tables print them.
 std::string Kilobytes(size_t bytes);

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/report/report_format.hpp"
 #include "bench/vectorize/opencv_contours.hpp"
 #include "cli/inputs/command_inputs.hpp"
 #include "common/grid/tiling.hpp"
@@ -25,12 +26,6 @@ using Clock = std::chrono::steady_clock;
 
 double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // The median time of `runs` calls of `run` (which stores its last result itself).

@@ -18,13 +18,6 @@ std::string Percent(const std::optional<double>& value) {
 
 double SafeRatio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 template <typename Value>
 std::vector<double> Collect(const std::vector<VectorizeBenchRow>& rows,
                             const std::function<Value(const VectorizeBenchRow&)>& get) {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "common/registration/confidence_calibration.hpp"
+
 namespace fleetmap::registration {
 namespace {
 
@@ -420,8 +422,8 @@ Status RegistrationOptions::Validate() const {
   if (!(max_contradiction >= 0.0 && max_contradiction <= 1.0)) {
     return InvalidArgumentError("registration max_contradiction must be in [0, 1]");
   }
-  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
-    return InvalidArgumentError("registration min_confidence must be in [0, 1]");
+  if (!(min_score >= 0.0 && min_score <= 1.0)) {
+    return InvalidArgumentError("registration min_score must be in [0, 1]");
   }
   if (!(thresholds.free >= 0.0 && thresholds.free <= thresholds.occupied &&
         thresholds.occupied <= 1.0)) {
@@ -445,7 +447,7 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("tolerance_cells", tolerance_cells);
   out.Add("min_agreeing_cells", min_agreeing_cells);
   out.Add("max_contradiction", max_contradiction);
-  out.Add("min_confidence", min_confidence);
+  out.Add("min_score", min_score);
   out.Nested("thresholds", thresholds);
 }
 
@@ -630,8 +632,9 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
           ? result.contradicting_cells / (agree_both + result.contradicting_cells)
           : 1.0;
   const double distinctness = 1.0 - result.peak_ratio;
-  result.confidence =
+  result.score =
       std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
+  result.confidence = ConfidenceCalibration::Default().Probability(result.score);
 
   if (result.agreeing_cells < options.min_agreeing_cells) {
     result.why_not = std::string("too little shared structure: ")
@@ -647,11 +650,11 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     result.why_not = std::string("ambiguous: a clearly different placement scores ")
                          .append(Num(100.0 * result.peak_ratio))
                          .append(" % of the best (symmetric or repeated structure)");
-  } else if (result.confidence < options.min_confidence) {
-    result.why_not = std::string("confidence ")
-                         .append(Num(result.confidence))
+  } else if (result.score < options.min_score) {
+    result.why_not = std::string("score ")
+                         .append(Num(result.score))
                          .append(" is below ")
-                         .append(Num(options.min_confidence));
+                         .append(Num(options.min_score));
   } else {
     result.found = true;
   }

@@ -46,8 +46,8 @@ struct RegistrationOptions {
   int min_agreeing_cells = 150;
   // Most contradicting occupied cells (both directions) as a fraction of agreeing + contradicting.
   double max_contradiction = 0.25;
-  // Least confidence a match must have to be found.
-  double min_confidence = 0.15;
+  // Least score (consistency x distinctness, Registration::score) a match must have to be found.
+  double min_score = 0.15;
   // How a cell value reads as occupied / free.
   grid::StateThresholds thresholds;
 
@@ -60,9 +60,12 @@ struct Registration {
   // Takes a point in B's map frame to A's map frame: p_a = a_from_b * p_b. The best hypothesis,
   // also when it is refused (then a hint only).
   Pose2 a_from_b;
-  // In [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells, both ways)
-  // times distinctness (1 - second peak / best peak). 0 when nothing was matched.
+  // The estimated probability that a_from_b is right (within 3 cells at B's known centroid and
+  // 2 degrees): `score` through ConfidenceCalibration::Default(), fitted on synthetic pairs.
   double confidence = 0.0;
+  // The evidence in [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells,
+  // both ways) times distinctness (1 - second peak / best peak, scaled). 0 when nothing matched.
+  double score = 0.0;
   // Fraction of B's known cells that land on A's known cells under a_from_b.
   double overlap = 0.0;
   // Why found is false, for people; empty when found.

@@ -13,7 +13,9 @@ namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::ReadFile;
 using testing::RunFleetmap;
+using testing::ScratchDir;
 
 std::string DataPath(const std::string& name) {
   return std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/" + name;
@@ -40,6 +42,7 @@ TEST(CliRegisterTest, PrintsTextAndExplainsConfidence) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("found:      yes"));
   EXPECT_THAT(run.out, HasSubstr("confidence: "));
+  EXPECT_THAT(run.out, HasSubstr("score: "));
   const process::CommandResult help = RunFleetmap({"register", "--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_THAT(help.out, HasSubstr("confidence (0..1)"));
@@ -54,6 +57,35 @@ TEST(CliRegisterTest, BadInputExitsTwoNamingTheFile) {
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_THAT(run.err, HasSubstr("trinary_4x3.yaml"));
   EXPECT_THAT(run.err, HasSubstr("resolution"));
+}
+
+TEST(CliRegisterTest, BenchPrintsARowPerOverlapAndWritesJsonAndCsv) {
+  const ScratchDir dir("cli_bench_register");
+  const process::CommandResult run =
+      RunFleetmap({"bench", "register", "--maps", DataPath("real"), "--pairs-per-overlap", "1",
+                   "--json", dir.Path("r.json"), "--csv", dir.Path("r.csv")});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* row : {"| 20 % |", "| 35 % |", "| 50 % |", "| 70 % |", "| all |"}) {
+    EXPECT_THAT(run.out, HasSubstr(row));
+  }
+  EXPECT_THAT(run.out, HasSubstr("m-explore success %"));
+  EXPECT_THAT(run.out, HasSubstr("Reliability of fleetmap's confidence"));
+  EXPECT_THAT(run.err, HasSubstr("pairs, "));  // progress
+  const nlohmann::json json = nlohmann::json::parse(ReadFile(dir.Path("r.json")));
+  ASSERT_EQ(json["summary"].size(), 5u);
+  EXPECT_EQ(json["summary"][0]["overlap"], "20 %");
+  EXPECT_EQ(json["summary"][4]["overlap"], "all");
+  EXPECT_EQ(json["summary"][4]["fleetmap"]["pairs"].get<int>() + json["not_generated"].get<int>(),
+            12);  // 3 maps x 4 overlaps x 1
+  EXPECT_EQ(json["reliability"].size(), 6u);
+  EXPECT_THAT(ReadFile(dir.Path("r.csv")), HasSubstr("map,target_overlap,overlap,method"));
+}
+
+TEST(CliRegisterTest, BenchRefusesAMissingMapsDirectory) {
+  const process::CommandResult run =
+      RunFleetmap({"bench", "register", "--maps", DataPath("no_such_dir")});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("no_such_dir"));
 }
 
 }  // namespace

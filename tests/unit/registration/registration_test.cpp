@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/register/map_pair_generator.hpp"
 #include "common/grid/map_io.hpp"
 
 namespace fleetmap::registration {
@@ -56,51 +57,14 @@ grid::OccupancyGrid Floor() {
   return g;
 }
 
-// The cells [x0, x0 + w) x [y0, y0 + h) of `g`, with the origin of the crop's corner.
+// Crops and turned copies as the registration benchmark makes them (bench/register).
 grid::OccupancyGrid Crop(const grid::OccupancyGrid& g, int x0, int y0, int w, int h) {
-  grid::OccupancyGrid out(
-      w, h, g.resolution(),
-      Pose2{g.origin().x + x0 * g.resolution(), g.origin().y + y0 * g.resolution(), 0.0});
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (g.Contains(x0 + x, y0 + y)) out.at(x, y) = g.at(x0 + x, y0 + y);
-    }
-  }
-  return out;
+  return bench::CropCells(g, x0, y0, w, h);
 }
 
-// `crop` seen by another robot: its cells turned by `yaw` (nearest-neighbour resampling, as a
-// second SLAM run would rasterize the same walls), in a frame whose origin is `origin`.
-// `*orig_from_b` takes the new map's frame to the frame `crop`'s origin is given in.
 grid::OccupancyGrid Turn(const grid::OccupancyGrid& crop, double yaw, const Pose2& origin,
                          Transform2* orig_from_b) {
-  const double res = crop.resolution();
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  const double w = crop.width() * res, h = crop.height() * res;
-  const double new_w = std::abs(c) * w + std::abs(s) * h;
-  const double new_h = std::abs(s) * w + std::abs(c) * h;
-  const int width = static_cast<int>(std::ceil(new_w / res)) + 2;
-  const int height = static_cast<int>(std::ceil(new_h / res)) + 2;
-  const Point2 centre_crop(w / 2, h / 2);
-  const Point2 centre_new(width * res / 2, height * res / 2);
-  // grid_new = R (grid_crop - centre_crop) + centre_new
-  Transform2 new_from_crop = Transform2::Identity();
-  new_from_crop.translate(centre_new);
-  new_from_crop.rotate(yaw);
-  new_from_crop.translate(-centre_crop);
-  const Transform2 crop_from_new = new_from_crop.inverse();
-  grid::OccupancyGrid out(width, height, res, origin);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const Point2 p = crop_from_new * Point2((x + 0.5) * res, (y + 0.5) * res);
-      const int cx = static_cast<int>(std::floor(p.x() / res));
-      const int cy = static_cast<int>(std::floor(p.y() / res));
-      if (crop.Contains(cx, cy)) out.at(x, y) = crop.at(cx, cy);
-    }
-  }
-  // orig <- crop grid (origin of crop, yaw 0) <- new grid <- b map frame.
-  *orig_from_b = crop.origin().ToTransform() * crop_from_new * origin.ToTransform().inverse();
-  return out;
+  return bench::TurnIntoNewFrame(crop, yaw, origin, orig_from_b);
 }
 
 // Translation error at the centroid of B's known cells (metres) and yaw error (radians).
@@ -110,17 +74,7 @@ struct PoseError {
 };
 
 PoseError ErrorOf(const grid::OccupancyGrid& b, const Pose2& estimate, const Transform2& truth) {
-  Point2 centroid(0, 0);
-  int n = 0;
-  for (int y = 0; y < b.height(); ++y) {
-    for (int x = 0; x < b.width(); ++x) {
-      if (b.at(x, y) != grid::kUnknownValue) {
-        centroid += b.CellCenter(x, y);
-        ++n;
-      }
-    }
-  }
-  centroid /= n;
+  const Point2 centroid = bench::KnownCentroid(b);
   const Point2 d = estimate.ToTransform() * centroid - truth * centroid;
   return {d.norm(), std::abs(NormalizeAngle(estimate.yaw - Pose2::FromTransform(truth).yaw))};
 }

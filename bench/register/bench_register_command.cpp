@@ -1,0 +1,249 @@
+#include "bench/register/bench_register_command.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <sstream>
+#include <vector>
+
+#include "bench/register/register_experiment.hpp"
+#include "bench/report/bench_command.hpp"
+#include "bench/report/report_format.hpp"
+#include "cli/inputs/command_inputs.hpp"
+#include "cli/inputs/exit_codes.hpp"
+#include "common/core/file_io.hpp"
+#include "common/registration/confidence_calibration.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+StatusOr<std::vector<SourceMap>> LoadMapsDir(const std::string& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    return InvalidArgumentError("--maps " + dir + " is not a directory");
+  }
+  std::vector<std::string> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    if (entry.path().extension() == ".yaml") paths.push_back(entry.path().string());
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<SourceMap> maps;
+  for (const std::string& path : paths) {
+    FLEETMAP_ASSIGN_OR_RETURN(grid::LoadedMap loaded,
+                              cli::LoadGridInput(path, cli::kDefaultMaxCells));
+    maps.push_back({std::filesystem::path(path).stem().string(), std::move(loaded.grid)});
+  }
+  if (maps.empty()) return InvalidArgumentError("--maps " + dir + " holds no .yaml map");
+  return maps;
+}
+
+std::string OverlapLabel(double target) {
+  return target < 0.0 ? "all" : FormatDouble("%.0f %%", 100.0 * target);
+}
+
+std::string Percent(int count, int of) {
+  return of > 0 ? FormatDouble("%.1f", 100.0 * count / of) : "-";
+}
+
+nlohmann::json ToJson(const MethodSummary& s) {
+  return {{"pairs", s.pairs},
+          {"found", s.found},
+          {"successes", s.successes},
+          {"false_accepts", s.false_accepts},
+          {"success_percent", s.success_percent()},
+          {"false_accept_percent", s.false_accept_percent()},
+          {"median_seconds", s.median_seconds},
+          {"worst_seconds", s.worst_seconds}};
+}
+
+nlohmann::json ToJson(const MethodOutcome& o) {
+  return {{"found", o.found},
+          {"success", o.success},
+          {"right", o.right},
+          {"translation_error_cells", o.translation_error_cells},
+          {"yaw_error_deg", o.yaw_error_deg},
+          {"seconds", o.seconds},
+          {"confidence", o.confidence},
+          {"score", o.score},
+          {"why_not", o.why_not}};
+}
+
+}  // namespace
+
+int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.pairs_per_overlap < 1 || options.pairs_per_overlap > 1000) {
+    err << "fleetmap bench register: --pairs-per-overlap " << options.pairs_per_overlap
+        << " must be in [1, 1000]\n";
+    return cli::kExitBadInput;
+  }
+  if (options.synthetic_maps < 0 || options.synthetic_maps > 200) {
+    err << "fleetmap bench register: --synthetic " << options.synthetic_maps
+        << " must be in [0, 200]\n";
+    return cli::kExitBadInput;
+  }
+  if ((options.synthetic_maps > 0) == !options.maps_dir.empty()) {
+    err << "fleetmap bench register: give either --maps DIR or --synthetic K\n";
+    return cli::kExitBadInput;
+  }
+  StatusOr<std::vector<SourceMap>> maps =
+      options.synthetic_maps > 0 ? SyntheticSourceMaps(options.synthetic_maps, options.seed)
+                                 : LoadMapsDir(options.maps_dir);
+  if (!maps.ok()) {
+    err << "fleetmap bench register: " << maps.status().message() << "\n";
+    return cli::kExitBadInput;
+  }
+  // One core for both methods (OpenCV would otherwise spread AKAZE and the field over threads).
+  cv::setNumThreads(1);
+  RegisterBenchOptions bench_options;
+  bench_options.pairs_per_overlap = options.pairs_per_overlap;
+  bench_options.seed = options.seed;
+  bench_options.run_mexplore = !options.skip_mexplore;
+  const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &err);
+  const std::vector<SummaryRow> rows = Summarize(run.pairs);
+  const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
+
+  const std::string source = options.synthetic_maps > 0
+                                 ? std::to_string(options.synthetic_maps) + " synthetic terrains"
+                                 : std::to_string(maps->size()) + " maps in " + options.maps_dir;
+  out << "Map registration, " << source << ", " << options.pairs_per_overlap
+      << " pairs per map and overlap (seed " << options.seed << "): " << run.pairs.size()
+      << " pairs";
+  if (run.not_generated > 0) out << " (" << run.not_generated << " could not be generated)";
+  out << ". Success: within " << Fixed(bench_options.max_translation_cells, 0)
+      << " cells at B's known centroid and " << Fixed(bench_options.max_yaw_deg, 0)
+      << " deg; false accept: found but not a success (% of pairs). " << MachineDescription()
+      << ".\n\n";
+  out << "| overlap | pairs | achieved | fleetmap success % | fleetmap false accepts % | "
+         "fleetmap median s | fleetmap worst s | m-explore success % | m-explore false accepts % | "
+         "m-explore median s | m-explore worst s |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SummaryRow& row : rows) {
+    out << "| " << OverlapLabel(row.target_overlap) << " | " << row.fleetmap.pairs << " | "
+        << FormatDouble("%.0f %%", 100.0 * row.mean_overlap);
+    for (const MethodSummary* s : {&row.fleetmap, &row.mexplore}) {
+      if (options.skip_mexplore && s == &row.mexplore) {
+        out << " | - | - | - | -";
+        continue;
+      }
+      out << " | " << Percent(s->successes, s->pairs) << " | "
+          << Percent(s->false_accepts, s->pairs) << " | " << Fixed(s->median_seconds, 3) << " | "
+          << Fixed(s->worst_seconds, 3);
+    }
+    out << " |\n";
+  }
+  out << "\nReliability of fleetmap's confidence (found pairs):\n\n"
+         "| confidence | found | correct | fraction correct | mean confidence |\n"
+         "|---|---|---|---|---|\n";
+  for (const ReliabilityBin& b : bins) {
+    out << "| " << Fixed(b.lo, 2) << " - " << Fixed(b.hi, 2) << " | " << b.found << " | "
+        << b.correct << " | "
+        << (b.found > 0 ? Fixed(static_cast<double>(b.correct) / b.found, 3) : std::string("-"))
+        << " | " << (b.found > 0 ? Fixed(b.mean_confidence, 3) : std::string("-")) << " |\n";
+  }
+  out << "\nExpected calibration error: " << Fixed(ExpectedCalibrationError(bins), 3) << "\n";
+
+  if (options.synthetic_maps > 0) {
+    // Every pair, found or not, labelled by whether its placement (the best guess when refused)
+    // is right: refused pairs carry most of the wrong placements the score must learn from.
+    std::vector<registration::ConfidenceCalibration::Sample> samples;
+    for (const PairOutcome& p : run.pairs) samples.push_back({p.fleetmap.score, p.fleetmap.right});
+    if (!samples.empty()) {
+      const auto fit = registration::ConfidenceCalibration::Fit(samples, 20);
+      out << "\nCalibration fit (isotonic, score -> probability the placement is right, "
+          << samples.size() << " pairs):\n{";
+      for (size_t k = 0; k < fit.knots().size(); ++k) {
+        out << (k > 0 ? ", " : "") << "{" << FormatDouble("%.4f", fit.knots()[k].score) << ", "
+            << FormatDouble("%.4f", fit.knots()[k].probability) << "}";
+      }
+      out << "}\n";
+    }
+  }
+
+  if (!options.json_path.empty()) {
+    nlohmann::json json = {{"source", source},
+                           {"pairs_per_overlap", options.pairs_per_overlap},
+                           {"seed", options.seed},
+                           {"machine", MachineDescription()},
+                           {"not_generated", run.not_generated}};
+    nlohmann::json summary = nlohmann::json::array();
+    for (const SummaryRow& row : rows) {
+      summary.push_back({{"overlap", OverlapLabel(row.target_overlap)},
+                         {"target_overlap", row.target_overlap},
+                         {"mean_overlap", row.mean_overlap},
+                         {"fleetmap", ToJson(row.fleetmap)},
+                         {"mexplore", ToJson(row.mexplore)}});
+    }
+    json["summary"] = summary;
+    nlohmann::json reliability = nlohmann::json::array();
+    for (const ReliabilityBin& b : bins) {
+      reliability.push_back({{"lo", b.lo},
+                             {"hi", b.hi},
+                             {"found", b.found},
+                             {"correct", b.correct},
+                             {"mean_confidence", b.mean_confidence}});
+    }
+    json["reliability"] = reliability;
+    json["expected_calibration_error"] = ExpectedCalibrationError(bins);
+    nlohmann::json pairs = nlohmann::json::array();
+    for (const PairOutcome& p : run.pairs) {
+      pairs.push_back({{"map", p.map},
+                       {"target_overlap", p.target_overlap},
+                       {"overlap", p.overlap},
+                       {"fleetmap", ToJson(p.fleetmap)},
+                       {"mexplore", ToJson(p.mexplore)}});
+    }
+    json["pairs"] = pairs;
+    if (const Status written = WriteFileAtomically(options.json_path, json.dump(2) + "\n");
+        !written.ok()) {
+      err << "fleetmap bench register: " << written.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  if (!options.csv_path.empty()) {
+    std::ostringstream csv;
+    csv << "map,target_overlap,overlap,method,found,success,translation_error_cells,"
+           "yaw_error_deg,seconds,confidence\n";
+    for (const PairOutcome& p : run.pairs) {
+      for (const auto& [method, o] : {std::pair<std::string, const MethodOutcome*>{"fleetmap",
+                                                                                    &p.fleetmap},
+                                      {"mexplore", &p.mexplore}}) {
+        if (options.skip_mexplore && method == "mexplore") continue;
+        csv << p.map << "," << Fixed(p.target_overlap, 2) << "," << Fixed(p.overlap, 4) << ","
+            << method << "," << o->found << "," << o->success << ","
+            << Fixed(o->translation_error_cells, 3) << "," << Fixed(o->yaw_error_deg, 3) << ","
+            << Fixed(o->seconds, 4) << "," << Fixed(o->confidence, 4) << "\n";
+      }
+    }
+    if (const Status written = WriteFileAtomically(options.csv_path, csv.str()); !written.ok()) {
+      err << "fleetmap bench register: " << written.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  return cli::kExitOk;
+}
+
+void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<BenchRegisterOptions>();
+  CLI::App* command = BenchCommand(app)->add_subcommand(
+      "register",
+      "Map registration on map pairs at 20-70 % overlap: fleetmap against m-explore's pipeline");
+  command->add_option("--maps", options->maps_dir, "directory of map_server maps (*.yaml)");
+  command->add_option("--synthetic", options->synthetic_maps,
+                      "use this many synthetic terrains (office, maze, unstructured) instead of "
+                      "--maps, and print the confidence calibration fit");
+  command->add_option("--pairs-per-overlap", options->pairs_per_overlap,
+                      "pairs per map and overlap")
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "pair generator seed")->capture_default_str();
+  command->add_option("--csv", options->csv_path, "write one row per pair and method");
+  command->add_option("--json", options->json_path, "write the summary, reliability and pairs");
+  command->add_flag("--skip-mexplore", options->skip_mexplore,
+                    "run fleetmap only (for the calibration fit)");
+  command->callback(
+      [options, exit_code] { *exit_code = RunBenchRegister(*options, std::cout, std::cerr); });
+}
+
+}  // namespace fleetmap::bench

@@ -1,0 +1,204 @@
+#include "bench/register/register_experiment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "bench/register/mexplore_registration.hpp"
+#include "bench/report/report_format.hpp"
+#include "common/sim/terrain_generator.hpp"
+#include "common/sim/terrain_rasterizer.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Errors of an estimate at B's known centroid, in cells and degrees.
+void Judge(const MapPair& pair, const Point2& centroid_b, const Pose2& estimate,
+           const RegisterBenchOptions& options, MethodOutcome* outcome) {
+  const Point2 d = estimate.ToTransform() * centroid_b - pair.a_from_b * centroid_b;
+  outcome->translation_error_cells = d.norm() / pair.b.resolution();
+  outcome->yaw_error_deg =
+      std::abs(NormalizeAngle(estimate.yaw - Pose2::FromTransform(pair.a_from_b).yaw)) / kDegree;
+  outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
+                   outcome->yaw_error_deg <= options.max_yaw_deg;
+  outcome->success = outcome->found && outcome->right;
+}
+
+MethodSummary SummarizeMethod(const std::vector<const MethodOutcome*>& outcomes) {
+  MethodSummary s;
+  std::vector<double> seconds;
+  for (const MethodOutcome* o : outcomes) {
+    ++s.pairs;
+    s.found += o->found;
+    s.successes += o->success;
+    s.false_accepts += o->found && !o->success;
+    seconds.push_back(o->seconds);
+  }
+  s.median_seconds = Median(seconds);
+  s.worst_seconds = seconds.empty() ? 0.0 : *std::max_element(seconds.begin(), seconds.end());
+  return s;
+}
+
+}  // namespace
+
+StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed) {
+  std::vector<SourceMap> maps;
+  for (int k = 0; k < count; ++k) {
+    sim::TerrainOptions terrain_options;
+    constexpr sim::TerrainKind kKinds[] = {sim::TerrainKind::kOffice, sim::TerrainKind::kMaze,
+                                           sim::TerrainKind::kUnstructured};
+    terrain_options.kind = kKinds[k % 3];
+    terrain_options.size = 30.0;
+    terrain_options.seed = seed * 7919u + static_cast<uint32_t>(k);
+    FLEETMAP_ASSIGN_OR_RETURN(const sim::TerrainGenerator generator,
+                              sim::TerrainGenerator::Create(terrain_options));
+    FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid grid,
+                              sim::RasterizeTerrain(generator.Generate(), 0.05));
+    maps.push_back({std::string(sim::TerrainKindName(terrain_options.kind)) + "_" +
+                        std::to_string(terrain_options.seed),
+                    std::move(grid)});
+  }
+  return maps;
+}
+
+RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
+                                  const RegisterBenchOptions& options, std::ostream* progress) {
+  RegisterBenchRun run;
+  const auto start = std::chrono::steady_clock::now();
+  const size_t total = maps.size() * options.overlaps.size() *
+                       static_cast<size_t>(std::max(0, options.pairs_per_overlap));
+  size_t done = 0;
+  for (size_t m = 0; m < maps.size(); ++m) {
+    for (size_t o = 0; o < options.overlaps.size(); ++o) {
+      for (int k = 0; k < options.pairs_per_overlap; ++k) {
+        ++done;
+        // Each pair has its own generator, so a pair does not depend on which others were made.
+        std::seed_seq seq{options.seed, static_cast<uint32_t>(m), static_cast<uint32_t>(o),
+                          static_cast<uint32_t>(k)};
+        std::mt19937 rng(seq);
+        StatusOr<MapPair> pair = MakeMapPair(maps[m].grid, options.overlaps[o], options.pairs, rng);
+        for (int retry = 0; retry < 4 && !pair.ok() && pair.status().code() == StatusCode::kNotFound;
+             ++retry) {
+          pair = MakeMapPair(maps[m].grid, options.overlaps[o], options.pairs, rng);
+        }
+        if (!pair.ok()) {
+          ++run.not_generated;
+          if (progress != nullptr) {
+            *progress << "\nbench register: " << maps[m].name << " overlap " << options.overlaps[o]
+                      << ": " << pair.status().message() << "\n";
+          }
+          continue;
+        }
+        PairOutcome outcome;
+        outcome.map = maps[m].name;
+        outcome.target_overlap = options.overlaps[o];
+        outcome.overlap = pair->overlap;
+        outcome.a_cells = pair->a.width() * pair->a.height();
+        outcome.b_cells = pair->b.width() * pair->b.height();
+        const Point2 centroid_b = KnownCentroid(pair->b);
+
+        auto t0 = std::chrono::steady_clock::now();
+        const StatusOr<registration::Registration> r =
+            registration::Register(pair->a, pair->b, options.registration);
+        outcome.fleetmap.seconds = SecondsSince(t0);
+        if (r.ok()) {
+          outcome.fleetmap.found = r->found;
+          outcome.fleetmap.confidence = r->confidence;
+          outcome.fleetmap.score = r->score;
+          outcome.fleetmap.why_not = r->why_not;
+          Judge(*pair, centroid_b, r->a_from_b, options, &outcome.fleetmap);
+        }
+        if (options.run_mexplore) {
+          t0 = std::chrono::steady_clock::now();
+          const MexploreRegistration mx = RegisterLikeMexplore(pair->a, pair->b);
+          outcome.mexplore.seconds = SecondsSince(t0);
+          outcome.mexplore.found = mx.found;
+          outcome.mexplore.confidence = mx.match_confidence;
+          Judge(*pair, centroid_b, mx.a_from_b, options, &outcome.mexplore);
+        }
+        run.pairs.push_back(outcome);
+        if (progress != nullptr) {
+          *progress << "bench register: " << done << "/" << total << " pairs, "
+                    << static_cast<int>(SecondsSince(start)) << " s elapsed\r" << std::flush;
+        }
+      }
+    }
+  }
+  if (progress != nullptr) *progress << "\n";
+  return run;
+}
+
+std::vector<SummaryRow> Summarize(const std::vector<PairOutcome>& pairs) {
+  std::vector<double> targets;
+  for (const PairOutcome& p : pairs) {
+    if (std::find(targets.begin(), targets.end(), p.target_overlap) == targets.end()) {
+      targets.push_back(p.target_overlap);
+    }
+  }
+  std::sort(targets.begin(), targets.end());
+  targets.push_back(-1.0);  // all pairs
+  std::vector<SummaryRow> rows;
+  for (const double target : targets) {
+    SummaryRow row;
+    row.target_overlap = target;
+    std::vector<const MethodOutcome*> fleetmap, mexplore;
+    double overlap_sum = 0.0;
+    for (const PairOutcome& p : pairs) {
+      if (target >= 0.0 && p.target_overlap != target) continue;
+      fleetmap.push_back(&p.fleetmap);
+      mexplore.push_back(&p.mexplore);
+      overlap_sum += p.overlap;
+    }
+    row.mean_overlap = fleetmap.empty() ? 0.0 : overlap_sum / fleetmap.size();
+    row.fleetmap = SummarizeMethod(fleetmap);
+    row.mexplore = SummarizeMethod(mexplore);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<ReliabilityBin> Reliability(const std::vector<PairOutcome>& pairs) {
+  std::vector<ReliabilityBin> bins;
+  const std::vector<double> edges = {0.0, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0};
+  for (size_t i = 0; i + 1 < edges.size(); ++i) bins.push_back({edges[i], edges[i + 1], 0, 0, 0.0});
+  for (const PairOutcome& p : pairs) {
+    if (!p.fleetmap.found) continue;
+    const double c = p.fleetmap.confidence;
+    for (size_t i = 0; i < bins.size(); ++i) {
+      const bool last = i + 1 == bins.size();
+      if (c >= bins[i].lo && (c < bins[i].hi || last)) {
+        ++bins[i].found;
+        bins[i].correct += p.fleetmap.success;
+        bins[i].mean_confidence += c;
+        break;
+      }
+    }
+  }
+  for (ReliabilityBin& b : bins) {
+    if (b.found > 0) b.mean_confidence /= b.found;
+  }
+  return bins;
+}
+
+double ExpectedCalibrationError(const std::vector<ReliabilityBin>& bins) {
+  int found = 0;
+  for (const ReliabilityBin& b : bins) found += b.found;
+  if (found == 0) return 0.0;
+  double error = 0.0;
+  for (const ReliabilityBin& b : bins) {
+    if (b.found == 0) continue;
+    error += static_cast<double>(b.found) / found *
+             std::abs(static_cast<double>(b.correct) / b.found - b.mean_confidence);
+  }
+  return error;
+}
+
+}  // namespace fleetmap::bench

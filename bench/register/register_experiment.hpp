@@ -1,0 +1,109 @@
+#pragma once
+
+// The registration benchmark (issue 18, deliverable 5): pairs of robot maps cut from complete maps
+// at several overlaps (map_pair_generator.hpp), each registered by fleetmap's
+// registration::Register and by the m-explore baseline (mexplore_registration.hpp) in the same
+// run, judged against the truth; plus the reliability of fleetmap's confidence. Used by
+// `fleetmap bench register` and its tests.
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench/register/map_pair_generator.hpp"
+#include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/registration/registration.hpp"
+
+namespace fleetmap::bench {
+
+struct SourceMap {
+  std::string name;
+  grid::OccupancyGrid grid;
+};
+
+// `count` terrains of common/sim (office, maze and unstructured in turn; 30 m, 5 cm cells), seeds
+// derived from `seed`: source maps that are not the evaluation maps, for fitting the confidence
+// calibration.
+StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed);
+
+struct RegisterBenchOptions {
+  std::vector<double> overlaps = {0.20, 0.35, 0.50, 0.70};
+  int pairs_per_overlap = 10;  // per source map and overlap
+  uint32_t seed = 1;
+  MapPairOptions pairs;
+  registration::RegistrationOptions registration;
+  bool run_mexplore = true;
+  // Success: translation error at B's known centroid within this many cells, yaw within this.
+  double max_translation_cells = 3.0;
+  double max_yaw_deg = 2.0;
+};
+
+struct MethodOutcome {
+  bool found = false;
+  bool success = false;  // found, and within the tolerances of the truth
+  bool right = false;    // the estimate (or best guess) is within the tolerances, found or not
+  double translation_error_cells = 0.0;
+  double yaw_error_deg = 0.0;
+  double seconds = 0.0;
+  double confidence = 0.0;  // fleetmap: Registration::confidence; m-explore: match confidence
+  double score = 0.0;       // fleetmap: Registration::score (the uncalibrated evidence)
+  std::string why_not;      // fleetmap: why it was refused
+};
+
+struct PairOutcome {
+  std::string map;
+  double target_overlap = 0.0;
+  double overlap = 0.0;  // achieved
+  int a_cells = 0;       // grid sizes (width x height)
+  int b_cells = 0;
+  MethodOutcome fleetmap;
+  MethodOutcome mexplore;
+};
+
+struct RegisterBenchRun {
+  std::vector<PairOutcome> pairs;
+  int not_generated = 0;  // pairs the generator could not make within its tolerance
+};
+
+// Runs the benchmark on every source map; `progress` (may be null) gets a line per pair.
+RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
+                                  const RegisterBenchOptions& options, std::ostream* progress);
+
+struct MethodSummary {
+  int pairs = 0;
+  int found = 0;
+  int successes = 0;
+  int false_accepts = 0;  // found but not a success
+  double median_seconds = 0.0;
+  double worst_seconds = 0.0;
+  double success_percent() const { return pairs > 0 ? 100.0 * successes / pairs : 0.0; }
+  double false_accept_percent() const { return pairs > 0 ? 100.0 * false_accepts / pairs : 0.0; }
+};
+
+// One row per target overlap and a last one for all pairs (target_overlap < 0).
+struct SummaryRow {
+  double target_overlap = -1.0;
+  double mean_overlap = 0.0;
+  MethodSummary fleetmap;
+  MethodSummary mexplore;
+};
+
+std::vector<SummaryRow> Summarize(const std::vector<PairOutcome>& pairs);
+
+// Reliability of fleetmap's confidence: among found pairs, per confidence bin, how many were right.
+struct ReliabilityBin {
+  double lo = 0.0, hi = 1.0;  // confidence in [lo, hi) (the last bin includes 1)
+  int found = 0;
+  int correct = 0;
+  double mean_confidence = 0.0;
+};
+
+std::vector<ReliabilityBin> Reliability(const std::vector<PairOutcome>& pairs);
+
+// Expected calibration error over the found pairs: sum over bins of (found in bin / found) *
+// |fraction correct - mean confidence|.
+double ExpectedCalibrationError(const std::vector<ReliabilityBin>& bins);
+
+}  // namespace fleetmap::bench

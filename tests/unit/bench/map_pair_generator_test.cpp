@@ -1,0 +1,114 @@
+#include "bench/register/map_pair_generator.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "common/grid/map_io.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+grid::OccupancyGrid House() {
+  const std::string path = std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml";
+  StatusOr<grid::LoadedMap> loaded = grid::LoadMap(path);
+  EXPECT_TRUE(loaded.ok()) << loaded.status();
+  return loaded.ok() ? loaded->grid : grid::OccupancyGrid();
+}
+
+struct Agreement {
+  double same_state = 0.0;    // share of B's known cells whose source cell has B's state
+  double known_in_a = 0.0;    // share of B's known cells that land on A's known cells
+};
+
+// Where the truth puts B's known cells: the source map's cell and A's cell under each.
+Agreement Check(const MapPair& pair, const grid::OccupancyGrid& source) {
+  int known = 0, same = 0, in_a = 0;
+  for (int y = 0; y < pair.b.height(); ++y) {
+    for (int x = 0; x < pair.b.width(); ++x) {
+      const grid::CellState state = pair.b.StateAt(x, y);
+      if (state == grid::CellState::kUnknown) continue;
+      ++known;
+      const Point2 p = pair.a_from_b * pair.b.CellCenter(x, y);
+      if (const auto s = source.CellAt(p); s && source.StateAt(s->x, s->y) == state) ++same;
+      if (const auto a = pair.a.CellAt(p);
+          a && pair.a.StateAt(a->x, a->y) != grid::CellState::kUnknown) {
+        ++in_a;
+      }
+    }
+  }
+  return {static_cast<double>(same) / known, static_cast<double>(in_a) / known};
+}
+
+TEST(MapPairGeneratorTest, ReachesTheRequestedOverlapAndKeepsTheTruth) {
+  const grid::OccupancyGrid house = House();
+  ASSERT_FALSE(house.empty());
+  const MapPairOptions options;
+  for (const double target : {0.2, 0.5, 0.7}) {
+    SCOPED_TRACE(target);
+    std::mt19937 rng(7);
+    StatusOr<MapPair> pair = MakeMapPair(house, target, options, rng);
+    for (int retry = 0; retry < 4 && !pair.ok(); ++retry) {
+      pair = MakeMapPair(house, target, options, rng);
+    }
+    ASSERT_TRUE(pair.ok()) << pair.status();
+    EXPECT_NEAR(pair->overlap, target, options.overlap_tolerance + 1e-9);
+    // B lives in a frame of its own, far from A's.
+    EXPECT_GT((pair->b.origin().translation() - pair->a.origin().translation()).norm(), 1.0);
+    const Agreement agreement = Check(*pair, house);
+    // Nearest-neighbour resampling and the specks move a few cells; the rest must match.
+    EXPECT_GT(agreement.same_state, 0.95);
+    EXPECT_NEAR(agreement.known_in_a, pair->overlap, 0.05);
+  }
+}
+
+TEST(MapPairGeneratorTest, CropsAreExplorationLikeNotRectangles) {
+  const grid::OccupancyGrid house = House();
+  ASSERT_FALSE(house.empty());
+  std::mt19937 rng(3);
+  StatusOr<MapPair> pair = MakeMapPair(house, 0.5, {}, rng);
+  for (int retry = 0; retry < 4 && !pair.ok(); ++retry) pair = MakeMapPair(house, 0.5, {}, rng);
+  ASSERT_TRUE(pair.ok()) << pair.status();
+  // A holds part of the house's known cells, not all of them, and much of its box is unknown.
+  const grid::StateCounts a = pair->a.CountStates();
+  const grid::StateCounts all = house.CountStates();
+  const double share = static_cast<double>(a.free + a.occupied) / (all.free + all.occupied);
+  EXPECT_GT(share, 0.25);
+  EXPECT_LT(share, 0.85);
+  EXPECT_GT(a.unknown, 0);
+}
+
+TEST(MapPairGeneratorTest, TurnsIntoANewFrameByAQuarterExactly) {
+  grid::OccupancyGrid map(4, 2, 0.5, Pose2{1.0, 2.0, 0.0});
+  map.at(0, 0) = grid::kOccupiedValue;
+  map.at(3, 1) = grid::kFreeValue;
+  Transform2 map_from_turned;
+  const grid::OccupancyGrid turned =
+      TurnIntoNewFrame(map, std::numbers::pi / 2, Pose2{-100.0, 50.0, 0.3}, &map_from_turned);
+  int checked = 0;
+  for (int y = 0; y < turned.height(); ++y) {
+    for (int x = 0; x < turned.width(); ++x) {
+      if (turned.at(x, y) == grid::kUnknownValue) continue;
+      const auto cell = map.CellAt(map_from_turned * turned.CellCenter(x, y));
+      ASSERT_TRUE(cell.has_value());
+      EXPECT_EQ(map.at(cell->x, cell->y), turned.at(x, y));
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 2);
+}
+
+TEST(MapPairGeneratorTest, RefusesAMapWithoutFreeSpace) {
+  std::mt19937 rng(1);
+  const grid::OccupancyGrid walls(50, 50, 0.05, Pose2{}, grid::kOccupiedValue);
+  const StatusOr<MapPair> pair = MakeMapPair(walls, 0.5, {}, rng);
+  ASSERT_FALSE(pair.ok());
+  EXPECT_THAT(pair.status().message(), ::testing::HasSubstr("free cells"));
+}
+
+}  // namespace
+}  // namespace fleetmap::bench

@@ -1,0 +1,46 @@
+#include "common/registration/confidence_calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace fleetmap::registration {
+namespace {
+
+TEST(ConfidenceCalibrationTest, InterpolatesBetweenKnotsAndHoldsBeyondThem) {
+  const ConfidenceCalibration c({{0.2, 0.3}, {0.6, 0.9}});
+  EXPECT_DOUBLE_EQ(c.Probability(0.0), 0.3);
+  EXPECT_DOUBLE_EQ(c.Probability(0.4), 0.6);
+  EXPECT_DOUBLE_EQ(c.Probability(1.0), 0.9);
+}
+
+TEST(ConfidenceCalibrationTest, FitIsMonotoneAndMatchesTheRates) {
+  // Low scores right one time in four, high scores always right, one violator in between.
+  std::vector<ConfidenceCalibration::Sample> samples;
+  for (int i = 0; i < 40; ++i) samples.push_back({0.1 + 0.001 * i, i % 4 == 0});
+  for (int i = 0; i < 40; ++i) samples.push_back({0.5 + 0.001 * i, i % 10 == 0});
+  for (int i = 0; i < 40; ++i) samples.push_back({0.9 + 0.001 * i, true});
+  const ConfidenceCalibration c = ConfidenceCalibration::Fit(samples, 20);
+  for (size_t k = 1; k < c.knots().size(); ++k) {
+    EXPECT_GT(c.knots()[k].score, c.knots()[k - 1].score);
+    EXPECT_GE(c.knots()[k].probability, c.knots()[k - 1].probability);
+  }
+  // The violating middle pools with the low group: about (10 + 4) / 80 right.
+  EXPECT_NEAR(c.Probability(0.12), 14.5 / 81.0, 1e-9);
+  EXPECT_NEAR(c.Probability(0.95), 40.5 / 41.0, 1e-9);
+  EXPECT_LT(c.Probability(0.95), 1.0);  // finite data never claims certainty
+}
+
+TEST(ConfidenceCalibrationTest, DefaultIsAProbabilityThatGrowsWithTheScore) {
+  const ConfidenceCalibration& c = ConfidenceCalibration::Default();
+  double previous = 0.0;
+  for (double s = 0.0; s <= 1.0; s += 0.05) {
+    const double p = c.Probability(s);
+    EXPECT_GE(p, previous);
+    EXPECT_LE(p, 1.0);
+    previous = p;
+  }
+}
+
+}  // namespace
+}  // namespace fleetmap::registration
