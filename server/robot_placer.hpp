@@ -25,8 +25,10 @@ namespace fleetmap::server {
 
 struct PlacementOptions {
   registration::RegistrationOptions registration;
-  // Least registration confidence that places a robot (or revises a placement).
-  double min_confidence = 0.5;
+  // Least registration confidence that places a robot (or revises a placement). Confidence is
+  // the calibrated probability that a placement is right, and a wrong placement is worse than
+  // none (it spoils the fused map until it is revised): high by default.
+  double min_confidence = 0.9;
   // An unplaced robot's map is registered again at most this often, and only once it changed.
   std::chrono::milliseconds retry_period{1000};
   // A placed robot's placement is checked against the rest of the fleet at most this often, once
