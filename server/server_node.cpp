@@ -343,16 +343,25 @@ void ServerNode::SubmitEntitiesOfPlacedRobots() {
 }
 
 void ServerNode::PrintSummary(const FusionStats& fusion) const {
-  fmt::print("\n{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", "robot", "state", "tiles", "maps",
-             "bytes in", "rejected", "clashes");
+  fmt::print("\n{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}  {}\n", "robot", "state", "tiles",
+             "maps", "bytes in", "rejected", "clashes", "map frame in the fleet");
   for (const auto& [robot, record] : robots_) {
     const auto tiles = fusion.robots.find(robot);
     const FusionStats::Robot counts =
         tiles == fusion.robots.end() ? FusionStats::Robot{} : tiles->second;
-    fmt::print("{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}\n", robot.value,
+    const auto frame = fusion.frames.find(robot);
+    const std::string placement =
+        frame == fusion.frames.end() ? std::string("-")
+        : !frame->second.placed()
+            ? std::string(transport::RobotFrameStateName(frame->second.state))
+            : fmt::format("{} ({:.2f}, {:.2f}, {:.1f} deg)",
+                          transport::RobotFrameStateName(frame->second.state),
+                          frame->second.fleet_from_map.x, frame->second.fleet_from_map.y,
+                          frame->second.fleet_from_map.yaw * 180.0 / M_PI);
+    fmt::print("{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}  {}\n", robot.value,
                RobotStateName(record.state), counts.tiles, record.maps_received,
                record.bytes_received + counts.bytes, record.rejected_samples + counts.rejected,
-               record.id_clashes);
+               record.id_clashes, placement);
   }
   fmt::print(
       "fused map: {} tiles; published {} fused tile revisions ({} bytes) and {} grids on "
