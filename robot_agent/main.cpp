@@ -61,6 +61,11 @@ int main(int argc, char** argv) {
   app.add_option("--sim-robot-index", sim.robot_index, "this robot's start among the fleet's");
   app.add_option("--sim-robots", sim.robots, "robots in the simulated fleet");
   app.add_option("--sim-rate", sim.scans_per_second, "simulated laser scans per second");
+  std::vector<double> sim_frame = {0.0, 0.0, 0.0};
+  app.add_option("--sim-frame", sim_frame,
+                 "x y yaw of the simulated robot's map frame in the terrain's frame (a robot "
+                 "started at an unknown pose; pair with --unplaced). Only the simulator uses it")
+      ->expected(3);
   app.add_option("--tile-size", options.tiles.tile_size, "tile side in metres (fleet frame)");
   app.add_option("--epsilon", options.tiles.epsilon,
                  "vector map error bound, metres (0: sqrt(2) res)");
@@ -99,6 +104,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     sim.kind = *kind;
+    sim.world_from_map = PoseFrom(sim_frame);
     options.sim = sim;
   }
   options.fleet_from_map = PoseFrom(fleet_from_map);

@@ -25,6 +25,10 @@ struct SimOptions {
   double resolution = 0.05;
   double scans_per_second = 10.0;  // real-time pace of the simulated laser
   int scans_per_map = 5;           // a map snapshot every this many scans
+  // Where the robot's SLAM map frame sits in the terrain's (world) frame (--sim-frame): a robot
+  // that started at an unknown pose. Its map and pose are handed out in that frame; the server
+  // never learns this transform. Identity: the terrain's frame, shared by the fleet.
+  Pose2 world_from_map;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
@@ -32,8 +36,10 @@ struct SimOptions {
 
 // The built-in robot: explores a seeded terrain (common/sim) on its own thread at a real-time
 // pace and hands out its SLAM-like map every few scans. The map frame is the terrain's frame,
-// shared by every simulated robot (fleet_from_map = identity). Poll() and pose() from the agent's
-// thread.
+// shared by every simulated robot (fleet_from_map = identity), unless SimOptions::world_from_map
+// moves it: then every map is resampled into the robot's own frame (frame_resample.hpp), about as
+// costly as taking the snapshot, and the map's extent holds the whole terrain in every snapshot so
+// that the tiles of successive maps line up. Poll() and pose() from the agent's thread.
 class SimMapSource : public MapSource {
  public:
   static StatusOr<std::unique_ptr<SimMapSource>> Create(const SimOptions& options);
@@ -55,6 +61,9 @@ class SimMapSource : public MapSource {
   mutable std::mutex mutex_;
   std::optional<grid::OccupancyGrid> latest_;  // guarded by mutex_
   Pose2 pose_;                                 // guarded by mutex_
+  // Frame rendering cost (world_from_map not identity), for the log line at the end.
+  int renders_ = 0;
+  double render_seconds_ = 0.0;
 };
 
 }  // namespace fleetmap::agent

@@ -3,12 +3,17 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <thread>
 
+#include "bench/fleet/placement_observer.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/sim/random.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
@@ -28,7 +33,7 @@ constexpr std::chrono::seconds kAccountingWait{900};
 // What the observer keeps while the fleet runs. One thread (RunFleet's).
 class Observer {
  public:
-  static StatusOr<std::unique_ptr<Observer>> Create(int domain) {
+  static StatusOr<std::unique_ptr<Observer>> Create(int domain, const FleetSimOptions& fleet) {
     std::unique_ptr<Observer> observer(new Observer());
     transport::ParticipantOptions options;
     options.domain_id = domain;
@@ -45,19 +50,28 @@ class Observer {
         observer->fused_grid_,
         transport::OccupancyGridReader::Create(*observer->participant_, transport::kFleetMapTopic,
                                                observer->wake_up_));
+    if (!fleet.sim_frames.empty()) {
+      FLEETMAP_ASSIGN_OR_RETURN(
+          observer->placements_,
+          PlacementObserver::Create(*observer->participant_, observer->wake_up_, fleet.sim_frames,
+                                    fleet.size));
+    }
     return observer;
   }
 
   ~Observer() {
+    placements_.reset();
     status_.reset();
     fused_tiles_.reset();
     fused_grid_.reset();
   }
 
-  void Poll(FleetRunResult* result) {
+  // `now_s`: seconds since the run started.
+  void Poll(double now_s, FleetRunResult* result) {
     wake_up_->WaitFor(milliseconds(50));
     for (const transport::RobotEvent& event : status_->Drain()) {
       if (event.kind != transport::RobotEvent::Kind::kStatus) continue;
+      if (placements_ != nullptr) placements_->Joined(event.robot.value, now_s, result);
       FleetRobotResult& robot = result->robots[event.robot.value];
       robot.bytes = event.status.bytes_published;
       const bool grid_wire = result->wire != "tiles";
@@ -82,6 +96,12 @@ class Observer {
     for (StatusOr<transport::MapMessage>& map : fused_grid_->Drain()) {
       if (map.ok()) result->fused = std::move(map->grid);
     }
+    if (placements_ != nullptr) placements_->Poll(now_s, result);
+  }
+
+  // The end of the run, while the robots still run.
+  void FinishPlacements(double now_s, FleetRunResult* result) {
+    if (placements_ != nullptr) placements_->Finish(now_s, result);
   }
 
   void MarkStart() { started_ = Clock::now(); }
@@ -95,6 +115,7 @@ class Observer {
   std::unique_ptr<transport::RobotStatusReader> status_;
   std::unique_ptr<transport::VectorTileReader> fused_tiles_;
   std::unique_ptr<transport::OccupancyGridReader> fused_grid_;
+  std::unique_ptr<PlacementObserver> placements_;  // --unknown-poses
   Timestamp started_;
   int hostile_first_tile_x_ = INT32_MAX;
 };
@@ -114,11 +135,29 @@ Status FleetSimOptions::Validate() const {
   if (measure_baselines && wire != "tiles") {
     return InvalidArgumentError("the grid wires are measured beside the tile wire only");
   }
+  if (!sim_frames.empty() && static_cast<int>(sim_frames.size()) != robots) {
+    return InvalidArgumentError("one sim frame per robot");
+  }
+  if (!sim_frames.empty() && (measure_baselines || wire != "tiles")) {
+    return InvalidArgumentError("robots at unknown poses run on the tile wire, unmeasured");
+  }
   if (size < sim::kMinTerrainSize || size > sim::kMaxTerrainSize) {
     return InvalidArgumentError("--size must be in " + std::to_string(sim::kMinTerrainSize) + ".." +
                                 std::to_string(sim::kMaxTerrainSize) + " metres");
   }
   return Status::Ok();
+}
+
+std::vector<Pose2> UnknownPoseFrames(uint32_t seed, int robots) {
+  sim::Random random(seed * 7919u + 17u);
+  std::vector<Pose2> frames;
+  for (int i = 0; i < robots; ++i) {
+    const double direction = random.Uniform(-M_PI, M_PI);
+    const double distance = random.Uniform(10.0, 50.0);
+    frames.push_back({distance * std::cos(direction), distance * std::sin(direction),
+                      random.Uniform(-M_PI, M_PI)});
+  }
+  return frames;
 }
 
 StatusOr<std::string> FindFleetBinaries() {
@@ -151,7 +190,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                                   {"FLEETMAP_LOCALHOST_ONLY", "1"}};
   FleetRunResult result;
   result.wire = options.wire;
-  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<Observer> observer, Observer::Create(domain));
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<Observer> observer, Observer::Create(domain, options));
 
   process::Subprocess server({binary("fleetmap-server", "server"), "--map-period", "0.5"}, env);
   if (!server.started()) return UnavailableError("could not start fleetmap-server");
@@ -180,6 +219,11 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                      "--wire",
                                      options.wire};
     if (options.measure_baselines) argv.push_back("--measure-baselines");
+    if (!options.sim_frames.empty()) {
+      const Pose2& frame = options.sim_frames[i];
+      argv.insert(argv.end(), {"--unplaced", "--sim-frame", fmt::format("{:.6f}", frame.x),
+                               fmt::format("{:.6f}", frame.y), fmt::format("{:.9f}", frame.yaw)});
+    }
     agents.push_back(std::make_unique<process::Subprocess>(std::move(argv), env));
   }
 
@@ -189,14 +233,18 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     observer->IgnoreTilesFrom(options.hostile->first_tile_x);
     flood->Start();
   }
+  const auto seconds_since_start = [&] {
+    return std::chrono::duration<double>(steady_clock::now() - start).count();
+  };
   auto next_progress = start;
   while (steady_clock::now() - start < options.duration) {
-    observer->Poll(&result);
+    observer->Poll(seconds_since_start(), &result);
     if (progress && steady_clock::now() >= next_progress) {
       progress(std::chrono::duration<double>(steady_clock::now() - start).count());
       next_progress += std::chrono::seconds(1);
     }
   }
+  observer->FinishPlacements(seconds_since_start(), &result);
   // The server's resources while it still runs, then an orderly end: robots leave first.
   const std::string during_run = server.Output();
   for (size_t at = during_run.find(" lost (no liveliness"); at != std::string::npos;
@@ -223,18 +271,31 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   };
   auto next_note = steady_clock::now();
   while (!all_exited() && steady_clock::now() < agents_deadline) {
-    observer->Poll(&result);
+    observer->Poll(seconds_since_start(), &result);
     if (progress && options.measure_baselines && steady_clock::now() >= next_note) {
       progress(-1.0);
       next_note += std::chrono::seconds(1);
     }
   }
   const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);
-  while (steady_clock::now() < drain_until) observer->Poll(&result);
+  while (steady_clock::now() < drain_until) observer->Poll(seconds_since_start(), &result);
   server.Signal(SIGINT);
   server.Wait(std::chrono::seconds(10));
   result.server_output = server.Output();
   result.seconds = std::chrono::duration<double>(steady_clock::now() - start).count();
+  if (!options.sim_frames.empty()) {
+    // The fused map is in the anchor's frame and each path in its robot's: the truth carries
+    // them into the terrain's frame, where the report scores and draws them.
+    result.fleet_from_world.reset();
+    for (auto& [name, robot] : result.robots) {
+      if (!robot.placement) continue;
+      const Transform2 world_from_map = robot.placement->true_world_from_map.ToTransform();
+      if (name == result.anchor) result.fleet_from_world = world_from_map.inverse();
+      for (Pose2& pose : robot.path) {
+        pose = Pose2::FromTransform(world_from_map * pose.ToTransform());
+      }
+    }
+  }
   for (const auto& [name, robot] : result.robots) {
     result.total_bytes += robot.bytes;
     WireBaselines& sum = result.baselines;

@@ -36,16 +36,48 @@ struct FleetSimOptions {
   std::string bin_dir;  // where fleetmap-server and fleetmap-agent are
   // A hostile peer flooding the server while the fleet runs (bench fleet --hostile).
   std::optional<HostileFloodOptions> hostile;
+  // `fleetmap sim --unknown-poses`: robot i's SLAM map frame is the terrain's frame moved by
+  // sim_frames[i] (world_from_map, UnknownPoseFrames); its agent runs --unplaced with --sim-frame
+  // and the server has to place it. Empty: every robot maps in the terrain's frame.
+  std::vector<Pose2> sim_frames;
 
   Status Validate() const;
 };
+
+// How the server placed a robot that started at an unknown pose (FleetSimOptions::sim_frames), as
+// the observer saw it on rt/fleetmap/robot_frames. Times are seconds since the run started.
+struct RobotPlacement {
+  Pose2 true_world_from_map;       // the simulator's, hidden from the server
+  std::optional<double> joined_s;  // the robot's first status
+  // The first time at least kSharedFraction of the robot's known cells lay on the known cells of
+  // robots placed at that moment (both read from their tiles, carried into the world frame with
+  // the true transforms; checked about once a second). Never set for the anchor.
+  std::optional<double> shared_s;
+  std::optional<double> placed_s;  // the first state other than unplaced
+  // The last robot_frames sample.
+  std::string state = "unplaced";
+  Pose2 fleet_from_map;
+  double confidence = 0.0;
+  uint32_t placements = 0;
+  std::string placed_against;
+  // The robot's map frame: the centroid of its known cells at the end of the run (from its tiles).
+  std::optional<Point2> known_centroid;
+  int64_t known_cells = 0;      // on the observer's 0.1 m coverage grid, at the end
+  double shared_fraction = 0.0;  // the last share checked (before shared_s, or at it)
+};
+
+// The share of its known cells a robot must have in common with placed robots to count as having
+// "shared enough map" to be placed.
+inline constexpr double kSharedFraction = 0.2;
 
 struct FleetRobotResult {
   uint64_t bytes = 0;        // published, as the robot's last status says
   uint64_t updates = 0;      // tiles (or grids and patches) published
   uint64_t whole_grids = 0;  // grids published (the grid wires)
   WireBaselines baselines;   // as the robot's last status says (measure_baselines)
-  std::vector<Pose2> path;   // sampled from its statuses
+  std::vector<Pose2> path;   // sampled from its statuses; with sim_frames, carried into the
+                             // terrain's frame with the true world_from_map
+  std::optional<RobotPlacement> placement;  // with sim_frames only
 };
 
 struct FleetRunResult {
@@ -55,7 +87,11 @@ struct FleetRunResult {
   WireBaselines baselines;           // summed over the robots (measure_baselines)
   std::vector<double> latencies_ms;  // fused tile received - the robot update that caused it
                                      // (the honest robots' tiles only)
-  grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map
+  grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map (fleet frame)
+  // Takes terrain-frame points into the fleet frame: identity, or with sim_frames the inverse of
+  // the anchor's true world_from_map (nullopt while no robot anchored the fleet).
+  std::optional<Transform2> fleet_from_world = Transform2::Identity();
+  std::string anchor;  // with sim_frames: the robot whose map frame became the fleet frame
   double server_cpu_seconds = 0.0;
   int64_t server_peak_rss_bytes = 0;
   double seconds = 0.0;  // wall time of the run
@@ -70,6 +106,10 @@ struct FleetRunResult {
 // a second while the agents finish measuring the grid wires after the run.
 StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                   const std::function<void(double)>& progress = {});
+
+// Seeded random world_from_map transforms for `robots` robots started at unknown poses: any yaw,
+// the origin 10 to 50 m from the terrain's in any direction. The same seed gives the same frames.
+std::vector<Pose2> UnknownPoseFrames(uint32_t seed, int robots);
 
 // The binaries next to this program (build tree or installed): an error names what is missing.
 StatusOr<std::string> FindFleetBinaries();

@@ -12,6 +12,7 @@
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/metrics/map_quality.hpp"
+#include "common/sim/frame_resample.hpp"
 
 namespace fleetmap::bench {
 namespace {
@@ -34,9 +35,9 @@ nlohmann::json Ratio(uint64_t bytes, uint64_t tile_bytes) {
   return nlohmann::json(static_cast<double>(bytes) / static_cast<double>(tile_bytes));
 }
 
-// The fused map in grey (occupied black, free white, unknown grey) with each robot's path.
-Status WriteFusedPng(const FleetRunResult& run, const std::string& path) {
-  const grid::OccupancyGrid& map = run.fused;
+// A map in grey (occupied black, free white, unknown grey) with each robot's path (same frame).
+Status WriteFusedPng(const grid::OccupancyGrid& map, const FleetRunResult& run,
+                     const std::string& path) {
   if (map.empty()) return NotFoundError("no fused map was received");
   cv::Mat image(map.height(), map.width(), CV_8UC3);
   for (int y = 0; y < map.height(); ++y) {
@@ -66,20 +67,192 @@ Status WriteFusedPng(const FleetRunResult& run, const std::string& path) {
   return grid::WriteImageFile(path, image);
 }
 
+std::string Seconds(const std::optional<double>& value) {
+  return value ? fmt::format("{:.1f}", *value) : std::string("never");
+}
+
+// b - a when both happened.
+std::optional<double> Between(const std::optional<double>& a, const std::optional<double>& b) {
+  if (!a || !b) return std::nullopt;
+  return *b - *a;
+}
+
+std::string QualityRow(const std::string& name, const metrics::QualityScores& quality) {
+  return fmt::format("| {} | {} | {} | {} | {} | {} |\n", name, Percent(quality.map_score),
+                     Percent(quality.cross_correlation), Percent(quality.pearson_occupied),
+                     Percent(quality.occupied_picture_distance),
+                     Percent(quality.unoccupied_picture_distance));
+}
+
+nlohmann::json QualityJson(const metrics::QualityScores& quality) {
+  return {{"ms", Json(quality.map_score)},
+          {"cc", Json(quality.cross_correlation)},
+          {"pc", Json(quality.pearson_occupied)},
+          {"opdf", Json(quality.occupied_picture_distance)},
+          {"updf", Json(quality.unoccupied_picture_distance)}};
+}
+
+// The placement part of a run with robots at unknown poses: a markdown section, the JSON, the
+// CSV rows and the summary's sentence.
+struct PlacementReport {
+  std::string md;
+  nlohmann::json json;
+  std::string csv;
+  std::string summary;
+};
+
+StatusOr<PlacementReport> ReportPlacements(const FleetRunResult& tiles,
+                                           const metrics::QualityScores& quality,
+                                           const grid::OccupancyGrid& truth,
+                                           const std::optional<FleetRunResult>& known_poses) {
+  PlacementReport out;
+  const auto anchor = tiles.robots.find(tiles.anchor);
+  const bool anchored = anchor != tiles.robots.end() && anchor->second.placement.has_value();
+  out.md = fmt::format(
+      "## Placement (robots at unknown poses)\n\n"
+      "Each robot's SLAM map frame is the terrain's frame moved by a seeded random rigid "
+      "transform (true world_from_map below: x, y in metres, yaw in degrees; only the simulator "
+      "and this observer know it); every agent ran `--unplaced` and the server placed them (rt/"
+      "fleetmap/robot_frames). {}\n\n"
+      "*joined*: the robot's first status. *shared*: the first check (about once a second) at "
+      "which at least {:.0f} % of the robot's known cells (read from its tiles on a 0.1 m grid, "
+      "carried into the terrain's frame with the true transforms) lay on known cells of the "
+      "robots placed at that moment (the share it had then in brackets; the anchor needs none). "
+      "*error*: at the centroid of the robot's known cells at the end of the run, the distance "
+      "between where its placement and the truth (inverse(world_from_map of the anchor) * "
+      "world_from_map of the robot) put that point, in {:.0f} cm cells, and the yaw error. Times "
+      "are seconds since the run started.\n\n"
+      "| robot | true world_from_map | state | confidence | placed against | joined | shared | "
+      "placed | joined -> placed | shared -> placed | error (cells) | yaw error (deg) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      anchored ? fmt::format("Robot {} anchored the fleet frame.", tiles.anchor)
+               : std::string("No robot anchored the fleet frame."),
+      100.0 * kSharedFraction, 100.0 * truth.resolution());
+  out.csv =
+      "robot,true_x,true_y,true_yaw_deg,state,confidence,placed_against,placements,joined_s,"
+      "shared_s,shared_fraction,placed_s,joined_to_placed_s,shared_to_placed_s,error_cells,"
+      "yaw_error_deg,known_cells\n";
+  int placed = 0;
+  std::optional<double> worst_cells, worst_yaw, slowest_join, slowest_share;
+  const auto max = [](std::optional<double>* into, const std::optional<double>& value) {
+    if (value) *into = std::max(into->value_or(*value), *value);
+  };
+  const auto csv_number = [](const std::optional<double>& value) {
+    return value ? fmt::format("{:.3f}", *value) : std::string();
+  };
+  for (const auto& [name, robot] : tiles.robots) {
+    if (!robot.placement) continue;
+    const RobotPlacement& p = *robot.placement;
+    const std::optional<PlacementError> placement_error =
+        anchored ? PlacementErrorOf(p, anchor->second.placement->true_world_from_map,
+                                    truth.resolution())
+                 : std::nullopt;
+    // Plain values from here: GCC's -Wmaybe-uninitialized misreads optionals copied into JSON.
+    const bool measured = placement_error.has_value();
+    const PlacementError error = placement_error.value_or(PlacementError{});
+    const auto join_to_place = Between(p.joined_s, p.placed_s);
+    const auto share_to_place = Between(p.shared_s, p.placed_s);
+    placed += p.placed_s.has_value();
+    if (measured) {
+      worst_cells = std::max(worst_cells.value_or(0.0), error.cells);
+      worst_yaw = std::max(worst_yaw.value_or(0.0), error.yaw_deg);
+    }
+    const std::string cells = measured ? fmt::format("{:.2f}", error.cells) : std::string();
+    const std::string yaw = measured ? fmt::format("{:.2f}", error.yaw_deg) : std::string();
+    max(&slowest_join, join_to_place);
+    max(&slowest_share, share_to_place);
+    const double true_yaw_deg = p.true_world_from_map.yaw * 180.0 / M_PI;
+    out.md += fmt::format(
+        "| {} | {:.2f}, {:.2f}, {:.1f} | {} | {:.2f} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        name, p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg, p.state,
+        p.confidence, p.placed_against.empty() ? "-" : p.placed_against, Seconds(p.joined_s),
+        name == tiles.anchor ? std::string("-")
+        : p.shared_s         ? fmt::format("{} ({:.0f} %)", Seconds(p.shared_s),
+                                           100.0 * p.shared_fraction)
+                             : fmt::format("never ({:.0f} % at the end)", 100.0 * p.shared_fraction),
+        Seconds(p.placed_s), Seconds(join_to_place),
+        share_to_place ? Seconds(share_to_place) : std::string("-"),
+        measured ? cells : std::string("-"), measured ? yaw : std::string("-"));
+    out.csv += fmt::format("{},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{},{},{:.4f},{},{},{},{},{},{}\n",
+                           name, p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg,
+                           p.state, p.confidence, p.placed_against, p.placements,
+                           csv_number(p.joined_s), csv_number(p.shared_s), p.shared_fraction,
+                           csv_number(p.placed_s), csv_number(join_to_place),
+                           csv_number(share_to_place), cells, yaw, p.known_cells);
+    out.json["per_robot"][name] = {
+        {"true_world_from_map",
+         {{"x", p.true_world_from_map.x}, {"y", p.true_world_from_map.y},
+          {"yaw", p.true_world_from_map.yaw}}},
+        {"fleet_from_map",
+         {{"x", p.fleet_from_map.x}, {"y", p.fleet_from_map.y}, {"yaw", p.fleet_from_map.yaw}}},
+        {"state", p.state},
+        {"placed", p.placed_s.has_value()},
+        {"confidence", p.confidence},
+        {"placed_against", p.placed_against},
+        {"placements", p.placements},
+        {"joined_s", Json(p.joined_s)},
+        {"shared_s", Json(p.shared_s)},
+        {"shared_fraction", p.shared_fraction},
+        {"placed_s", Json(p.placed_s)},
+        {"joined_to_placed_s", Json(join_to_place)},
+        {"shared_to_placed_s", Json(share_to_place)},
+        {"error_cells", measured ? nlohmann::json(error.cells) : nlohmann::json(nullptr)},
+        {"yaw_error_deg", measured ? nlohmann::json(error.yaw_deg) : nlohmann::json(nullptr)},
+        {"known_cells", p.known_cells}};
+  }
+  out.json["anchor"] = tiles.anchor;
+  out.json["robots_placed"] = placed;
+  out.md += fmt::format(
+      "\nThe fused map is in the anchor's map frame: it was carried into the terrain's frame with "
+      "the anchor's true world_from_map (one rigid nearest-neighbour resample) to be scored "
+      "against the ground truth{}.\n\n",
+      known_poses ? ", beside the same scenario (seed, terrain, duration) with known poses" : "");
+  out.md += "| run | MS | CC | PC | OPDF | UPDF |\n|---|---|---|---|---|---|\n";
+  out.md += QualityRow("unknown poses (placed by the server)", quality);
+  std::string known_summary;
+  if (known_poses) {
+    FLEETMAP_ASSIGN_OR_RETURN(const metrics::QualityScores known,
+                              metrics::CompareMaps(ResampleOnto(known_poses->fused, truth), truth));
+    out.md += QualityRow("known poses (one shared frame)", known);
+    out.json["known_poses_quality"] = QualityJson(known);
+    known_summary = fmt::format("; with known poses MS {} OPDF {} UPDF {}",
+                                Percent(known.map_score),
+                                Percent(known.occupied_picture_distance),
+                                Percent(known.unoccupied_picture_distance));
+  }
+  out.md += "\n";
+  out.summary = fmt::format(
+      "Unknown poses: {} of {} robots placed (anchor {}); joined -> placed at most {} s, shared "
+      "-> placed at most {} s; error at most {} cells and {} deg{}.",
+      placed, tiles.robots.size(), tiles.anchor.empty() ? "none" : tiles.anchor,
+      Seconds(slowest_join), slowest_share ? Seconds(slowest_share) : std::string("-"),
+      worst_cells ? fmt::format("{:.2f}", *worst_cells) : std::string("-"),
+      worst_yaw ? fmt::format("{:.2f}", *worst_yaw) : std::string("-"), known_summary);
+  return out;
+}
+
 }  // namespace
 
-grid::OccupancyGrid ResampleOnto(const grid::OccupancyGrid& fused,
-                                 const grid::OccupancyGrid& truth) {
+grid::OccupancyGrid ResampleOnto(const grid::OccupancyGrid& fused, const grid::OccupancyGrid& truth,
+                                 const Transform2& fleet_from_world) {
   grid::OccupancyGrid out(truth.width(), truth.height(), truth.resolution(), truth.origin(),
                           grid::kUnknownValue);
-  if (fused.empty()) return out;
-  for (int y = 0; y < truth.height(); ++y) {
-    for (int x = 0; x < truth.width(); ++x) {
-      const auto cell = fused.CellAt(truth.CellCenter(x, y));
-      if (cell) out.at(x, y) = fused.at(cell->x, cell->y);
-    }
-  }
+  sim::ResampleRigid(fused, fleet_from_world, &out);
   return out;
+}
+
+std::optional<PlacementError> PlacementErrorOf(const RobotPlacement& placement,
+                                               const Pose2& world_from_anchor, double resolution) {
+  if (!placement.placed_s || !placement.known_centroid) return std::nullopt;
+  const Transform2 truth =
+      world_from_anchor.ToTransform().inverse() * placement.true_world_from_map.ToTransform();
+  const Point2& centroid = *placement.known_centroid;
+  const Pose2 true_fleet_from_map = Pose2::FromTransform(truth);
+  return PlacementError{
+      .cells = (placement.fleet_from_map.ToTransform() * centroid - truth * centroid).norm() /
+               resolution,
+      .yaw_deg = std::abs(NormalizeAngle(placement.fleet_from_map.yaw - true_fleet_from_map.yaw)) *
+                 180.0 / M_PI};
 }
 
 std::optional<double> Percentile(std::vector<double> values, double p) {
@@ -91,20 +264,31 @@ std::optional<double> Percentile(std::vector<double> values, double p) {
 
 StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const FleetRunResult& tiles,
                                        const std::optional<FleetRunResult>& compared,
-                                       const grid::OccupancyGrid& truth,
-                                       const std::string& out_dir) {
+                                       const grid::OccupancyGrid& truth, const std::string& out_dir,
+                                       const std::optional<FleetRunResult>& known_poses) {
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error) return NotFoundError(out_dir + ": " + error.message());
 
+  // Without an anchor (robots at unknown poses, none placed) the fused map sits nowhere.
+  const grid::OccupancyGrid fused_in_world =
+      tiles.fleet_from_world
+          ? ResampleOnto(tiles.fused, truth, *tiles.fleet_from_world)
+          : grid::OccupancyGrid(truth.width(), truth.height(), truth.resolution(), truth.origin());
   FLEETMAP_ASSIGN_OR_RETURN(const metrics::QualityScores quality,
-                            metrics::CompareMaps(ResampleOnto(tiles.fused, truth), truth));
+                            metrics::CompareMaps(fused_in_world, truth));
+  std::optional<PlacementReport> placements;
+  if (!options.sim_frames.empty()) {
+    FLEETMAP_ASSIGN_OR_RETURN(placements, ReportPlacements(tiles, quality, truth, known_poses));
+  }
   const auto p50 = Percentile(tiles.latencies_ms, 50);
   const auto p95 = Percentile(tiles.latencies_ms, 95);
   const auto p99 = Percentile(tiles.latencies_ms, 99);
   const std::string headline = HeadlineRatio(tiles.total_bytes, tiles.baselines);
   const std::string png = out_dir + "/fused.png";
-  const Status png_written = WriteFusedPng(tiles, png);
+  // Robots at unknown poses: the map and paths in the terrain's frame.
+  const Status png_written =
+      WriteFusedPng(options.sim_frames.empty() ? tiles.fused : fused_in_world, tiles, png);
 
   std::string md = fmt::format(
       "# fleetmap sim: {} robots, {} {} m, seed {}\n\n"
@@ -159,6 +343,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       Percent(quality.map_score), Percent(quality.cross_correlation),
       Percent(quality.pearson_occupied), Percent(quality.occupied_picture_distance),
       Percent(quality.unoccupied_picture_distance));
+  if (placements) md += placements->md;
   md += fmt::format(
       "## Server\n\nCPU {:.2f} s over {:.0f} s ({:.0f} % of one core), peak memory "
       "{:.1f} MB.\n\n",
@@ -182,12 +367,7 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
                            {"p50", Json(p50)},
                            {"p95", Json(p95)},
                            {"p99", Json(p99)}}},
-                         {"quality",
-                          {{"ms", Json(quality.map_score)},
-                           {"cc", Json(quality.cross_correlation)},
-                           {"pc", Json(quality.pearson_occupied)},
-                           {"opdf", Json(quality.occupied_picture_distance)},
-                           {"updf", Json(quality.unoccupied_picture_distance)}}},
+                         {"quality", QualityJson(quality)},
                          {"server",
                           {{"cpu_seconds", tiles.server_cpu_seconds},
                            {"peak_rss_bytes", tiles.server_peak_rss_bytes},
@@ -212,13 +392,17 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       json["per_robot"][name]["baselines"][baseline.key] = baseline.bytes;
     }
   }
+  if (placements) {
+    json["unknown_poses"] = placements->json;
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/placement.csv", placements->csv));
+  }
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.json", json.dump(2) + "\n"));
 
   return fmt::format(
-      "{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
+      "{}{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
       "p95 {} p99 {}; fused map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\n"
       "Report: {}/report.md, image: {}",
-      options.robots, sim::TerrainKindName(options.kind), options.size, tiles.seconds,
+      placements ? placements->summary + "\n" : std::string(), options.robots, sim::TerrainKindName(options.kind), options.size, tiles.seconds,
       tiles.total_bytes, headline, Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
       Percent(quality.occupied_picture_distance), Percent(quality.unoccupied_picture_distance),
       100.0 * tiles.server_cpu_seconds / std::max(1e-9, tiles.seconds),

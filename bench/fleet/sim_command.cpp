@@ -22,6 +22,8 @@ struct SimArgs {
   std::string out_dir = "out/sim";
   bool compare = true;
   std::string compare_wire = "grid-updates-zstd";
+  bool unknown_poses = false;
+  bool compare_known = false;
 };
 
 int RunSim(const SimArgs& args) {
@@ -33,6 +35,7 @@ int RunSim(const SimArgs& args) {
   }
   FleetSimOptions fleet = ScenarioFleetOptions(*kind, args.scenario);
   fleet.robots = args.robots;
+  if (args.unknown_poses) fleet.sim_frames = UnknownPoseFrames(fleet.seed, fleet.robots);
   if (const Status valid = fleet.Validate(); !valid.ok()) {
     std::cerr << "fleetmap sim: " << valid.message() << "\n";
     return cli::kExitBadInput;
@@ -43,30 +46,47 @@ int RunSim(const SimArgs& args) {
     return code;
   }
 
-  const auto run = [&](const std::string& wire) -> StatusOr<FleetRunResult> {
+  // Robots at unknown poses run on the tile wire only and do not measure the grid wires (the
+  // placement is what is measured); --compare-known runs them again in one shared frame.
+  const auto run = [&](const std::string& wire,
+                       const std::vector<Pose2>& sim_frames) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
     options.wire = wire;
-    options.measure_baselines = wire == "tiles";
+    options.sim_frames = sim_frames;
+    options.measure_baselines = wire == "tiles" && !args.unknown_poses;
+    const std::string label =
+        args.unknown_poses ? (sim_frames.empty() ? "known poses" : "unknown poses") : wire + " wire";
     return RunFleet(options, [&](double seconds) {
       if (seconds < 0) {
-        std::cerr << fmt::format("\r[{} wire] the agents finish measuring the grid wires", wire)
+        std::cerr << fmt::format("\r[{}] the agents finish measuring the grid wires", label)
                   << std::flush;
         return;
       }
-      std::cerr << fmt::format("\r[{} wire] {:.0f} / {:.0f} s", wire, seconds,
+      std::cerr << fmt::format("\r[{}] {:.0f} / {:.0f} s", label, seconds,
                                args.scenario.duration_s)
                 << std::flush;
     });
   };
-  StatusOr<FleetRunResult> tiles = run("tiles");
+  StatusOr<FleetRunResult> tiles = run("tiles", fleet.sim_frames);
   std::cerr << "\n";
   if (!tiles.ok()) {
     std::cerr << "fleetmap sim: " << tiles.status().message() << "\n";
     return 1;
   }
+  std::optional<FleetRunResult> known_poses;
+  if (args.unknown_poses && args.compare_known) {
+    StatusOr<FleetRunResult> known_run = run("tiles", {});
+    std::cerr << "\n";
+    if (!known_run.ok()) {
+      std::cerr << "fleetmap sim: the known-pose run failed: " << known_run.status().message()
+                << "\n";
+      return 1;
+    }
+    known_poses = std::move(known_run).value();
+  }
   std::optional<FleetRunResult> compared;
-  if (args.compare) {
-    StatusOr<FleetRunResult> compared_run = run(args.compare_wire);
+  if (args.compare && !args.unknown_poses) {
+    StatusOr<FleetRunResult> compared_run = run(args.compare_wire, {});
     std::cerr << "\n";
     if (!compared_run.ok()) {
       std::cerr << "fleetmap sim: the " << args.compare_wire
@@ -75,7 +95,8 @@ int RunSim(const SimArgs& args) {
     }
     compared = std::move(compared_run).value();
   }
-  StatusOr<std::string> summary = WriteFleetReport(fleet, *tiles, compared, truth, args.out_dir);
+  StatusOr<std::string> summary =
+      WriteFleetReport(fleet, *tiles, compared, truth, args.out_dir, known_poses);
   if (!summary.ok()) {
     std::cerr << "fleetmap sim: " << summary.status().message() << "\n";
     return 1;
@@ -100,6 +121,16 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                    "the grid wire of the second run: grid, grid-updates or grid-updates-zstd")
       ->check(CLI::IsMember({"grid", "grid-updates", "grid-updates-zstd"}))
       ->capture_default_str();
+  command->add_flag("--unknown-poses", args->unknown_poses,
+                    "robots start at unknown poses: each maps in its own frame (a seeded random "
+                    "rigid transform of the terrain's), runs --unplaced and is placed by the "
+                    "server; reports each placement against the truth (tile wire only, no "
+                    "grid-wire run)");
+  command
+      ->add_flag("--compare-known", args->compare_known,
+                 "with --unknown-poses: run the same scenario with known poses too and compare "
+                 "the fused maps")
+      ->needs("--unknown-poses");
   command->callback([args, exit_code] { *exit_code = RunSim(*args); });
 }
 
