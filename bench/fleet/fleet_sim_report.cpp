@@ -395,6 +395,8 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
   if (placements) {
     json["unknown_poses"] = placements->json;
     FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/placement.csv", placements->csv));
+    // The server's own account of each registration (placed, refused, revised).
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/server.log", tiles.server_output));
   }
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.json", json.dump(2) + "\n"));
 
