@@ -1,6 +1,7 @@
 #include "bench/fleet/placement_observer.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "common/transport/topics.hpp"
 #include "common/vector_map/rasterizer.hpp"
@@ -134,6 +135,22 @@ void PlacementObserver::CheckCoverage(double now_s, FleetRunResult* result) {
 }
 
 void PlacementObserver::Finish(double now_s, FleetRunResult* result) {
+  if (result->anchor.empty()) {
+    // The anchor's state can turn to "given" at once (the server notes the placement it already
+    // has when the robot's status comes after its tiles): then the first robot placed at the
+    // identity is the anchor.
+    std::optional<double> first;
+    for (const auto& [name, robot] : result->robots) {
+      if (!robot.placement || !robot.placement->placed_s || robot.placement->state != "given" ||
+          !(robot.placement->fleet_from_map == Pose2{})) {
+        continue;
+      }
+      if (!first || *robot.placement->placed_s < *first) {
+        first = robot.placement->placed_s;
+        result->anchor = name;
+      }
+    }
+  }
   CheckCoverage(now_s, result);
   finished_ = true;
   for (const auto& [name, robot] : robots_) {

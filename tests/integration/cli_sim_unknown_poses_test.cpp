@@ -35,20 +35,23 @@ TEST(CliSimUnknownPosesTest, EveryRobotIsPlacedNearItsTruePose) {
   const nlohmann::json report = nlohmann::json::parse(in);
   const nlohmann::json& placements = report["unknown_poses"];
   EXPECT_EQ(placements["robots_placed"], 2);
-  int anchors = 0;
+  // One robot anchored the fleet frame (its last state may read "given": the server notes the
+  // placement it already has when the robot's first status comes after its first tiles).
+  const std::string anchor = placements["anchor"].get<std::string>();
+  EXPECT_TRUE(anchor == "robot0" || anchor == "robot1") << anchor;
   for (const char* robot : {"robot0", "robot1"}) {
     ASSERT_TRUE(placements["per_robot"].contains(robot)) << robot;
     const nlohmann::json& placement = placements["per_robot"][robot];
     EXPECT_TRUE(placement["placed"].get<bool>()) << robot;
-    anchors += placement["state"] == "anchor";
+    if (robot != anchor) {
+      EXPECT_THAT(placement["state"].get<std::string>(), ::testing::AnyOf("placed", "revised"));
+    }
     // The frames are far apart and turned (the sim's random transforms), the placement is not.
     ASSERT_FALSE(placement["error_cells"].is_null()) << robot;
     EXPECT_LE(placement["error_cells"].get<double>(), 4.0) << robot;
     EXPECT_LE(placement["yaw_error_deg"].get<double>(), 2.0) << robot;
     EXPECT_GT(placement["known_cells"].get<int64_t>(), 0) << robot;
   }
-  EXPECT_EQ(anchors, 1);
-  EXPECT_EQ(placements["anchor"].get<std::string>().rfind("robot", 0), 0u);
   // Scored in the terrain's frame: a misplaced or unmoved fused map would not reach this.
   EXPECT_GT(report["quality"]["updf"].get<double>(), 90.0);
   std::filesystem::remove_all(out);
