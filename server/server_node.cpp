@@ -199,7 +199,10 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   }
   if (!joining) return;
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
-  const std::optional<Pose2> fleet_from_map = FleetFromMap(record);
+  // A robot that does not know its frame is placed by the fusion worker, which may have done so
+  // already (its tiles can come first): never note its placement back as given.
+  const std::optional<Pose2> fleet_from_map =
+      status.tiles_in_map_frame ? std::nullopt : FleetFromMap(record);
   fusion_worker_->NoteRobotFrame(status.robot, fleet_from_map);
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
                status.robot.value, grid_wire ? RobotMapFeed::WireName(*grid_wire) : "tiles",
