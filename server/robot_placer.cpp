@@ -108,6 +108,7 @@ void RobotPlacer::Forget(const RobotId& robot) {
   }
   frames_.erase(it);
   followers_.erase(robot);
+  last_refusal_log_.erase(robot);
   std::erase_if(attempts_, [&](const auto& entry) { return entry.first.first == robot; });
 }
 
@@ -194,9 +195,22 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   }
   const registration::Registration& found = *result.registration;
   if (!found.found || found.confidence < options_.min_confidence) {
-    spdlog::debug("server: robot {} not placed on {} ({} ms): {}", job.robot.value, against,
-                  result.took.count(),
-                  found.found ? fmt::format("confidence {:.2f}", found.confidence) : found.why_not);
+    // Every try at debug level; at info, what keeps a robot unplaced, every 10 s at most.
+    const std::string why =
+        found.found ? fmt::format("confidence {:.2f} is below {:.2f}", found.confidence,
+                                  options_.min_confidence)
+                    : found.why_not;
+    const auto now = std::chrono::steady_clock::now();
+    auto& last = last_refusal_log_[job.robot];
+    const bool placed = frames_.count(job.robot) > 0 && frames_.at(job.robot).placed();
+    if (!placed && now - last >= kRefusalLogPeriod) {
+      last = now;
+      spdlog::info("server: robot {} not placed on {} yet ({} ms): {}", job.robot.value, against,
+                   result.took.count(), why);
+    } else {
+      spdlog::debug("server: robot {} not placed on {} ({} ms): {}", job.robot.value, against,
+                    result.took.count(), why);
+    }
     return std::nullopt;
   }
   const auto frame = frames_.find(job.robot);

@@ -145,6 +145,8 @@ class RobotPlacer {
   std::map<std::pair<RobotId, RobotId>, Attempt> attempts_;  // by (robot, target)
   std::map<RobotId, Follower> followers_;
   std::chrono::steady_clock::time_point last_tf_{};
+  static constexpr std::chrono::seconds kRefusalLogPeriod{10};
+  std::map<RobotId, std::chrono::steady_clock::time_point> last_refusal_log_;
   bool busy_ = false;
 
   std::mutex mutex_;
