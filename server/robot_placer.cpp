@@ -196,10 +196,9 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   const registration::Registration& found = *result.registration;
   if (!found.found || found.confidence < options_.min_confidence) {
     // Every try at debug level; at info, what keeps a robot unplaced, every 10 s at most.
-    const std::string why =
-        found.found ? fmt::format("confidence {:.2f} is below {:.2f}", found.confidence,
-                                  options_.min_confidence)
-                    : found.why_not;
+    const std::string why = found.found ? fmt::format("confidence {:.2f} is below {:.2f}",
+                                                      found.confidence, options_.min_confidence)
+                                        : found.why_not;
     const auto now = std::chrono::steady_clock::now();
     auto& last = last_refusal_log_[job.robot];
     const bool placed = frames_.count(job.robot) > 0 && frames_.at(job.robot).placed();
@@ -224,8 +223,10 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
         Follower{job.target_robot, found.a_from_b, found.confidence, found.overlap};
     const std::optional<Pose2> leader = placement_of(job.target_robot);
     if (!leader || now_placed) {
-      spdlog::info("server: robot {} registered to robot {} (confidence {:.2f}); placed with it",
-                   job.robot.value, job.target_robot.value, found.confidence);
+      spdlog::info(
+          "server: robot {} registered to robot {} (confidence {:.2f}): whichever of the two is "
+          "placed first places the other",
+          job.robot.value, job.target_robot.value, found.confidence);
       return std::nullopt;
     }
     fleet_from_map = Pose2::FromTransform(leader->ToTransform() * found.a_from_b.ToTransform());
@@ -262,27 +263,37 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   return Decision{job.robot, fleet_from_map};
 }
 
-void RobotPlacer::PlaceFollowers(const RobotId& leader, const Pose2& leader_placement,
+void RobotPlacer::PlaceFollowers(const RobotId& placed_robot, const Pose2& placement,
                                  std::vector<Decision>* decisions) {
-  for (const auto& [robot, follower] : followers_) {
-    if (follower.leader != leader) continue;
-    const auto frame = frames_.find(robot);
+  // Each link says where one robot's map sits in another's; it works both ways.
+  for (const auto& [robot, link] : followers_) {
+    RobotId other;
+    Transform2 placed_from_other;
+    if (link.leader == placed_robot) {
+      other = robot;
+      placed_from_other = link.leader_from_map.ToTransform();
+    } else if (robot == placed_robot) {
+      other = link.leader;
+      placed_from_other = link.leader_from_map.ToTransform().inverse();
+    } else {
+      continue;
+    }
+    const auto frame = frames_.find(other);
     if (frame == frames_.end() || frame->second.placed()) continue;
-    const Pose2 fleet_from_map = Pose2::FromTransform(leader_placement.ToTransform() *
-                                                      follower.leader_from_map.ToTransform());
+    const Pose2 fleet_from_map = Pose2::FromTransform(placement.ToTransform() * placed_from_other);
     transport::RobotFrameMessage placed = frame->second;
     placed.state = transport::RobotFrameMessage::State::kPlaced;
     placed.fleet_from_map = fleet_from_map;
-    placed.confidence = follower.confidence;
-    placed.overlap = follower.overlap;
-    placed.placed_against = leader.value;
+    placed.confidence = link.confidence;
+    placed.overlap = link.overlap;
+    placed.placed_against = placed_robot.value;
     ++placed.placements;
     Publish(std::move(placed));
     spdlog::info("server: robot {} placed with robot {} at ({:.2f}, {:.2f}, {:.1f} deg)",
-                 robot.value, leader.value, fleet_from_map.x, fleet_from_map.y,
+                 other.value, placed_robot.value, fleet_from_map.x, fleet_from_map.y,
                  Degrees(fleet_from_map.yaw));
-    decisions->push_back(Decision{robot, fleet_from_map});
-    PlaceFollowers(robot, fleet_from_map, decisions);
+    decisions->push_back(Decision{other, fleet_from_map});
+    PlaceFollowers(other, fleet_from_map, decisions);
   }
 }
 

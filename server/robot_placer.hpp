@@ -121,8 +121,8 @@ class RobotPlacer {
   void Work();
   void Publish(transport::RobotFrameMessage frame);
   std::optional<Decision> DecideOne(const PlacementResult& result, const PlacementOf& placement_of);
-  // A robot that was registered to another unplaced robot is placed with it.
-  void PlaceFollowers(const RobotId& leader, const Pose2& leader_placement,
+  // Robots registered to `placed_robot` (or it to them) while unplaced are placed with it.
+  void PlaceFollowers(const RobotId& placed_robot, const Pose2& placement,
                       std::vector<Decision>* decisions);
 
   struct Attempt {
@@ -130,7 +130,8 @@ class RobotPlacer {
     uint64_t target_changes = 0;
     std::chrono::steady_clock::time_point at{};
   };
-  // An unplaced robot registered to another unplaced one: where it sits in that robot's frame.
+  // An unplaced robot registered to another unplaced one (the leader): where its map sits in the
+  // leader's. Whichever of the two is placed first places the other.
   struct Follower {
     RobotId leader;
     Pose2 leader_from_map;
