@@ -40,9 +40,8 @@ struct RegistrationOptions {
   // one wins.
   int candidates = 10;
   // A candidate's verification value: agreeing occupied cells (both ways) less this weight times
-  // contradicting ones, plus verify_free_weight times B's free cells on A's free cells.
+  // contradicting ones.
   double verify_contradiction_weight = 2.0;
-  double verify_free_weight = 0.1;
   // A match is refused when the best clearly different candidate verifies at least this fraction
   // of the best one's value (symmetric arenas, corridors, repeated rooms).
   double max_peak_ratio = 0.85;
