@@ -72,9 +72,8 @@ const ConfidenceCalibration& ConfidenceCalibration::Default() {
   // (seed 1: 284 pairs on office, maze and unstructured terrains of common/sim at 20-70 %
   // overlap, each labelled by whether its placement is right); the real maps played no part.
   // Refitted when the score's distinctness came to be measured by verification (regboost).
-  static const ConfidenceCalibration calibration({{0.0525, 0.0238},
-                                                  {0.5602, 0.2619},
-                                                  {0.9970, 0.9980}});
+  static const ConfidenceCalibration calibration(
+      {{0.0525, 0.0238}, {0.5602, 0.2619}, {0.9970, 0.9980}});
   return calibration;
 }
 

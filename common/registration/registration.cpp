@@ -284,8 +284,8 @@ struct GridTransform {
 };
 
 // The centres (grid metres) of g's cells in `state`, evenly thinned to at most `max_points`.
-std::vector<Point2> CellCentres(const grid::OccupancyGrid& g, grid::CellState state,
-                                int max_points, const grid::StateThresholds& thresholds) {
+std::vector<Point2> CellCentres(const grid::OccupancyGrid& g, grid::CellState state, int max_points,
+                                const grid::StateThresholds& thresholds) {
   std::vector<Point2> all;
   const double res = g.resolution();
   for (int y = 0; y < g.height(); ++y) {
@@ -368,11 +368,11 @@ std::vector<uint8_t> NearOccupied(const grid::OccupancyGrid& g, int radius,
 }
 
 struct Evidence {
-  int64_t known = 0;         // `from` cells known
-  int64_t known_shared = 0;  // ... landing on a known `to` cell
+  int64_t known = 0;            // `from` cells known
+  int64_t known_shared = 0;     // ... landing on a known `to` cell
   int64_t occupied_shared = 0;  // `from` occupied cells landing on a known `to` cell
-  int64_t agree = 0;         // `from` occupied cells with a `to` occupied cell near
-  int64_t contradict = 0;    // `from` occupied cells on a free `to` cell with none near
+  int64_t agree = 0;            // `from` occupied cells with a `to` occupied cell near
+  int64_t contradict = 0;       // `from` occupied cells on a free `to` cell with none near
 };
 
 // What `from`'s cells find in `to` when moved by to_from_from (grid metres).
@@ -487,8 +487,7 @@ class PlacementVerifier {
       }
     }
     s.near_occupied = std::move(near_occupied);
-    s.occupied_points =
-        CellCentres(g, grid::CellState::kOccupied, options.max_refine_points, th);
+    s.occupied_points = CellCentres(g, grid::CellState::kOccupied, options.max_refine_points, th);
     if (!s.occupied_points.empty()) {
       s.occupied_weight = static_cast<double>(occupied) / s.occupied_points.size();
     }
@@ -695,14 +694,14 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   const double distinct_cells2 = options.distinct_cells * options.distinct_cells;
   const int distinct_yaw_steps =
       static_cast<int>(std::ceil(options.distinct_yaw_deg * kDegree / yaw_step));
-  const std::vector<Candidate> peaks = search.SearchTop(
-      0.02f, static_cast<float>(kCandidateFloor), options.candidates,
-      [&](const Candidate& l, const Candidate& r) {
-        int dyaw = std::abs(l.yaw_index - r.yaw_index);
-        dyaw = std::min(dyaw, yaw_count - dyaw);
-        const double dx = l.x - r.x, dy = l.y - r.y;
-        return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
-      });
+  const std::vector<Candidate> peaks =
+      search.SearchTop(0.02f, static_cast<float>(kCandidateFloor), options.candidates,
+                       [&](const Candidate& l, const Candidate& r) {
+                         int dyaw = std::abs(l.yaw_index - r.yaw_index);
+                         dyaw = std::min(dyaw, yaw_count - dyaw);
+                         const double dx = l.x - r.x, dy = l.y - r.y;
+                         return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
+                       });
   Registration result;
   if (peaks.empty()) {
     result.why_not = "no placement of B's occupied cells meets A's";
@@ -732,8 +731,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                                              1.0, options.free_penalty);
   const double coarse_step = options.coarse_yaw_step_deg * kDegree;
   const double mid_shift = std::max(res, coarse_res / 4.0);
-  // The first two stages only need to bring a candidate within half a cell: a quarter of the
-  // points does that, and every candidate is refined.
+  // The wide stage and the first fine one only bring a candidate within half a cell: a quarter
+  // of the points does that, and every candidate gets the wide stage.
   std::vector<Point2> b_some_points;
   for (size_t i = 0; i < b_points.size(); i += 4) b_some_points.push_back(b_points[i]);
   const auto refine_wide = [&](const GridTransform& t) {
@@ -741,8 +740,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                        coarse_res, mid_shift);
   };
   const auto refine_fine = [&](GridTransform t) {
-    t = LocalSearch(fine_field, res, b_some_points, pivot, t, 0.5 * coarse_step,
-                    0.1 * coarse_step, mid_shift, 0.5 * res);
+    t = LocalSearch(fine_field, res, b_some_points, pivot, t, 0.5 * coarse_step, 0.1 * coarse_step,
+                    mid_shift, 0.5 * res);
     return LocalSearch(fine_field, res, b_points, pivot, t, 0.1 * coarse_step,
                        options.fine_yaw_step_deg * kDegree, 0.5 * res, 0.25 * res);
   };
@@ -818,9 +817,9 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   const double distinctness = std::min(1.0, (1.0 - result.peak_ratio) / (1.0 - kDistinctRatio));
   result.score = std::clamp((1.0 - contradiction) * distinctness, 0.0, 1.0);
   // What B could show in the overlap: its occupied cells that land on A's known cells.
-  const int needed_agreeing = std::max(
-      options.min_agreeing_cells,
-      static_cast<int>(std::ceil(options.min_agreeing_share * b_in_a.occupied_shared)));
+  const int needed_agreeing =
+      std::max(options.min_agreeing_cells,
+               static_cast<int>(std::ceil(options.min_agreeing_share * b_in_a.occupied_shared)));
   result.confidence = ConfidenceCalibration::Default().Probability(result.score);
 
   if (result.agreeing_cells < needed_agreeing) {
