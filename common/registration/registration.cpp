@@ -565,6 +565,13 @@ Status RegistrationOptions::Validate() const {
   if (!(verify_contradiction_weight >= 0.0 && verify_contradiction_weight <= 100.0)) {
     return InvalidArgumentError("registration verify_contradiction_weight must be in [0, 100]");
   }
+  if (!(symmetry_min_yaw_deg >= 0.0 && symmetry_min_yaw_deg <= 180.0) ||
+      !(symmetry_min_agreement >= 0.0 && symmetry_min_agreement <= 1.0) ||
+      !(symmetry_max_consistency_drop >= 0.0 && symmetry_max_consistency_drop <= 1.0)) {
+    return InvalidArgumentError(
+        "registration symmetry_min_yaw_deg must be in [0, 180], symmetry_min_agreement and "
+        "symmetry_max_consistency_drop in [0, 1]");
+  }
   if (min_agreeing_cells < 1) return InvalidArgumentError("registration min_agreeing_cells < 1");
   if (!(min_agreeing_share >= 0.0 && min_agreeing_share <= 1.0)) {
     return InvalidArgumentError("registration min_agreeing_share must be in [0, 1]");
@@ -596,6 +603,9 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("candidates", candidates);
   out.Add("verify_contradiction_weight", verify_contradiction_weight);
   out.Add("max_peak_ratio", max_peak_ratio);
+  out.Add("symmetry_min_yaw_deg", symmetry_min_yaw_deg);
+  out.Add("symmetry_min_agreement", symmetry_min_agreement);
+  out.Add("symmetry_max_consistency_drop", symmetry_max_consistency_drop);
   out.Add("tolerance_cells", tolerance_cells);
   out.Add("min_agreeing_cells", min_agreeing_cells);
   out.Add("min_agreeing_share", min_agreeing_share);
@@ -795,6 +805,25 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   if (best_value > 0.0 && verified.size() > 1) {
     ratio = std::clamp(verified[1].verdict.value / best_value, 0.0, 1.0);
   }
+  // A turned placement that explains a good share of B's walls as consistently as the best one
+  // means the structure repeats under a rotation (a point-symmetric arena's mirror, which may
+  // even overlap A more than the truth, so its value ratio says nothing): ambiguous, whatever
+  // the values. Shifts at the same yaw are left to the value ratio: sliding along one long wall
+  // keeps much of the agreement without being another explanation of B.
+  const auto consistency = [](const PlacementVerifier::Verdict& v) {
+    return v.agree + v.contradict > 0.0 ? v.agree / (v.agree + v.contradict) : 0.0;
+  };
+  bool turned_twin = false;
+  for (size_t k = 1; k < verified.size(); ++k) {
+    const PlacementVerifier::Verdict& other = verified[k].verdict;
+    turned_twin = turned_twin ||
+                  (std::abs(NormalizeAngle(verified[k].t.yaw - verified.front().t.yaw)) >
+                       options.symmetry_min_yaw_deg * kDegree &&
+                   other.agree >= options.symmetry_min_agreement * verified.front().verdict.agree &&
+                   consistency(other) >= consistency(verified.front().verdict) -
+                                             options.symmetry_max_consistency_drop);
+  }
+  if (turned_twin) ratio = 1.0;
   result.peak_ratio = ratio;
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
@@ -834,6 +863,10 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     result.why_not = std::string("the best placement contradicts the maps: ")
                          .append(Num(100.0 * contradiction))
                          .append(" % of the occupied cells in the overlap land on free cells");
+  } else if (turned_twin) {
+    result.why_not =
+        "ambiguous: a placement turned against the best explains B's walls about as "
+        "consistently (the structure repeats under a rotation)";
   } else if (result.peak_ratio >= options.max_peak_ratio) {
     result.why_not = std::string("ambiguous: a clearly different placement verifies ")
                          .append(Num(100.0 * result.peak_ratio))

@@ -45,6 +45,13 @@ struct RegistrationOptions {
   // A match is refused when the best clearly different candidate verifies at least this fraction
   // of the best one's value (symmetric arenas, corridors, repeated rooms).
   double max_peak_ratio = 0.85;
+  // ... and when a candidate turned by more than symmetry_min_yaw_deg against the best has at
+  // least symmetry_min_agreement of its agreeing cells with a consistency (agreeing / (agreeing
+  // + contradicting)) at most symmetry_max_consistency_drop below the best's: the structure
+  // repeats under a rotation (a point-symmetric arena), whatever the values say.
+  double symmetry_min_yaw_deg = 10.0;
+  double symmetry_min_agreement = 0.5;
+  double symmetry_max_consistency_drop = 0.1;
   // Verification at full resolution: occupied cells agree when the other map has an occupied cell
   // within tolerance_cells; they contradict when they land on a free cell with none within it.
   int tolerance_cells = 1;
