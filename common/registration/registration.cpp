@@ -573,6 +573,9 @@ Status RegistrationOptions::Validate() const {
         "symmetry_max_consistency_drop in [0, 1]");
   }
   if (min_agreeing_cells < 1) return InvalidArgumentError("registration min_agreeing_cells < 1");
+  if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) {
+    return InvalidArgumentError("registration min_overlap must be in [0, 1]");
+  }
   if (!(min_agreeing_share >= 0.0 && min_agreeing_share <= 1.0)) {
     return InvalidArgumentError("registration min_agreeing_share must be in [0, 1]");
   }
@@ -609,6 +612,7 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("tolerance_cells", tolerance_cells);
   out.Add("min_agreeing_cells", min_agreeing_cells);
   out.Add("min_agreeing_share", min_agreeing_share);
+  out.Add("min_overlap", min_overlap);
   out.Add("max_contradiction", max_contradiction);
   out.Add("min_score", min_score);
   out.Nested("thresholds", thresholds);
@@ -851,7 +855,13 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                static_cast<int>(std::ceil(options.min_agreeing_share * b_in_a.occupied_shared)));
   result.confidence = ConfidenceCalibration::Default().Probability(result.score);
 
-  if (result.agreeing_cells < needed_agreeing) {
+  if (result.overlap < options.min_overlap) {
+    result.why_not = std::string("too little shared structure: ")
+                         .append(Num(100.0 * result.overlap))
+                         .append(" % of B's known cells land on A's known cells (at least ")
+                         .append(Num(100.0 * options.min_overlap))
+                         .append(" % needed)");
+  } else if (result.agreeing_cells < needed_agreeing) {
     result.why_not = std::string("too little shared structure: ")
                          .append(std::to_string(result.agreeing_cells))
                          .append(" of B's ")

@@ -60,6 +60,9 @@ struct RegistrationOptions {
   // known cells (what B could show in the overlap), so the bar scales with the evidence.
   int min_agreeing_cells = 40;
   double min_agreeing_share = 0.5;
+  // Least share of B's known cells that must land on A's known cells: the relative bar above
+  // lets a sliver of overlap agree perfectly, so a placement must also share this much.
+  double min_overlap = 0.1;
   // Most contradicting occupied cells (both directions) as a fraction of agreeing + contradicting.
   double max_contradiction = 0.25;
   // Least score (consistency x distinctness, Registration::score) a match must have to be found.
