@@ -17,11 +17,14 @@ namespace fleetmap::registration {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
-// The second peak is looked for only above this fraction of the best: lower peaks do not make a
-// match ambiguous, and a low floor would let the search visit most of the space again.
-constexpr double kSecondPeakFloor = 0.7;
-// Coarse peaks refined and compared on the fine field.
-constexpr int kPeaks = 3;
+// Candidates are looked for only above this fraction of the best coarse score: a lower floor
+// would let the search visit most of the space again.
+constexpr double kCandidateFloor = 0.5;
+// A second placement verifying at this fraction of the best or less leaves the match fully
+// distinct (Registration::score).
+constexpr double kDistinctRatio = 0.7;
+// Candidates that get the fine refinement stages after a first verification.
+constexpr size_t kFullyRefined = 4;
 
 std::string Num(double value) {
   char buffer[32];
@@ -160,9 +163,12 @@ class BranchAndBound {
                  int field_width, int field_height)
       : pyramid_(pyramid), rotations_(rotations), width_(field_width), height_(field_height) {}
 
-  // The best leaf scoring above `floor` that `excluded` lets through; score 0 if none.
-  template <typename Excluded>
-  Candidate Search(float floor, const Excluded& excluded) const {
+  // Up to `count` leaves, best first, that are pairwise clearly different (`same(l, r)` false),
+  // each scoring above `floor` and above `relative_floor` times the best: one pass, pruned by
+  // the count-th best kept so far. Of leaves that are not clearly different, the best is kept.
+  template <typename Same>
+  std::vector<Candidate> SearchTop(float floor, float relative_floor, int count,
+                                   const Same& same) const {
     const int top = pyramid_.levels() - 1;
     const int step = 1 << top;
     std::vector<Candidate> roots;
@@ -178,17 +184,50 @@ class BranchAndBound {
     }
     std::sort(roots.begin(), roots.end(),
               [](const Candidate& l, const Candidate& r) { return l.score > r.score; });
-    Candidate best{0, 0, 0, 0, floor};
-    bool any = false;
+    Top<Same> kept{floor, relative_floor, count, same, {}};
     for (const Candidate& root : roots) {
-      if (root.score <= best.score) break;
-      Descend(root, excluded, best, any);
+      if (root.score <= kept.Bound()) break;
+      Descend(root, kept);
     }
-    if (!any) best.score = 0.0f;
-    return best;
+    return kept.leaves;
   }
 
  private:
+  template <typename Same>
+  struct Top {
+    float floor;
+    float relative_floor;
+    int count;
+    const Same& same;
+    std::vector<Candidate> leaves;  // best first
+
+    // What a block must beat to matter.
+    float Bound() const {
+      float bound = floor;
+      if (!leaves.empty()) bound = std::max(bound, relative_floor * leaves.front().score);
+      if (static_cast<int>(leaves.size()) >= count) bound = std::max(bound, leaves.back().score);
+      return bound;
+    }
+    void Offer(const Candidate& leaf) {
+      for (Candidate& kept : leaves) {
+        if (!same(kept, leaf)) continue;
+        if (leaf.score <= kept.score) return;
+        kept = leaf;
+        Sort();
+        return;
+      }
+      leaves.push_back(leaf);
+      Sort();
+      if (static_cast<int>(leaves.size()) > count) leaves.pop_back();
+      const float relative = relative_floor * leaves.front().score;
+      while (!leaves.empty() && leaves.back().score <= relative) leaves.pop_back();
+    }
+    void Sort() {
+      std::sort(leaves.begin(), leaves.end(),
+                [](const Candidate& l, const Candidate& r) { return l.score > r.score; });
+    }
+  };
+
   float Score(const Candidate& c) const {
     const float* base = pyramid_.Level(c.level) + pyramid_.Offset(c.x, c.y);
     const std::vector<ptrdiff_t>& steps = rotations_[c.yaw_index].steps;
@@ -197,13 +236,10 @@ class BranchAndBound {
     return sum / static_cast<float>(steps.size());
   }
 
-  template <typename Excluded>
-  void Descend(const Candidate& node, const Excluded& excluded, Candidate& best, bool& any) const {
+  template <typename Kept>
+  void Descend(const Candidate& node, Kept& kept) const {
     if (node.level == 0) {
-      if (node.score > best.score && !excluded(node)) {
-        best = node;
-        any = true;
-      }
+      kept.Offer(node);
       return;
     }
     const RotatedPoints& rot = rotations_[node.yaw_index];
@@ -225,8 +261,8 @@ class BranchAndBound {
       }
     }
     for (int i = 0; i < count; ++i) {
-      if (children[i].score <= best.score) break;
-      Descend(children[i], excluded, best, any);
+      if (children[i].score <= kept.Bound()) break;
+      Descend(children[i], kept);
     }
   }
 
@@ -247,14 +283,14 @@ struct GridTransform {
   }
 };
 
-// B's occupied cell centres (grid metres), evenly thinned to at most `max_points`.
-std::vector<Point2> OccupiedCentres(const grid::OccupancyGrid& g, int max_points,
-                                    const grid::StateThresholds& thresholds) {
+// The centres (grid metres) of g's cells in `state`, evenly thinned to at most `max_points`.
+std::vector<Point2> CellCentres(const grid::OccupancyGrid& g, grid::CellState state, int max_points,
+                                const grid::StateThresholds& thresholds) {
   std::vector<Point2> all;
   const double res = g.resolution();
   for (int y = 0; y < g.height(); ++y) {
     for (int x = 0; x < g.width(); ++x) {
-      if (g.StateAt(x, y, thresholds) == grid::CellState::kOccupied) {
+      if (g.StateAt(x, y, thresholds) == state) {
         all.emplace_back((x + 0.5) * res, (y + 0.5) * res);
       }
     }
@@ -332,10 +368,11 @@ std::vector<uint8_t> NearOccupied(const grid::OccupancyGrid& g, int radius,
 }
 
 struct Evidence {
-  int64_t known = 0;         // `from` cells known
-  int64_t known_shared = 0;  // ... landing on a known `to` cell
-  int64_t agree = 0;         // `from` occupied cells with a `to` occupied cell near
-  int64_t contradict = 0;    // `from` occupied cells on a free `to` cell with none near
+  int64_t known = 0;            // `from` cells known
+  int64_t known_shared = 0;     // ... landing on a known `to` cell
+  int64_t occupied_shared = 0;  // `from` occupied cells landing on a known `to` cell
+  int64_t agree = 0;            // `from` occupied cells with a `to` occupied cell near
+  int64_t contradict = 0;       // `from` occupied cells on a free `to` cell with none near
 };
 
 // What `from`'s cells find in `to` when moved by to_from_from (grid metres).
@@ -358,6 +395,7 @@ Evidence Compare(const grid::OccupancyGrid& from, const grid::OccupancyGrid& to,
       if (to_state == grid::CellState::kUnknown) continue;
       ++e.known_shared;
       if (state != grid::CellState::kOccupied) continue;
+      ++e.occupied_shared;
       if (to_near_occupied[static_cast<size_t>(ty) * to.width() + tx]) {
         ++e.agree;
       } else if (to_state == grid::CellState::kFree) {
@@ -372,6 +410,109 @@ GridTransform Inverse(const GridTransform& t) {
   const double c = std::cos(t.yaw), s = std::sin(t.yaw);
   return {-t.yaw, -(c * t.tx + s * t.ty), -(-s * t.tx + c * t.ty)};
 }
+
+// Scores a candidate placement at full resolution from thinned samples of both maps, so that
+// many candidates can be compared for little more than one: B's and A's occupied cells that meet
+// an occupied cell of the other map (within the tolerance) agree, those on the other's free space
+// with none near contradict. Samples stand for all the cells they were thinned from, so the
+// figures are cell counts. (Counting B's free cells on A's free cells as agreement too was tried
+// and measured worse on synthetic pairs: any placement with overlap earns it.)
+class PlacementVerifier {
+ public:
+  struct Verdict {
+    double agree = 0.0;       // occupied cells, both ways
+    double contradict = 0.0;  // occupied cells, both ways
+    double value = 0.0;       // agree - w * contradict
+  };
+
+  // near_a / near_b: NearOccupied of each map at the tolerance.
+  PlacementVerifier(const grid::OccupancyGrid& a, std::vector<uint8_t> near_a,
+                    const grid::OccupancyGrid& b, std::vector<uint8_t> near_b,
+                    const RegistrationOptions& options)
+      : a_(Side(a, std::move(near_a), options)),
+        b_(Side(b, std::move(near_b), options)),
+        contradiction_weight_(options.verify_contradiction_weight) {}
+
+  // `t` takes B's grid metres to A's.
+  Verdict Verify(const GridTransform& t) const {
+    Verdict v;
+    const Tally b_in_a = Occupied(b_, a_, t);
+    const Tally a_in_b = Occupied(a_, b_, Inverse(t));
+    v.agree = b_in_a.agree + a_in_b.agree;
+    v.contradict = b_in_a.contradict + a_in_b.contradict;
+    v.value = v.agree - contradiction_weight_ * v.contradict;
+    return v;
+  }
+
+  const std::vector<uint8_t>& near_a() const { return a_.near_occupied; }
+  const std::vector<uint8_t>& near_b() const { return b_.near_occupied; }
+
+ private:
+  static constexpr uint8_t kUnknown = 0, kFree = 1, kOccupied = 2;
+  struct SideData {
+    int width = 0, height = 0;
+    double res = 1.0;
+    std::vector<uint8_t> state;
+    std::vector<uint8_t> near_occupied;
+    std::vector<Point2> occupied_points;
+    double occupied_weight = 1.0;  // cells per sample
+    int64_t Index(const Point2& p) const {
+      const int x = static_cast<int>(std::floor(p.x() / res));
+      const int y = static_cast<int>(std::floor(p.y() / res));
+      if (x < 0 || y < 0 || x >= width || y >= height) return -1;
+      return static_cast<int64_t>(y) * width + x;
+    }
+  };
+  struct Tally {
+    double agree = 0.0, contradict = 0.0;
+  };
+
+  static SideData Side(const grid::OccupancyGrid& g, std::vector<uint8_t> near_occupied,
+                       const RegistrationOptions& options) {
+    const grid::StateThresholds& th = options.thresholds;
+    SideData s;
+    s.width = g.width();
+    s.height = g.height();
+    s.res = g.resolution();
+    s.state.resize(g.cell_count());
+    int64_t occupied = 0;
+    for (int y = 0; y < g.height(); ++y) {
+      for (int x = 0; x < g.width(); ++x) {
+        const grid::CellState state = g.StateAt(x, y, th);
+        uint8_t& out = s.state[static_cast<size_t>(y) * g.width() + x];
+        out = state == grid::CellState::kOccupied ? kOccupied
+              : state == grid::CellState::kFree   ? kFree
+                                                  : kUnknown;
+        occupied += out == kOccupied;
+      }
+    }
+    s.near_occupied = std::move(near_occupied);
+    s.occupied_points = CellCentres(g, grid::CellState::kOccupied, options.max_refine_points, th);
+    if (!s.occupied_points.empty()) {
+      s.occupied_weight = static_cast<double>(occupied) / s.occupied_points.size();
+    }
+    return s;
+  }
+
+  static Tally Occupied(const SideData& from, const SideData& to, const GridTransform& t) {
+    Tally tally;
+    for (const Point2& p : from.occupied_points) {
+      const int64_t i = to.Index(t.Apply(p));
+      if (i < 0) continue;
+      const size_t k = static_cast<size_t>(i);
+      if (to.near_occupied[k]) {
+        tally.agree += from.occupied_weight;
+      } else if (to.state[k] == kFree) {
+        tally.contradict += from.occupied_weight;
+      }
+    }
+    return tally;
+  }
+
+  SideData a_;
+  SideData b_;
+  double contradiction_weight_;
+};
 
 Status CheckGrid(const grid::OccupancyGrid& g, const char* name) {
   std::string which(name);
@@ -418,7 +559,26 @@ Status RegistrationOptions::Validate() const {
   if (tolerance_cells < 0 || tolerance_cells > 10) {
     return InvalidArgumentError("registration tolerance_cells must be in 0..10");
   }
+  if (candidates < 1 || candidates > 64) {
+    return InvalidArgumentError("registration candidates must be in 1..64");
+  }
+  if (!(verify_contradiction_weight >= 0.0 && verify_contradiction_weight <= 100.0)) {
+    return InvalidArgumentError("registration verify_contradiction_weight must be in [0, 100]");
+  }
+  if (!(symmetry_min_yaw_deg >= 0.0 && symmetry_min_yaw_deg <= 180.0) ||
+      !(symmetry_min_agreement >= 0.0 && symmetry_min_agreement <= 1.0) ||
+      !(symmetry_max_consistency_drop >= 0.0 && symmetry_max_consistency_drop <= 1.0)) {
+    return InvalidArgumentError(
+        "registration symmetry_min_yaw_deg must be in [0, 180], symmetry_min_agreement and "
+        "symmetry_max_consistency_drop in [0, 1]");
+  }
   if (min_agreeing_cells < 1) return InvalidArgumentError("registration min_agreeing_cells < 1");
+  if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) {
+    return InvalidArgumentError("registration min_overlap must be in [0, 1]");
+  }
+  if (!(min_agreeing_share >= 0.0 && min_agreeing_share <= 1.0)) {
+    return InvalidArgumentError("registration min_agreeing_share must be in [0, 1]");
+  }
   if (!(max_contradiction >= 0.0 && max_contradiction <= 1.0)) {
     return InvalidArgumentError("registration max_contradiction must be in [0, 1]");
   }
@@ -443,9 +603,16 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("max_refine_points", max_refine_points);
   out.Add("distinct_cells", distinct_cells);
   out.Add("distinct_yaw_deg", distinct_yaw_deg);
+  out.Add("candidates", candidates);
+  out.Add("verify_contradiction_weight", verify_contradiction_weight);
   out.Add("max_peak_ratio", max_peak_ratio);
+  out.Add("symmetry_min_yaw_deg", symmetry_min_yaw_deg);
+  out.Add("symmetry_min_agreement", symmetry_min_agreement);
+  out.Add("symmetry_max_consistency_drop", symmetry_max_consistency_drop);
   out.Add("tolerance_cells", tolerance_cells);
   out.Add("min_agreeing_cells", min_agreeing_cells);
+  out.Add("min_agreeing_share", min_agreeing_share);
+  out.Add("min_overlap", min_overlap);
   out.Add("max_contradiction", max_contradiction);
   out.Add("min_score", min_score);
   out.Nested("thresholds", thresholds);
@@ -535,32 +702,24 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     for (const CellPoint& p : rot.points) rot.steps.push_back(pyramid.Step(p.x, p.y));
   }
   const BranchAndBound search(pyramid, rotations, coarse_a.width, coarse_a.height);
-  const Candidate best = search.Search(0.02f, [](const Candidate&) { return false; });
-  Registration result;
-  if (best.score <= 0.0f) {
-    result.why_not = "no placement of B's occupied cells meets A's";
-    return result;
-  }
-  // The best clearly different hypothesis, if it scores at least kSecondPeakFloor of the best.
+  // Clearly different peaks scoring at least kCandidateFloor of the best on the coarse field:
+  // at low overlap the coarse field's best peak is often wrong, so the candidates are chosen
+  // between by verification below.
   const double distinct_cells2 = options.distinct_cells * options.distinct_cells;
   const int distinct_yaw_steps =
       static_cast<int>(std::ceil(options.distinct_yaw_deg * kDegree / yaw_step));
-  // Up to kPeaks - 1 further peaks, each clearly different from those before (and scoring at
-  // least kSecondPeakFloor of the best on the coarse field).
-  std::vector<Candidate> peaks = {best};
-  for (int k = 1; k < kPeaks; ++k) {
-    const Candidate next =
-        search.Search(static_cast<float>(kSecondPeakFloor) * best.score, [&](const Candidate& c) {
-          for (const Candidate& p : peaks) {
-            int dyaw = std::abs(c.yaw_index - p.yaw_index);
-            dyaw = std::min(dyaw, yaw_count - dyaw);
-            const double dx = c.x - p.x, dy = c.y - p.y;
-            if (dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2) return true;
-          }
-          return false;
-        });
-    if (next.score <= 0.0f) break;
-    peaks.push_back(next);
+  const std::vector<Candidate> peaks =
+      search.SearchTop(0.02f, static_cast<float>(kCandidateFloor), options.candidates,
+                       [&](const Candidate& l, const Candidate& r) {
+                         int dyaw = std::abs(l.yaw_index - r.yaw_index);
+                         dyaw = std::min(dyaw, yaw_count - dyaw);
+                         const double dx = l.x - r.x, dy = l.y - r.y;
+                         return dyaw <= distinct_yaw_steps && dx * dx + dy * dy <= distinct_cells2;
+                       });
+  Registration result;
+  if (peaks.empty()) {
+    result.why_not = "no placement of B's occupied cells meets A's";
+    return result;
   }
 
   // A coarse hypothesis in grid metres: u_a = R (u_b - centroid) + t in coarse cells, and a
@@ -575,7 +734,8 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
 
   // Refinement at full resolution: a wide likelihood field first, then one a cell wide.
   const CoarseOccupancy full_a = Reduce(a, 1, th);
-  const std::vector<Point2> b_points = OccupiedCentres(b, options.max_refine_points, th);
+  const std::vector<Point2> b_points =
+      CellCentres(b, grid::CellState::kOccupied, options.max_refine_points, th);
   Point2 pivot(0.0, 0.0);
   for (const Point2& p : b_points) pivot += p;
   pivot /= static_cast<double>(b_points.size());
@@ -585,32 +745,90 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                                              1.0, options.free_penalty);
   const double coarse_step = options.coarse_yaw_step_deg * kDegree;
   const double mid_shift = std::max(res, coarse_res / 4.0);
-  const auto refine = [&](GridTransform t) {
-    t = LocalSearch(wide_field, res, b_points, pivot, t, coarse_step, 0.25 * coarse_step,
-                    coarse_res, mid_shift);
-    t = LocalSearch(fine_field, res, b_points, pivot, t, 0.5 * coarse_step, 0.1 * coarse_step,
+  // The wide stage and the first fine one only bring a candidate within half a cell: a quarter
+  // of the points does that, and every candidate gets the wide stage.
+  std::vector<Point2> b_some_points;
+  for (size_t i = 0; i < b_points.size(); i += 4) b_some_points.push_back(b_points[i]);
+  const auto refine_wide = [&](const GridTransform& t) {
+    return LocalSearch(wide_field, res, b_some_points, pivot, t, coarse_step, 0.25 * coarse_step,
+                       coarse_res, mid_shift);
+  };
+  const auto refine_fine = [&](GridTransform t) {
+    t = LocalSearch(fine_field, res, b_some_points, pivot, t, 0.5 * coarse_step, 0.1 * coarse_step,
                     mid_shift, 0.5 * res);
     return LocalSearch(fine_field, res, b_points, pivot, t, 0.1 * coarse_step,
                        options.fine_yaw_step_deg * kDegree, 0.5 * res, 0.25 * res);
   };
-  // The peaks are compared refined, on the fine field: at the coarse resolution a door or a
-  // pillar that tells two places apart may be blurred away, so a lower coarse peak may be the
-  // better one.
-  GridTransform grid_a_from_b = refine(to_grid(best));
-  double best_score = FieldScore(fine_field, res, b_points, grid_a_from_b);
-  double second_score = -1.0;
-  for (size_t k = 1; k < peaks.size(); ++k) {
-    GridTransform other = refine(to_grid(peaks[k]));
-    double other_score = FieldScore(fine_field, res, b_points, other);
-    if (other_score > best_score) {
-      std::swap(grid_a_from_b, other);
-      std::swap(best_score, other_score);
-    }
-    second_score = std::max(second_score, other_score);
+  const auto distinct = [&](const GridTransform& l, const GridTransform& r) {
+    return (l.Apply(pivot) - r.Apply(pivot)).norm() > options.distinct_cells * coarse_res ||
+           std::abs(NormalizeAngle(l.yaw - r.yaw)) > options.distinct_yaw_deg * kDegree;
+  };
+
+  // Every candidate is refined and verified at full resolution, and the best verified one wins:
+  // the coarse field may blur the door or pillar that tells two places apart, and its score
+  // rewards B's walls near A's walls wherever they are, so neither its order nor the fine
+  // field's is trusted. Candidates that refine onto the same placement count once.
+  const PlacementVerifier verifier(a, NearOccupied(a, options.tolerance_cells, th), b,
+                                   NearOccupied(b, options.tolerance_cells, th), options);
+  struct Verified {
+    GridTransform t;
+    PlacementVerifier::Verdict verdict;
+  };
+  const auto by_value = [](const Verified& l, const Verified& r) {
+    return l.verdict.value > r.verdict.value;
+  };
+  // Every candidate gets the wide stage and a first verification; the best kFullyRefined of
+  // them the fine stages and the final one.
+  std::vector<Verified> screened;
+  for (const Candidate& peak : peaks) {
+    const GridTransform t = refine_wide(to_grid(peak));
+    screened.push_back({t, verifier.Verify(t)});
   }
-  double ratio = kSecondPeakFloor;
-  if (peaks.size() > 1 && best_score > 0.0) ratio = second_score / best_score;
-  result.peak_ratio = std::clamp(ratio, kSecondPeakFloor, 1.0);
+  std::sort(screened.begin(), screened.end(), by_value);
+  if (screened.size() > kFullyRefined) screened.resize(kFullyRefined);
+  std::vector<Verified> verified;
+  for (const Verified& s : screened) {
+    Verified v;
+    v.t = refine_fine(s.t);
+    v.verdict = verifier.Verify(v.t);
+    bool merged = false;
+    for (Verified& other : verified) {
+      if (distinct(other.t, v.t)) continue;
+      if (v.verdict.value > other.verdict.value) other = v;
+      merged = true;
+      break;
+    }
+    if (!merged) verified.push_back(v);
+  }
+  std::sort(verified.begin(), verified.end(), by_value);
+  const GridTransform grid_a_from_b = verified.front().t;
+  // Ambiguity: a clearly different placement that verifies nearly as well (a mirror of a
+  // symmetric arena, a corridor, repeated rooms) makes the match ambiguous.
+  const double best_value = verified.front().verdict.value;
+  double ratio = best_value > 0.0 ? 0.0 : 1.0;
+  if (best_value > 0.0 && verified.size() > 1) {
+    ratio = std::clamp(verified[1].verdict.value / best_value, 0.0, 1.0);
+  }
+  // A turned placement that explains a good share of B's walls as consistently as the best one
+  // means the structure repeats under a rotation (a point-symmetric arena's mirror, which may
+  // even overlap A more than the truth, so its value ratio says nothing): ambiguous, whatever
+  // the values. Shifts at the same yaw are left to the value ratio: sliding along one long wall
+  // keeps much of the agreement without being another explanation of B.
+  const auto consistency = [](const PlacementVerifier::Verdict& v) {
+    return v.agree + v.contradict > 0.0 ? v.agree / (v.agree + v.contradict) : 0.0;
+  };
+  bool turned_twin = false;
+  for (size_t k = 1; k < verified.size(); ++k) {
+    const PlacementVerifier::Verdict& other = verified[k].verdict;
+    turned_twin = turned_twin ||
+                  (std::abs(NormalizeAngle(verified[k].t.yaw - verified.front().t.yaw)) >
+                       options.symmetry_min_yaw_deg * kDegree &&
+                   other.agree >= options.symmetry_min_agreement * verified.front().verdict.agree &&
+                   consistency(other) >= consistency(verified.front().verdict) -
+                                             options.symmetry_max_consistency_drop);
+  }
+  if (turned_twin) ratio = 1.0;
+  result.peak_ratio = ratio;
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
   const Transform2 grid_transform =
@@ -618,11 +836,9 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   result.a_from_b = Pose2::FromTransform(a.origin().ToTransform() * grid_transform *
                                          b.origin().ToTransform().inverse());
 
-  // Verification, both ways, at full resolution.
-  const Evidence b_in_a =
-      Compare(b, a, NearOccupied(a, options.tolerance_cells, th), grid_a_from_b, th);
-  const Evidence a_in_b =
-      Compare(a, b, NearOccupied(b, options.tolerance_cells, th), Inverse(grid_a_from_b), th);
+  // Verification of the winner, both ways, on every cell.
+  const Evidence b_in_a = Compare(b, a, verifier.near_a(), grid_a_from_b, th);
+  const Evidence a_in_b = Compare(a, b, verifier.near_b(), Inverse(grid_a_from_b), th);
   result.agreeing_cells = static_cast<int>(b_in_a.agree);
   result.contradicting_cells = static_cast<int>(b_in_a.contradict + a_in_b.contradict);
   result.overlap = b_in_a.known > 0 ? static_cast<double>(b_in_a.known_shared) / b_in_a.known : 0.0;
@@ -631,23 +847,38 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
       agree_both + result.contradicting_cells > 0
           ? result.contradicting_cells / (agree_both + result.contradicting_cells)
           : 1.0;
-  const double distinctness = 1.0 - result.peak_ratio;
-  result.score =
-      std::clamp((1.0 - contradiction) * distinctness / (1.0 - kSecondPeakFloor), 0.0, 1.0);
+  const double distinctness = std::min(1.0, (1.0 - result.peak_ratio) / (1.0 - kDistinctRatio));
+  result.score = std::clamp((1.0 - contradiction) * distinctness, 0.0, 1.0);
+  // What B could show in the overlap: its occupied cells that land on A's known cells.
+  const int needed_agreeing =
+      std::max(options.min_agreeing_cells,
+               static_cast<int>(std::ceil(options.min_agreeing_share * b_in_a.occupied_shared)));
   result.confidence = ConfidenceCalibration::Default().Probability(result.score);
 
-  if (result.agreeing_cells < options.min_agreeing_cells) {
+  if (result.overlap < options.min_overlap) {
+    result.why_not = std::string("too little shared structure: ")
+                         .append(Num(100.0 * result.overlap))
+                         .append(" % of B's known cells land on A's known cells (at least ")
+                         .append(Num(100.0 * options.min_overlap))
+                         .append(" % needed)");
+  } else if (result.agreeing_cells < needed_agreeing) {
     result.why_not = std::string("too little shared structure: ")
                          .append(std::to_string(result.agreeing_cells))
-                         .append(" of B's occupied cells agree with A (at least ")
-                         .append(std::to_string(options.min_agreeing_cells))
+                         .append(" of B's ")
+                         .append(std::to_string(b_in_a.occupied_shared))
+                         .append(" occupied cells on A's known cells agree with A (at least ")
+                         .append(std::to_string(needed_agreeing))
                          .append(" needed)");
   } else if (contradiction > options.max_contradiction) {
     result.why_not = std::string("the best placement contradicts the maps: ")
                          .append(Num(100.0 * contradiction))
                          .append(" % of the occupied cells in the overlap land on free cells");
+  } else if (turned_twin) {
+    result.why_not =
+        "ambiguous: a placement turned against the best explains B's walls about as "
+        "consistently (the structure repeats under a rotation)";
   } else if (result.peak_ratio >= options.max_peak_ratio) {
-    result.why_not = std::string("ambiguous: a clearly different placement scores ")
+    result.why_not = std::string("ambiguous: a clearly different placement verifies ")
                          .append(Num(100.0 * result.peak_ratio))
                          .append(" % of the best (symmetric or repeated structure)");
   } else if (result.score < options.min_score) {

@@ -36,14 +36,33 @@ struct RegistrationOptions {
   // coarse cells) or their yaws differ by more than distinct_yaw_deg.
   double distinct_cells = 4.0;
   double distinct_yaw_deg = 5.0;
-  // A match is refused when the best clearly different hypothesis scores at least this fraction
-  // of the best one (symmetric corridors, repeated rooms).
+  // Clearly different coarse peaks refined and verified at full resolution; the best verified
+  // one wins.
+  int candidates = 10;
+  // A candidate's verification value: agreeing occupied cells (both ways) less this weight times
+  // contradicting ones.
+  double verify_contradiction_weight = 2.0;
+  // A match is refused when the best clearly different candidate verifies at least this fraction
+  // of the best one's value (symmetric arenas, corridors, repeated rooms).
   double max_peak_ratio = 0.85;
+  // ... and when a candidate turned by more than symmetry_min_yaw_deg against the best has at
+  // least symmetry_min_agreement of its agreeing cells with a consistency (agreeing / (agreeing
+  // + contradicting)) at most symmetry_max_consistency_drop below the best's: the structure
+  // repeats under a rotation (a point-symmetric arena), whatever the values say.
+  double symmetry_min_yaw_deg = 10.0;
+  double symmetry_min_agreement = 0.5;
+  double symmetry_max_consistency_drop = 0.1;
   // Verification at full resolution: occupied cells agree when the other map has an occupied cell
   // within tolerance_cells; they contradict when they land on a free cell with none within it.
   int tolerance_cells = 1;
-  // Least number of B's occupied cells that must agree with A (the shared structure).
-  int min_agreeing_cells = 150;
+  // Least number of B's occupied cells that must agree with A (the shared structure): at least
+  // min_agreeing_cells, and at least min_agreeing_share of B's occupied cells that land on A's
+  // known cells (what B could show in the overlap), so the bar scales with the evidence.
+  int min_agreeing_cells = 40;
+  double min_agreeing_share = 0.5;
+  // Least share of B's known cells that must land on A's known cells: the relative bar above
+  // lets a sliver of overlap agree perfectly, so a placement must also share this much.
+  double min_overlap = 0.1;
   // Most contradicting occupied cells (both directions) as a fraction of agreeing + contradicting.
   double max_contradiction = 0.25;
   // Least score (consistency x distinctness, Registration::score) a match must have to be found.
@@ -64,7 +83,8 @@ struct Registration {
   // 2 degrees): `score` through ConfidenceCalibration::Default(), fitted on synthetic pairs.
   double confidence = 0.0;
   // The evidence in [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells,
-  // both ways) times distinctness (1 - second peak / best peak, scaled). 0 when nothing matched.
+  // both ways) times distinctness (1 - second candidate's verification / best's, scaled). 0 when
+  // nothing matched.
   double score = 0.0;
   // Fraction of B's known cells that land on A's known cells under a_from_b.
   double overlap = 0.0;

@@ -129,6 +129,29 @@ TEST(RegistrationTest, RefusesTwoIdenticalRoomsSideBySide) {
   EXPECT_FALSE(r->found) << r->a_from_b;
 }
 
+// tb3_world's case: an arena that is the same turned by 180 degrees about its centre, so a crop
+// of it fits both where it was cut and at the mirror place; both verify alike.
+TEST(RegistrationTest, RefusesACropOfAPointSymmetricArena) {
+  grid::OccupancyGrid arena(200, 120, 0.05);
+  Room(arena, 0, 0, 199, 119);
+  const auto fill_twice = [&arena](int x0, int y0, int x1, int y1) {
+    Fill(arena, x0, y0, x1, y1, grid::kOccupiedValue);
+    Fill(arena, 199 - x1, 119 - y1, 199 - x0, 119 - y0, grid::kOccupiedValue);
+  };
+  fill_twice(30, 20, 37, 27);  // box
+  fill_twice(60, 70, 90, 72);  // shelf
+  fill_twice(88, 72, 90, 100);
+  fill_twice(20, 90, 22, 110);  // wall stub
+  const grid::OccupancyGrid a = arena;
+  Transform2 truth;
+  const grid::OccupancyGrid b =
+      Turn(Crop(arena, 0, 0, 130, 120), 33.0 * kDegree, Pose2{12.0, -4.0, 0.2}, &truth);
+  const StatusOr<Registration> r = Register(a, b, {});
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_FALSE(r->found) << r->a_from_b;
+  EXPECT_THAT(r->why_not, ::testing::HasSubstr("ambiguous"));
+}
+
 TEST(RegistrationTest, RefusesMapsThatDoNotOverlap) {
   const grid::OccupancyGrid floor = Floor();
   const grid::OccupancyGrid a = Crop(floor, 0, 0, 90, 160);
