@@ -105,7 +105,8 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
         << "score:      " << Num(r.score) << " (consistency x distinctness)\n"
         << "overlap:    " << Num(r.overlap) << " of B's known cells on A's\n"
         << "evidence:   " << r.agreeing_cells << " of B's occupied cells agree, "
-        << r.contradicting_cells << " occupied cells contradict, second peak at "
+        << r.contradicting_cells
+        << " occupied cells contradict, the best other placement verifies at "
         << Num(100.0 * r.peak_ratio) << " % of the best\n"
         << "time:       " << Num(ms) << " ms\n";
   }

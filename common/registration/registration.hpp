@@ -93,6 +93,8 @@ struct Registration {
   // The figures behind the decision.
   int agreeing_cells = 0;
   int contradicting_cells = 0;
+  // How well the best clearly different placement verifies, as a fraction of the best's (1 when
+  // a turned placement explains B's walls about as well: a symmetry).
   double peak_ratio = 0.0;
 };
 
