@@ -219,14 +219,18 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   Pose2 fleet_from_map = found.a_from_b;
   if (!job.target_robot.value.empty()) {
     // Registered to another robot's map: follow it once (or as soon as) it is placed.
+    const auto known = followers_.find(job.robot);
+    const bool new_link = known == followers_.end() || known->second.leader != job.target_robot;
     followers_[job.robot] =
         Follower{job.target_robot, found.a_from_b, found.confidence, found.overlap};
     const std::optional<Pose2> leader = placement_of(job.target_robot);
     if (!leader || now_placed) {
-      spdlog::info(
-          "server: robot {} registered to robot {} (confidence {:.2f}): whichever of the two is "
-          "placed first places the other",
-          job.robot.value, job.target_robot.value, found.confidence);
+      if (new_link) {
+        spdlog::info(
+            "server: robot {} registered to robot {} (confidence {:.2f}): whichever of the two "
+            "is placed first places the other",
+            job.robot.value, job.target_robot.value, found.confidence);
+      }
       return std::nullopt;
     }
     fleet_from_map = Pose2::FromTransform(leader->ToTransform() * found.a_from_b.ToTransform());
