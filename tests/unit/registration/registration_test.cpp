@@ -141,7 +141,7 @@ TEST(RegistrationTest, RefusesACropOfAPointSymmetricArena) {
   fill_twice(30, 20, 37, 27);  // box
   fill_twice(60, 70, 90, 72);  // shelf
   fill_twice(88, 72, 90, 100);
-  fill_twice(20, 90, 22, 110);  // wall stub
+  fill_twice(20, 90, 22, 110);  // a short wall
   const grid::OccupancyGrid a = arena;
   Transform2 truth;
   const grid::OccupancyGrid b =
