@@ -598,7 +598,12 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
     }
     return;
   }
-  for (const RobotId& robot : robots) {
+  // Round robin from the robot after the last one registered: however many robots keep changing
+  // their maps (a hostile peer's among them), none waits behind the others.
+  std::vector<RobotId> turn = robots;
+  std::rotate(turn.begin(), std::upper_bound(turn.begin(), turn.end(), last_registered_),
+              turn.end());
+  for (const RobotId& robot : turn) {
     if (map_frames_.tile_count(robot) == 0) continue;
     // Against the fleet map without the robot (unplaced: to place it; placed: to check it).
     PlacementJob job = MakePlacementJob(robot);
@@ -608,6 +613,7 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
       job.target = fusion_.FusedGrid(nullptr, &robot);
       if (!HasOccupiedCell(job.target)) continue;  // the robot alone: nothing to register on
       job.map = map_frames_.MapOf(robot);
+      last_registered_ = robot;
       placer_->Submit(std::move(job), now);
       return;
     }
@@ -622,6 +628,7 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
       }
       job.map = map_frames_.MapOf(robot);
       job.target_map = map_frames_.MapOf(other);
+      last_registered_ = robot;
       placer_->Submit(std::move(job), now);
       return;
     }

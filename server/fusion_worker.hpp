@@ -212,6 +212,7 @@ class FusionWorker {
   std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)
   bool map_dirty_ = false;                              // worker thread only
   uint64_t fused_revisions_ = 0;  // fused tile revisions made: the fleet map changed
+  RobotId last_registered_;       // whose map the placer registered last (round robin)
   size_t tiles_outside_map_ = 0;  // worker thread only
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
