@@ -13,13 +13,14 @@
 #include "bench/register/bench_register_command.hpp"
 #include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/compare_command.hpp"
-#include "cli/inputs/exit_codes.hpp"
 #include "cli/extrapolate_command.hpp"
 #include "cli/info_command.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "cli/learn_objects_command.hpp"
 #include "cli/rasterize_command.hpp"
 #include "cli/register_command.hpp"
 #include "cli/render_command.hpp"
+#include "cli/security_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchObjectsCommand(app, &exit_code);
   fleetmap::cli::AddRegisterCommand(app, &exit_code);
   fleetmap::bench::AddBenchRegisterCommand(app, &exit_code);
+  fleetmap::cli::AddSecurityCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

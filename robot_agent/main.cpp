@@ -90,6 +90,10 @@ int main(int argc, char** argv) {
   app.add_option("--claim-wait", claim_wait_s,
                  "seconds to listen for another agent already using this robot id (0: skip)")
       ->check(CLI::NonNegativeNumber);
+  std::string security_dir;
+  app.add_option("--security", security_dir,
+                 "DDS Security folder (fleetmap security enroll): join the secured fleet as the "
+                 "identity named after --robot-id");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
@@ -127,6 +131,13 @@ int main(int argc, char** argv) {
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
   if (localhost_only) options.dds.localhost_only = true;
+  if (!security_dir.empty()) {
+    if (const auto secured = options.dds.UseSecurityFolder(security_dir, options.robot.value);
+        !secured.ok()) {
+      spdlog::error("fleetmap-agent: --security: {}", secured.message());
+      return 2;
+    }
+  }
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
@@ -138,6 +149,9 @@ int main(int argc, char** argv) {
     return node.status().code() == fleetmap::StatusCode::kUnavailable ? 1 : 2;
   }
   const fleetmap::Status run = (*node)->Run(g_stop);
+  // Every exit deletes the DDS participant first (the node owns it): with DDS Security, a
+  // participant still alive when the process exits crashes in OpenSSL's teardown.
+  node->reset();
   if (!run.ok()) {
     spdlog::error("fleetmap-agent: {}", run.message());
     return 1;

@@ -14,6 +14,8 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   # Persistence and compression (LZ4: one of the fleet benchmark's byte baselines).
   libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev liblz4-dev
+  # DDS Security tooling (`fleetmap security`): the fleet CA, certificates, signed documents.
+  libssl-dev openssl
   # Tests and benchmarks.
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).

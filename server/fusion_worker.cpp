@@ -266,6 +266,13 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
                          event.tile.tile.x, event.tile.tile.y, robot.value,
                          RobotRegistry::ParticipantOf(event.writer)));
       return;
+    case RobotRegistry::Speaker::kNotItself:
+      Refuse(robot, Refusal::kNotItself,
+             fmt::format("tile ({}, {}) for robot {} from participant {}, which authenticated "
+                         "as another identity",
+                         event.tile.tile.x, event.tile.tile.y, robot.value,
+                         RobotRegistry::ParticipantOf(event.writer)));
+      return;
     case RobotRegistry::Speaker::kUnclaimed: {
       // Its status (and with it, who owns the id) may still be on its way: hold the newest
       // revision of each tile for a while, for a bounded number of ids.

@@ -80,6 +80,10 @@ int main(int argc, char** argv) {
                  "this often, in seconds, once its map changed (a contradiction revises it)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  std::string security_dir;
+  app.add_option("--security", security_dir,
+                 "DDS Security folder (fleetmap security init): join the secured fleet as "
+                 "identity \"server\"");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   CLI11_PARSE(app, argc, argv);
@@ -102,6 +106,12 @@ int main(int argc, char** argv) {
     options.transforms = std::move(transforms).value();
   }
   if (localhost_only) options.dds.localhost_only = true;
+  if (!security_dir.empty()) {
+    if (const auto secured = options.dds.UseSecurityFolder(security_dir, "server"); !secured.ok()) {
+      spdlog::error("fleetmap-server: --security: {}", secured.message());
+      return 2;
+    }
+  }
   options.learning.enabled = !no_learning;
   options.prediction.enabled = !no_prediction;
 
@@ -115,6 +125,9 @@ int main(int argc, char** argv) {
     return node.status().code() == fleetmap::StatusCode::kUnavailable ? 1 : 2;
   }
   const fleetmap::Status run = (*node)->Run(g_stop);
+  // Every exit deletes the DDS participant first (the node owns it): with DDS Security, a
+  // participant still alive when the process exits crashes in OpenSSL's teardown.
+  node->reset();
   if (!run.ok()) {
     spdlog::error("fleetmap-server: {}", run.message());
     return 1;

@@ -24,6 +24,8 @@ const char* RefusalName(Refusal refusal) {
       return "not the owner";
     case Refusal::kUnclaimed:
       return "unclaimed robot id";
+    case Refusal::kNotItself:
+      return "not its identity";
   }
   return "unknown";
 }

@@ -2,9 +2,21 @@
 
 namespace fleetmap::server {
 
+void RobotRegistry::RequireIdentity(IdentityLookup lookup) {
+  std::lock_guard lock(mutex_);
+  identity_ = std::move(lookup);
+}
+
+bool RobotRegistry::IsItself(const RobotId& robot, const std::string& writer) const {
+  if (!identity_) return true;
+  const std::optional<std::string> name = identity_(writer);
+  return name.has_value() && *name == robot.value;
+}
+
 RobotRegistry::Claim RobotRegistry::ClaimRobot(const RobotId& robot, const std::string& writer,
                                                bool tiles_in_map_frame) {
   std::lock_guard lock(mutex_);
+  if (!IsItself(robot, writer)) return Claim::kNotItself;
   const std::string participant = ParticipantOf(writer);
   const auto it = participant_by_robot_.find(robot);
   if (it != participant_by_robot_.end()) {
@@ -37,6 +49,7 @@ bool RobotRegistry::Release(const RobotId& robot, const std::string& writer) {
 RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const RobotId& robot,
                                                 const std::string& writer) const {
   std::lock_guard lock(mutex_);
+  if (!IsItself(robot, writer)) return Speaker::kNotItself;
   const auto it = participant_by_robot_.find(robot);
   if (it == participant_by_robot_.end()) return Speaker::kUnclaimed;
   return it->second == ParticipantOf(writer) ? Speaker::kOwner : Speaker::kOther;

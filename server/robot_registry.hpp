@@ -1,8 +1,10 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -15,19 +17,32 @@ namespace fleetmap::server {
 // the same id is a misconfiguration or a hijack attempt: its statuses, disposals, tiles and
 // entities are refused and reported, never merged. Without DDS Security a participant is not
 // authenticated, so this stops mistakes and casual forgery, not a peer that claims an id first.
+// With DDS Security (RequireIdentity) a participant speaks only for the robot it authenticated
+// as, even if its permissions were written too wide: defence in depth.
 // Thread-safe: the control thread claims and releases, the fusion worker checks.
 class RobotRegistry {
  public:
   enum class Claim {
-    kNew,      // the id was free: now it is this participant's
-    kSame,     // the participant already owns it
-    kClash,    // another participant owns it
-    kTooMany,  // the participant already owns max_robots_per_participant ids
+    kNew,        // the id was free: now it is this participant's
+    kSame,       // the participant already owns it
+    kClash,      // another participant owns it
+    kTooMany,    // the participant already owns max_robots_per_participant ids
+    kNotItself,  // with RequireIdentity: the participant authenticated under another name
   };
-  enum class Speaker { kOwner, kUnclaimed, kOther };
+  // The authenticated name of the participant that owns a writer id, or nullopt if it has none.
+  using IdentityLookup = std::function<std::optional<std::string>(const std::string& writer)>;
+  enum class Speaker {
+    kOwner,
+    kUnclaimed,
+    kOther,
+    kNotItself,  // with RequireIdentity: the writer authenticated as another name
+  };
 
   explicit RobotRegistry(size_t max_robots_per_participant = 16)
       : max_robots_per_participant_(max_robots_per_participant) {}
+
+  // From now on, a participant may claim and speak only for the robot id it authenticated as.
+  void RequireIdentity(IdentityLookup lookup);
 
   // Claims `robot` for the participant of `writer`. A new claim also records whether the robot's
   // tiles come in its own map frame (its agent does not know where that frame sits in the fleet;
@@ -47,7 +62,10 @@ class RobotRegistry {
   static std::string ParticipantOf(const std::string& writer) { return writer.substr(0, 24); }
 
  private:
+  bool IsItself(const RobotId& robot, const std::string& writer) const;
+
   const size_t max_robots_per_participant_;
+  IdentityLookup identity_;  // set before any claim
   mutable std::mutex mutex_;
   std::map<RobotId, std::string> participant_by_robot_;  // guarded by mutex_
   std::map<std::string, size_t> robots_by_participant_;  // guarded by mutex_

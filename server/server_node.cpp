@@ -53,6 +53,13 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   transport::ParticipantOptions dds = node->options_.dds;
   dds.name = "fleetmap-server";
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
+  if (node->participant_->secured()) {
+    // The registry outlives no reader: the workers that consult it go before the participant.
+    const transport::Participant* participant = node->participant_.get();
+    node->registry_->RequireIdentity([participant](const std::string& writer) {
+      return participant->AuthenticatedName(writer);
+    });
+  }
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
                                                       *node->participant_, node->wake_up_));
   FLEETMAP_ASSIGN_OR_RETURN(
@@ -145,6 +152,17 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
                                  "participant {} owns: keeping the first, ignoring the other",
                                  RobotRegistry::ParticipantOf(writer), status.robot.value,
                                  registry_->OwnerOf(status.robot)));
+    return;
+  }
+  if (claim == RobotRegistry::Claim::kNotItself) {
+    const std::optional<std::string> name = participant_->AuthenticatedName(writer);
+    refusals_.Refuse(
+        status.robot.value, Refusal::kNotItself,
+        fmt::format("a status from participant {}, authenticated as {}, claims robot "
+                    "id {}: a participant speaks only for the robot it is enrolled "
+                    "as",
+                    RobotRegistry::ParticipantOf(writer),
+                    name ? "\"" + *name + "\"" : std::string("nobody"), status.robot.value));
     return;
   }
   if (claim == RobotRegistry::Claim::kTooMany) {
@@ -287,13 +305,16 @@ void ServerNode::HandleEntities() {
       continue;
     }
     const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot, event.writer);
-    if (speaker == RobotRegistry::Speaker::kOther) {
+    if (speaker == RobotRegistry::Speaker::kOther ||
+        speaker == RobotRegistry::Speaker::kNotItself) {
+      const bool itself = speaker == RobotRegistry::Speaker::kOther;
       ++rejected_entities_;
-      refusals_.Refuse(robot.value, Refusal::kNotOwner,
-                       fmt::format("entity {} for robot {} from participant {}, which does not "
-                                   "own it",
-                                   event.message.entity_id(), robot.value,
-                                   RobotRegistry::ParticipantOf(event.writer)));
+      refusals_.Refuse(
+          robot.value, itself ? Refusal::kNotOwner : Refusal::kNotItself,
+          fmt::format("entity {} for robot {} from participant {}, which {}",
+                      event.message.entity_id(), robot.value,
+                      RobotRegistry::ParticipantOf(event.writer),
+                      itself ? "does not own it" : "authenticated as another identity"));
       continue;
     }
     if (event.kind == transport::EntityEvent::Kind::kRemoved) {
@@ -376,8 +397,16 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
     for (const auto& [reason, count] : fusion.refusals_by_reason) {
       reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", count, reason);
     }
-    fmt::print("refused: tiles: {}; statuses, disposals, entities and map samples: {}\n",
-               reasons.empty() ? "none" : reasons, refusals_.total());
+    std::map<std::string, uint64_t> others;
+    for (const auto& [robot, counts] : refusals_.counts()) {
+      for (const auto& [reason, count] : counts) others[RefusalName(reason)] += count;
+    }
+    std::string other_reasons;
+    for (const auto& [reason, count] : others) {
+      other_reasons += fmt::format(", {} {}", count, reason);
+    }
+    fmt::print("refused: tiles: {}; statuses, disposals, entities and map samples: {}{}\n",
+               reasons.empty() ? "none" : reasons, refusals_.total(), other_reasons);
   }
   if (learning_worker_) {
     const ObjectLearningStats learning = learning_worker_->stats();

@@ -35,6 +35,9 @@ struct BenchFleetArgs {
   // The grid wire run for real beside the tile wire, to measure its bytes side by side ("none":
   // only the baselines the tile run's agents measure).
   std::string compare_wire = "grid-updates-zstd";
+  // A fleet security folder (fleetmap security) with the identities "server", robot0.. and the
+  // viewer "observer": every fleet runs secured (a hostile flood then stays outside).
+  std::string security_dir;
 };
 
 struct Row {
@@ -117,6 +120,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       return cli::kExitBadInput;
     }
   }
+  base.security_dir = args.security_dir;
   grid::OccupancyGrid truth;
   if (const int code = PrepareFleetRuns("fleetmap bench fleet", &base, &truth);
       code != cli::kExitOk) {
@@ -315,6 +319,9 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
                     "also one robot for (largest fleet x duration), to compare map quality");
   command->add_flag("--hostile", args->hostile,
                     "also run each fleet while a hostile peer floods the server, and compare");
+  command->add_option("--security", args->security_dir,
+                      "run every fleet with DDS Security from this folder (fleetmap security: "
+                      "identities server, robot0.. robot<N-1> and the viewer observer)");
   command->callback([args, exit_code] { *exit_code = RunBenchFleet(*args); });
 }
 

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <thread>
 
 #include "bench/fleet/placement_observer.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/security/fleet_security.hpp"
 #include "common/sim/random.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
@@ -27,6 +29,14 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::steady_clock;
 
+// Total bytes sent on the loopback interface so far, if readable.
+std::optional<uint64_t> LoopbackBytesSent() {
+  std::ifstream counter("/sys/class/net/lo/statistics/tx_bytes");
+  uint64_t bytes = 0;
+  if (!(counter >> bytes)) return std::nullopt;
+  return bytes;
+}
+
 // How long agents that measure the grid wires may take to finish after the run.
 constexpr std::chrono::seconds kAccountingWait{900};
 
@@ -39,6 +49,9 @@ class Observer {
     options.domain_id = domain;
     options.localhost_only = true;
     options.name = "fleetmap-sim-observer";
+    if (!fleet.security_dir.empty()) {
+      FLEETMAP_RETURN_IF_ERROR(options.UseSecurityFolder(fleet.security_dir, kObserverIdentity));
+    }
     FLEETMAP_ASSIGN_OR_RETURN(observer->participant_, transport::Participant::Create(options));
     FLEETMAP_ASSIGN_OR_RETURN(observer->status_, transport::RobotStatusReader::Create(
                                                      *observer->participant_, observer->wake_up_));
@@ -73,6 +86,7 @@ class Observer {
       if (event.kind != transport::RobotEvent::Kind::kStatus) continue;
       if (placements_ != nullptr) placements_->Joined(event.robot.value, now_s, result);
       FleetRobotResult& robot = result->robots[event.robot.value];
+      if (!robot.joined_s) robot.joined_s = now_s;
       robot.bytes = event.status.bytes_published;
       const bool grid_wire = result->wire != "tiles";
       robot.whole_grids = grid_wire ? event.status.maps_published : 0;
@@ -160,6 +174,16 @@ std::vector<Pose2> UnknownPoseFrames(uint32_t seed, int robots) {
   return frames;
 }
 
+Status MakeSimSecurityFolder(const std::string& dir, int robots) {
+  FLEETMAP_RETURN_IF_ERROR(security::InitFleet(dir, security::FleetSecurityOptions{}));
+  const security::Validity validity = security::Validity::FromNow(1);
+  for (int i = 0; i < robots; ++i) {
+    FLEETMAP_RETURN_IF_ERROR(
+        security::Enroll(dir, "robot" + std::to_string(i), security::Role::kRobot, validity));
+  }
+  return security::Enroll(dir, kObserverIdentity, security::Role::kViewer, validity);
+}
+
 StatusOr<std::string> FindFleetBinaries() {
   std::error_code error;
   const fs::path self = fs::read_symlink("/proc/self/exe", error);
@@ -192,13 +216,19 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   result.wire = options.wire;
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<Observer> observer, Observer::Create(domain, options));
 
-  process::Subprocess server({binary("fleetmap-server", "server"), "--map-period", "0.5"}, env);
+  std::vector<std::string> security_args;
+  if (!options.security_dir.empty()) security_args = {"--security", options.security_dir};
+  std::vector<std::string> server_argv = {binary("fleetmap-server", "server"), "--map-period",
+                                          "0.5"};
+  server_argv.insert(server_argv.end(), security_args.begin(), security_args.end());
+  process::Subprocess server(std::move(server_argv), env);
   if (!server.started()) return UnavailableError("could not start fleetmap-server");
   if (!server.WaitForOutput("listening", std::chrono::seconds(20))) {
     return UnavailableError("fleetmap-server did not start: " + server.Output());
   }
   observer->MarkStart();
   const auto start = steady_clock::now();
+  const std::optional<uint64_t> loopback_at_start = LoopbackBytesSent();
   std::vector<std::unique_ptr<process::Subprocess>> agents;
   for (int i = 0; i < options.robots; ++i) {
     std::vector<std::string> argv = {binary("fleetmap-agent", "robot_agent"),
@@ -219,6 +249,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                      "--wire",
                                      options.wire};
     if (options.measure_baselines) argv.push_back("--measure-baselines");
+    argv.insert(argv.end(), security_args.begin(), security_args.end());
     if (!options.sim_frames.empty()) {
       const Pose2& frame = options.sim_frames[i];
       argv.insert(argv.end(), {"--unplaced", "--sim-frame", fmt::format("{:.6f}", frame.x),
@@ -245,6 +276,9 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     }
   }
   observer->FinishPlacements(seconds_since_start(), &result);
+  if (const std::optional<uint64_t> now = LoopbackBytesSent(); now && loopback_at_start) {
+    result.loopback_bytes = *now - *loopback_at_start;
+  }
   // The server's resources while it still runs, then an orderly end: robots leave first.
   const std::string during_run = server.Output();
   for (size_t at = during_run.find(" lost (no liveliness"); at != std::string::npos;

@@ -40,6 +40,10 @@ struct FleetSimOptions {
   // sim_frames[i] (world_from_map, UnknownPoseFrames); its agent runs --unplaced with --sim-frame
   // and the server has to place it. Empty: every robot maps in the terrain's frame.
   std::vector<Pose2> sim_frames;
+  // `fleetmap sim --secure`: a fleet security folder (fleetmap security) holding the identities
+  // "server", robot0..robotN-1 and the viewer "observer": every process joins secured. Empty:
+  // no DDS Security.
+  std::string security_dir;
 
   Status Validate() const;
 };
@@ -62,7 +66,7 @@ struct RobotPlacement {
   std::string placed_against;
   // The robot's map frame: the centroid of its known cells at the end of the run (from its tiles).
   std::optional<Point2> known_centroid;
-  int64_t known_cells = 0;      // on the observer's 0.1 m coverage grid, at the end
+  int64_t known_cells = 0;       // on the observer's 0.1 m coverage grid, at the end
   double shared_fraction = 0.0;  // the last share checked (before shared_s, or at it)
 };
 
@@ -78,6 +82,9 @@ struct FleetRobotResult {
   std::vector<Pose2> path;   // sampled from its statuses; with sim_frames, carried into the
                              // terrain's frame with the true world_from_map
   std::optional<RobotPlacement> placement;  // with sim_frames only
+  // Seconds from the agent's start to the observer's first status from it: process start,
+  // discovery, the agent's id-claim wait and, when secured, the DDS Security handshakes.
+  std::optional<double> joined_s;
 };
 
 struct FleetRunResult {
@@ -99,6 +106,10 @@ struct FleetRunResult {
   std::string server_output;  // what the server printed, its summary table last
   // Robots the server reported lost while every robot ran (none died: each report is false).
   int robots_reported_lost = 0;
+  // Bytes sent on this machine's loopback interface during the run (every DDS packet of the
+  // fleet, headers and security included; anything else on the machine too), or nullopt where
+  // /sys/class/net/lo is not readable.
+  std::optional<uint64_t> loopback_bytes;
 };
 
 // Runs the fleet for `options.duration`, then lets the robots leave and stops the server.
@@ -110,6 +121,13 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
 // Seeded random world_from_map transforms for `robots` robots started at unknown poses: any yaw,
 // the origin 10 to 50 m from the terrain's in any direction. The same seed gives the same frames.
 std::vector<Pose2> UnknownPoseFrames(uint32_t seed, int robots);
+
+// The identity the simulation's observer joins a secured fleet as (a viewer).
+inline constexpr char kObserverIdentity[] = "observer";
+
+// Makes the fleet security folder `dir` for a secured simulation (FleetSimOptions::security_dir):
+// the fleet CA, the server, robot0..robot<robots-1> and the viewer "observer".
+Status MakeSimSecurityFolder(const std::string& dir, int robots);
 
 // The binaries next to this program (build tree or installed): an error names what is missing.
 StatusOr<std::string> FindFleetBinaries();

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "bench/fleet/fleet_scenario.hpp"
 #include "bench/fleet/fleet_sim.hpp"
 #include "bench/fleet/fleet_sim_report.hpp"
+#include "bench/fleet/security_report.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/sim/terrain_generator.hpp"
 
@@ -24,6 +26,7 @@ struct SimArgs {
   std::string compare_wire = "grid-updates-zstd";
   bool unknown_poses = false;
   bool compare_known = false;
+  bool secure = false;
 };
 
 int RunSim(const SimArgs& args) {
@@ -40,6 +43,16 @@ int RunSim(const SimArgs& args) {
     std::cerr << "fleetmap sim: " << valid.message() << "\n";
     return cli::kExitBadInput;
   }
+  if (args.secure) {
+    // The run's own credentials, made afresh in the report folder (docs/security.md).
+    fleet.security_dir = (std::filesystem::path(args.out_dir) / "security").string();
+    std::error_code error;
+    std::filesystem::remove_all(fleet.security_dir, error);
+    if (const Status made = MakeSimSecurityFolder(fleet.security_dir, fleet.robots); !made.ok()) {
+      std::cerr << "fleetmap sim: " << made.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
   // The ground truth the report scores against: the same seeded terrain the agents explore.
   grid::OccupancyGrid truth;
   if (const int code = PrepareFleetRuns("fleetmap sim", &fleet, &truth); code != cli::kExitOk) {
@@ -48,22 +61,24 @@ int RunSim(const SimArgs& args) {
 
   // Robots at unknown poses run on the tile wire only and do not measure the grid wires (the
   // placement is what is measured); --compare-known runs them again in one shared frame.
-  const auto run = [&](const std::string& wire,
-                       const std::vector<Pose2>& sim_frames) -> StatusOr<FleetRunResult> {
+  // --secure runs the tile wire secured, then the same without security, unmeasured.
+  const auto run = [&](const std::string& wire, const std::vector<Pose2>& sim_frames,
+                       bool secured = true) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
     options.wire = wire;
     options.sim_frames = sim_frames;
-    options.measure_baselines = wire == "tiles" && !args.unknown_poses;
-    const std::string label =
-        args.unknown_poses ? (sim_frames.empty() ? "known poses" : "unknown poses") : wire + " wire";
+    options.measure_baselines = wire == "tiles" && !args.unknown_poses && !args.secure;
+    if (!secured) options.security_dir.clear();
+    std::string label = args.unknown_poses ? (sim_frames.empty() ? "known poses" : "unknown poses")
+                                           : wire + " wire";
+    if (args.secure) label += secured ? ", secured" : ", no security";
     return RunFleet(options, [&](double seconds) {
       if (seconds < 0) {
         std::cerr << fmt::format("\r[{}] the agents finish measuring the grid wires", label)
                   << std::flush;
         return;
       }
-      std::cerr << fmt::format("\r[{}] {:.0f} / {:.0f} s", label, seconds,
-                               args.scenario.duration_s)
+      std::cerr << fmt::format("\r[{}] {:.0f} / {:.0f} s", label, seconds, args.scenario.duration_s)
                 << std::flush;
     });
   };
@@ -84,8 +99,24 @@ int RunSim(const SimArgs& args) {
     }
     known_poses = std::move(known_run).value();
   }
+  std::optional<std::string> security_table;
+  if (args.secure) {
+    StatusOr<FleetRunResult> plain = run("tiles", fleet.sim_frames, /*secured=*/false);
+    std::cerr << "\n";
+    if (!plain.ok()) {
+      std::cerr << "fleetmap sim: the run without security failed: " << plain.status().message()
+                << "\n";
+      return 1;
+    }
+    StatusOr<std::string> table = WriteSecurityComparison(*tiles, *plain, args.out_dir);
+    if (!table.ok()) {
+      std::cerr << "fleetmap sim: " << table.status().message() << "\n";
+      return 1;
+    }
+    security_table = std::move(table).value();
+  }
   std::optional<FleetRunResult> compared;
-  if (args.compare && !args.unknown_poses) {
+  if (args.compare && !args.unknown_poses && !args.secure) {
     StatusOr<FleetRunResult> compared_run = run(args.compare_wire, {});
     std::cerr << "\n";
     if (!compared_run.ok()) {
@@ -102,6 +133,7 @@ int RunSim(const SimArgs& args) {
     return 1;
   }
   std::cout << *summary << "\n";
+  if (security_table) std::cout << "\n" << *security_table;
   return cli::kExitOk;
 }
 
@@ -131,6 +163,10 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                  "with --unknown-poses: run the same scenario with known poses too and compare "
                  "the fused maps")
       ->needs("--unknown-poses");
+  command->add_flag("--secure", args->secure,
+                    "run the fleet with DDS Security (credentials made in <out>/security), then "
+                    "the same run without it, and compare join times, wire bytes and latency "
+                    "(no grid-wire run)");
   command->callback([args, exit_code] { *exit_code = RunSim(*args); });
 }
 

@@ -14,6 +14,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <string>
 
+#include "common/transport/internal/participant_identities.hpp"
 #include "common/transport/internal/writer_id.hpp"
 
 namespace fleetmap::transport {
@@ -74,6 +75,27 @@ dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localh
   return qos;
 }
 
+// The DDS Security plugins (PKI-DH, Access-Permissions, AES-GCM-GMAC) on `identity`'s files.
+void AddSecurityProperties(const security::SecurityIdentity& identity,
+                           dds::DomainParticipantQos* qos) {
+  auto& properties = qos->properties().properties();
+  const auto add = [&](const std::string& name, const std::string& value) {
+    properties.emplace_back(name, value);
+  };
+  // Fast DDS reads "file://" + an absolute path (LoadIdentity gives absolute paths).
+  const auto file = [](const std::string& path) { return "file://" + path; };
+  add("dds.sec.auth.plugin", "builtin.PKI-DH");
+  add("dds.sec.auth.builtin.PKI-DH.identity_ca", file(identity.ca_cert));
+  add("dds.sec.auth.builtin.PKI-DH.identity_certificate", file(identity.cert));
+  add("dds.sec.auth.builtin.PKI-DH.private_key", file(identity.key));
+  add("dds.sec.auth.builtin.PKI-DH.identity_crl", file(identity.crl));
+  add("dds.sec.access.plugin", "builtin.Access-Permissions");
+  add("dds.sec.access.builtin.Access-Permissions.permissions_ca", file(identity.ca_cert));
+  add("dds.sec.access.builtin.Access-Permissions.governance", file(identity.governance));
+  add("dds.sec.access.builtin.Access-Permissions.permissions", file(identity.permissions));
+  add("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 }  // namespace
 
 StatusOr<int> ResolveDomainId(const std::optional<int>& requested) {
@@ -117,19 +139,46 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
   self->localhost_only_ = ResolveLocalhostOnly(options.localhost_only);
 
   auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos qos = MakeQos(options, self->localhost_only_);
+  dds::PublisherQos publisher_qos = dds::PUBLISHER_QOS_DEFAULT;
+  dds::SubscriberQos subscriber_qos = dds::SUBSCRIBER_QOS_DEFAULT;
+  if (options.security) {
+    AddSecurityProperties(*options.security, &qos);
+    self->identities_ = std::make_unique<ParticipantIdentities>();
+    // A robot's permissions let it publish only in the partition named after it, so a robot
+    // cannot write as another at the DDS level; "" and "*" together read the default partition
+    // (the server's topics) and every named one.
+    if (options.security->role == security::Role::kRobot) {
+      publisher_qos.partition().push_back(options.security->name.c_str());
+    }
+    subscriber_qos.partition().push_back("");
+    subscriber_qos.partition().push_back("*");
+  }
   self->participant_ =
-      factory->create_participant(domain_id, MakeQos(options, self->localhost_only_));
+      factory->create_participant(domain_id, qos, self->identities_.get(), dds::StatusMask::none());
   if (self->participant_ == nullptr) {
+    if (options.security) {
+      return UnavailableError("could not create a secured DDS participant on domain " +
+                              std::to_string(domain_id) + " as " + options.security->name +
+                              " (Fast DDS's log above says why)");
+    }
     return UnavailableError("could not create a DDS participant on domain " +
                             std::to_string(domain_id));
   }
-  self->publisher_ = self->participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
-  self->subscriber_ = self->participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  self->publisher_ = self->participant_->create_publisher(publisher_qos);
+  self->subscriber_ = self->participant_->create_subscriber(subscriber_qos);
   if (self->publisher_ == nullptr || self->subscriber_ == nullptr) {
     return UnavailableError("could not create a DDS publisher/subscriber on domain " +
                             std::to_string(domain_id));
   }
   return self;
+}
+
+Participant::Participant() = default;
+
+std::optional<std::string> Participant::AuthenticatedName(const std::string& writer_id) const {
+  if (identities_ == nullptr) return std::nullopt;
+  return identities_->NameOf(writer_id);
 }
 
 std::string Participant::id() const {
@@ -180,12 +229,20 @@ void Participant::ReleaseTopic(dds::Topic* topic) {
   }
 }
 
+Status ParticipantOptions::UseSecurityFolder(const std::string& dir, const std::string& identity) {
+  FLEETMAP_ASSIGN_OR_RETURN(security, security::LoadIdentity(dir, identity));
+  return Status::Ok();
+}
+
 void ParticipantOptions::Describe(OptionsPrinter& out) const {
   out.Add("domain_id", domain_id);
   out.Add("name", name);
   out.Add("localhost_only", localhost_only);
   out.Add("intraprocess_delivery", intraprocess_delivery);
   out.Add("participant_lease", participant_lease);
+  out.Add("security", security ? security->name + " (" + security::RoleName(security->role) + ", " +
+                                     security->cert + ")"
+                               : std::string("off"));
 }
 
 }  // namespace fleetmap::transport

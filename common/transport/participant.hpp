@@ -8,6 +8,7 @@
 
 #include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
+#include "common/security/security_identity.hpp"
 
 namespace eprosima::fastdds::dds {
 class DomainParticipant;
@@ -18,6 +19,8 @@ class TypeSupport;
 }  // namespace eprosima::fastdds::dds
 
 namespace fleetmap::transport {
+
+class ParticipantIdentities;
 
 struct ParticipantOptions {
   // Unset: the FLEETMAP_DOMAIN environment variable, else 0. Valid DDS domains are 0..232.
@@ -31,6 +34,15 @@ struct ParticipantOptions {
   bool intraprocess_delivery = true;
   // How long a silent participant is kept before its endpoints are dropped.
   std::chrono::milliseconds participant_lease{6000};
+  // DDS Security (docs/security.md): this participant authenticates as `security->name`, checks
+  // every peer against the fleet CA, and keeps to its signed permissions. A robot's publisher
+  // then writes in the DDS partition named after the robot (its permissions allow no other), and
+  // the subscriber reads every partition. Unset: no security (anyone on the domain may join).
+  std::optional<security::SecurityIdentity> security;
+
+  // Sets `security` to `identity`'s identity in the fleet security folder `dir`, checked
+  // (security::LoadIdentity): an error names the file and what is wrong with it.
+  Status UseSecurityFolder(const std::string& dir, const std::string& identity);
 
   void Describe(OptionsPrinter& out) const;
 };
@@ -55,6 +67,11 @@ class Participant {
   // writers (see writer_id.hpp), so a node can tell its own samples from another participant's.
   std::string id() const;
 
+  bool secured() const { return identities_ != nullptr; }
+  // On a secured participant: the authenticated name (certificate CN) of the participant that
+  // owns `writer_id` (a WriterId), or nullopt if it gave none. Always nullopt when not secured.
+  std::optional<std::string> AuthenticatedName(const std::string& writer_id) const;
+
   // For transport's own readers and writers: the topic `name` of `type` (registering the type
   // on first use); each AcquireTopic is paired with one ReleaseTopic.
   StatusOr<eprosima::fastdds::dds::Topic*> AcquireTopic(const std::string& name,
@@ -65,7 +82,7 @@ class Participant {
   eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
 
  private:
-  Participant() = default;
+  Participant();
 
   struct TopicEntry {
     eprosima::fastdds::dds::Topic* topic = nullptr;
@@ -74,6 +91,8 @@ class Participant {
 
   int domain_id_ = 0;
   bool localhost_only_ = false;
+  // Declared before the participant: Fast DDS calls it until the participant is deleted.
+  std::unique_ptr<ParticipantIdentities> identities_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

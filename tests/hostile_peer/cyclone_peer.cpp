@@ -218,6 +218,8 @@ int CyclonePeer::MatchedStatusReaders() const { return Matched(status_writer_); 
 std::set<TileKey> CyclonePeer::RobotTileKeys(const std::string& robot) {
   if (tiles_reader_ <= 0) {
     dds_qos_t* qos = StateQos();
+    // Other participants' tiles only: its own forged ones are not what the victim has.
+    dds_qset_ignorelocal(qos, DDS_IGNORELOCAL_PARTICIPANT);
     tiles_reader_ = dds_create_reader(participant_, tiles_topic_, qos, nullptr);
     dds_delete_qos(qos);
     if (tiles_reader_ < 0) return {};

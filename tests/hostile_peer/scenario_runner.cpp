@@ -154,6 +154,10 @@ bool ScenarioRunner::SendStatuses() {
 bool ScenarioRunner::StepHijack(Clock::duration elapsed) {
   const std::string& victim = options_.hijack;
   std::set<TileKey> keys = peer_.RobotTileKeys(victim);  // learns the victim's tiles meanwhile
+  if (!keys.empty() && !victim_tiles_read_) {
+    victim_tiles_read_ = true;
+    Say("hijack: read the tiles of " + victim + " at " + std::to_string(keys.size()) + " keys");
+  }
   if (!hijack_disposed_) {
     if (elapsed < kHijackClaim) return true;
     if (!Sent(peer_.DisposeStatus(StatusOf(victim, StampFromNow()), &error_), &statuses_sent_)) {

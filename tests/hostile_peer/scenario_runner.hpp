@@ -79,7 +79,8 @@ class ScenarioRunner {
   int tile_readers_ = 0;   // last reported matches
   int status_readers_ = 0;
   bool hijack_disposed_ = false;
-  std::set<TileKey> forged_;  // keys of the hijacked robot already reported
+  bool victim_tiles_read_ = false;  // said once: the tiles of the victim were read
+  std::set<TileKey> forged_;        // keys of the hijacked robot already reported
   Clock::time_point next_forge_{};
   std::string error_;
   uint64_t tiles_sent_ = 0;

@@ -89,8 +89,8 @@ TEST_F(HostileServerTest, FarTilesNeitherCrashTheServerNorItsRestart) {
   ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
   // A key at the end of the int32 range, and tiles 10 km apart: each made the fused grid span
   // the bounding box (an abort, and every restart on that store aborted again).
-  auto peer = StartPeer({"--far-key", "--spread", "3", "--spread-metres", "10000",
-                         "--spread-diagonal"});
+  auto peer =
+      StartPeer({"--far-key", "--spread", "3", "--spread-metres", "10000", "--spread-diagonal"});
   ASSERT_TRUE(peer->WaitForOutput("sent 4 tiles", kDeadline)) << peer->Output();
   EXPECT_TRUE(server->WaitForOutput("tile (2147483647, 2147483647) lies", kDeadline))
       << server->Output();
@@ -112,11 +112,11 @@ TEST_F(HostileServerTest, AHijackerCannotEndARobotNorEraseItsWalls) {
   auto alpha = StartAlpha();
   ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
   auto peer = StartPeer({"--hijack", "alpha"});
-  ASSERT_TRUE(peer->WaitForOutput("hijack: disposed the robot_status instance of alpha",
-                                  kDeadline))
+  ASSERT_TRUE(peer->WaitForOutput("hijack: disposed the robot_status instance of alpha", kDeadline))
       << peer->Output();
-  ASSERT_TRUE(peer->WaitForOutput("hijack: forged an all-free tile", kDeadline))
-      << peer->Output();
+  ASSERT_TRUE(peer->WaitForOutput("hijack: forged an all-free tile", kDeadline)) << peer->Output();
+  // Unsecured, anyone reads robot_tiles (SecureFleetTest: a secured fleet's are unreadable).
+  EXPECT_TRUE(peer->WaitForOutput("hijack: read the tiles of alpha", kDeadline)) << peer->Output();
   EXPECT_TRUE(server->WaitForOutput("disposed robot alpha, which participant", kDeadline))
       << server->Output();
   EXPECT_TRUE(server->WaitForOutput("for robot alpha from participant", kDeadline))

@@ -1,0 +1,124 @@
+#include "common/security/pem_files.hpp"
+
+#include <fcntl.h>
+#include <openssl/bn.h>
+#include <openssl/pem.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+namespace fleetmap::security {
+namespace {
+
+BioPtr OpenForReading(const std::string& path, std::string* problem) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    *problem = "missing (no such file)";
+    return nullptr;
+  }
+  BioPtr file(BIO_new_file(path.c_str(), "r"));
+  if (!file) *problem = "cannot be read (" + TakeOpenSslError() + ")";
+  return file;
+}
+
+}  // namespace
+
+StatusOr<CertPtr> ReadCertificate(const std::string& path) {
+  std::string problem;
+  BioPtr file = OpenForReading(path, &problem);
+  if (!file) return InvalidArgumentError(path + ": " + problem);
+  CertPtr cert(PEM_read_bio_X509(file.get(), nullptr, nullptr, nullptr));
+  if (!cert) {
+    return InvalidArgumentError(path + ": not a PEM certificate (" + TakeOpenSslError() + ")");
+  }
+  return cert;
+}
+
+StatusOr<KeyPtr> ReadPrivateKey(const std::string& path) {
+  std::string problem;
+  BioPtr file = OpenForReading(path, &problem);
+  if (!file) return InvalidArgumentError(path + ": " + problem);
+  KeyPtr key(PEM_read_bio_PrivateKey(file.get(), nullptr, nullptr, nullptr));
+  if (!key) {
+    return InvalidArgumentError(path + ": not a PEM private key (" + TakeOpenSslError() + ")");
+  }
+  return key;
+}
+
+StatusOr<CrlPtr> ReadRevocationList(const std::string& path) {
+  std::string problem;
+  BioPtr file = OpenForReading(path, &problem);
+  if (!file) return InvalidArgumentError(path + ": " + problem);
+  CrlPtr crl(PEM_read_bio_X509_CRL(file.get(), nullptr, nullptr, nullptr));
+  if (!crl) {
+    return InvalidArgumentError(path + ": not a PEM revocation list (" + TakeOpenSslError() + ")");
+  }
+  return crl;
+}
+
+std::vector<std::string> RevokedSerials(X509_CRL* crl) {
+  std::vector<std::string> serials;
+  STACK_OF(X509_REVOKED)* revoked = X509_CRL_get_REVOKED(crl);
+  for (int i = 0; i < sk_X509_REVOKED_num(revoked); ++i) {
+    const ASN1_INTEGER* serial = X509_REVOKED_get0_serialNumber(sk_X509_REVOKED_value(revoked, i));
+    std::unique_ptr<BIGNUM, decltype(&BN_free)> number(ASN1_INTEGER_to_BN(serial, nullptr),
+                                                       BN_free);
+    char* hex = number ? BN_bn2hex(number.get()) : nullptr;
+    if (hex != nullptr) serials.emplace_back(hex);
+    OPENSSL_free(hex);
+  }
+  return serials;
+}
+
+std::string SubjectField(X509* cert, int nid) {
+  char text[256] = {0};
+  if (X509_NAME_get_text_by_NID(X509_get_subject_name(cert), nid, text, sizeof(text)) < 0) {
+    return "";
+  }
+  return text;
+}
+
+std::time_t ToTime(const ASN1_TIME* time) {
+  std::tm tm{};
+  if (ASN1_TIME_to_tm(time, &tm) != 1) return 0;
+  return timegm(&tm);
+}
+
+std::string UtcText(std::time_t time) {
+  std::tm tm{};
+  gmtime_r(&time, &tm);
+  char text[40];
+  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M:%S UTC", &tm);
+  return text;
+}
+
+Status WriteSecurityFile(const std::string& path, const std::string& contents, bool private_key) {
+  // Not common/core's WriteFileAtomically: a key must never exist, even for a moment, with a mode
+  // wider than 0600, so the temporary file is made with that mode.
+  const std::string temporary = path + ".tmp." + std::to_string(getpid());
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC,
+                        private_key ? 0600 : 0644);
+  if (fd < 0) return UnavailableError(path + ": cannot write: " + std::strerror(errno));
+  size_t written = 0;
+  while (written < contents.size()) {
+    const ssize_t n = ::write(fd, contents.data() + written, contents.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += static_cast<size_t>(n);
+  }
+  const bool ok = written == contents.size() && ::fchmod(fd, private_key ? 0600 : 0644) == 0 &&
+                  ::fsync(fd) == 0;
+  const int saved_errno = errno;
+  ::close(fd);
+  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(ok ? errno : saved_errno);
+    std::remove(temporary.c_str());
+    return UnavailableError(path + ": cannot write: " + reason);
+  }
+  return Status::Ok();
+}
+
+}  // namespace fleetmap::security

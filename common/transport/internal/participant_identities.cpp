@@ -1,0 +1,47 @@
+#include "common/transport/internal/participant_identities.hpp"
+
+#include "common/security/security_identity.hpp"
+#include "common/transport/internal/writer_id.hpp"
+
+namespace fleetmap::transport {
+namespace {
+
+using eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+
+std::string PrefixOf(const eprosima::fastrtps::rtps::GUID_t& guid) {
+  eprosima::fastrtps::rtps::InstanceHandle_t handle;
+  for (size_t i = 0; i < guid.guidPrefix.size; ++i) handle.value[i] = guid.guidPrefix.value[i];
+  return WriterId(handle).substr(0, 24);
+}
+
+}  // namespace
+
+std::optional<std::string> ParticipantIdentities::NameOf(const std::string& writer_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = name_by_prefix_.find(writer_id.substr(0, 24));
+  if (it == name_by_prefix_.end()) return std::nullopt;
+  return it->second;
+}
+
+void ParticipantIdentities::on_participant_discovery(
+    eprosima::fastdds::dds::DomainParticipant* /*participant*/, ParticipantDiscoveryInfo&& info) {
+  const std::string prefix = PrefixOf(info.info.m_guid);
+  std::lock_guard lock(mutex_);
+  switch (info.status) {
+    case ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
+    case ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT: {
+      for (const auto& property : info.info.identity_token_.properties()) {
+        if (property.name() == "dds.cert.sn") {
+          name_by_prefix_[prefix] = security::CommonNameOfSubject(property.value());
+        }
+      }
+      break;
+    }
+    case ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
+    case ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
+      name_by_prefix_.erase(prefix);
+      break;
+  }
+}
+
+}  // namespace fleetmap::transport

@@ -1,0 +1,33 @@
+#pragma once
+
+// Internal to transport: on a secured participant, who each discovered participant says it is.
+// DDS Security authenticates a peer's certificate in its handshake and checks its permissions
+// against that certificate's subject; the subject's CN also travels in the peer's identity token
+// (dds.cert.sn), which this listener keeps per participant (GUID prefix), so the server can check
+// a sample's robot id against the name of the participant that wrote it. Thread-safe: Fast DDS
+// calls the listener on its discovery thread.
+
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+
+namespace fleetmap::transport {
+
+class ParticipantIdentities : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  // The name (certificate CN) of the participant whose GUID prefix (24 hex digits) starts
+  // `writer_id`, or nullopt when that participant is unknown or gave none.
+  std::optional<std::string> NameOf(const std::string& writer_id) const;
+
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::string> name_by_prefix_;
+};
+
+}  // namespace fleetmap::transport
