@@ -10,6 +10,7 @@
 #include "cli/inputs/exit_codes.hpp"
 #include "common/security/fleet_security.hpp"
 #include "common/security/security_folder.hpp"
+#include "common/security/utc_time.hpp"
 
 namespace fleetmap::cli {
 namespace {
@@ -25,13 +26,7 @@ fleet CA, traffic is encrypted, and signed permissions say who may write what. S
   fleetmap security show --dir D               who is enrolled, until when
 Keys are written 0600. docs/security.md describes the folder and the permissions.)";
 
-std::string UtcDate(std::time_t time) {
-  std::tm tm{};
-  gmtime_r(&time, &tm);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M", &tm);
-  return text;
-}
+std::string UtcDate(std::time_t time) { return security::FormatUtc(time, "%Y-%m-%d %H:%M"); }
 
 int Fail(std::ostream& err, const std::string& message) {
   err << "fleetmap security: " << message << "\n";

@@ -201,6 +201,15 @@ void AgentNode::DrainRobotFrames() {
   }
 }
 
+void AgentNode::ReportHandshake() {
+  if (handshake_reported_ || !participant_->secured()) return;
+  const std::optional<double> seconds = participant_->SecondsToAuthenticate("server");
+  if (!seconds) return;
+  handshake_reported_ = true;
+  spdlog::info("{}: authenticated the server {:.2f} s after joining (DDS Security handshake)",
+               options_.robot.value, *seconds);
+}
+
 Status AgentNode::Run(const std::atomic<bool>& stop) {
   if (auto first = source_->Poll()) FLEETMAP_RETURN_IF_ERROR(OnNewMap(*first));
   FLEETMAP_RETURN_IF_ERROR(PublishStatus());
@@ -243,6 +252,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
     DrainFusedTiles();
     DrainRobotFrames();
     WatchIdClaims();
+    ReportHandshake();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 

@@ -82,6 +82,8 @@ class AgentNode {
   // Another participant that starts claiming this robot id once the agent is in the fleet is
   // reported: the server keeps this agent and refuses the other.
   void WatchIdClaims();
+  // Secured: logs once how long the DDS Security handshake with the server took.
+  void ReportHandshake();
   // Lets the byte accounting finish, still reporting the robot alive, and reports its totals.
   void FinishBaselines();
 
@@ -100,6 +102,7 @@ class AgentNode {
   std::unique_ptr<IdClaimWatch> claim_watch_;
   uint64_t fused_tiles_received_ = 0;
   bool placed_ = false;  // with unplaced: the server has placed the robot's map frame
+  bool handshake_reported_ = false;
 };
 
 }  // namespace fleetmap::agent

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <string_view>
 #include <thread>
 
 #include "bench/fleet/placement_observer.hpp"
@@ -35,6 +36,18 @@ std::optional<uint64_t> LoopbackBytesSent() {
   uint64_t bytes = 0;
   if (!(counter >> bytes)) return std::nullopt;
   return bytes;
+}
+
+// The handshake time a secured agent logged ("authenticated the server 1.23 s after joining").
+std::optional<double> HandshakeSeconds(const std::string& agent_output) {
+  constexpr std::string_view kSays = "authenticated the server ";
+  const size_t at = agent_output.find(kSays);
+  if (at == std::string::npos) return std::nullopt;
+  try {
+    return std::stod(agent_output.substr(at + kSays.size(), 16));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 // How long agents that measure the grid wires may take to finish after the run.
@@ -309,6 +322,11 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     if (progress && options.measure_baselines && steady_clock::now() >= next_note) {
       progress(-1.0);
       next_note += std::chrono::seconds(1);
+    }
+  }
+  for (int i = 0; i < options.robots; ++i) {
+    if (const std::optional<double> handshake = HandshakeSeconds(agents[i]->Output())) {
+      result.robots["robot" + std::to_string(i)].handshake_s = handshake;
     }
   }
   const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);

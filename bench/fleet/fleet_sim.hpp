@@ -85,6 +85,9 @@ struct FleetRobotResult {
   // Seconds from the agent's start to the observer's first status from it: process start,
   // discovery, the agent's id-claim wait and, when secured, the DDS Security handshakes.
   std::optional<double> joined_s;
+  // Secured runs: seconds from the agent's participant's creation until it had authenticated the
+  // server (the DDS Security handshake), as the agent logged it.
+  std::optional<double> handshake_s;
 };
 
 struct FleetRunResult {

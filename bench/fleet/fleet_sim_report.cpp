@@ -144,9 +144,9 @@ StatusOr<PlacementReport> ReportPlacements(const FleetRunResult& tiles,
     if (!robot.placement) continue;
     const RobotPlacement& p = *robot.placement;
     const std::optional<PlacementError> placement_error =
-        anchored ? PlacementErrorOf(p, anchor->second.placement->true_world_from_map,
-                                    truth.resolution())
-                 : std::nullopt;
+        anchored
+            ? PlacementErrorOf(p, anchor->second.placement->true_world_from_map, truth.resolution())
+            : std::nullopt;
     // Plain values from here: GCC's -Wmaybe-uninitialized misreads optionals copied into JSON.
     const bool measured = placement_error.has_value();
     const PlacementError error = placement_error.value_or(PlacementError{});
@@ -164,24 +164,24 @@ StatusOr<PlacementReport> ReportPlacements(const FleetRunResult& tiles,
     const double true_yaw_deg = p.true_world_from_map.yaw * 180.0 / M_PI;
     out.md += fmt::format(
         "| {} | {:.2f}, {:.2f}, {:.1f} | {} | {:.2f} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-        name, p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg, p.state,
-        p.confidence, p.placed_against.empty() ? "-" : p.placed_against, Seconds(p.joined_s),
+        name, p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg, p.state, p.confidence,
+        p.placed_against.empty() ? "-" : p.placed_against, Seconds(p.joined_s),
         name == tiles.anchor ? std::string("-")
-        : p.shared_s         ? fmt::format("{} ({:.0f} %)", Seconds(p.shared_s),
-                                           100.0 * p.shared_fraction)
-                             : fmt::format("never ({:.0f} % at the end)", 100.0 * p.shared_fraction),
+        : p.shared_s ? fmt::format("{} ({:.0f} %)", Seconds(p.shared_s), 100.0 * p.shared_fraction)
+                     : fmt::format("never ({:.0f} % at the end)", 100.0 * p.shared_fraction),
         Seconds(p.placed_s), Seconds(join_to_place),
         share_to_place ? Seconds(share_to_place) : std::string("-"),
         measured ? cells : std::string("-"), measured ? yaw : std::string("-"));
-    out.csv += fmt::format("{},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{},{},{:.4f},{},{},{},{},{},{}\n",
-                           name, p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg,
-                           p.state, p.confidence, p.placed_against, p.placements,
-                           csv_number(p.joined_s), csv_number(p.shared_s), p.shared_fraction,
-                           csv_number(p.placed_s), csv_number(join_to_place),
-                           csv_number(share_to_place), cells, yaw, p.known_cells);
+    out.csv += fmt::format(
+        "{},{:.4f},{:.4f},{:.4f},{},{:.4f},{},{},{},{},{:.4f},{},{},{},{},{},{}\n", name,
+        p.true_world_from_map.x, p.true_world_from_map.y, true_yaw_deg, p.state, p.confidence,
+        p.placed_against, p.placements, csv_number(p.joined_s), csv_number(p.shared_s),
+        p.shared_fraction, csv_number(p.placed_s), csv_number(join_to_place),
+        csv_number(share_to_place), cells, yaw, p.known_cells);
     out.json["per_robot"][name] = {
         {"true_world_from_map",
-         {{"x", p.true_world_from_map.x}, {"y", p.true_world_from_map.y},
+         {{"x", p.true_world_from_map.x},
+          {"y", p.true_world_from_map.y},
           {"yaw", p.true_world_from_map.yaw}}},
         {"fleet_from_map",
          {{"x", p.fleet_from_map.x}, {"y", p.fleet_from_map.y}, {"yaw", p.fleet_from_map.yaw}}},
@@ -216,8 +216,7 @@ StatusOr<PlacementReport> ReportPlacements(const FleetRunResult& tiles,
     out.md += QualityRow("known poses (one shared frame)", known);
     out.json["known_poses_quality"] = QualityJson(known);
     known_summary = fmt::format("; with known poses MS {} OPDF {} UPDF {}",
-                                Percent(known.map_score),
-                                Percent(known.occupied_picture_distance),
+                                Percent(known.map_score), Percent(known.occupied_picture_distance),
                                 Percent(known.unoccupied_picture_distance));
   }
   out.md += "\n";
@@ -404,8 +403,9 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       "{}{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
       "p95 {} p99 {}; fused map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\n"
       "Report: {}/report.md, image: {}",
-      placements ? placements->summary + "\n" : std::string(), options.robots, sim::TerrainKindName(options.kind), options.size, tiles.seconds,
-      tiles.total_bytes, headline, Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
+      placements ? placements->summary + "\n" : std::string(), options.robots,
+      sim::TerrainKindName(options.kind), options.size, tiles.seconds, tiles.total_bytes, headline,
+      Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
       Percent(quality.occupied_picture_distance), Percent(quality.unoccupied_picture_distance),
       100.0 * tiles.server_cpu_seconds / std::max(1e-9, tiles.seconds),
       tiles.server_peak_rss_bytes / 1e6, out_dir, png_written.ok() ? png : "none");

@@ -22,9 +22,9 @@ StatusOr<std::unique_ptr<PlacementObserver>> PlacementObserver::Create(
   std::unique_ptr<PlacementObserver> observer(new PlacementObserver());
   FLEETMAP_ASSIGN_OR_RETURN(observer->frames_,
                             transport::RobotFrameReader::Create(participant, wake_up));
-  FLEETMAP_ASSIGN_OR_RETURN(observer->tiles_, transport::VectorTileReader::Create(
-                                                  participant, transport::kRobotTilesTopic,
-                                                  wake_up));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      observer->tiles_,
+      transport::VectorTileReader::Create(participant, transport::kRobotTilesTopic, wake_up));
   const int cells = static_cast<int>(std::ceil(size / kCoverageResolution));
   observer->coverage_ = grid::OccupancyGrid(cells, cells, kCoverageResolution);
   for (size_t i = 0; i < sim_frames.size(); ++i) {

@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include "common/security/utc_time.hpp"
+
 namespace fleetmap::security {
 namespace {
 
@@ -21,13 +23,7 @@ constexpr char kAllDomains[] = "<domains><id_range><min>0</min><max>232</max></i
 // every zone; the certificate's own dates (UTC) still bound the identity.
 constexpr std::time_t kLocalTimeSlack = 86400;
 
-std::string Utc(std::time_t time) {
-  std::tm tm{};
-  gmtime_r(&time, &tm);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%S", &tm);
-  return text;
-}
+std::string Utc(std::time_t time) { return FormatUtc(time, "%Y-%m-%dT%H:%M:%S"); }
 
 // One <publish> or <subscribe> criterion: the topics, in the partitions (none: the default one).
 std::string Criterion(const char* kind, const std::vector<std::string>& topics,

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "common/security/utc_time.hpp"
+
 namespace fleetmap::security {
 namespace {
 
@@ -87,13 +89,7 @@ std::time_t ToTime(const ASN1_TIME* time) {
   return timegm(&tm);
 }
 
-std::string UtcText(std::time_t time) {
-  std::tm tm{};
-  gmtime_r(&time, &tm);
-  char text[40];
-  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M:%S UTC", &tm);
-  return text;
-}
+std::string UtcText(std::time_t time) { return FormatUtc(time, "%Y-%m-%d %H:%M:%S UTC"); }
 
 Status WriteSecurityFile(const std::string& path, const std::string& contents, bool private_key) {
   // Not common/core's WriteFileAtomically: a key must never exist, even for a moment, with a mode

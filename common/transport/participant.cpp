@@ -181,6 +181,11 @@ std::optional<std::string> Participant::AuthenticatedName(const std::string& wri
   return identities_->NameOf(writer_id);
 }
 
+std::optional<double> Participant::SecondsToAuthenticate(const std::string& name) const {
+  if (identities_ == nullptr) return std::nullopt;
+  return identities_->SecondsUntilAuthenticated(name);
+}
+
 std::string Participant::id() const {
   eprosima::fastrtps::rtps::InstanceHandle_t handle;
   const auto& prefix = participant_->guid().guidPrefix.value;

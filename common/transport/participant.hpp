@@ -71,6 +71,9 @@ class Participant {
   // On a secured participant: the authenticated name (certificate CN) of the participant that
   // owns `writer_id` (a WriterId), or nullopt if it gave none. Always nullopt when not secured.
   std::optional<std::string> AuthenticatedName(const std::string& writer_id) const;
+  // On a secured participant: seconds from its creation until it authenticated a participant
+  // named `name` (DDS Security's handshake with it done), or nullopt if not (yet).
+  std::optional<double> SecondsToAuthenticate(const std::string& name) const;
 
   // For transport's own readers and writers: the topic `name` of `type` (registering the type
   // on first use); each AcquireTopic is paired with one ReleaseTopic.

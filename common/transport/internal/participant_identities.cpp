@@ -23,6 +23,31 @@ std::optional<std::string> ParticipantIdentities::NameOf(const std::string& writ
   return it->second;
 }
 
+std::optional<double> ParticipantIdentities::SecondsUntilAuthenticated(
+    const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  std::optional<double> first;
+  for (const auto& [prefix, seconds] : authenticated_after_by_prefix_) {
+    const auto named = name_by_prefix_.find(prefix);
+    if (named == name_by_prefix_.end() || named->second != name) continue;
+    if (!first || seconds < *first) first = seconds;
+  }
+  return first;
+}
+
+void ParticipantIdentities::onParticipantAuthentication(
+    eprosima::fastdds::dds::DomainParticipant* /*participant*/,
+    eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) {
+  if (info.status !=
+      eprosima::fastrtps::rtps::ParticipantAuthenticationInfo::AUTHORIZED_PARTICIPANT) {
+    return;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - created_).count();
+  std::lock_guard lock(mutex_);
+  authenticated_after_by_prefix_.emplace(PrefixOf(info.guid), seconds);
+}
+
 void ParticipantIdentities::on_participant_discovery(
     eprosima::fastdds::dds::DomainParticipant* /*participant*/, ParticipantDiscoveryInfo&& info) {
   const std::string prefix = PrefixOf(info.info.m_guid);
@@ -40,6 +65,7 @@ void ParticipantIdentities::on_participant_discovery(
     case ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
     case ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
       name_by_prefix_.erase(prefix);
+      authenticated_after_by_prefix_.erase(prefix);
       break;
   }
 }

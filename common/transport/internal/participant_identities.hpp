@@ -9,6 +9,7 @@
 
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -21,13 +22,21 @@ class ParticipantIdentities : public eprosima::fastdds::dds::DomainParticipantLi
   // The name (certificate CN) of the participant whose GUID prefix (24 hex digits) starts
   // `writer_id`, or nullopt when that participant is unknown or gave none.
   std::optional<std::string> NameOf(const std::string& writer_id) const;
+  // Seconds from this listener's creation (its participant's) until the first participant named
+  // `name` was authenticated (the DDS Security handshake done), or nullopt if none was yet.
+  std::optional<double> SecondsUntilAuthenticated(const std::string& name) const;
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+  void onParticipantAuthentication(
+      eprosima::fastdds::dds::DomainParticipant* participant,
+      eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
 
  private:
+  const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   mutable std::mutex mutex_;
   std::map<std::string, std::string> name_by_prefix_;
+  std::map<std::string, double> authenticated_after_by_prefix_;  // seconds since created_
 };
 
 }  // namespace fleetmap::transport
