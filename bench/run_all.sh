@@ -32,6 +32,8 @@ run paper "$fleetmap" bench paper --out "$out/paper" --seed 1 --no-progress
 run fleet "$fleetmap" bench fleet --robots 1 4 16 --terrain office --size 80 --duration 45 \
   --rate 10 --json "$out/fleet.json"
 run demo "$fleetmap" sim --robots 4 --terrain office --size 40 --duration 40 --out "$out/demo"
+run secure "$fleetmap" sim --secure --robots 4 --terrain office --size 40 --duration 40 \
+  --out "$out/secure"
 run hostile "$fleetmap" bench fleet --robots 1 4 --terrain office --size 40 --duration 30 \
   --hostile --json "$out/hostile.json"
 if [[ $(id -u) -eq 0 ]]; then
