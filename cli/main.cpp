@@ -20,6 +20,7 @@
 #include "cli/rasterize_command.hpp"
 #include "cli/register_command.hpp"
 #include "cli/render_command.hpp"
+#include "cli/save_map_command.hpp"
 #include "cli/security_command.hpp"
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddRegisterCommand(app, &exit_code);
   fleetmap::bench::AddBenchRegisterCommand(app, &exit_code);
   fleetmap::cli::AddSecurityCommand(app, &exit_code);
+  fleetmap::cli::AddSaveMapCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

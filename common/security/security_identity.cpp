@@ -101,7 +101,7 @@ StatusOr<SecurityIdentity> LoadIdentity(const std::string& dir, const std::strin
   if (!fs::is_directory(folder.identity(name), error)) {
     return InvalidArgumentError(folder.identity(name).string() + ": missing: " + name +
                                 " is not enrolled in " + dir + " (fleetmap security enroll --dir " +
-                                dir + " --robot " + name + ")");
+                                dir + " --robot " + name + ", or --viewer " + name + ")");
   }
   SecurityIdentity identity;
   identity.name = name;

@@ -1,0 +1,37 @@
+#pragma once
+
+// `fleetmap save-map -o fused.yaml`: the map saver. Joins the fleet as a reader (like nav2's
+// map_saver_cli subscribes to /map), waits for the fused map on rt/fleetmap/map, and writes it as
+// a map_server YAML + image with map_saver's conventions; optionally the fused vector tiles of
+// rt/fleetmap/fused_tiles as GeoJSON and .vmap.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace fleetmap::cli {
+
+struct SaveMapOptions {
+  std::string yaml_path;
+  std::string image_format = "pgm";  // pgm or png
+  double occupied_thresh = 0.65;     // map_saver's --occ
+  double free_thresh = 0.196;        // map_saver's --free (0.196: the 205 shade reads back unknown)
+  std::string geojson_path;          // the fused vector map, merged (empty: none)
+  std::string vmap_path;             // the fused vector tiles (empty: none)
+  double timeout_s = 30.0;           // for the first fused map
+  double settle_s = 2.0;             // then keep the newest map and tiles this long
+  std::optional<int> domain;
+  bool localhost_only = false;
+  std::string security_dir;                  // join a secured fleet
+  std::string security_identity = "viewer";  // ... as this enrolled viewer
+};
+
+// Runs the saver; progress and errors (naming the path or the domain and what is wrong) go to
+// `err`, the files written to `out`. kExitOk; kExitBadInput for bad options or an unwritable
+// path; 1 when no fused map came within the timeout.
+int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& err);
+
+void AddSaveMapCommand(CLI::App& app, int* exit_code);
+
+}  // namespace fleetmap::cli

@@ -1,0 +1,136 @@
+// `fleetmap save-map`, the map saver, against a live server: what it writes loads back with
+// fleetmap's own reader and matches rt/fleetmap/map cell for cell; no server, or a path that
+// cannot be written, is a clear error. Real processes, DDS over loopback, a random domain.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+
+#include "common/core/wake_up.hpp"
+#include "common/grid/map_io.hpp"
+#include "common/process/subprocess.hpp"
+#include "common/transport/occupancy_grid_reader.hpp"
+#include "common/transport/participant.hpp"
+#include "common/transport/topics.hpp"
+#include "common/transport/vmap_file.hpp"
+#include "tests/integration/fleet_binaries.hpp"
+#include "tests/integration/fleetmap_cli.hpp"
+
+namespace fleetmap {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+using ::testing::HasSubstr;
+
+// Bounds waits on a loaded 2-core CI machine; not an assertion about speed.
+constexpr seconds kDeadline{60};
+
+const std::string kMap = std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml";
+
+// The trinary value a map_server reader gives a fused cell once saved with `saved`'s thresholds.
+int8_t Trinary(int8_t value, const grid::MapMetadata& saved) {
+  if (value < 0) return -1;
+  if (value >= saved.occupied_thresh * 100.0) return 100;
+  if (value <= saved.free_thresh * 100.0) return 0;
+  return -1;
+}
+
+TEST(CliSaveMapTest, TheSavedMapIsTheFusedMapCellForCell) {
+  const std::string out = testing::FreshTempDir("cli_save_map");
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server({testing::kServerBinary, "--duration", "120", "--no-object-learning",
+                              "--no-extrapolation", "--map-period", "0.5"},
+                             env);
+  process::Subprocess agent({testing::kAgentBinary, "--robot-id", "alpha", "--map", kMap}, env);
+
+  // What rt/fleetmap/map carries, until it has not changed for 3 s (the robot's map is static).
+  transport::ParticipantOptions options;
+  options.domain_id = domain;
+  options.localhost_only = true;
+  options.intraprocess_delivery = false;
+  auto participant = transport::Participant::Create(options);
+  ASSERT_TRUE(participant.ok()) << participant.status();
+  auto wake_up = std::make_shared<WakeUp>();
+  auto maps =
+      transport::OccupancyGridReader::Create(**participant, transport::kFleetMapTopic, wake_up);
+  ASSERT_TRUE(maps.ok()) << maps.status();
+  std::optional<grid::OccupancyGrid> fused;
+  auto last_change = std::chrono::steady_clock::now();
+  const auto deadline = last_change + kDeadline;
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!fused || std::chrono::steady_clock::now() - last_change < seconds(3))) {
+    wake_up->WaitFor(milliseconds(100));
+    for (StatusOr<transport::MapMessage>& map : (*maps)->Drain()) {
+      ASSERT_TRUE(map.ok()) << map.status();
+      if (!fused || fused->data() != map->grid.data())
+        last_change = std::chrono::steady_clock::now();
+      fused = std::move(map->grid);
+    }
+  }
+  ASSERT_TRUE(fused.has_value()) << server.Output();
+
+  const auto saved =
+      testing::RunFleetmap({"save-map", "-o", out + "/fused.yaml", "--vmap", out + "/fused.vmap",
+                            "--geojson", out + "/fused.geojson", "--domain", std::to_string(domain),
+                            "--localhost-only", "--settle", "1"});
+  ASSERT_EQ(saved.exit_code, 0) << saved.output();
+  EXPECT_TRUE(std::filesystem::exists(out + "/fused.pgm"));
+
+  const auto loaded = grid::LoadMap(out + "/fused.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+  const grid::OccupancyGrid& read = loaded->grid;
+  ASSERT_EQ(read.width(), fused->width());
+  ASSERT_EQ(read.height(), fused->height());
+  EXPECT_DOUBLE_EQ(read.resolution(), fused->resolution());
+  EXPECT_NEAR(read.origin().x, fused->origin().x, 1e-9);
+  EXPECT_NEAR(read.origin().y, fused->origin().y, 1e-9);
+  int64_t differing = 0;
+  int64_t occupied = 0;
+  for (int y = 0; y < read.height(); ++y) {
+    for (int x = 0; x < read.width(); ++x) {
+      differing += read.at(x, y) != Trinary(fused->at(x, y), loaded->metadata);
+      occupied += read.at(x, y) == 100;
+    }
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(occupied, 100) << "the house's walls";
+
+  const auto vmap = transport::ReadVmapFile(out + "/fused.vmap");
+  ASSERT_TRUE(vmap.ok()) << vmap.status();
+  EXPECT_GT(vmap->tiles.size(), 0u);
+  EXPECT_GT(vmap->ObstacleVertexCount(), 0u);
+  EXPECT_THAT(testing::ReadFile(out + "/fused.geojson"), HasSubstr("FeatureCollection"));
+
+  maps->reset();
+  std::filesystem::remove_all(out);
+}
+
+TEST(CliSaveMapTest, NoServerIsATimeoutNamingTheDomain) {
+  const int domain = process::RandomDomainId();
+  const std::string out = testing::FreshTempDir("cli_save_map_none");
+  const auto saved = testing::RunFleetmap({"save-map", "-o", out + "/x.yaml", "--timeout", "2",
+                                           "--domain", std::to_string(domain), "--localhost-only"});
+  EXPECT_EQ(saved.exit_code, 1);
+  EXPECT_THAT(saved.err, HasSubstr("no fused map"));
+  EXPECT_THAT(saved.err, HasSubstr("domain " + std::to_string(domain)));
+  EXPECT_FALSE(std::filesystem::exists(out + "/x.yaml"));
+  std::filesystem::remove_all(out);
+}
+
+TEST(CliSaveMapTest, AnUnwritablePathIsRefusedBeforeWaiting) {
+  const auto saved = testing::RunFleetmap(
+      {"save-map", "-o", "/nonexistent-folder/fused.yaml", "--timeout", "60", "--localhost-only"},
+      seconds(20));
+  EXPECT_EQ(saved.exit_code, 2);
+  EXPECT_THAT(saved.err, HasSubstr("/nonexistent-folder"));
+  EXPECT_THAT(saved.err, HasSubstr("does not exist"));
+}
+
+}  // namespace
+}  // namespace fleetmap
