@@ -20,6 +20,7 @@
 #include "common/process/subprocess.hpp"
 #include "common/security/fleet_security.hpp"
 #include "common/security/security_folder.hpp"
+#include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/robot_status_writer.hpp"
@@ -159,8 +160,16 @@ TEST_F(SecureFleetTest, AnEnrolledRobotCannotWriteAsAnotherRobotNorAsTheServer) 
   auto alpha = Participant("alpha");
   ASSERT_NE(alpha, nullptr);
 
-  // Its permissions allow no writer on the server's topics: DDS refuses to make one.
+  // Its permissions allow no writer on the server's topics nor on another robot's grid: DDS
+  // refuses to make one. Its own grid topic is allowed (the control).
   EXPECT_FALSE(transport::VectorTileWriter::Create(*alpha, transport::kFusedTilesTopic).ok());
+  EXPECT_FALSE(transport::OccupancyGridWriter::Create(*alpha, transport::kFleetMapTopic).ok());
+  EXPECT_FALSE(
+      transport::OccupancyGridWriter::Create(*alpha, transport::RobotMapTopic(RobotId{"bravo"}))
+          .ok());
+  auto own_grid =
+      transport::OccupancyGridWriter::Create(*alpha, transport::RobotMapTopic(RobotId{"alpha"}));
+  EXPECT_TRUE(own_grid.ok()) << own_grid.status();
 
   // Its permissions do allow statuses (in its own partition), so a status naming bravo reaches
   // the server, which checks the writer's identity and refuses it.
@@ -179,6 +188,7 @@ TEST_F(SecureFleetTest, AnEnrolledRobotCannotWriteAsAnotherRobotNorAsTheServer) 
   EXPECT_THAT(server->Output(), HasSubstr("authenticated as \"alpha\""));
   EXPECT_THAT(server->Output(), Not(HasSubstr("robot bravo joined")));
   writer->reset();
+  if (own_grid.ok()) own_grid->reset();
   server->Signal(SIGINT);
   ASSERT_EQ(server->Wait(seconds(20)), 0) << server->Output();
   EXPECT_THAT(server->Output(), HasSubstr("not its identity"));
