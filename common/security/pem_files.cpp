@@ -15,50 +15,37 @@
 namespace fleetmap::security {
 namespace {
 
-BioPtr OpenForReading(const std::string& path, std::string* problem) {
+// Reads one PEM object of type `Pointer` from `path` with OpenSSL's `read` (PEM_read_bio_X509...);
+// an error names the file and whether it is missing, unreadable or not a PEM `what`.
+template <typename Pointer, typename Object>
+StatusOr<Pointer> ReadPem(const std::string& path,
+                          Object* (*read)(BIO*, Object**, pem_password_cb*, void*),
+                          const char* what) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
-    *problem = "missing (no such file)";
-    return nullptr;
+    return InvalidArgumentError(path + ": missing (no such file)");
   }
   BioPtr file(BIO_new_file(path.c_str(), "r"));
-  if (!file) *problem = "cannot be read (" + TakeOpenSslError() + ")";
-  return file;
+  if (!file) return InvalidArgumentError(path + ": cannot be read (" + TakeOpenSslError() + ")");
+  Pointer object(read(file.get(), nullptr, nullptr, nullptr));
+  if (!object) {
+    return InvalidArgumentError(path + ": not a PEM " + what + " (" + TakeOpenSslError() + ")");
+  }
+  return object;
 }
 
 }  // namespace
 
 StatusOr<CertPtr> ReadCertificate(const std::string& path) {
-  std::string problem;
-  BioPtr file = OpenForReading(path, &problem);
-  if (!file) return InvalidArgumentError(path + ": " + problem);
-  CertPtr cert(PEM_read_bio_X509(file.get(), nullptr, nullptr, nullptr));
-  if (!cert) {
-    return InvalidArgumentError(path + ": not a PEM certificate (" + TakeOpenSslError() + ")");
-  }
-  return cert;
+  return ReadPem<CertPtr>(path, PEM_read_bio_X509, "certificate");
 }
 
 StatusOr<KeyPtr> ReadPrivateKey(const std::string& path) {
-  std::string problem;
-  BioPtr file = OpenForReading(path, &problem);
-  if (!file) return InvalidArgumentError(path + ": " + problem);
-  KeyPtr key(PEM_read_bio_PrivateKey(file.get(), nullptr, nullptr, nullptr));
-  if (!key) {
-    return InvalidArgumentError(path + ": not a PEM private key (" + TakeOpenSslError() + ")");
-  }
-  return key;
+  return ReadPem<KeyPtr>(path, PEM_read_bio_PrivateKey, "private key");
 }
 
 StatusOr<CrlPtr> ReadRevocationList(const std::string& path) {
-  std::string problem;
-  BioPtr file = OpenForReading(path, &problem);
-  if (!file) return InvalidArgumentError(path + ": " + problem);
-  CrlPtr crl(PEM_read_bio_X509_CRL(file.get(), nullptr, nullptr, nullptr));
-  if (!crl) {
-    return InvalidArgumentError(path + ": not a PEM revocation list (" + TakeOpenSslError() + ")");
-  }
-  return crl;
+  return ReadPem<CrlPtr>(path, PEM_read_bio_X509_CRL, "revocation list");
 }
 
 std::vector<std::string> RevokedSerials(X509_CRL* crl) {
