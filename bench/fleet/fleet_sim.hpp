@@ -109,9 +109,9 @@ struct FleetRunResult {
   std::string server_output;  // what the server printed, its summary table last
   // Robots the server reported lost while every robot ran (none died: each report is false).
   int robots_reported_lost = 0;
-  // Bytes sent on this machine's loopback interface during the run (every DDS packet of the
-  // fleet, headers and security included; anything else on the machine too), or nullopt where
-  // /sys/class/net/lo is not readable.
+  // Bytes sent on the loopback interface during the run: every DDS packet of the fleet, headers
+  // and security included, and anything else in the same network namespace (the caller may run
+  // the fleet in one of its own), or nullopt where /proc/thread-self/net/dev is not readable.
   std::optional<uint64_t> loopback_bytes;
 };
 

@@ -85,7 +85,7 @@ nlohmann::json ToJson(const RunFigures& figures) {
 }  // namespace
 
 StatusOr<std::string> WriteSecurityComparison(const FleetRunResult& secured,
-                                              const FleetRunResult& plain,
+                                              const FleetRunResult& plain, bool isolated,
                                               const std::string& out_dir) {
   const RunFigures s = FiguresOf(secured);
   const RunFigures p = FiguresOf(plain);
@@ -104,7 +104,7 @@ StatusOr<std::string> WriteSecurityComparison(const FleetRunResult& secured,
       Ratio(s.join_max_s, p.join_max_s));
   row("handshake with the server, median", Cell(s.handshake_median_s, "s"), "-", "");
   row("handshake with the server, worst", Cell(s.handshake_max_s, "s"), "-", "");
-  row("loopback bytes (all DDS traffic)",
+  row(isolated ? "loopback bytes (the run's own netns)" : "loopback bytes (host: all traffic)",
       s.loopback_bytes ? std::to_string(*s.loopback_bytes) : "-",
       p.loopback_bytes ? std::to_string(*p.loopback_bytes) : "-",
       Ratio(AsDouble(s.loopback_bytes), AsDouble(p.loopback_bytes)));
@@ -121,7 +121,8 @@ StatusOr<std::string> WriteSecurityComparison(const FleetRunResult& secured,
   }
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
-  const nlohmann::json json = {{"secured", ToJson(s)}, {"plain", ToJson(p)}};
+  const nlohmann::json json = {
+      {"secured", ToJson(s)}, {"plain", ToJson(p)}, {"own_network_namespace", isolated}};
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(
       (std::filesystem::path(out_dir) / "security.json").string(), json.dump(2) + "\n"));
   return table;

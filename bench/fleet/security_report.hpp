@@ -12,8 +12,10 @@ namespace fleetmap::bench {
 
 // The comparison as a table (text) and as JSON, written to `out_dir`/security.json; returns the
 // table.
+// `isolated`: each run had a network namespace of its own, so the loopback bytes are the fleet's
+// alone (else the host's loopback: other traffic included).
 StatusOr<std::string> WriteSecurityComparison(const FleetRunResult& secured,
-                                              const FleetRunResult& plain,
+                                              const FleetRunResult& plain, bool isolated,
                                               const std::string& out_dir);
 
 }  // namespace fleetmap::bench

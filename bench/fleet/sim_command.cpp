@@ -11,6 +11,7 @@
 #include "bench/fleet/fleet_sim_report.hpp"
 #include "bench/fleet/security_report.hpp"
 #include "cli/inputs/exit_codes.hpp"
+#include "common/process/lossy_network_namespace.hpp"
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::bench {
@@ -61,7 +62,10 @@ int RunSim(const SimArgs& args) {
 
   // Robots at unknown poses run on the tile wire only and do not measure the grid wires (the
   // placement is what is measured); --compare-known runs them again in one shared frame.
-  // --secure runs the tile wire secured, then the same without security, unmeasured.
+  // --secure runs the tile wire secured, then the same without security, unmeasured; where this
+  // process may (root), each in a network namespace of its own, so that the loopback bytes
+  // counted are the fleet's alone.
+  const bool isolated = args.secure && process::LossyNetworkNamespace::CheckAvailable().ok();
   const auto run = [&](const std::string& wire, const std::vector<Pose2>& sim_frames,
                        bool secured = true) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
@@ -72,6 +76,12 @@ int RunSim(const SimArgs& args) {
     std::string label = args.unknown_poses ? (sim_frames.empty() ? "known poses" : "unknown poses")
                                            : wire + " wire";
     if (args.secure) label += secured ? ", secured" : ", no security";
+    std::unique_ptr<process::LossyNetworkNamespace> network;
+    std::unique_ptr<process::LossyNetworkNamespace::Inside> inside;
+    if (isolated) {
+      FLEETMAP_ASSIGN_OR_RETURN(network, process::LossyNetworkNamespace::Create(0));
+      FLEETMAP_ASSIGN_OR_RETURN(inside, network->Enter());
+    }
     return RunFleet(options, [&](double seconds) {
       if (seconds < 0) {
         std::cerr << fmt::format("\r[{}] the agents finish measuring the grid wires", label)
@@ -108,7 +118,7 @@ int RunSim(const SimArgs& args) {
                 << "\n";
       return 1;
     }
-    StatusOr<std::string> table = WriteSecurityComparison(*tiles, *plain, args.out_dir);
+    StatusOr<std::string> table = WriteSecurityComparison(*tiles, *plain, isolated, args.out_dir);
     if (!table.ok()) {
       std::cerr << "fleetmap sim: " << table.status().message() << "\n";
       return 1;
