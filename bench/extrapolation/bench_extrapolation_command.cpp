@@ -354,6 +354,9 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
       FloorPlanExperimentOptions plan;
       plan.seed = options.seed + static_cast<uint32_t>(i);
       plan.p_th = options.p_th;
+      if (i == 0 && !options.out_dir.empty()) {
+        plan.example_dir = options.out_dir + "/plan_" + std::to_string(plan.seed);
+      }
       if (options.progress) {
         err << "\r" << prefix << "plan " << i + 1 << "/" << options.plans << std::flush;
       }

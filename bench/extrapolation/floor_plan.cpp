@@ -38,7 +38,7 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
   sim::Random random(seed * 2654435761u + 11u);
   const double length = random.Uniform(14.0, 26.0);
   const double exterior = random.Uniform(0.3, 0.5);
-  const double interior = random.Uniform(0.15, 0.35);
+  const double interior = random.Uniform(0.15, 0.5);
   const double corridor_width = random.Uniform(1.2, 2.0);
   const double depth_low = random.Uniform(3.0, 5.5);
   const double depth_high = random.Uniform(3.0, 5.5);
@@ -72,12 +72,46 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
   };
   std::vector<uint8_t> second_doorway;  // per room
   std::vector<DoorPlan> door_plans;
+  // A rectangle between two ordinates given in either order.
+  const auto across = [](double x0, double x1, double a, double b, int32_t label) {
+    return Rect{x0, std::min(a, b), x1, std::max(a, b), label};
+  };
   for (const Side& side : sides) {
     const auto spans = SplitIntoRooms(exterior, length - exterior, interior, &random);
+    const double full_depth = side.y1 - side.y0;
+    const double sign = side.into_room.y();
+    const double outer = sign < 0 ? 0.0 : height;  // the building's outline on this side
+    // Most rooms reach the exterior wall; some are shallower (a bathroom, a store room), and the
+    // outline steps in behind them.
+    std::vector<double> depths;
+    for (size_t i = 0; i < spans.size(); ++i) {
+      depths.push_back(random.Bernoulli(options.shallow_room_probability)
+                           ? random.Uniform(2.0, std::max(2.0, full_depth - 0.3))
+                           : full_depth);
+    }
     for (size_t i = 0; i < spans.size(); ++i) {
       const auto [x0, x1] = spans[i];
+      const double depth = depths[i];
+      const double back = side.room_face + sign * depth;
       const int32_t room = plan.rooms++;
-      rects.push_back({x0, side.y0, x1, side.y1, room});
+      rects.push_back(across(x0, x1, side.room_face, back, room));
+      if (depth < full_depth) {
+        rects.push_back(across(x0, x1, back + sign * exterior, outer, kPlanOutside));
+      }
+      // A closet in a back corner of a large room, walled off, with its own open doorway: part
+      // of the room behind the door, its walls unseen like the room's.
+      if (x1 - x0 >= 3.0 && depth >= 3.5 && random.Bernoulli(options.closet_probability)) {
+        const double cw = random.Uniform(1.2, 1.8), cd = random.Uniform(1.2, 1.8);
+        const bool left = random.Bernoulli(0.5);
+        const double cx0 = left ? x0 : x1 - cw;
+        const double cx1 = left ? x0 + cw : x1;
+        const double wx0 = left ? cx0 : cx0 - interior;
+        const double wx1 = left ? cx1 + interior : cx1;
+        const double front = back - sign * cd;
+        rects.push_back(across(wx0, wx1, back, front - sign * interior, kPlanWall));
+        rects.push_back(across(cx0, cx1, back, front, room));
+        rects.push_back(across(cx0 + 0.2, cx0 + 0.9, front, front - sign * interior, room));
+      }
       const double width = std::min(random.Uniform(0.8, 1.0), x1 - x0 - 0.2);
       double door_x0;
       if (random.Bernoulli(options.corner_door_probability)) {
@@ -90,12 +124,15 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
       door_plans.push_back(
           {door_x0, door_x0 + width, &side, random.Bernoulli(0.5), room, end_room});
       second_doorway.resize(static_cast<size_t>(room) + 2, 0);
-      // A second, open doorway into the next room on this side, through the wall between them.
+      // A second, open doorway into the next room on this side, through the wall between them,
+      // in front of any closet.
       if (i + 1 < spans.size() && random.Bernoulli(options.connecting_doorway_probability)) {
         const double w = random.Uniform(0.8, 0.9);
-        const double y = random.Uniform(side.y0 + 0.3, side.y1 - 0.3 - w);
+        const double shared = std::min(depth, depths[i + 1]);
+        const double offset = random.Uniform(0.3, std::max(0.3, shared - 2.3 - w));
+        const double y = side.room_face + sign * offset;
         const int32_t owner = random.Bernoulli(0.5) ? room : room + 1;
-        rects.push_back({x1, y, spans[i + 1].first, y + w, owner});
+        rects.push_back(across(x1, spans[i + 1].first, y, y + sign * w, owner));
         second_doorway[room] = second_doorway[room + 1] = 1;
         ++plan.connecting_doorways;
       }

@@ -5,7 +5,9 @@
 // (docs/extrapolation.md, "Benchmark on floor plans"): thick exterior walls (0.3-0.5 m) and
 // interior walls (0.15-0.35 m), a corridor with rooms of different widths off both sides, one
 // door per room onto the corridor, most hinged near a corner of the room, either face of the wall
-// holding the leaf, some rooms joined to a neighbour by a second, open doorway. Unlike the
+// holding the leaf, some rooms joined to a neighbour by a second, open doorway, some shallower
+// than their neighbours (the outline steps in behind them), some with a closet walled off in a
+// back corner. Unlike the
 // simulator's offices (common/sim: 0.12 m walls, doors anywhere), the walls are as thick as drawn
 // plans and laser scans show them and the corner rooms end at the building's exterior wall, with
 // nothing known outside.
@@ -57,6 +59,8 @@ struct FloorPlanOptions {
   double resolution = 0.05;
   double corner_door_probability = 0.7;         // a door whose edge is 0.05-0.3 m from a side wall
   double connecting_doorway_probability = 0.3;  // per pair of neighbouring rooms
+  double shallow_room_probability = 0.3;  // a room 2 m deep or more, short of the exterior wall
+  double closet_probability = 0.25;       // per room at least 3 m wide and 3.5 m deep
 };
 
 // Errors: a resolution outside [0.01, 0.2] m.

@@ -1,7 +1,12 @@
 #include "bench/extrapolation/floor_plan_experiment.hpp"
 
+#include <filesystem>
+
 #include "bench/extrapolation/floor_plan.hpp"
+#include "common/core/file_io.hpp"
+#include "common/extrapolation/entities_json.hpp"
 #include "common/extrapolation/predicted_free_grid.hpp"
+#include "common/grid/map_io.hpp"
 #include "common/sim/random.hpp"
 
 namespace fleetmap::bench {
@@ -36,6 +41,16 @@ StatusOr<std::vector<PlanDoorResult>> RunFloorPlanExperiment(
       }
       scene::Entities entities;
       entities.doors.push_back(hidden.door);
+      if (!options.example_dir.empty() && results.empty()) {
+        const std::string& dir = options.example_dir;
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        if (ec) return InvalidArgumentError(dir + ": cannot create the directory");
+        FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(hidden.local, dir + "/local.yaml"));
+        FLEETMAP_RETURN_IF_ERROR(grid::SaveMap(truth, dir + "/truth.yaml"));
+        FLEETMAP_RETURN_IF_ERROR(
+            WriteFileAtomically(dir + "/entities.json", extrapolation::EntitiesToJson(entities)));
+      }
       for (double p_th : options.p_th) {
         extrapolation::ExtrapolationOptions settings = options.extrapolation;
         settings.p_th = p_th;

@@ -13,6 +13,7 @@
 // Thread-safety: stateless.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/core/status.hpp"
@@ -27,6 +28,9 @@ struct FloorPlanExperimentOptions {
   double dropout = 0.004;      // laser dropouts per wall face cell (HideRoom)
   double recall_radius = 2.5;  // metres from the door's centre
   extrapolation::ExtrapolationOptions extrapolation;  // its p_th is replaced by each of p_th
+  // If set, the first room's scene (jamb a as the hinge) is written there for `fleetmap
+  // extrapolate`: local.yaml (+ .pgm), entities.json (the door) and truth.yaml (the plan).
+  std::string example_dir;
 };
 
 struct PlanDoorScore {
