@@ -50,8 +50,8 @@ struct ExtrapolationOptions {
   // the hinge; a hinge beside the room's side wall then puts half the kernel past that wall),
   // u = (along the door, into the unseen side), Omega = diag(sigma_along^2, sigma_depth^2) with
   // sigma_along = door_sigma_along_per_width * w and sigma_depth = door_sigma_depth_per_width * w,
-  // alpha = (0, door_skew_per_width * w) (w in metres). The paper's Omega is sigma^2 I; a narrower
-  // lateral sigma keeps the prediction out of the neighbouring rooms (docs/extrapolation.md).
+  // alpha = (0, door_skew_per_width * w) (w in metres): the paper's isotropic Omega = sigma^2 I by
+  // default; the clipping, not a narrow kernel, keeps it out of neighbouring rooms.
   double door_sigma_along_per_width = 1.3;
   double door_sigma_depth_per_width = 1.3;
   double door_skew_per_width = 3.0;
