@@ -1,5 +1,6 @@
 #include "bench/extrapolation/bench_extrapolation_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/extrapolation/extrapolation_experiment.hpp"
+#include "bench/extrapolation/floor_plan_experiment.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -184,13 +186,142 @@ nlohmann::json SummaryJson(const BenchExtrapolationOptions& options,
       {"thresholds", thresholds}};
 }
 
+// A door counts as recalled when its prediction covers at least this much of its room (m2).
+constexpr double kDoorRecallArea = 0.5;
+
+// The floor-plan totals at one threshold; `hinge` 0: jamb a as the hinge, 1: jamb b, 2: both.
+struct PlanTotals {
+  int64_t true_free = 0, false_free = 0, on_observed = 0, near_room = 0, near_true = 0;
+  int runs = 0, recalled = 0, scored = 0, below_08 = 0, below_07 = 0;
+  double median = 0.0, worst = 1.0;
+};
+
+PlanTotals SumPlans(const std::vector<PlanDoorResult>& results, size_t k, int hinge) {
+  PlanTotals t;
+  std::vector<double> per_door;
+  for (const PlanDoorResult& r : results) {
+    if (hinge != 2 && r.swapped != (hinge == 1)) continue;
+    const PlanDoorScore& s = r.scores[k];
+    t.true_free += s.true_free, t.false_free += s.false_free, t.on_observed += s.on_observed;
+    t.near_room += s.near_room, t.near_true += s.near_true;
+    ++t.runs;
+    t.recalled += s.true_free * r.cell_area >= kDoorRecallArea;
+    if (s.true_free + s.false_free > 0) {
+      const double p = static_cast<double>(s.true_free) / (s.true_free + s.false_free);
+      per_door.push_back(p);
+      t.below_08 += p < 0.8, t.below_07 += p < 0.7;
+      t.worst = std::min(t.worst, p);
+    }
+  }
+  t.scored = static_cast<int>(per_door.size());
+  if (!per_door.empty()) {
+    std::sort(per_door.begin(), per_door.end());
+    const size_t m = per_door.size() / 2;
+    t.median = per_door.size() % 2 ? per_door[m] : 0.5 * (per_door[m - 1] + per_door[m]);
+  }
+  return t;
+}
+
+std::string PlanReport(const BenchExtrapolationOptions& options,
+                       const std::vector<PlanDoorResult>& results, double seconds) {
+  std::ostringstream md;
+  int end_rooms = 0, second = 0;
+  for (const PlanDoorResult& r : results) {
+    if (r.swapped) continue;
+    end_rooms += r.end_room, second += r.second_doorway;
+  }
+  md << "# Closed doors on floor plans\n\n"
+     << "Command: `fleetmap bench extrapolation --plans " << options.plans << " --seed "
+     << options.seed << "`  \nMachine: " << MachineDescription() << ", Release build.  \n"
+     << "Wall time: " << Fixed(seconds, 1) << " s for " << options.plans << " plans, "
+     << results.size() / 2 << " hidden rooms (" << end_rooms << " at an end of the building, "
+     << second << " with a second doorway), each door scored with either jamb as the hinge.\n\n"
+     << "Precision: predicted cells in the hidden room over all predicted cells. Recall: the "
+        "room's cells within 2.5 m of the door's centre that are predicted. A door is recalled "
+        "when its prediction covers >= "
+     << Fixed(kDoorRecallArea, 1) << " m2 of its room.\n\n"
+     << "| p_th | precision (both) | hinge = jamb a | hinge = jamb b | recall <= 2.5 m | door "
+        "recall | per-door median | doors < 0.8 | doors < 0.7 | worst door | cells on observed "
+        "free |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  auto ratio = [](int64_t a, int64_t b) { return Ratio(a, b); };
+  for (size_t k = 0; k < options.p_th.size(); ++k) {
+    const PlanTotals both = SumPlans(results, k, 2);
+    const PlanTotals a = SumPlans(results, k, 0);
+    const PlanTotals b = SumPlans(results, k, 1);
+    md << "| " << Fixed(options.p_th[k], 2) << " | "
+       << ratio(both.true_free, both.true_free + both.false_free) << " ("
+       << both.true_free + both.false_free << " cells) | "
+       << ratio(a.true_free, a.true_free + a.false_free) << " | "
+       << ratio(b.true_free, b.true_free + b.false_free) << " | "
+       << ratio(both.near_true, both.near_room) << " | " << ratio(both.recalled, both.runs) << " | "
+       << Fixed(both.median, 3) << " | " << both.below_08 << " / " << both.scored << " | "
+       << both.below_07 << " / " << both.scored << " | " << Fixed(both.worst, 3) << " | "
+       << both.on_observed << " |\n";
+  }
+  return md.str();
+}
+
+std::string PlansCsv(const BenchExtrapolationOptions& options,
+                     const std::vector<PlanDoorResult>& results) {
+  std::ostringstream csv;
+  csv << "plan_seed,room,hinge,p_th,door_width,leaf_on_corridor_face,end_room,second_doorway,"
+         "true_free,false_free,on_observed,near_room,near_true\n";
+  for (const PlanDoorResult& r : results) {
+    for (size_t k = 0; k < options.p_th.size(); ++k) {
+      const PlanDoorScore& s = r.scores[k];
+      csv << r.plan_seed << "," << r.room << "," << (r.swapped ? "b" : "a") << ","
+          << options.p_th[k] << "," << Fixed(r.width, 3) << "," << r.leaf_on_corridor_face << ","
+          << r.end_room << "," << r.second_doorway << "," << s.true_free << "," << s.false_free
+          << "," << s.on_observed << "," << s.near_room << "," << s.near_true << "\n";
+    }
+  }
+  return csv.str();
+}
+
+nlohmann::json PlansJson(const BenchExtrapolationOptions& options,
+                         const std::vector<PlanDoorResult>& results, double seconds) {
+  nlohmann::json thresholds = nlohmann::json::array();
+  auto frac = [](int64_t a, int64_t b) {
+    return b > 0 ? nlohmann::json(static_cast<double>(a) / b) : nlohmann::json(nullptr);
+  };
+  for (size_t k = 0; k < options.p_th.size(); ++k) {
+    nlohmann::json row = {{"p_th", options.p_th[k]}};
+    for (const auto& [name, hinge] :
+         {std::pair{"both", 2}, std::pair{"hinge_a", 0}, std::pair{"hinge_b", 1}}) {
+      const PlanTotals t = SumPlans(results, k, hinge);
+      row[name] = {{"precision", frac(t.true_free, t.true_free + t.false_free)},
+                   {"true_free", t.true_free},
+                   {"false_free", t.false_free},
+                   {"on_observed", t.on_observed},
+                   {"recall_within_radius", frac(t.near_true, t.near_room)},
+                   {"door_recall", frac(t.recalled, t.runs)},
+                   {"doors", t.runs},
+                   {"doors_scored", t.scored},
+                   {"doors_below_0_8", t.below_08},
+                   {"doors_below_0_7", t.below_07},
+                   {"per_door_median", t.median},
+                   {"worst_door", t.worst}};
+    }
+    thresholds.push_back(row);
+  }
+  return {{"plans", options.plans},
+          {"first_seed", options.seed},
+          {"hidden_rooms", results.size() / 2},
+          {"seconds", seconds},
+          {"machine", MachineDescription()},
+          {"door_recall_area_m2", kDoorRecallArea},
+          {"thresholds", thresholds}};
+}
+
 }  // namespace
 
 int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream& out,
                           std::ostream& err) {
   const std::string prefix = "fleetmap bench extrapolation: ";
-  if (options.scenes < 1 || options.scenes > 10000) {
-    err << prefix << "--scenes: " << options.scenes << " must be in [1, 10000]\n";
+  if (options.scenes < 0 || options.scenes > 10000 || options.plans < 0 || options.plans > 10000 ||
+      options.scenes + options.plans == 0) {
+    err << prefix << "--scenes " << options.scenes << ", --plans " << options.plans
+        << ": each must be in [0, 10000], and not both 0\n";
     return cli::kExitBadInput;
   }
   if (options.p_th.empty() || static_cast<int>(options.p_th.size()) > kMaxThresholds) {
@@ -211,6 +342,45 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
       return cli::kExitBadInput;
     }
   }
+  auto write = [&](const std::string& path, const std::string& contents) {
+    const Status written = WriteFileAtomically(path, contents);
+    if (!written.ok()) err << prefix << written.message() << "\n";
+    return written.ok();
+  };
+  if (options.plans > 0) {
+    const auto plans_start = std::chrono::steady_clock::now();
+    std::vector<PlanDoorResult> plan_results;
+    for (int i = 0; i < options.plans; ++i) {
+      FloorPlanExperimentOptions plan;
+      plan.seed = options.seed + static_cast<uint32_t>(i);
+      plan.p_th = options.p_th;
+      if (i == 0 && !options.out_dir.empty()) {
+        plan.example_dir = options.out_dir + "/plan_" + std::to_string(plan.seed);
+      }
+      if (options.progress) {
+        err << "\r" << prefix << "plan " << i + 1 << "/" << options.plans << std::flush;
+      }
+      StatusOr<std::vector<PlanDoorResult>> result = RunFloorPlanExperiment(plan);
+      if (!result.ok()) {
+        err << "\n" << prefix << "plan " << plan.seed << ": " << result.status().message() << "\n";
+        return cli::kExitBadInput;
+      }
+      for (PlanDoorResult& r : result.value()) plan_results.push_back(std::move(r));
+    }
+    if (options.progress) err << "\n";
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - plans_start).count();
+    const std::string report = PlanReport(options, plan_results, seconds);
+    out << report << (options.scenes > 0 ? "\n" : "");
+    if (!options.out_dir.empty() &&
+        !(write(options.out_dir + "/plans.md", report) &&
+          write(options.out_dir + "/plans.csv", PlansCsv(options, plan_results)) &&
+          write(options.out_dir + "/plans.json",
+                PlansJson(options, plan_results, seconds).dump(2) + "\n"))) {
+      return cli::kExitBadInput;
+    }
+  }
+  if (options.scenes == 0) return cli::kExitOk;
   const auto start = std::chrono::steady_clock::now();
   std::vector<ExtrapolationSceneResult> results;
   for (int i = 0; i < options.scenes; ++i) {
@@ -241,10 +411,7 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
           std::pair{options.out_dir + "/results.csv", ResultsCsv(options, results)},
           std::pair{options.out_dir + "/results.json",
                     SummaryJson(options, results, seconds).dump(2) + "\n"}}) {
-      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
-        err << prefix << written.message() << "\n";
-        return cli::kExitBadInput;
-      }
+      if (!write(path, contents)) return cli::kExitBadInput;
     }
   }
   return cli::kExitOk;
@@ -253,10 +420,13 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
 void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<BenchExtrapolationOptions>();
   CLI::App* command = BenchCommand(app)->add_subcommand(
-      "extrapolation", "Map extrapolation on simulated indoor scenes (recall, precision, surface)");
+      "extrapolation",
+      "Map extrapolation on simulated indoor scenes and floor plans (recall, precision, surface)");
   command->add_option("--out", options->out_dir, "output directory (report, CSV, JSON)");
   command->add_option("--scenes", options->scenes, "number of scenes")->capture_default_str();
-  command->add_option("--seed", options->seed, "first scene seed")->capture_default_str();
+  command->add_option("--plans", options->plans, "number of floor plans (closed doors)")
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "first scene and plan seed")->capture_default_str();
   command->add_option("--pth", options->p_th, "thresholds in (0, 1), comma separated")
       ->delimiter(',')
       ->capture_default_str();

@@ -1,13 +1,15 @@
 #pragma once
 
-// `fleetmap bench extrapolation [--out DIR] [--scenes N] [--seed S] [--pth 0.5,0.6,0.7]`: the map
-// extrapolation experiment (extrapolation_experiment.hpp) over N simulated indoor scenes
-// (seeds S .. S + N - 1). Prints the paper's tables (detection recall of stairs and doors;
-// free-space precision per class and threshold; the surface gained behind closed doors) and,
-// with --out, writes DIR/report.md, DIR/results.csv (one row per scene and threshold) and
-// DIR/results.json (the totals), and the first scene's inputs under DIR/scene_<S>/ (local map,
-// entities, ground truths, camera points) to try `fleetmap extrapolate` on. Bad options exit with
-// code 2 before anything runs.
+// `fleetmap bench extrapolation [--out DIR] [--scenes N] [--plans M] [--seed S]
+// [--pth 0.5,0.6,0.7]`: the map extrapolation experiment (extrapolation_experiment.hpp) over N
+// simulated indoor scenes (seeds S .. S + N - 1), and the closed-door experiment on M floor plans
+// (floor_plan_experiment.hpp, plan seeds S .. S + M - 1; with --out also DIR/plans.csv, one row per
+// door, hinge choice and threshold, and DIR/plans.json, the totals). Prints the paper's tables
+// (detection recall of stairs and doors; free-space precision per class and threshold; the surface
+// gained behind closed doors) and, with --out, writes DIR/report.md, DIR/results.csv (one row per
+// scene and threshold) and DIR/results.json (the totals), and the first scene's inputs under
+// DIR/scene_<S>/ (local map, entities, ground truths, camera points) to try `fleetmap extrapolate`
+// on. Bad options exit with code 2 before anything runs.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -20,6 +22,7 @@ namespace fleetmap::bench {
 struct BenchExtrapolationOptions {
   std::string out_dir;
   int scenes = 20;
+  int plans = 0;  // floor plans; --scenes may be 0 when plans > 0
   uint32_t seed = 1;
   std::vector<double> p_th = {0.5, 0.6, 0.7};
   bool progress = true;

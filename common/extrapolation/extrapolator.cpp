@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <numbers>
 #include <optional>
 #include <set>
 
+#include "common/extrapolation/door_space.hpp"
 #include "common/extrapolation/kernels.hpp"
 #include "common/extrapolation/map_queries.hpp"
 #include "common/extrapolation/place_partition.hpp"
@@ -15,14 +15,9 @@
 namespace fleetmap::extrapolation {
 namespace {
 
-// A window of the local map's cell lattice (indices may lie outside the map): predicted grids are
-// cut from it, so their cells coincide with the local map's cells.
-struct LatticeWindow {
-  int x0 = 0;
-  int y0 = 0;
-  int width = 0;
-  int height = 0;
-};
+// Predicted grids are cut from windows of the local map's cell lattice (indices may lie outside the
+// map), so their cells coincide with the local map's cells.
+using LatticeWindow = CellWindow;
 
 // The lattice window covering the disc (map frame), at most `max_side` cells a side.
 LatticeWindow WindowAround(const grid::OccupancyGrid& map, const Point2& centre, double radius,
@@ -62,34 +57,6 @@ constexpr double kMaxCoordinate = 1e6;
 constexpr double kMaxPersonSpeed = 10.0;
 
 bool Finite(const Point2& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
-
-// Keeps the cells of `mask` (row-major, window-sized) 4-connected to a seed.
-std::vector<uint8_t> ConnectedToSeeds(const std::vector<uint8_t>& mask, int width, int height,
-                                      const std::vector<int>& seeds) {
-  std::vector<uint8_t> reached(mask.size(), 0);
-  std::deque<int> queue;
-  for (int s : seeds) {
-    if (s >= 0 && s < static_cast<int>(mask.size()) && mask[s] && !reached[s]) {
-      reached[s] = 1;
-      queue.push_back(s);
-    }
-  }
-  while (!queue.empty()) {
-    const int i = queue.front();
-    queue.pop_front();
-    const int x = i % width, y = i / width;
-    const int neighbours[4][2] = {{x + 1, y}, {x - 1, y}, {x, y + 1}, {x, y - 1}};
-    for (const auto& n : neighbours) {
-      if (n[0] < 0 || n[1] < 0 || n[0] >= width || n[1] >= height) continue;
-      const int j = n[1] * width + n[0];
-      if (mask[j] && !reached[j]) {
-        reached[j] = 1;
-        queue.push_back(j);
-      }
-    }
-  }
-  return reached;
-}
 
 class Extrapolator {
  public:
@@ -357,7 +324,9 @@ class Extrapolator {
     const Point2 origin = centre + options_.door_submap_distance * opening;
     const double yaw = std::atan2(opening.y(), opening.x()) - 0.5 * std::numbers::pi;
     const Pose2 map_from_submap{origin.x(), origin.y(), NormalizeAngle(yaw)};
-    // Kernel frame: origin at the hinge, x along the door line (either sense), y into the room.
+    // Kernel frame: origin at the doorway's centre, x along the door line, y into the room. The
+    // kernel is symmetric along the door, so which jamb is the hinge does not matter: where the
+    // room lies beside the doorway is the map's to say (DoorSpace), not the hinge's.
     const Vector2 kx(opening.y(), -opening.x());
     const SkewNormalKernel kernel(options_.door_sigma_along_per_width * w,
                                   options_.door_sigma_depth_per_width * w,
@@ -368,34 +337,25 @@ class Extrapolator {
     scene::Submap submap = MakePredictedSubmap(map_, window, map_from_submap);
     submap.kind = scene::SubmapKind::kPredictedDoor;
 
-    std::vector<uint8_t> candidate(submap.confidence.size(), 0);
+    DoorSpaceOptions space_options;
+    space_options.unseen_wall_thickness = options_.door_unseen_wall_thickness;
+    space_options.min_passage_width = options_.door_min_passage_width;
+    space_options.min_continued_wall = options_.door_min_continued_wall;
+    space_options.continuation_gap = options_.door_continuation_gap;
+    space_options.wall_clearance = options_.door_wall_clearance;
+    const DoorSpace space(map_, door, opening, window, space_options);
+    std::vector<uint8_t> candidate = space.allowed();
     for (int y = 0; y < window.height; ++y) {
       for (int x = 0; x < window.width; ++x) {
         const Point2 c = map_.CellCenter(window.x0 + x, window.y0 + y);
-        const Vector2 d = c - door.hinge;
+        const Vector2 d = c - centre;
         const double conf = kernel.Normalized(Vector2(kx.dot(d), opening.dot(d)));
         const size_t i = static_cast<size_t>(y) * window.width + x;
         submap.confidence[i] = static_cast<float>(conf);
-        const bool behind = (c - centre).dot(opening) > options_.door_wall_clearance;
-        const bool in_range = (c - centre).norm() <= options_.door_max_range;
-        const bool blocked = StateAtPoint(map_, c) == grid::CellState::kOccupied;
-        candidate[i] = conf > options_.p_th && behind && in_range && !blocked;
+        candidate[i] = candidate[i] && conf > options_.p_th && d.norm() <= options_.door_max_range;
       }
     }
-    // Seeds: just behind the doorway.
-    std::vector<int> seeds;
-    for (double s = 0.0; s <= w; s += 0.5 * map_.resolution()) {
-      const Point2 p =
-          door.hinge + s * along + (options_.door_wall_clearance + map_.resolution()) * opening;
-      const Point2 in_grid = map_.origin().ToTransform().inverse() * p / map_.resolution();
-      const int x = static_cast<int>(std::floor(in_grid.x())) - window.x0;
-      const int y = static_cast<int>(std::floor(in_grid.y())) - window.y0;
-      if (x >= 0 && y >= 0 && x < window.width && y < window.height) {
-        seeds.push_back(y * window.width + x);
-      }
-    }
-    const std::vector<uint8_t> reached =
-        ConnectedToSeeds(candidate, window.width, window.height, seeds);
+    const std::vector<uint8_t> reached = space.ReachableFromDoorway(candidate);
     int64_t free = 0;
     for (int y = 0; y < window.height; ++y) {
       for (int x = 0; x < window.width; ++x) {
@@ -483,6 +443,8 @@ Status ExtrapolationOptions::Validate() const {
       {"door_sigma_along_per_width", o.door_sigma_along_per_width},
       {"door_sigma_depth_per_width", o.door_sigma_depth_per_width},
       {"door_max_range", o.door_max_range},
+      {"door_min_passage_width", o.door_min_passage_width},
+      {"door_min_continued_wall", o.door_min_continued_wall},
       {"person_sigma_forward", o.person_sigma_forward},
       {"person_sigma_side", o.person_sigma_side},
       {"track_sample_spacing", o.track_sample_spacing},
@@ -497,6 +459,8 @@ Status ExtrapolationOptions::Validate() const {
       {"door_skew_per_width", o.door_skew_per_width},
       {"door_submap_distance", o.door_submap_distance},
       {"door_wall_clearance", o.door_wall_clearance},
+      {"door_unseen_wall_thickness", o.door_unseen_wall_thickness},
+      {"door_continuation_gap", o.door_continuation_gap},
       {"stairs_edge_clearance", o.stairs_edge_clearance},
       {"person_skew_forward", o.person_skew_forward},
       {"person_skew_side", o.person_skew_side},
@@ -536,6 +500,10 @@ void ExtrapolationOptions::Describe(OptionsPrinter& out) const {
   out.Add("door_wall_clearance", door_wall_clearance);
   out.Add("door_submap_distance", door_submap_distance);
   out.Add("door_max_range", door_max_range);
+  out.Add("door_unseen_wall_thickness", door_unseen_wall_thickness);
+  out.Add("door_min_passage_width", door_min_passage_width);
+  out.Add("door_min_continued_wall", door_min_continued_wall);
+  out.Add("door_continuation_gap", door_continuation_gap);
   out.Add("person_sigma_forward", person_sigma_forward);
   out.Add("person_sigma_side", person_sigma_side);
   out.Add("person_skew_forward", person_skew_forward);

@@ -14,8 +14,10 @@
 // Kernels are thresholded after normalising each to a peak of 1 (a confidence in [0, 1]), so
 // p_th means the same thing whatever sigma is (docs/extrapolation.md). Predicted free space never
 // claims a cell the local map shows occupied, and is clipped: doors' predictions spread only
-// through cells the local map does not show occupied (4-connected from the doorway, so a known
-// wall stops them) on the unseen side of the door and within `door_max_range`; stairs'
+// through cells the local map does not know (never onto observed free space, which is another
+// place), off the assumed thickness of seen walls and the continuations of seen walls, through
+// passages wider than a person (DoorSpace), 4-connected from the doorway, on the unseen side of
+// the door and within `door_max_range`; stairs'
 // predictions cover only the half-plane beyond the top of the flight; people's only cells in line
 // of sight of the person (through the local map).
 //
@@ -44,12 +46,13 @@ struct ExtrapolationOptions {
   // Pitch assumed when a stairs entity gives no run length (radians; 32 deg ~ 17 cm / 28 cm).
   double stairs_default_pitch = 0.5585;
 
-  // Doors: f_d = 2 phi(u) Phi(alpha^T omega^-1 u) at the hinge, u = (along the door, into the
-  // unseen side), Omega = diag(sigma_along^2, sigma_depth^2) with sigma_along =
-  // door_sigma_along_per_width * w and sigma_depth = door_sigma_depth_per_width * w, alpha = (0,
-  // door_skew_per_width * w) (w in metres). The paper's Omega is sigma^2 I; a narrower lateral
-  // sigma keeps the prediction out of the neighbouring rooms (docs/extrapolation.md).
-  double door_sigma_along_per_width = 1.0;
+  // Doors: f_d = 2 phi(u) Phi(alpha^T omega^-1 u) at the doorway's centre (the paper centres it on
+  // the hinge; a hinge beside the room's side wall then puts half the kernel past that wall),
+  // u = (along the door, into the unseen side), Omega = diag(sigma_along^2, sigma_depth^2) with
+  // sigma_along = door_sigma_along_per_width * w and sigma_depth = door_sigma_depth_per_width * w,
+  // alpha = (0, door_skew_per_width * w) (w in metres): the paper's isotropic Omega = sigma^2 I by
+  // default; the clipping, not a narrow kernel, keeps it out of neighbouring rooms.
+  double door_sigma_along_per_width = 1.3;
   double door_sigma_depth_per_width = 1.3;
   double door_skew_per_width = 3.0;
   // No cell closer than this to the door line is predicted (metres): the rest of the wall the
@@ -59,6 +62,15 @@ struct ExtrapolationOptions {
   double door_submap_distance = 1.0;
   // No predicted cell further than this from the door's centre (metres).
   double door_max_range = 2.5;
+  // Clipping by what the map shows (DoorSpace, docs/extrapolation.md): unknown cells this far
+  // behind a seen wall face are wall (metres); passages and gaps in seen faces narrower than
+  // door_min_passage_width lead nowhere; seen faces at least door_min_continued_wall long are
+  // continued through unknown space unless observed free space lies within door_continuation_gap
+  // of their end.
+  double door_unseen_wall_thickness = 0.3;
+  double door_min_passage_width = 0.5;
+  double door_min_continued_wall = 0.6;
+  double door_continuation_gap = 0.6;
 
   // People: a skew-normal personal-space kernel in the person's frame (x forward, y left):
   // sigma_forward / sigma_side (metres), skew alpha = (person_skew_forward,
