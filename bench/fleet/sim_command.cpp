@@ -65,7 +65,9 @@ int RunSim(const SimArgs& args) {
   // --secure runs the tile wire secured, then the same without security, unmeasured; where this
   // process may (root), each in a network namespace of its own, so that the loopback bytes
   // counted are the fleet's alone.
-  const bool isolated = args.secure && process::LossyNetworkNamespace::CheckAvailable().ok();
+  // A machine may allow root but not namespaces (a container): a first namespace made and removed
+  // here tells.
+  const bool isolated = args.secure && process::LossyNetworkNamespace::Create(0).ok();
   const auto run = [&](const std::string& wire, const std::vector<Pose2>& sim_frames,
                        bool secured = true) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
