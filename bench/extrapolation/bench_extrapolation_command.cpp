@@ -361,6 +361,10 @@ StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options, s
       experiment.resolution = map.grid.resolution();
       // A real map has its own laser dropouts: none are added.
       experiment.dropout = 0.0;
+      if (!options.out_dir.empty()) {
+        experiment.example_dir =
+            fmt::format("{}/real_maps/{}_room_{}", options.out_dir, per_map.name, doorway.room);
+      }
       const FloorPlan plan = PlanForRoom(map.grid, segmentation, doorway, segmentation_options);
       FLEETMAP_ASSIGN_OR_RETURN(std::vector<PlanDoorResult> results,
                                 RunHiddenRoomExperiment(plan, experiment));

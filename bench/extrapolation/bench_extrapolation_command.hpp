@@ -11,7 +11,9 @@
 // DIR/scene_<S>/ (local map, entities, ground truths, camera points) to try `fleetmap extrapolate`
 // on. With --real-maps DIR, the closed-door experiment on the rooms segmented in each map of DIR
 // (room_segmentation.hpp), with --out also DIR/real_maps.md, .csv (one row per door, hinge choice
-// and threshold) and .json (the totals). Bad options exit with code 2 before anything runs.
+// and threshold) and .json (the totals), and each hidden room's scene (hinge at jamb a) under
+// DIR/real_maps/<map>_room_<r>/ for `fleetmap extrapolate`. Bad options exit with code 2 before
+// anything runs.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
