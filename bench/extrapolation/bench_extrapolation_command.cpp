@@ -6,17 +6,21 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <thread>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "bench/extrapolation/extrapolation_experiment.hpp"
 #include "bench/extrapolation/floor_plan_experiment.hpp"
+#include "bench/extrapolation/room_segmentation.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/grid/map_io.hpp"
 
 namespace fleetmap::bench {
 namespace {
@@ -313,15 +317,194 @@ nlohmann::json PlansJson(const BenchExtrapolationOptions& options,
           {"thresholds", thresholds}};
 }
 
+// The hidden rooms of the real maps: one entry per door and hinge choice, with its map's name.
+struct RealMapResults {
+  std::vector<PlanDoorResult> doors;
+  std::vector<std::string> map_of_door;
+  struct PerMap {
+    std::string name;
+    int rooms = 0;  // segmented
+    int kept = 0;   // plausible rooms behind one doorway, each a scene
+  };
+  std::vector<PerMap> maps;
+};
+
+StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options, std::ostream& err) {
+  std::vector<std::filesystem::path> yamls;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(options.real_maps_dir, ec)) {
+    if (entry.path().extension() == ".yaml") yamls.push_back(entry.path());
+  }
+  if (ec || yamls.empty()) {
+    return InvalidArgumentError(options.real_maps_dir + ": no map YAML files there");
+  }
+  std::sort(yamls.begin(), yamls.end());
+  const RoomSegmentationOptions segmentation_options;
+  RealMapResults out;
+  for (size_t m = 0; m < yamls.size(); ++m) {
+    FLEETMAP_ASSIGN_OR_RETURN(const grid::LoadedMap map, grid::LoadMap(yamls[m].string()));
+    const RoomSegmentation segmentation = SegmentRooms(map.grid, segmentation_options);
+    RealMapResults::PerMap per_map;
+    per_map.name = yamls[m].stem().string();
+    per_map.rooms = static_cast<int>(segmentation.room_area.size());
+    per_map.kept = static_cast<int>(segmentation.doorways.size());
+    for (size_t d = 0; d < segmentation.doorways.size(); ++d) {
+      if (options.progress) {
+        err << "\r"
+            << "fleetmap bench extrapolation: " << per_map.name << " room " << d + 1 << "/"
+            << segmentation.doorways.size() << "   " << std::flush;
+      }
+      const SegmentedDoorway& doorway = segmentation.doorways[d];
+      FloorPlanExperimentOptions experiment;
+      experiment.seed = static_cast<uint32_t>(m);
+      experiment.p_th = options.p_th;
+      experiment.resolution = map.grid.resolution();
+      // A real map has its own laser dropouts: none are added.
+      experiment.dropout = 0.0;
+      if (!options.out_dir.empty()) {
+        experiment.example_dir =
+            fmt::format("{}/real_maps/{}_room_{}", options.out_dir, per_map.name, doorway.room);
+      }
+      const FloorPlan plan = PlanForRoom(map.grid, segmentation, doorway, segmentation_options);
+      FLEETMAP_ASSIGN_OR_RETURN(std::vector<PlanDoorResult> results,
+                                RunHiddenRoomExperiment(plan, experiment));
+      for (PlanDoorResult& r : results) {
+        r.room = doorway.room;
+        out.doors.push_back(std::move(r));
+        out.map_of_door.push_back(per_map.name);
+      }
+    }
+    out.maps.push_back(per_map);
+  }
+  if (options.progress) err << "\n";
+  return out;
+}
+
+// Precision of one door run at threshold k, if it predicted anything.
+std::optional<double> DoorPrecision(const PlanDoorResult& r, size_t k) {
+  const PlanDoorScore& s = r.scores[k];
+  if (s.true_free + s.false_free == 0) return std::nullopt;
+  return static_cast<double>(s.true_free) / (s.true_free + s.false_free);
+}
+
+std::string RealMapsReport(const BenchExtrapolationOptions& options, const RealMapResults& real,
+                           double seconds) {
+  std::ostringstream md;
+  int kept = 0;
+  for (const RealMapResults::PerMap& m : real.maps) kept += m.kept;
+  md << "# Closed doors on real maps\n\n"
+     << "Command: `fleetmap bench extrapolation --real-maps " << options.real_maps_dir
+     << " --scenes 0`  \nMachine: " << MachineDescription() << ", Release build.  \n"
+     << "Wall time: " << Fixed(seconds, 1) << " s for " << real.maps.size() << " maps, " << kept
+     << " hidden rooms (segmented automatically: rooms of 4-80 m2 behind exactly one doorway "
+        "0.6-1.3 m wide), each door scored with either jamb as the hinge.\n\n"
+     << "| p_th | precision (both) | hinge = jamb a | hinge = jamb b | recall <= 2.5 m | door "
+        "recall | per-door median | doors < 0.8 | doors < 0.7 | worst door | cells on observed "
+        "free |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (size_t k = 0; k < options.p_th.size(); ++k) {
+    const PlanTotals both = SumPlans(real.doors, k, 2);
+    const PlanTotals a = SumPlans(real.doors, k, 0);
+    const PlanTotals b = SumPlans(real.doors, k, 1);
+    std::string worst_name = "-";
+    double worst = 2.0;
+    for (size_t i = 0; i < real.doors.size(); ++i) {
+      const std::optional<double> p = DoorPrecision(real.doors[i], k);
+      if (p && *p < worst) {
+        worst = *p;
+        worst_name = fmt::format("{} room {} hinge {}", real.map_of_door[i], real.doors[i].room,
+                                 real.doors[i].swapped ? "b" : "a");
+      }
+    }
+    md << "| " << Fixed(options.p_th[k], 2) << " | "
+       << Ratio(both.true_free, both.true_free + both.false_free) << " ("
+       << both.true_free + both.false_free << " cells) | "
+       << Ratio(a.true_free, a.true_free + a.false_free) << " | "
+       << Ratio(b.true_free, b.true_free + b.false_free) << " | "
+       << Ratio(both.near_true, both.near_room) << " | " << Ratio(both.recalled, both.runs) << " | "
+       << Fixed(both.median, 3) << " | " << both.below_08 << " / " << both.scored << " | "
+       << both.below_07 << " / " << both.scored << " | "
+       << (worst <= 1.0 ? Fixed(worst, 3) + " (" + worst_name + ")" : std::string("n/a")) << " | "
+       << both.on_observed << " |\n";
+  }
+  md << "\n| map | rooms segmented | hidden rooms | door runs |";
+  for (double p : options.p_th) md << " precision / doors < 0.7 at " << Fixed(p, 2) << " |";
+  md << "\n|---|---|---|---|";
+  for (size_t k = 0; k < options.p_th.size(); ++k) md << "---|";
+  md << "\n";
+  for (const RealMapResults::PerMap& m : real.maps) {
+    std::vector<PlanDoorResult> mine;
+    for (size_t i = 0; i < real.doors.size(); ++i) {
+      if (real.map_of_door[i] == m.name) mine.push_back(real.doors[i]);
+    }
+    md << "| " << m.name << " | " << m.rooms << " | " << m.kept << " | " << mine.size() << " |";
+    for (size_t k = 0; k < options.p_th.size(); ++k) {
+      const PlanTotals t = SumPlans(mine, k, 2);
+      md << " " << Ratio(t.true_free, t.true_free + t.false_free) << " / " << t.below_07 << " |";
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
+std::string RealMapsCsv(const BenchExtrapolationOptions& options, const RealMapResults& real) {
+  std::ostringstream csv;
+  csv << "map,room,hinge,p_th,door_width,true_free,false_free,on_observed,near_room,near_true\n";
+  for (size_t i = 0; i < real.doors.size(); ++i) {
+    const PlanDoorResult& r = real.doors[i];
+    for (size_t k = 0; k < options.p_th.size(); ++k) {
+      const PlanDoorScore& s = r.scores[k];
+      csv << real.map_of_door[i] << "," << r.room << "," << (r.swapped ? "b" : "a") << ","
+          << options.p_th[k] << "," << Fixed(r.width, 3) << "," << s.true_free << ","
+          << s.false_free << "," << s.on_observed << "," << s.near_room << "," << s.near_true
+          << "\n";
+    }
+  }
+  return csv.str();
+}
+
+nlohmann::json RealMapsJson(const BenchExtrapolationOptions& options, const RealMapResults& real,
+                            double seconds) {
+  auto frac = [](int64_t a, int64_t b) {
+    return b > 0 ? nlohmann::json(static_cast<double>(a) / b) : nlohmann::json(nullptr);
+  };
+  nlohmann::json thresholds = nlohmann::json::array();
+  for (size_t k = 0; k < options.p_th.size(); ++k) {
+    const PlanTotals t = SumPlans(real.doors, k, 2);
+    thresholds.push_back({{"p_th", options.p_th[k]},
+                          {"precision", frac(t.true_free, t.true_free + t.false_free)},
+                          {"true_free", t.true_free},
+                          {"false_free", t.false_free},
+                          {"on_observed", t.on_observed},
+                          {"recall_within_radius", frac(t.near_true, t.near_room)},
+                          {"door_recall", frac(t.recalled, t.runs)},
+                          {"doors", t.runs},
+                          {"doors_scored", t.scored},
+                          {"doors_below_0_8", t.below_08},
+                          {"doors_below_0_7", t.below_07},
+                          {"per_door_median", t.median},
+                          {"worst_door", t.worst}});
+  }
+  nlohmann::json maps = nlohmann::json::array();
+  for (const RealMapResults::PerMap& m : real.maps) {
+    maps.push_back({{"map", m.name}, {"rooms_segmented", m.rooms}, {"hidden_rooms", m.kept}});
+  }
+  return {{"real_maps_dir", options.real_maps_dir},
+          {"maps", maps},
+          {"seconds", seconds},
+          {"machine", MachineDescription()},
+          {"door_recall_area_m2", kDoorRecallArea},
+          {"thresholds", thresholds}};
+}
+
 }  // namespace
 
 int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream& out,
                           std::ostream& err) {
   const std::string prefix = "fleetmap bench extrapolation: ";
   if (options.scenes < 0 || options.scenes > 10000 || options.plans < 0 || options.plans > 10000 ||
-      options.scenes + options.plans == 0) {
+      (options.scenes + options.plans == 0 && options.real_maps_dir.empty())) {
     err << prefix << "--scenes " << options.scenes << ", --plans " << options.plans
-        << ": each must be in [0, 10000], and not both 0\n";
+        << ": each must be in [0, 10000], and not both 0 without --real-maps\n";
     return cli::kExitBadInput;
   }
   if (options.p_th.empty() || static_cast<int>(options.p_th.size()) > kMaxThresholds) {
@@ -347,6 +530,25 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     if (!written.ok()) err << prefix << written.message() << "\n";
     return written.ok();
   };
+  if (!options.real_maps_dir.empty()) {
+    const auto real_start = std::chrono::steady_clock::now();
+    StatusOr<RealMapResults> real = RunRealMaps(options, err);
+    if (!real.ok()) {
+      err << prefix << "--real-maps: " << real.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - real_start).count();
+    const std::string report = RealMapsReport(options, real.value(), seconds);
+    out << report << (options.scenes + options.plans > 0 ? "\n" : "");
+    if (!options.out_dir.empty() &&
+        !(write(options.out_dir + "/real_maps.md", report) &&
+          write(options.out_dir + "/real_maps.csv", RealMapsCsv(options, real.value())) &&
+          write(options.out_dir + "/real_maps.json",
+                RealMapsJson(options, real.value(), seconds).dump(2) + "\n"))) {
+      return cli::kExitBadInput;
+    }
+  }
   if (options.plans > 0) {
     const auto plans_start = std::chrono::steady_clock::now();
     std::vector<PlanDoorResult> plan_results;
@@ -426,6 +628,8 @@ void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code) {
   command->add_option("--scenes", options->scenes, "number of scenes")->capture_default_str();
   command->add_option("--plans", options->plans, "number of floor plans (closed doors)")
       ->capture_default_str();
+  command->add_option("--real-maps", options->real_maps_dir,
+                      "directory of real maps (*.yaml): rooms behind closed doors");
   command->add_option("--seed", options->seed, "first scene and plan seed")->capture_default_str();
   command->add_option("--pth", options->p_th, "thresholds in (0, 1), comma separated")
       ->delimiter(',')

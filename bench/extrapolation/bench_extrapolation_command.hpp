@@ -9,7 +9,11 @@
 // gained behind closed doors) and, with --out, writes DIR/report.md, DIR/results.csv (one row per
 // scene and threshold) and DIR/results.json (the totals), and the first scene's inputs under
 // DIR/scene_<S>/ (local map, entities, ground truths, camera points) to try `fleetmap extrapolate`
-// on. Bad options exit with code 2 before anything runs.
+// on. With --real-maps DIR, the closed-door experiment on the rooms segmented in each map of DIR
+// (room_segmentation.hpp), with --out also DIR/real_maps.md, .csv (one row per door, hinge choice
+// and threshold) and .json (the totals), and each hidden room's scene (hinge at jamb a) under
+// DIR/real_maps/<map>_room_<r>/ for `fleetmap extrapolate`. Bad options exit with code 2 before
+// anything runs.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -23,6 +27,9 @@ struct BenchExtrapolationOptions {
   std::string out_dir;
   int scenes = 20;
   int plans = 0;  // floor plans; --scenes may be 0 when plans > 0
+  // Real maps (*.yaml) whose rooms are hidden behind closed doors (room_segmentation.hpp);
+  // --scenes and --plans may both be 0 when set.
+  std::string real_maps_dir;
   uint32_t seed = 1;
   std::vector<double> p_th = {0.5, 0.6, 0.7};
   bool progress = true;

@@ -16,6 +16,11 @@ StatusOr<std::vector<PlanDoorResult>> RunFloorPlanExperiment(
   FloorPlanOptions plan_options;
   plan_options.resolution = options.resolution;
   FLEETMAP_ASSIGN_OR_RETURN(const FloorPlan plan, GenerateFloorPlan(plan_options, options.seed));
+  return RunHiddenRoomExperiment(plan, options);
+}
+
+StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
+    const FloorPlan& plan, const FloorPlanExperimentOptions& options) {
   sim::Random random(options.seed * 7919u + 3u);
   const grid::OccupancyGrid& truth = plan.truth;
   std::vector<PlanDoorResult> results;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/extrapolation/floor_plan.hpp"
 #include "common/core/status.hpp"
 #include "common/extrapolation/extrapolator.hpp"
 
@@ -56,5 +57,11 @@ struct PlanDoorResult {
 // Every room of plan `seed`, each hinge choice. Errors: bad options.
 StatusOr<std::vector<PlanDoorResult>> RunFloorPlanExperiment(
     const FloorPlanExperimentOptions& options);
+
+// Every door of `plan` (generated, or made from a real map: room_segmentation.hpp), each hinge
+// choice, scored as above; `options.seed` seeds the laser dropouts and names the plan in the
+// results. Errors: bad options.
+StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
+    const FloorPlan& plan, const FloorPlanExperimentOptions& options);
 
 }  // namespace fleetmap::bench

@@ -1,0 +1,116 @@
+#include "bench/extrapolation/room_segmentation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "bench/extrapolation/floor_plan.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/sim/random.hpp"
+
+namespace fleetmap::bench {
+namespace {
+
+constexpr double kResolution = 0.05;
+
+// Two 4 m x 3 m rooms side by side, a 0.15 m wall between them with a 0.9 m doorway
+// (y in [1.0, 1.9)), walls all round; nothing unknown.
+grid::OccupancyGrid TwoRooms() {
+  grid::OccupancyGrid map(168, 64, kResolution, Pose2{0.0, 0.0, 0.0}, grid::kOccupiedValue);
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      const Point2 c = map.CellCenter(x, y);
+      const bool in_rows = c.y() > 0.1 && c.y() < 3.1;
+      const bool room_a = c.x() > 0.1 && c.x() < 4.1;
+      const bool room_b = c.x() > 4.25 && c.x() < 8.25;
+      const bool doorway = c.x() >= 4.1 && c.x() <= 4.25 && c.y() > 1.0 && c.y() < 1.9;
+      if ((in_rows && (room_a || room_b)) || doorway) map.at(x, y) = grid::kFreeValue;
+    }
+  }
+  return map;
+}
+
+TEST(RoomSegmentationTest, FindsBothRoomsAndTheirDoorway) {
+  const grid::OccupancyGrid map = TwoRooms();
+  const RoomSegmentation seg = SegmentRooms(map, RoomSegmentationOptions{});
+  ASSERT_EQ(seg.room_area.size(), 2u);
+  for (double area : seg.room_area) EXPECT_NEAR(area, 12.0, 0.3);
+  // Each room is behind one doorway: both are kept, each opening onto the other.
+  ASSERT_EQ(seg.doorways.size(), 2u);
+  for (const SegmentedDoorway& door : seg.doorways) {
+    EXPECT_NE(door.room, door.other);
+    EXPECT_NEAR(door.width, 0.9, 0.06);
+    for (const Point2& jamb : {door.jamb_a, door.jamb_b}) {
+      EXPECT_GE(jamb.x(), 4.0);
+      EXPECT_LE(jamb.x(), 4.35);
+      EXPECT_GE(jamb.y(), 0.97);
+      EXPECT_LE(jamb.y(), 1.93);
+    }
+    // The room's cells lie on the side `into_room` points to.
+    const size_t some_room_cell = [&] {
+      for (size_t i = 0; i < seg.labels.size(); ++i) {
+        if (seg.labels[i] == door.room) return i;
+      }
+      return seg.labels.size();
+    }();
+    ASSERT_LT(some_room_cell, seg.labels.size());
+    const Point2 inside = map.CellCenter(static_cast<int>(some_room_cell % map.width()),
+                                         static_cast<int>(some_room_cell / map.width()));
+    const bool room_is_left = inside.x() < 4.1;
+    EXPECT_EQ(door.into_room.x() < 0.0, room_is_left);
+    EXPECT_NEAR(std::abs(door.into_room.x()), 1.0, 1e-6);
+  }
+}
+
+TEST(RoomSegmentationTest, TooNarrowPassageIsNoDoorway) {
+  grid::OccupancyGrid map = TwoRooms();
+  // Narrow the doorway to 0.4 m: the rooms stay apart, and the passage is no door.
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      const Point2 c = map.CellCenter(x, y);
+      if (c.x() >= 4.1 && c.x() <= 4.25 && c.y() > 1.4 && c.y() < 1.9) {
+        map.at(x, y) = grid::kOccupiedValue;
+      }
+    }
+  }
+  const RoomSegmentation seg = SegmentRooms(map, RoomSegmentationOptions{});
+  ASSERT_EQ(seg.room_area.size(), 2u);
+  EXPECT_TRUE(seg.doorways.empty());
+}
+
+TEST(RoomSegmentationTest, SceneHidesExactlyTheRoomsFreeCells) {
+  const grid::OccupancyGrid map = TwoRooms();
+  const RoomSegmentationOptions options;
+  const RoomSegmentation seg = SegmentRooms(map, options);
+  ASSERT_FALSE(seg.doorways.empty());
+  const SegmentedDoorway& doorway = seg.doorways.front();
+  const FloorPlan plan = PlanForRoom(map, seg, doorway, options);
+  sim::Random random(1);
+  const HiddenRoomScene scene = HideRoom(plan, plan.doors.front(), false, 0.0, &random);
+  std::vector<uint8_t> is_leaf(seg.labels.size(), 0);
+  for (size_t i : doorway.leaf_cells) is_leaf[i] = 1;
+  int64_t hidden = 0;
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      const size_t i = static_cast<size_t>(y) * map.width() + x;
+      const std::optional<grid::CellIndex> cell = scene.local.CellAt(map.CellCenter(x, y));
+      ASSERT_TRUE(cell.has_value());
+      const grid::CellState state = scene.local.StateAt(cell->x, cell->y);
+      if (map.StateAt(x, y) != grid::CellState::kFree) continue;
+      if (seg.labels[i] == doorway.room) {
+        EXPECT_EQ(state, grid::CellState::kUnknown) << x << "," << y;
+        ++hidden;
+      } else if (is_leaf[i]) {
+        EXPECT_EQ(state, grid::CellState::kOccupied) << x << "," << y;
+      } else {
+        EXPECT_EQ(state, grid::CellState::kFree) << x << "," << y;
+      }
+    }
+  }
+  EXPECT_NEAR(hidden * kResolution * kResolution, 12.0, 0.3);
+  // The door closes the doorway, hinge at jamb a.
+  EXPECT_FALSE(scene.door.open);
+  EXPECT_TRUE(scene.door.hinge.isApprox(doorway.jamb_a));
+  EXPECT_TRUE(scene.door.latch.isApprox(doorway.jamb_b));
+}
+
+}  // namespace
+}  // namespace fleetmap::bench
