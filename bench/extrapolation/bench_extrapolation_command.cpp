@@ -8,7 +8,10 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -525,10 +528,18 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
       return cli::kExitBadInput;
     }
   }
-  auto write = [&](const std::string& path, const std::string& contents) {
-    const Status written = WriteFileAtomically(path, contents);
-    if (!written.ok()) err << prefix << written.message() << "\n";
-    return written.ok();
+  // Each experiment's report, CSV and JSON under --out (none without it); false after an error,
+  // which it prints.
+  const auto write_outputs = [&](const std::vector<std::pair<std::string, std::string>>& files) {
+    if (options.out_dir.empty()) return true;
+    for (const auto& [name, contents] : files) {
+      const Status written = WriteFileAtomically(options.out_dir + "/" + name, contents);
+      if (!written.ok()) {
+        err << prefix << written.message() << "\n";
+        return false;
+      }
+    }
+    return true;
   };
   if (!options.real_maps_dir.empty()) {
     const auto real_start = std::chrono::steady_clock::now();
@@ -541,11 +552,10 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
         std::chrono::duration<double>(std::chrono::steady_clock::now() - real_start).count();
     const std::string report = RealMapsReport(options, real.value(), seconds);
     out << report << (options.scenes + options.plans > 0 ? "\n" : "");
-    if (!options.out_dir.empty() &&
-        !(write(options.out_dir + "/real_maps.md", report) &&
-          write(options.out_dir + "/real_maps.csv", RealMapsCsv(options, real.value())) &&
-          write(options.out_dir + "/real_maps.json",
-                RealMapsJson(options, real.value(), seconds).dump(2) + "\n"))) {
+    if (!write_outputs(
+            {{"real_maps.md", report},
+             {"real_maps.csv", RealMapsCsv(options, real.value())},
+             {"real_maps.json", RealMapsJson(options, real.value(), seconds).dump(2) + "\n"}})) {
       return cli::kExitBadInput;
     }
   }
@@ -574,11 +584,10 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
         std::chrono::duration<double>(std::chrono::steady_clock::now() - plans_start).count();
     const std::string report = PlanReport(options, plan_results, seconds);
     out << report << (options.scenes > 0 ? "\n" : "");
-    if (!options.out_dir.empty() &&
-        !(write(options.out_dir + "/plans.md", report) &&
-          write(options.out_dir + "/plans.csv", PlansCsv(options, plan_results)) &&
-          write(options.out_dir + "/plans.json",
-                PlansJson(options, plan_results, seconds).dump(2) + "\n"))) {
+    if (!write_outputs(
+            {{"plans.md", report},
+             {"plans.csv", PlansCsv(options, plan_results)},
+             {"plans.json", PlansJson(options, plan_results, seconds).dump(2) + "\n"}})) {
       return cli::kExitBadInput;
     }
   }
@@ -607,14 +616,10 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string report = Report(options, results, seconds);
   out << report;
-  if (!options.out_dir.empty()) {
-    for (const auto& [path, contents] :
-         {std::pair{options.out_dir + "/report.md", report},
-          std::pair{options.out_dir + "/results.csv", ResultsCsv(options, results)},
-          std::pair{options.out_dir + "/results.json",
-                    SummaryJson(options, results, seconds).dump(2) + "\n"}}) {
-      if (!write(path, contents)) return cli::kExitBadInput;
-    }
+  if (!write_outputs({{"report.md", report},
+                      {"results.csv", ResultsCsv(options, results)},
+                      {"results.json", SummaryJson(options, results, seconds).dump(2) + "\n"}})) {
+    return cli::kExitBadInput;
   }
   return cli::kExitOk;
 }
