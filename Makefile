@@ -9,7 +9,7 @@ JOBS ?= $(shell nproc)
 # CI turns warnings into errors.
 WERROR := $(if $(CI),ON,OFF)
 
-.PHONY: all deps configure build run demo-maps test clean format
+.PHONY: all deps configure build run view-demo demo-maps test clean format
 
 all: build
 
@@ -23,9 +23,17 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # 4 simulated robots explore a 40 m office; a server fuses their tiles; all over DDS on loopback.
-# Then the same run with whole grids on the wire, for comparison. About 100 s.
+# Then the same run with whole grids on the wire, for comparison. About 100 s. Watch it live at
+# the URL it prints (http://127.0.0.1:$(VIEW_PORT)/, the web view).
+VIEW_PORT ?= 8080
 run: build
-	$(BUILD_DIR)/cli/fleetmap sim --robots 4 --terrain office --size 40 --duration 40 --out out/demo
+	$(BUILD_DIR)/cli/fleetmap sim --robots 4 --terrain office --size 40 --duration 40 --out out/demo \
+	  --view $(VIEW_PORT)
+
+# A long run to watch in the browser: 6 robots map a 60 m office for 10 minutes.
+view-demo: build
+	$(BUILD_DIR)/cli/fleetmap sim --robots 6 --terrain office --size 60 --duration 600 \
+	  --no-compare --out out/view-demo --view $(VIEW_PORT)
 
 # The slice on real SLAM maps: a server, two agents, one killed, one leaving (about 15 s).
 demo-maps: build

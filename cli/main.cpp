@@ -25,6 +25,7 @@
 #include "cli/terrain_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
+#include "cli/view_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchRegisterCommand(app, &exit_code);
   fleetmap::cli::AddSecurityCommand(app, &exit_code);
   fleetmap::cli::AddSaveMapCommand(app, &exit_code);
+  fleetmap::cli::AddViewCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

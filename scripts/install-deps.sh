@@ -16,6 +16,9 @@ packages=(
   libsqlite3-dev libzstd-dev zlib1g-dev libpng-dev liblz4-dev
   # DDS Security tooling (`fleetmap security`): the fleet CA, certificates, signed documents.
   libssl-dev openssl
+  # The web view (`fleetmap view`): its HTTP server and the page's map library; the view's tests
+  # load the page in a real browser.
+  libcpp-httplib-dev libjs-leaflet chromium
   # Tests and benchmarks.
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <string_view>
@@ -63,6 +64,52 @@ std::optional<double> HandshakeSeconds(const std::string& agent_output) {
     return std::nullopt;
   }
 }
+
+// `fleetmap view` beside the run (FleetSimOptions::view_port): started once the server listens,
+// stopped with SIGTERM when the run ends. A view that cannot start (the port is taken) is
+// reported and the run goes on without it: the page is for watching, not for the results.
+class SimView {
+ public:
+  SimView(const FleetSimOptions& options, int domain) {
+    if (options.view_port < 0) return;
+    std::error_code error;
+    const std::string self = fs::read_symlink("/proc/self/exe", error).string();
+    std::vector<std::string> argv = {self,
+                                     "view",
+                                     "--port",
+                                     std::to_string(options.view_port),
+                                     "--domain",
+                                     std::to_string(domain),
+                                     "--localhost-only"};
+    if (!options.security_dir.empty()) {
+      argv.insert(argv.end(),
+                  {"--security", options.security_dir, "--identity", kObserverIdentity});
+    }
+    view_ = std::make_unique<process::Subprocess>(std::move(argv));
+    if (view_->WaitForOutput("open http://", std::chrono::seconds(20))) {
+      std::cerr << fmt::format("\nfleetmap sim: watch the fleet at http://127.0.0.1:{}/\n",
+                               options.view_port);
+    } else {
+      std::cerr << "\nfleetmap sim: the view did not start (the run goes on without it): "
+                << view_->Output() << "\n";
+      view_.reset();
+    }
+  }
+  // Stops the view and passes on what it says when it stops: browsers served, its traffic.
+  ~SimView() {
+    if (view_ == nullptr) return;
+    view_->Signal(SIGTERM);
+    view_->Wait(std::chrono::seconds(10));
+    std::istringstream lines(view_->StdOut());
+    for (std::string line; std::getline(lines, line);) {
+      if (line.find("fleetmap view: open") == std::string::npos) std::cerr << "\n" << line;
+    }
+    std::cerr << "\n";
+  }
+
+ private:
+  std::unique_ptr<process::Subprocess> view_;
+};
 
 // How long agents that measure the grid wires may take to finish after the run.
 constexpr std::chrono::seconds kAccountingWait{900};
@@ -182,6 +229,7 @@ Status FleetSimOptions::Validate() const {
   if (!sim_frames.empty() && (measure_baselines || wire != "tiles")) {
     return InvalidArgumentError("robots at unknown poses run on the tile wire, unmeasured");
   }
+  if (view_port < -1 || view_port > 65535) return InvalidArgumentError("--view must be a TCP port");
   if (size < sim::kMinTerrainSize || size > sim::kMaxTerrainSize) {
     return InvalidArgumentError("--size must be in " + std::to_string(sim::kMinTerrainSize) + ".." +
                                 std::to_string(sim::kMaxTerrainSize) + " metres");
@@ -253,6 +301,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   if (!server.WaitForOutput("listening", std::chrono::seconds(20))) {
     return UnavailableError("fleetmap-server did not start: " + server.Output());
   }
+  const SimView view(options, domain);
   observer->MarkStart();
   const auto start = steady_clock::now();
   const std::optional<uint64_t> loopback_at_start = LoopbackBytesSent();

@@ -44,6 +44,9 @@ struct FleetSimOptions {
   // "server", robot0..robotN-1 and the viewer "observer": every process joins secured. Empty:
   // no DDS Security.
   std::string security_dir;
+  // `fleetmap sim --view PORT`: a `fleetmap view` process on the run's domain serves the live page
+  // at http://127.0.0.1:PORT/ for as long as the run lasts (-1: none).
+  int view_port = -1;
 
   Status Validate() const;
 };

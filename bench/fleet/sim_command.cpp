@@ -28,6 +28,7 @@ struct SimArgs {
   bool unknown_poses = false;
   bool compare_known = false;
   bool secure = false;
+  int view_port = -1;
 };
 
 int RunSim(const SimArgs& args) {
@@ -39,6 +40,7 @@ int RunSim(const SimArgs& args) {
   }
   FleetSimOptions fleet = ScenarioFleetOptions(*kind, args.scenario);
   fleet.robots = args.robots;
+  fleet.view_port = args.view_port;
   if (args.unknown_poses) fleet.sim_frames = UnknownPoseFrames(fleet.seed, fleet.robots);
   if (const Status valid = fleet.Validate(); !valid.ok()) {
     std::cerr << "fleetmap sim: " << valid.message() << "\n";
@@ -67,7 +69,9 @@ int RunSim(const SimArgs& args) {
   // counted are the fleet's alone.
   // A machine may allow root but not namespaces (a container): a first namespace made and removed
   // here tells.
-  const bool isolated = args.secure && process::LossyNetworkNamespace::Create(0).ok();
+  // With --view the fleet stays in this namespace, where the browser can reach the page.
+  const bool isolated =
+      args.secure && args.view_port < 0 && process::LossyNetworkNamespace::Create(0).ok();
   const auto run = [&](const std::string& wire, const std::vector<Pose2>& sim_frames,
                        bool secured = true) -> StatusOr<FleetRunResult> {
     FleetSimOptions options = fleet;
@@ -179,6 +183,11 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                     "run the fleet with DDS Security (credentials made in <out>/security), then "
                     "the same run without it, and compare join times, wire bytes and latency "
                     "(no grid-wire run)");
+  command
+      ->add_option("--view", args->view_port,
+                   "serve the live web view at http://127.0.0.1:PORT/ while the fleet runs "
+                   "(fleetmap view; each run of the sim in turn)")
+      ->check(CLI::Range(1, 65535));
   command->callback([args, exit_code] { *exit_code = RunSim(*args); });
 }
 

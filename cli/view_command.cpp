@@ -1,0 +1,121 @@
+#include "cli/view_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "cli/inputs/exit_codes.hpp"
+#include "view/fleet_view.hpp"
+#include "view/static_folder.hpp"
+
+namespace fleetmap::cli {
+namespace {
+
+std::atomic<bool> g_stop{false};
+void OnSignal(int /*signal*/) { g_stop = true; }
+
+constexpr char kDescription[] = R"(
+Open the printed address in a browser. The page draws the fused vector tiles (obstacles at their
+widths, free space, unknown grey), the fused grid as an optional layer, every robot (pose, path,
+live / stale / lost, map revision, wire bytes/s, updates/s, latency), the predicted sub-maps by state
+and the learned objects; a table lists the robots and a status line the fleet. Only GET requests are
+served and nothing reaches DDS. Binds to 127.0.0.1 unless --bind says otherwise.)";
+
+}  // namespace
+
+int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err) {
+  const auto fail = [&](const Status& status) {
+    err << "fleetmap view: " << status.message() << "\n";
+    return kExitBadInput;
+  };
+  view::FleetViewOptions view_options;
+  view_options.bind = options.bind;
+  view_options.port = options.port;
+  view_options.max_clients = options.max_clients;
+  auto static_dir = view::FindStaticFolder(options.static_dir);
+  if (!static_dir.ok()) return fail(static_dir.status());
+  view_options.static_dir = *static_dir;
+  view_options.dds.domain_id = options.domain;
+  view_options.dds.name = "fleetmap-view";
+  if (options.localhost_only) view_options.dds.localhost_only = true;
+  if (!options.security_dir.empty()) {
+    if (const Status secured =
+            view_options.dds.UseSecurityFolder(options.security_dir, options.security_identity);
+        !secured.ok()) {
+      return fail(secured.WithContext("--security"));
+    }
+  }
+  auto view = view::FleetView::Start(std::move(view_options));
+  if (!view.ok()) return fail(view.status());
+  out << fmt::format("fleetmap view: open {} (DDS domain {}; Ctrl-C to stop)\n", (*view)->url(),
+                     (*view)->domain_id())
+      << std::flush;
+
+  g_stop = false;
+  std::signal(SIGINT, OnSignal);
+  std::signal(SIGTERM, OnSignal);
+  const auto start = std::chrono::steady_clock::now();
+  const auto until = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(options.duration_s));
+  while (!g_stop && (options.duration_s <= 0.0 || std::chrono::steady_clock::now() < until)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const view::BroadcastCounters counters = (*view)->counters();
+  const view::ViewTraffic traffic = (*view)->traffic();
+  view->reset();  // the web server, then the participant, before the process ends
+  out << fmt::format(
+      "fleetmap view: stopped; {} browsers served, {} refused (more than {} at once), {} resyncs\n",
+      counters.connected, counters.refused, options.max_clients, counters.resyncs);
+  const double seconds = std::max(traffic.seconds, 1e-3);
+  out << fmt::format(
+      "fleetmap view: per browser, {} deltas, {} bytes in {:.0f} s ({:.0f} B/s; whole state now "
+      "{} bytes); the fused grid as PNG at each of its {} updates: {} bytes ({:.0f} B/s, {})\n",
+      traffic.deltas, traffic.delta_bytes, seconds, traffic.delta_bytes / seconds,
+      traffic.last_full_bytes, traffic.grids, traffic.grid_png_bytes,
+      traffic.grid_png_bytes / seconds,
+      traffic.delta_bytes > 0
+          ? fmt::format("{:.1f}x the deltas",
+                        static_cast<double>(traffic.grid_png_bytes) / traffic.delta_bytes)
+          : std::string("no deltas"));
+  return kExitOk;
+}
+
+void AddViewCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<ViewOptions>();
+  auto domain = std::make_shared<int>(-1);
+  CLI::App* command =
+      app.add_subcommand("view", "Serve a live web view of the fleet (map, robots, predictions)");
+  command->footer(kDescription);
+  command->add_option("--port", options->port, "TCP port (0: any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  command->add_option("--bind", options->bind, "address to listen on")->capture_default_str();
+  command->add_option("--domain", *domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  command->add_flag("--localhost-only", options->localhost_only,
+                    "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
+  command->add_option("--max-clients", options->max_clients, "browsers served at once")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  command->add_option("--duration", options->duration_s, "stop after this many seconds (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--static-dir", options->static_dir,
+                      "the page's folder (default: the installed one, or $FLEETMAP_VIEW_DIR)");
+  command->add_option("--security", options->security_dir,
+                      "DDS Security folder (fleetmap security): join the secured fleet as "
+                      "--identity");
+  command
+      ->add_option("--identity", options->security_identity,
+                   "the enrolled viewer to join as (fleetmap security enroll --viewer NAME)")
+      ->capture_default_str();
+  command->callback([options, domain, exit_code] {
+    if (*domain >= 0) options->domain = *domain;
+    *exit_code = RunView(*options, std::cout, std::cerr);
+  });
+}
+
+}  // namespace fleetmap::cli

@@ -1,0 +1,33 @@
+#pragma once
+
+// `fleetmap view [--port 8080] [--bind 127.0.0.1]`: the web view of a live fleet. Joins the
+// fleet's DDS domain as a reader and serves one page at http://<bind>:<port>/ that shows the fused
+// map, the robots, the sub-map graph and the learned objects as they change (docs/view.md).
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace fleetmap::cli {
+
+struct ViewOptions {
+  int port = 8080;  // 0: any free port (printed)
+  std::string bind = "127.0.0.1";
+  std::optional<int> domain;
+  bool localhost_only = false;
+  std::string static_dir;  // empty: the installed page
+  size_t max_clients = 32;
+  double duration_s = 0.0;  // 0: until SIGINT or SIGTERM
+  std::string security_dir;
+  std::string security_identity = "viewer";
+};
+
+// Serves until a signal (or the duration); prints the URL to open on `out` once listening.
+// kExitOk; kExitBadInput for a bad option, a folder without the page or an address it cannot bind.
+int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err);
+
+void AddViewCommand(CLI::App& app, int* exit_code);
+
+}  // namespace fleetmap::cli

@@ -1,0 +1,216 @@
+#include "view/fleet_view_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "common/transport/topics.hpp"
+
+namespace fleetmap::view {
+namespace {
+
+using nlohmann::json;
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+const Timestamp kStart = Timestamp() + std::chrono::hours(500000);
+
+transport::TileEvent FusedTile(int x, int y, uint32_t revision) {
+  transport::TileEvent event;
+  event.tile.robot_id = RobotId{"fleet"};
+  event.tile.tile = TileId{x, y};
+  event.tile.revision = revision;
+  vector_map::Polyline wall;
+  wall.points = {Point2(x * 10.0, y * 10.0), Point2(x * 10.0 + 3.0, y * 10.0)};
+  wall.half_width = 0.05;
+  event.tile.map.obstacles.push_back(wall);
+  event.tile.map.free_space.push_back(
+      {{Point2(x * 10.0, y * 10.0 + 1), Point2(x * 10.0 + 2, y * 10.0 + 1),
+        Point2(x * 10.0 + 2, y * 10.0 + 2)},
+       {}});
+  return event;
+}
+
+transport::RobotEvent Status(const std::string& robot, double x) {
+  RobotStatus status;
+  status.robot = RobotId{robot};
+  status.map_from_robot = Pose2{x, 2.0, 0.5};
+  status.fleet_from_map = Pose2{10.0, 0.0, 0.0};
+  status.map_revision = 3;
+  return transport::RobotEvent::Alive(status);
+}
+
+json Parse(const std::optional<std::string>& event) {
+  EXPECT_TRUE(event.has_value());
+  return event ? json::parse(*event) : json();
+}
+
+TEST(FleetViewModelTest, ADeltaHoldsOnlyWhatChanged) {
+  FleetViewModel model;
+  model.OnFusedTile(FusedTile(0, 0, 1));
+  model.OnFusedTile(FusedTile(1, 0, 1));
+  model.Tick(kStart);
+  const json first = Parse(model.TakeDelta());
+  EXPECT_EQ(first["type"], "delta");
+  EXPECT_EQ(first["tiles"].size(), 2u);
+  EXPECT_EQ(first["status"]["tiles"], 2);
+
+  // Nothing new: no delta at all.
+  model.Tick(kStart + milliseconds(200));
+  EXPECT_FALSE(model.TakeDelta().has_value());
+
+  // The same tile again is no change; a new revision of one tile is.
+  model.OnFusedTile(FusedTile(0, 0, 1));
+  model.OnFusedTile(FusedTile(1, 0, 2));
+  model.Tick(kStart + milliseconds(400));
+  const json second = Parse(model.TakeDelta());
+  ASSERT_EQ(second["tiles"].size(), 1u);
+  EXPECT_EQ(second["tiles"]["1,0"]["rev"], 2);
+  EXPECT_FALSE(second.contains("status")) << "the status line did not change";
+  EXPECT_GT(second["seq"].get<int>(), first["seq"].get<int>());
+
+  // A removed tile goes out as null.
+  transport::TileEvent removed;
+  removed.kind = transport::TileEvent::Kind::kRemoved;
+  removed.tile.tile = TileId{0, 0};
+  model.OnFusedTile(removed);
+  model.Tick(kStart + milliseconds(600));
+  const json third = Parse(model.TakeDelta());
+  EXPECT_TRUE(third["tiles"]["0,0"].is_null());
+  EXPECT_EQ(third["status"]["tiles"], 1);
+}
+
+TEST(FleetViewModelTest, TheWholeStateHoldsEverythingSoFar) {
+  FleetViewModel model;
+  model.OnFusedTile(FusedTile(0, 0, 1));
+  model.OnFusedTile(FusedTile(0, 1, 1));
+  model.OnRobotEvent(Status("alpha", 1.0), kStart);
+  model.Tick(kStart);
+  const std::optional<std::string> delta = model.TakeDelta();
+  const json full = json::parse(model.FullEvent());
+  EXPECT_EQ(full["type"], "full");
+  EXPECT_EQ(full["seq"], json::parse(*delta)["seq"]) << "the whole state includes that delta";
+  EXPECT_EQ(full["tiles"].size(), 2u);
+  ASSERT_TRUE(full["robots"].contains("alpha"));
+  // The tile's geometry, in metres: one obstacle [half width, closed, x0, y0, x1, y1].
+  EXPECT_EQ(full["tiles"]["0,1"]["ob"][0], json({0.05, 0, 0.0, 10.0, 3.0, 10.0}));
+  EXPECT_EQ(full["tiles"]["0,1"]["fr"][0][0].size(), 6u);
+}
+
+TEST(FleetViewModelTest, RobotsAreShownInTheFleetFrameAndTurnStaleThenLost) {
+  FleetViewModel model;
+  model.OnRobotEvent(Status("alpha", 1.0), kStart);
+  model.Tick(kStart);
+  json alpha = Parse(model.TakeDelta())["robots"]["alpha"];
+  EXPECT_EQ(alpha["state"], "live");
+  EXPECT_DOUBLE_EQ(alpha["x"].get<double>(), 11.0) << "fleet_from_map moves it 10 m";
+  EXPECT_DOUBLE_EQ(alpha["y"].get<double>(), 2.0);
+  EXPECT_EQ(alpha["rev"], 3);
+
+  // Moving: the path grows.
+  model.OnRobotEvent(Status("alpha", 2.0), kStart + milliseconds(500));
+  model.Tick(kStart + milliseconds(500));
+  alpha = Parse(model.TakeDelta())["robots"]["alpha"];
+  EXPECT_EQ(alpha["path"], json({11.0, 2.0, 12.0, 2.0}));
+
+  // Silent past stale_after: stale; then DDS says lost.
+  model.Tick(kStart + seconds(3));
+  EXPECT_EQ(Parse(model.TakeDelta())["robots"]["alpha"]["state"], "stale");
+  model.OnRobotEvent(
+      transport::RobotEvent::Gone(transport::RobotEvent::Kind::kLost, RobotId{"alpha"}, "writer"),
+      kStart + seconds(3));
+  model.Tick(kStart + seconds(3));
+  const json lost = Parse(model.TakeDelta());
+  EXPECT_EQ(lost["robots"]["alpha"]["state"], "lost");
+  EXPECT_EQ(lost["status"]["lost"], 1);
+  EXPECT_EQ(lost["status"]["live"], 0);
+}
+
+TEST(FleetViewModelTest, APlacementFromTheServerMovesTheRobot) {
+  FleetViewModel model;
+  RobotStatus status;
+  status.robot = RobotId{"bravo"};
+  status.map_from_robot = Pose2{1.0, 0.0, 0.0};
+  status.tiles_in_map_frame = true;
+  model.OnRobotEvent(transport::RobotEvent::Alive(status), kStart);
+  model.Tick(kStart);
+  EXPECT_EQ(Parse(model.TakeDelta())["robots"]["bravo"]["placement"], "unplaced");
+
+  transport::RobotFrameEvent frame;
+  frame.message.robot = RobotId{"bravo"};
+  frame.message.state = transport::RobotFrameMessage::State::kPlaced;
+  frame.message.fleet_from_map = Pose2{0.0, 5.0, 0.0};
+  model.OnRobotFrame(frame);
+  model.Tick(kStart + milliseconds(100));
+  const json bravo = Parse(model.TakeDelta())["robots"]["bravo"];
+  EXPECT_EQ(bravo["placement"], "placed");
+  EXPECT_DOUBLE_EQ(bravo["y"].get<double>(), 5.0);
+}
+
+TEST(FleetViewModelTest, WireRatesAndLatencyComeFromTheRobotsTiles) {
+  FleetViewModel model;
+  model.OnRobotEvent(Status("alpha", 1.0), kStart);
+  for (int i = 0; i < 10; ++i) {
+    transport::TileEvent tile = FusedTile(i, 0, 1);
+    tile.tile.robot_id = RobotId{"alpha"};
+    tile.serialized_bytes = 1000;
+    tile.tile.stamp = kStart + milliseconds(500 * i);
+    tile.received = tile.tile.stamp + milliseconds(20);
+    model.OnRobotTile(tile);
+  }
+  model.Tick(kStart + milliseconds(4600));
+  const json alpha = Parse(model.TakeDelta())["robots"]["alpha"];
+  // Ten tiles of 1000 bytes over the 4.58 s since the first arrived.
+  EXPECT_NEAR(alpha["bps"].get<double>(), 10000.0 / 4.58, 1.0);
+  EXPECT_NEAR(alpha["ups"].get<double>(), 10 / 4.58, 0.06);
+  EXPECT_NEAR(alpha["latency_ms"].get<double>(), 20.0, 0.1);
+}
+
+TEST(FleetViewModelTest, RefusedSamplesAreCountedByTopic) {
+  FleetViewModel model;
+  transport::TileEvent bad;
+  bad.kind = transport::TileEvent::Kind::kRejected;
+  model.OnFusedTile(bad);
+  model.OnFusedTile(bad);
+  model.OnRobotEvent(transport::RobotEvent::Rejected(InvalidArgumentError("bad")), kStart);
+  model.Tick(kStart);
+  const json status = Parse(model.TakeDelta())["status"];
+  EXPECT_EQ(status["rejected"], 3);
+  EXPECT_EQ(status["rejected_by_topic"][transport::kFusedTilesTopic], 2);
+  EXPECT_EQ(status["rejected_by_topic"][transport::kRobotStatusTopic], 1);
+}
+
+TEST(FleetViewModelTest, PredictionsCarryTheirStateAndOutline) {
+  FleetViewModel model;
+  transport::SubmapEvent event;
+  event.message.submap.id = 4;
+  event.message.submap.kind = scene::SubmapKind::kPredictedDoor;
+  event.message.submap.navigable = grid::OccupancyGrid(10, 10, 0.1);
+  for (int y = 2; y < 8; ++y) {
+    for (int x = 2; x < 8; ++x) event.message.submap.navigable.at(x, y) = grid::kFreeValue;
+  }
+  event.message.state = scene::SubmapState::kConfirmed;
+  event.message.precision = 0.96F;
+  model.OnSubmap(event);
+  model.Tick(kStart);
+  const json delta = Parse(model.TakeDelta());
+  const json& submap = delta["submaps"]["4"];
+  EXPECT_EQ(submap["state"], "confirmed");
+  EXPECT_EQ(submap["kind"], "predicted_door");
+  EXPECT_NEAR(submap["precision"].get<double>(), 0.96, 1e-3);
+  ASSERT_EQ(submap["rings"].size(), 1u);
+  // The outline runs through the centres of the free block's border cells: 0.25 .. 0.75 m.
+  double min_x = 1e9;
+  double max_x = -1e9;
+  const json& ring = submap["rings"][0];
+  for (size_t i = 0; i < ring.size(); i += 2) {
+    min_x = std::min(min_x, ring[i].get<double>());
+    max_x = std::max(max_x, ring[i].get<double>());
+  }
+  EXPECT_NEAR(min_x, 0.25, 1e-6);
+  EXPECT_NEAR(max_x, 0.75, 1e-6);
+  EXPECT_EQ(delta["status"]["submaps"]["confirmed"], 1);
+}
+
+}  // namespace
+}  // namespace fleetmap::view

@@ -1,0 +1,309 @@
+#include "view/fleet_view_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/transport/topics.hpp"
+#include "view/map_json.hpp"
+
+namespace fleetmap::view {
+namespace {
+
+using nlohmann::json;
+
+double Millimetres(double metres) { return std::round(metres * 1000.0) / 1000.0; }
+// To a whole number of `per_unit`ths (10: tenths), which prints without binary noise (0.7, not
+// 0.7000000000000001).
+double Rounded(double value, double per_unit) { return std::round(value * per_unit) / per_unit; }
+
+double SecondsBetween(Timestamp from, Timestamp to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
+const char* LivelinessName(int liveliness) {
+  static constexpr const char* kNames[] = {"live", "stale", "lost", "left"};
+  return kNames[liveliness];
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace
+
+FleetViewModel::FleetViewModel(ViewModelOptions options) : options_(options) {}
+
+FleetViewModel::Robot& FleetViewModel::RobotNamed(const RobotId& id) {
+  return robot_state_[id.value];
+}
+
+void FleetViewModel::OnFusedTile(const transport::TileEvent& event) {
+  switch (event.kind) {
+    case transport::TileEvent::Kind::kTile:
+      tiles_.Put(TileKey(event.tile.tile), TileJson(event.tile));
+      break;
+    case transport::TileEvent::Kind::kRemoved:
+      tiles_.Remove(TileKey(event.tile.tile));
+      break;
+    case transport::TileEvent::Kind::kRejected:
+      CountRejected(transport::kFusedTilesTopic);
+      break;
+  }
+}
+
+void FleetViewModel::OnRobotTile(const transport::TileEvent& event) {
+  if (event.kind == transport::TileEvent::Kind::kRejected) {
+    CountRejected(transport::kRobotTilesTopic);
+    return;
+  }
+  if (event.kind != transport::TileEvent::Kind::kTile) return;
+  Robot& robot = RobotNamed(event.tile.robot_id);
+  robot.tiles.push_back({event.received, event.serialized_bytes,
+                         1000.0 * SecondsBetween(event.tile.stamp, event.received)});
+}
+
+void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp now) {
+  switch (event.kind) {
+    case transport::RobotEvent::Kind::kStatus: {
+      Robot& robot = RobotNamed(event.robot);
+      robot.status = event.status;
+      robot.liveliness = Liveliness::kLive;
+      robot.last_status = now;
+      if (const std::optional<Pose2> pose = FleetPose(robot)) {
+        const Point2 here = pose->translation();
+        if (robot.path.empty() || (robot.path.back() - here).norm() >= options_.path_spacing_m) {
+          robot.path.push_back(here);
+          if (robot.path.size() > options_.path_points) robot.path.pop_front();
+        }
+      }
+      break;
+    }
+    case transport::RobotEvent::Kind::kLeft:
+      RobotNamed(event.robot).liveliness = Liveliness::kLeft;
+      break;
+    case transport::RobotEvent::Kind::kLost:
+      RobotNamed(event.robot).liveliness = Liveliness::kLost;
+      break;
+    case transport::RobotEvent::Kind::kRejected:
+      CountRejected(transport::kRobotStatusTopic);
+      return;
+  }
+  RefreshRobot(event.robot.value, now);
+}
+
+void FleetViewModel::OnRobotFrame(const transport::RobotFrameEvent& event) {
+  if (event.kind == transport::RobotFrameEvent::Kind::kRejected) {
+    CountRejected(transport::kRobotFramesTopic);
+    return;
+  }
+  Robot& robot = RobotNamed(event.message.robot);
+  if (event.kind == transport::RobotFrameEvent::Kind::kSample) {
+    robot.frame = event.message;
+  } else {
+    robot.frame.reset();
+  }
+}
+
+void FleetViewModel::OnSubmap(const transport::SubmapEvent& event) {
+  const std::string key = std::to_string(event.message.submap.id);
+  switch (event.kind) {
+    case transport::SubmapEvent::Kind::kSample:
+      submaps_.Put(key, SubmapJson(event.message));
+      break;
+    case transport::SubmapEvent::Kind::kRemoved:
+      submaps_.Remove(key);
+      break;
+    case transport::SubmapEvent::Kind::kRejected:
+      CountRejected(transport::kSubmapGraphTopic);
+      break;
+  }
+}
+
+void FleetViewModel::OnObject(const transport::ObjectModelEvent& event) {
+  const std::string key = std::to_string(event.message.object_id);
+  switch (event.kind) {
+    case transport::ObjectModelEvent::Kind::kSample:
+      objects_.Put(key, ObjectJson(event.message));
+      break;
+    case transport::ObjectModelEvent::Kind::kRemoved:
+      objects_.Remove(key);
+      break;
+    case transport::ObjectModelEvent::Kind::kRejected:
+      CountRejected(transport::kObjectsTopic);
+      break;
+  }
+}
+
+void FleetViewModel::OnTemplate(const transport::ObjectTemplateEvent& event) {
+  const std::string key = std::to_string(event.message.template_id);
+  switch (event.kind) {
+    case transport::ObjectTemplateEvent::Kind::kSample:
+      templates_.Put(key, TemplateJson(event.message));
+      break;
+    case transport::ObjectTemplateEvent::Kind::kRemoved:
+      templates_.Remove(key);
+      break;
+    case transport::ObjectTemplateEvent::Kind::kRejected:
+      CountRejected(transport::kObjectTemplatesTopic);
+      break;
+  }
+}
+
+void FleetViewModel::OnFleetMap(const transport::MapMessage& map) {
+  ++maps_received_;
+  const grid::OccupancyGrid& grid = map.grid;
+  grid_ = json{{"count", maps_received_},
+               {"w", grid.width()},
+               {"h", grid.height()},
+               {"res", grid.resolution()},
+               {"ox", Millimetres(grid.origin().x)},
+               {"oy", Millimetres(grid.origin().y)}};
+}
+
+void FleetViewModel::CountRejected(std::string_view topic) {
+  auto it = rejected_by_topic_.find(topic);
+  if (it == rejected_by_topic_.end()) it = rejected_by_topic_.emplace(std::string(topic), 0).first;
+  ++it->second;
+}
+
+std::optional<Pose2> FleetViewModel::FleetPose(const Robot& robot) const {
+  if (!robot.status) return std::nullopt;
+  const Pose2 fleet_from_map = robot.frame && robot.frame->placed() ? robot.frame->fleet_from_map
+                                                                    : robot.status->fleet_from_map;
+  return Pose2::FromTransform(fleet_from_map.ToTransform() *
+                              robot.status->map_from_robot.ToTransform());
+}
+
+json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timestamp now) const {
+  json out = {{"id", id}, {"state", LivelinessName(static_cast<int>(robot.liveliness))}};
+  // Where its map frame sits: as given, or as the server placed it (registration).
+  std::string placement = "given";
+  if (robot.frame) {
+    placement = transport::RobotFrameStateName(robot.frame->state);
+  } else if (robot.status && robot.status->tiles_in_map_frame) {
+    placement = "unplaced";
+  }
+  out["placement"] = placement;
+  if (const std::optional<Pose2> pose = FleetPose(robot)) {
+    out["x"] = Millimetres(pose->x);
+    out["y"] = Millimetres(pose->y);
+    out["yaw"] = Millimetres(pose->yaw);
+  }
+  json path = json::array();
+  for (const Point2& point : robot.path) {
+    path.push_back(Millimetres(point.x()));
+    path.push_back(Millimetres(point.y()));
+  }
+  out["path"] = std::move(path);
+  if (robot.status) {
+    out["rev"] = robot.status->map_revision;
+    out["tiles_published"] = robot.status->tiles_published;
+  }
+  // Rates over the window, or over the time the robot has been seen if that is shorter; rounded
+  // so that an unchanged rate does not make a delta.
+  double bytes = 0.0;
+  std::vector<double> latencies;
+  for (const TileSample& sample : robot.tiles) {
+    bytes += static_cast<double>(sample.bytes);
+    latencies.push_back(sample.latency_ms);
+  }
+  const double window = std::chrono::duration<double>(options_.rate_window).count();
+  const double span =
+      robot.tiles.empty()
+          ? window
+          : std::clamp(SecondsBetween(robot.tiles.front().received, now), 1.0, window);
+  out["bps"] = Rounded(bytes / span, 1);
+  out["ups"] = Rounded(static_cast<double>(robot.tiles.size()) / span, 10);
+  out["latency_ms"] = latencies.empty() ? json(nullptr) : json(Rounded(Median(latencies), 10));
+  return out;
+}
+
+void FleetViewModel::RefreshRobot(const std::string& id, Timestamp now) {
+  const auto it = robot_state_.find(id);
+  if (it == robot_state_.end() || !it->second.status) return;  // nothing to show yet
+  robots_.Put(id, RobotJson(id, it->second, now));
+}
+
+void FleetViewModel::Tick(Timestamp now) {
+  now_ = now;
+  for (auto& [id, robot] : robot_state_) {
+    while (!robot.tiles.empty() && now - robot.tiles.front().received > options_.rate_window) {
+      robot.tiles.pop_front();
+    }
+    if (robot.liveliness == Liveliness::kLive && now - robot.last_status > options_.stale_after) {
+      robot.liveliness = Liveliness::kStale;
+    }
+    RefreshRobot(id, now);
+  }
+}
+
+json FleetViewModel::StatusJson() const {
+  size_t live = 0;
+  size_t lost = 0;
+  double bytes_per_s = 0.0;
+  double updates_per_s = 0.0;
+  for (const auto& [id, robot] : robots_.items()) {
+    live += robot["state"] == "live" ? 1 : 0;
+    lost += robot["state"] == "lost" ? 1 : 0;
+    bytes_per_s += robot["bps"].get<double>();
+    updates_per_s += robot["ups"].get<double>();
+  }
+  std::map<std::string, size_t> submap_states;
+  for (const auto& [id, submap] : submaps_.items()) ++submap_states[submap["state"]];
+  uint64_t rejected = 0;
+  for (const auto& [topic, count] : rejected_by_topic_) rejected += count;
+  return {{"tiles", tiles_.size()},
+          {"robots", robots_.size()},
+          {"live", live},
+          {"lost", lost},
+          {"bytes_per_s", Rounded(bytes_per_s, 1)},
+          {"updates_per_s", Rounded(updates_per_s, 10)},
+          {"submaps", submap_states},
+          {"objects", objects_.size()},
+          {"templates", templates_.size()},
+          {"rejected", rejected},
+          {"rejected_by_topic", rejected_by_topic_},
+          {"grid", grid_ ? *grid_ : json(nullptr)}};
+}
+
+std::string FleetViewModel::FullEvent() const {
+  return json{{"type", "full"},
+              {"seq", seq_},
+              {"tiles", tiles_.All()},
+              {"robots", robots_.All()},
+              {"submaps", submaps_.All()},
+              {"objects", objects_.All()},
+              {"templates", templates_.All()},
+              {"status", StatusJson()}}
+      .dump();
+}
+
+std::optional<std::string> FleetViewModel::TakeDelta() {
+  json delta = {{"type", "delta"}};
+  bool changed = false;
+  for (auto [name, section] : {std::pair<const char*, JsonDictionary*>{"tiles", &tiles_},
+                               {"robots", &robots_},
+                               {"submaps", &submaps_},
+                               {"objects", &objects_},
+                               {"templates", &templates_}}) {
+    json changes = section->TakeChanges();
+    if (changes.empty()) continue;
+    delta[name] = std::move(changes);
+    changed = true;
+  }
+  json status = StatusJson();
+  if (status != sent_status_) {
+    sent_status_ = status;
+    delta["status"] = std::move(status);
+    changed = true;
+  }
+  if (!changed) return std::nullopt;
+  delta["seq"] = ++seq_;
+  return delta.dump();
+}
+
+}  // namespace fleetmap::view

@@ -1,0 +1,110 @@
+#pragma once
+
+// What the page shows, kept from what the view's DDS readers hand over: the fused tiles, every
+// robot (pose, path, state, wire rates, latency), the sub-map graph, the learned objects and a
+// status line. It turns that into the page's two events: the whole state, for a browser that has
+// just connected, and a delta of what changed since the previous delta. Plain data in, JSON out:
+// no DDS, no threads (the view service calls it from one thread).
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "common/core/robot_status.hpp"
+#include "common/transport/keyed_state_topic.hpp"
+#include "common/transport/map_message.hpp"
+#include "common/transport/robot_status_reader.hpp"
+#include "common/transport/vector_tile_reader.hpp"
+#include "view/json_dictionary.hpp"
+
+namespace fleetmap::view {
+
+struct ViewModelOptions {
+  // A robot whose status stops for this long is shown stale; DDS declares it lost once its
+  // liveliness lease (2 s) lapses, which the page shows as lost.
+  std::chrono::milliseconds stale_after{1200};
+  // Wire rates are averaged over this window.
+  std::chrono::seconds rate_window{5};
+  // The recent path: this many points, one at least this far from the previous.
+  size_t path_points = 200;
+  double path_spacing_m = 0.2;
+};
+
+class FleetViewModel {
+ public:
+  explicit FleetViewModel(ViewModelOptions options = {});
+
+  // rt/fleetmap/fused_tiles: a tile, its removal, or a refused sample.
+  void OnFusedTile(const transport::TileEvent& event);
+  // rt/fleetmap/robot_tiles: what each robot costs the wire (bytes/s, updates/s, latency).
+  void OnRobotTile(const transport::TileEvent& event);
+  // rt/fleetmap/robot_status: the robot's pose and liveliness.
+  void OnRobotEvent(const transport::RobotEvent& event, Timestamp now);
+  // rt/fleetmap/robot_frames: where the server placed a robot's map frame.
+  void OnRobotFrame(const transport::RobotFrameEvent& event);
+  void OnSubmap(const transport::SubmapEvent& event);
+  void OnObject(const transport::ObjectModelEvent& event);
+  void OnTemplate(const transport::ObjectTemplateEvent& event);
+  // rt/fleetmap/map: the fused grid the page can lay under the vectors.
+  void OnFleetMap(const transport::MapMessage& map);
+  // A sample one of the view's readers refused (malformed, or from a writer it may not have).
+  void CountRejected(std::string_view topic);
+
+  // Brings the time-driven parts up to `now`: live robots that went quiet turn stale, rates move.
+  void Tick(Timestamp now);
+
+  // The whole state: {"type": "full", "seq", "tiles", "robots", "submaps", "objects",
+  // "templates", "status"} (docs/view.md).
+  std::string FullEvent() const;
+  // The sections that changed since the previous delta (same layout, "type": "delta", removed
+  // items null), or nullopt when nothing did. Each delta advances `seq`.
+  std::optional<std::string> TakeDelta();
+
+  size_t tile_count() const { return tiles_.size(); }
+  size_t robot_count() const { return robots_.size(); }
+
+ private:
+  enum class Liveliness { kLive, kStale, kLost, kLeft };
+  struct TileSample {
+    Timestamp received;
+    size_t bytes = 0;
+    double latency_ms = 0.0;
+  };
+  struct Robot {
+    std::optional<RobotStatus> status;
+    std::optional<transport::RobotFrameMessage> frame;
+    Liveliness liveliness = Liveliness::kLive;
+    Timestamp last_status{};
+    std::deque<Point2> path;
+    std::deque<TileSample> tiles;  // received within the rate window
+  };
+
+  Robot& RobotNamed(const RobotId& id);
+  // The robot's pose in the fleet frame: its status pose through the newest placement.
+  std::optional<Pose2> FleetPose(const Robot& robot) const;
+  nlohmann::json RobotJson(const std::string& id, const Robot& robot, Timestamp now) const;
+  nlohmann::json StatusJson() const;
+  void RefreshRobot(const std::string& id, Timestamp now);
+
+  ViewModelOptions options_;
+  std::map<std::string, Robot> robot_state_;
+  JsonDictionary tiles_;
+  JsonDictionary robots_;
+  JsonDictionary submaps_;
+  JsonDictionary objects_;
+  JsonDictionary templates_;
+  std::optional<nlohmann::json> grid_;  // the newest fused grid's geometry
+  uint64_t maps_received_ = 0;
+  std::map<std::string, uint64_t, std::less<>> rejected_by_topic_;
+  nlohmann::json sent_status_;
+  uint64_t seq_ = 0;
+  Timestamp now_{};
+};
+
+}  // namespace fleetmap::view

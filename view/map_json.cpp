@@ -1,0 +1,123 @@
+#include "view/map_json.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "common/grid/cell_rect.hpp"
+#include "common/vector_map/cell_frame.hpp"
+#include "common/vector_map/free_space_extractor.hpp"
+
+namespace fleetmap::view {
+namespace {
+
+using nlohmann::json;
+
+// Millimetres are far below what a page can show and keep the stream small.
+double Millimetres(double metres) { return std::round(metres * 1000.0) / 1000.0; }
+
+void AppendPoint(json& flat, const Point2& point) {
+  flat.push_back(Millimetres(point.x()));
+  flat.push_back(Millimetres(point.y()));
+}
+
+json FlatRing(const std::vector<Point2>& ring) {
+  json flat = json::array();
+  for (const Point2& point : ring) AppendPoint(flat, point);
+  return flat;
+}
+
+// The navigable cells of a sub-map as rings in the fleet frame, one cell's simplification error.
+json NavigableRings(const transport::SubmapMessage& node) {
+  const grid::OccupancyGrid& cells = node.submap.navigable;
+  json rings = json::array();
+  if (cells.empty()) return rings;
+  const vector_map::CellFrame frame(cells);
+  const Transform2 fleet_from_submap = node.submap.map_from_submap.ToTransform();
+  const auto to_fleet = [&](const std::vector<Point2>& ring) {
+    std::vector<Point2> fleet;
+    fleet.reserve(ring.size());
+    for (const Point2& point : ring) fleet.push_back(fleet_from_submap * frame.ToMap(point));
+    return FlatRing(fleet);
+  };
+  const grid::CellRect whole{0, 0, cells.width(), cells.height()};
+  for (const vector_map::CellPolygon& polygon :
+       vector_map::ExtractFreeSpace(cells, whole, {}, vector_map::FreeSpaceOptions{})) {
+    rings.push_back(to_fleet(polygon.outer));
+  }
+  return rings;
+}
+
+json PatchExtent(const scene::Patch& patch) {
+  return {{"w", Millimetres(patch.width * patch.resolution)},
+          {"h", Millimetres(patch.height * patch.resolution)}};
+}
+
+}  // namespace
+
+std::string TileKey(const TileId& tile) { return fmt::format("{},{}", tile.x, tile.y); }
+
+json TileJson(const transport::VectorTileMessage& tile) {
+  json obstacles = json::array();
+  for (const vector_map::Polyline& line : tile.map.obstacles) {
+    json flat = json::array({Millimetres(line.half_width), line.closed ? 1 : 0});
+    for (const Point2& point : line.points) AppendPoint(flat, point);
+    obstacles.push_back(std::move(flat));
+  }
+  json free_space = json::array();
+  for (const vector_map::FreePolygon& polygon : tile.map.free_space) {
+    json rings = json::array({FlatRing(polygon.outer)});
+    for (const auto& hole : polygon.holes) rings.push_back(FlatRing(hole));
+    free_space.push_back(std::move(rings));
+  }
+  return {{"key", TileKey(tile.tile)},
+          {"x", tile.tile.x},
+          {"y", tile.tile.y},
+          {"rev", tile.revision},
+          {"size", Millimetres(tile.tile_size)},
+          {"ob", std::move(obstacles)},
+          {"fr", std::move(free_space)}};
+}
+
+json SubmapJson(const transport::SubmapMessage& node) {
+  const Pose2& pose = node.submap.map_from_submap;
+  return {{"id", node.submap.id},
+          {"kind", std::string(scene::SubmapKindName(node.submap.kind))},
+          {"state", scene::SubmapStateName(node.state)},
+          {"precision", node.precision < 0.0F ? json(nullptr) : json(Millimetres(node.precision))},
+          {"place", node.submap.place},
+          {"source", node.source_robot.value},
+          {"x", Millimetres(pose.x)},
+          {"y", Millimetres(pose.y)},
+          {"rings", NavigableRings(node)}};
+}
+
+json ObjectJson(const transport::ObjectModelMessage& object) {
+  json sightings = json::array();
+  for (const transport::ObjectSighting& sighting : object.sightings) {
+    const Pose2& pose = sighting.fleet_from_object;
+    sightings.push_back(
+        {sighting.session, Millimetres(pose.x), Millimetres(pose.y), Millimetres(pose.yaw)});
+  }
+  json out = PatchExtent(object.patch);
+  out["id"] = object.object_id;
+  out["template"] = object.template_id;
+  out["sightings"] = std::move(sightings);
+  if (!object.sightings.empty()) {
+    const Pose2& last = object.sightings.back().fleet_from_object;
+    out["x"] = Millimetres(last.x);
+    out["y"] = Millimetres(last.y);
+    out["yaw"] = Millimetres(last.yaw);
+  }
+  return out;
+}
+
+json TemplateJson(const transport::ObjectTemplateMessage& object_template) {
+  json out = PatchExtent(object_template.patch);
+  out["id"] = object_template.template_id;
+  out["objects"] = object_template.object_count;
+  return out;
+}
+
+}  // namespace fleetmap::view

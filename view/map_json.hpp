@@ -1,0 +1,32 @@
+#pragma once
+
+// The page's JSON for what it draws: fused vector tiles, sub-maps and learned objects, in the fleet
+// frame, metres rounded to millimetres (docs/view.md, "The event stream", gives every field). The
+// page draws exactly this; nothing here knows about clients or deltas.
+
+#include <nlohmann/json.hpp>
+
+#include "common/core/ids.hpp"
+#include "common/transport/state_messages.hpp"
+#include "common/transport/vector_tile_message.hpp"
+
+namespace fleetmap::view {
+
+// "x,y": a tile's key in the page's dictionaries.
+std::string TileKey(const TileId& tile);
+
+// {key, rev, size, ob: [[half_width, closed, x0, y0, x1, y1, ...], ...],
+//  fr: [[[outer x0, y0, ...], [hole ...], ...], ...]}
+nlohmann::json TileJson(const transport::VectorTileMessage& tile);
+
+// {id, kind, state, precision, place, source, rings: [[x0, y0, ...], ...]}: the outline of the
+// sub-map's navigable cells (free, or confidence above the prediction's threshold).
+nlohmann::json SubmapJson(const transport::SubmapMessage& submap);
+
+// {id, template, w, h, x, y, yaw, sightings}: where the object was last seen, and its extent.
+nlohmann::json ObjectJson(const transport::ObjectModelMessage& object);
+
+// {id, objects, w, h}
+nlohmann::json TemplateJson(const transport::ObjectTemplateMessage& object_template);
+
+}  // namespace fleetmap::view

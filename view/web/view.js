@@ -1,0 +1,334 @@
+// fleetmap view: draws the state `fleetmap view` streams on /events (docs/view.md). The first
+// event is the whole state; each later one holds only what changed (null: removed). Coordinates
+// are fleet-frame metres; Leaflet's simple CRS takes [y, x], one unit a metre.
+'use strict';
+
+const COLORS = {
+  obstacle: '#202020',
+  free: '#ffffff',
+  observed: '#4a78c2',
+  predicted: '#f0a030',
+  confirmed: '#2e9e4f',
+  retracted: '#d03030',
+  object: '#8e44ad',
+  path: '#1565c0',
+  robot: { live: '#1565c0', stale: '#ef8f00', lost: '#c62828', left: '#777777' },
+};
+
+const map = L.map('map', {
+  crs: L.CRS.Simple, minZoom: -5, maxZoom: 8, zoomSnap: 0.25, zoomDelta: 0.5,
+  attributionControl: false,
+});
+map.setView([0, 0], 2);
+// One canvas per layer kind keeps the drawing order: free space, sub-maps, obstacles, objects,
+// robots on top.
+const panes = ['free', 'submaps', 'obstacles', 'objects', 'robots'];
+const renderers = {};
+panes.forEach((name, i) => {
+  map.createPane(name).style.zIndex = 400 + 10 * i;
+  renderers[name] = L.canvas({ pane: name, padding: 0.5 });
+});
+const layers = {
+  free: L.layerGroup().addTo(map),
+  obstacles: L.layerGroup().addTo(map),
+  submaps: L.layerGroup().addTo(map),
+  objects: L.layerGroup().addTo(map),
+  robots: L.layerGroup().addTo(map),
+};
+let gridOverlay = null;
+const gridLayer = L.layerGroup();  // off by default: the vectors are the map
+L.control.layers(null, {
+  'fused grid (rt/fleetmap/map)': gridLayer,
+  'free space': layers.free,
+  obstacles: layers.obstacles,
+  'sub-maps': layers.submaps,
+  objects: layers.objects,
+  robots: layers.robots,
+}, { collapsed: false }).addTo(map);
+L.control.scale({ metric: true, imperial: false }).addTo(map);
+
+const ll = (x, y) => [y, x];
+const ring = (flat) => {
+  const points = [];
+  for (let i = 0; i + 1 < flat.length; i += 2) points.push(ll(flat[i], flat[i + 1]));
+  return points;
+};
+
+// What is drawn, by key, so that a delta can replace or remove it.
+const drawn = { tiles: {}, robots: {}, submaps: {}, objects: {} };
+let state = { robots: {}, submaps: {}, templates: {}, status: null };
+let lastSeq = -1;
+let fitted = false;
+
+// Obstacles are drawn at their true width: 2 * half width metres, in pixels at this zoom.
+const obstacleLines = new Set();
+const pixelsPerMetre = () => Math.pow(2, map.getZoom());
+const obstacleWeight = (halfWidth) => Math.max(1, 2 * halfWidth * pixelsPerMetre());
+map.on('zoomend', () => {
+  obstacleLines.forEach((line) => line.setStyle({ weight: obstacleWeight(line.halfWidth) }));
+});
+
+function removeTile(key) {
+  const tile = drawn.tiles[key];
+  if (!tile) return;
+  layers.free.removeLayer(tile.free);
+  tile.lines.forEach((line) => { layers.obstacles.removeLayer(line); obstacleLines.delete(line); });
+  delete drawn.tiles[key];
+}
+
+function drawTile(key, tile) {
+  removeTile(key);
+  const polygons = tile.fr.map((rings) => rings.map(ring));
+  // A hairline of the same white covers the anti-aliased seam between neighbouring tiles.
+  const free = L.polygon(polygons, {
+    renderer: renderers.free, color: COLORS.free, weight: 1, opacity: 1, fillColor: COLORS.free,
+    fillOpacity: 1, interactive: false,
+  });
+  layers.free.addLayer(free);
+  // One polyline layer per half width (a tile has few distinct widths).
+  const byWidth = new Map();
+  const points = [];
+  tile.ob.forEach((obstacle) => {
+    const halfWidth = obstacle[0];
+    const line = ring(obstacle.slice(2));
+    if (obstacle[1] === 1 && line.length > 2) line.push(line[0]);
+    if (line.length === 1) line.push(line[0]);  // a point obstacle: a round dot
+    if (!byWidth.has(halfWidth)) byWidth.set(halfWidth, []);
+    byWidth.get(halfWidth).push(line);
+    points.push(...line);
+  });
+  const lines = [];
+  byWidth.forEach((paths, halfWidth) => {
+    const line = L.polyline(paths, {
+      renderer: renderers.obstacles, color: COLORS.obstacle, weight: obstacleWeight(halfWidth),
+      opacity: 1, lineCap: 'round', lineJoin: 'round', interactive: false,
+    });
+    line.halfWidth = halfWidth;
+    obstacleLines.add(line);
+    layers.obstacles.addLayer(line);
+    lines.push(line);
+  });
+  drawn.tiles[key] = { free, lines, bounds: [ll(tile.x * tile.size, tile.y * tile.size),
+    ll((tile.x + 1) * tile.size, (tile.y + 1) * tile.size)] };
+}
+
+function removeRobot(id) {
+  const robot = drawn.robots[id];
+  if (!robot) return;
+  robot.forEach((layer) => layers.robots.removeLayer(layer));
+  delete drawn.robots[id];
+}
+
+function drawRobot(id, robot) {
+  removeRobot(id);
+  if (robot.x === undefined) return;
+  const color = COLORS.robot[robot.state] || COLORS.robot.left;
+  const here = ll(robot.x, robot.y);
+  const ahead = ll(robot.x + 0.8 * Math.cos(robot.yaw), robot.y + 0.8 * Math.sin(robot.yaw));
+  const path = L.polyline(ring(robot.path), {
+    renderer: renderers.robots, color: COLORS.path, weight: 1.5, opacity: 0.6, interactive: false,
+  });
+  const heading = L.polyline([here, ahead], {
+    renderer: renderers.robots, color, weight: 3, interactive: false,
+  });
+  const marker = L.circleMarker(here, {
+    renderer: renderers.robots, radius: 7, color: '#ffffff', weight: 2, fillColor: color,
+    fillOpacity: 1,
+  }).bindTooltip(`${id} (${robot.state})`, {
+    permanent: true, direction: 'right', offset: [8, 0], className: 'robot-label',
+  });
+  drawn.robots[id] = [path, heading, marker];
+  drawn.robots[id].forEach((layer) => layers.robots.addLayer(layer));
+}
+
+function submapColor(submap) {
+  return submap.kind === 'observed' ? COLORS.observed : (COLORS[submap.state] || COLORS.predicted);
+}
+
+function removeSubmap(id) {
+  if (!drawn.submaps[id]) return;
+  layers.submaps.removeLayer(drawn.submaps[id]);
+  delete drawn.submaps[id];
+}
+
+function drawSubmap(id, submap) {
+  removeSubmap(id);
+  const observed = submap.kind === 'observed';
+  const color = submapColor(submap);
+  const precision = submap.precision === null ? 'not measured yet' : submap.precision.toFixed(3);
+  const layer = L.polygon(submap.rings.map(ring), {
+    renderer: renderers.submaps, color, weight: observed ? 1 : 1.5, dashArray: observed ? '4 4' : null,
+    fill: !observed, fillColor: color, fillOpacity: 0.35,
+  }).bindTooltip(`sub-map ${id}: ${submap.kind}, ${submap.state}, precision ${precision}`);
+  drawn.submaps[id] = layer;
+  layers.submaps.addLayer(layer);
+}
+
+function removeObject(id) {
+  if (!drawn.objects[id]) return;
+  layers.objects.removeLayer(drawn.objects[id]);
+  delete drawn.objects[id];
+}
+
+function drawObject(id, object) {
+  removeObject(id);
+  if (object.x === undefined) return;
+  const c = Math.cos(object.yaw);
+  const s = Math.sin(object.yaw);
+  const corners = [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([u, v]) => {
+    const dx = 0.5 * u * object.w;
+    const dy = 0.5 * v * object.h;
+    return ll(object.x + c * dx - s * dy, object.y + s * dx + c * dy);
+  });
+  const layer = L.polygon(corners, {
+    renderer: renderers.objects, color: COLORS.object, weight: 1.5, fillColor: COLORS.object,
+    fillOpacity: 0.25,
+  }).bindTooltip(`object ${id} (template ${object.template}), seen ${object.sightings.length}x`);
+  drawn.objects[id] = layer;
+  layers.objects.addLayer(layer);
+}
+
+function applySection(items, draw, remove, keep) {
+  if (!items) return;
+  Object.entries(items).forEach(([key, item]) => {
+    if (item === null) {
+      remove(key);
+      if (keep) delete keep[key];
+    } else {
+      draw(key, item);
+      if (keep) keep[key] = item;
+    }
+  });
+}
+
+function clearAll() {
+  Object.keys(drawn.tiles).forEach(removeTile);
+  Object.keys(drawn.robots).forEach(removeRobot);
+  Object.keys(drawn.submaps).forEach(removeSubmap);
+  Object.keys(drawn.objects).forEach(removeObject);
+  state = { robots: {}, submaps: {}, templates: {}, status: null };
+}
+
+function apply(event) {
+  if (event.type === 'full') {
+    clearAll();
+  } else if (event.seq <= lastSeq) {
+    return;  // already in the whole state this browser got
+  }
+  lastSeq = event.seq;
+  applySection(event.tiles, drawTile, removeTile);
+  applySection(event.robots, drawRobot, removeRobot, state.robots);
+  applySection(event.submaps, drawSubmap, removeSubmap, state.submaps);
+  applySection(event.objects, drawObject, removeObject);
+  applySection(event.templates, () => {}, () => {}, state.templates);
+  if (event.status) state.status = event.status;
+  document.getElementById('map').dataset.drawnTiles = Object.keys(drawn.tiles).length;
+  renderTables();
+  renderStatus();
+  fitOnce();
+}
+
+function fitOnce() {
+  const tiles = Object.values(drawn.tiles);
+  if (fitted || tiles.length === 0) return;
+  const bounds = L.latLngBounds(tiles[0].bounds);
+  tiles.forEach((tile) => bounds.extend(tile.bounds));
+  map.fitBounds(bounds, { padding: [10, 10] });
+  fitted = true;
+}
+
+const text = (value) => document.createTextNode(String(value));
+function row(cells, attributes) {
+  const tr = document.createElement('tr');
+  Object.entries(attributes).forEach(([name, value]) => tr.setAttribute(name, value));
+  cells.forEach((cell) => {
+    const td = document.createElement('td');
+    td.appendChild(text(cell));
+    tr.appendChild(td);
+  });
+  return tr;
+}
+const rate = (bytesPerSecond) => {
+  if (bytesPerSecond >= 1e6) return `${(bytesPerSecond / 1e6).toFixed(2)} MB/s`;
+  if (bytesPerSecond >= 1e3) return `${(bytesPerSecond / 1e3).toFixed(1)} kB/s`;
+  return `${Math.round(bytesPerSecond)} B/s`;
+};
+const degrees = (radians) => `${Math.round((radians * 180) / Math.PI)}°`;
+
+function renderTables() {
+  const robots = document.querySelector('#robots tbody');
+  robots.replaceChildren(...Object.keys(state.robots).sort().map((id) => {
+    const r = state.robots[id];
+    const where = r.x === undefined ? '-' : `${r.x.toFixed(2)}, ${r.y.toFixed(2)}`;
+    return row([id, r.state, r.placement, where, r.yaw === undefined ? '-' : degrees(r.yaw),
+      r.rev ?? '-', rate(r.bps), r.ups.toFixed(1),
+      r.latency_ms === null ? '-' : `${r.latency_ms.toFixed(1)} ms`],
+    { 'data-robot': id, 'data-state': r.state });
+  }));
+  const predictions = document.querySelector('#predictions tbody');
+  predictions.replaceChildren(...Object.keys(state.submaps)
+    .filter((id) => state.submaps[id].kind !== 'observed')
+    .sort((a, b) => a - b)
+    .map((id) => {
+      const s = state.submaps[id];
+      return row([id, s.kind.replace('predicted_', ''), s.state,
+        s.precision === null ? '-' : s.precision.toFixed(3), s.source],
+      { 'data-submap': id, 'data-state': s.state, 'data-color': submapColor(s) });
+    }));
+  const templates = document.querySelector('#templates tbody');
+  templates.replaceChildren(...Object.keys(state.templates).sort((a, b) => a - b).map((id) => {
+    const t = state.templates[id];
+    return row([id, t.objects, `${t.w.toFixed(2)} x ${t.h.toFixed(2)}`], { 'data-template': id });
+  }));
+}
+
+function setText(id, value) { document.getElementById(id).textContent = String(value); }
+
+function renderStatus() {
+  const s = state.status;
+  if (!s) return;
+  setText('status-tiles', s.tiles);
+  setText('status-robots', s.robots);
+  setText('status-live', s.live);
+  setText('status-lost', s.lost);
+  setText('status-bytes', rate(s.bytes_per_s));
+  setText('status-updates', s.updates_per_s.toFixed(1));
+  const predictions = Object.entries(s.submaps).filter(([name]) => name !== 'observed')
+    .map(([name, count]) => `${count} ${name}`);
+  setText('status-predictions', predictions.length ? predictions.join(', ') : 'none');
+  setText('status-objects', s.objects);
+  setText('status-templates', s.templates);
+  const byTopic = Object.entries(s.rejected_by_topic).map(([topic, n]) => `${topic}: ${n}`);
+  setText('status-rejected', byTopic.length ? `${s.rejected} (${byTopic.join(', ')})` : '0');
+  updateGrid(s.grid);
+}
+
+function updateGrid(grid) {
+  if (!grid || (gridOverlay && gridOverlay.count === grid.count)) return;
+  const bounds = [ll(grid.ox, grid.oy), ll(grid.ox + grid.w * grid.res, grid.oy + grid.h * grid.res)];
+  const url = `map.png?n=${grid.count}`;
+  if (gridOverlay) {
+    gridOverlay.setUrl(url);
+    gridOverlay.setBounds(L.latLngBounds(bounds));
+  } else {
+    gridOverlay = L.imageOverlay(url, bounds, { className: 'fused-grid', opacity: 0.8 });
+    gridLayer.addLayer(gridOverlay);
+  }
+  gridOverlay.count = grid.count;
+}
+
+function connect() {
+  const connection = document.getElementById('connection');
+  const events = new EventSource('events');
+  events.onopen = () => {
+    connection.dataset.state = 'open';
+    connection.textContent = 'live';
+  };
+  events.onerror = () => {
+    // The browser reconnects by itself; the view then sends the whole state again.
+    connection.dataset.state = 'reconnecting';
+    connection.textContent = 'reconnecting';
+  };
+  events.onmessage = (message) => apply(JSON.parse(message.data));
+}
+connect();
