@@ -199,6 +199,7 @@ constexpr double kDoorRecallArea = 0.5;
 // The floor-plan totals at one threshold; `hinge` 0: jamb a as the hinge, 1: jamb b, 2: both.
 struct PlanTotals {
   int64_t true_free = 0, false_free = 0, on_observed = 0, near_room = 0, near_true = 0;
+  int64_t unscored = 0;  // on cells without ground truth (a real map's unknown cells)
   int runs = 0, recalled = 0, scored = 0, below_08 = 0, below_07 = 0;
   double median = 0.0, worst = 1.0;
 };
@@ -210,6 +211,7 @@ PlanTotals SumPlans(const std::vector<PlanDoorResult>& results, size_t k, int hi
     if (hinge != 2 && r.swapped != (hinge == 1)) continue;
     const PlanDoorScore& s = r.scores[k];
     t.true_free += s.true_free, t.false_free += s.false_free, t.on_observed += s.on_observed;
+    t.unscored += s.unscored;
     t.near_room += s.near_room, t.near_true += s.near_true;
     ++t.runs;
     t.recalled += s.true_free * r.cell_area >= kDoorRecallArea;
@@ -401,9 +403,14 @@ std::string RealMapsReport(const BenchExtrapolationOptions& options, const RealM
      << "Wall time: " << Fixed(seconds, 1) << " s for " << real.maps.size() << " maps, " << kept
      << " hidden rooms (segmented automatically: rooms of 4-80 m2 behind exactly one doorway "
         "0.6-1.3 m wide), each door scored with either jamb as the hinge.\n\n"
+     << "Precision is over the predicted cells whose truth the map knows. A predicted cell on "
+        "a cell the source map left unknown is unscored: nobody scanned it, so it may be the "
+        "room's or not. The last columns count those cells and give the precision if they were "
+        "all wrong.\n\n"
      << "| p_th | precision (both) | hinge = jamb a | hinge = jamb b | recall <= 2.5 m | door "
         "recall | per-door median | doors < 0.8 | doors < 0.7 | worst door | cells on observed "
-        "free |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "free | unscored cells | precision, unscored counted wrong |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (size_t k = 0; k < options.p_th.size(); ++k) {
     const PlanTotals both = SumPlans(real.doors, k, 2);
     const PlanTotals a = SumPlans(real.doors, k, 0);
@@ -427,7 +434,8 @@ std::string RealMapsReport(const BenchExtrapolationOptions& options, const RealM
        << Fixed(both.median, 3) << " | " << both.below_08 << " / " << both.scored << " | "
        << both.below_07 << " / " << both.scored << " | "
        << (worst <= 1.0 ? Fixed(worst, 3) + " (" + worst_name + ")" : std::string("n/a")) << " | "
-       << both.on_observed << " |\n";
+       << both.on_observed << " | " << both.unscored << " | "
+       << Ratio(both.true_free, both.true_free + both.false_free + both.unscored) << " |\n";
   }
   md << "\n| map | rooms segmented | hidden rooms | door runs |";
   for (double p : options.p_th) md << " precision / doors < 0.7 at " << Fixed(p, 2) << " |";
@@ -451,15 +459,16 @@ std::string RealMapsReport(const BenchExtrapolationOptions& options, const RealM
 
 std::string RealMapsCsv(const BenchExtrapolationOptions& options, const RealMapResults& real) {
   std::ostringstream csv;
-  csv << "map,room,hinge,p_th,door_width,true_free,false_free,on_observed,near_room,near_true\n";
+  csv << "map,room,hinge,p_th,door_width,true_free,false_free,unscored,on_observed,near_room,"
+         "near_true\n";
   for (size_t i = 0; i < real.doors.size(); ++i) {
     const PlanDoorResult& r = real.doors[i];
     for (size_t k = 0; k < options.p_th.size(); ++k) {
       const PlanDoorScore& s = r.scores[k];
       csv << real.map_of_door[i] << "," << r.room << "," << (r.swapped ? "b" : "a") << ","
           << options.p_th[k] << "," << Fixed(r.width, 3) << "," << s.true_free << ","
-          << s.false_free << "," << s.on_observed << "," << s.near_room << "," << s.near_true
-          << "\n";
+          << s.false_free << "," << s.unscored << "," << s.on_observed << "," << s.near_room << ","
+          << s.near_true << "\n";
     }
   }
   return csv.str();
@@ -475,8 +484,11 @@ nlohmann::json RealMapsJson(const BenchExtrapolationOptions& options, const Real
     const PlanTotals t = SumPlans(real.doors, k, 2);
     thresholds.push_back({{"p_th", options.p_th[k]},
                           {"precision", frac(t.true_free, t.true_free + t.false_free)},
+                          {"precision_unscored_counted_wrong",
+                           frac(t.true_free, t.true_free + t.false_free + t.unscored)},
                           {"true_free", t.true_free},
                           {"false_free", t.false_free},
+                          {"unscored", t.unscored},
                           {"on_observed", t.on_observed},
                           {"recall_within_radius", frac(t.near_true, t.near_room)},
                           {"door_recall", frac(t.recalled, t.runs)},

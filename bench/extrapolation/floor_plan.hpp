@@ -33,6 +33,9 @@ namespace fleetmap::bench {
 inline constexpr int32_t kPlanCorridor = -1;
 inline constexpr int32_t kPlanWall = -2;
 inline constexpr int32_t kPlanOutside = -3;
+// A real map's unknown cell (room_segmentation.hpp): nobody scanned it, so there is no ground truth
+// there; hidden like outside, and a prediction on it is neither right nor wrong (unscored).
+inline constexpr int32_t kPlanUnknown = -4;
 
 struct PlanDoor {
   // The ends of the closed leaf (map frame, metres), on one face of the wall.

@@ -77,6 +77,8 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
               if (label == door.room) {
                 ++score.true_free;
                 score.near_true += (c - centre).norm() <= options.recall_radius;
+              } else if (label == kPlanUnknown) {
+                ++score.unscored;
               } else {
                 ++score.false_free;
               }

@@ -6,8 +6,9 @@
 // predicted sub-map is scored against the room, once with each jamb as the hinge.
 //
 // Scores per door, hinge choice and threshold: a predicted free cell is right only if it lies in
-// the hidden room (walls, outside, other rooms and the corridor are wrong, observed or not); the
-// room's cells within `recall_radius` of the door's centre give the recall within the kernel's
+// the hidden room (walls, outside, other rooms and the corridor are wrong, observed or not; on a
+// real map's unknown cells, where nothing says what is there, it is unscored and reported apart);
+// the room's cells within `recall_radius` of the door's centre give the recall within the kernel's
 // reach. `fleetmap bench extrapolation --plans N` prints and writes the totals.
 //
 // Thread-safety: stateless.
@@ -37,6 +38,7 @@ struct FloorPlanExperimentOptions {
 struct PlanDoorScore {
   int64_t true_free = 0;    // predicted free, in the hidden room
   int64_t false_free = 0;   // predicted free anywhere else
+  int64_t unscored = 0;     // predicted free where the plan has no truth (kPlanUnknown)
   int64_t on_observed = 0;  // predicted free on a cell the local map shows free (also false)
   int64_t near_room = 0;    // the room's cells within recall_radius of the door's centre
   int64_t near_true = 0;    // of those, predicted free

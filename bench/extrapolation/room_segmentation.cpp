@@ -206,6 +206,7 @@ FloorPlan PlanForRoom(const grid::OccupancyGrid& map, const RoomSegmentation& se
       } else if (state == grid::CellState::kOccupied) {
         label = kPlanWall;
       } else {
+        label = kPlanUnknown;
         plan.truth.at(x, y) = grid::kUnknownValue;
       }
       if (is_leaf[i]) leaf.push_back(j);

@@ -17,7 +17,8 @@
 //
 // `PlanForRoom` turns one kept room into a `FloorPlan` (floor_plan.hpp) cropped around it, so the
 // floor-plan experiment's `HideRoom` and scoring run unchanged on it: the room is room 0, all
-// other free space is the corridor, occupied cells are walls, unknown cells are outside, and the
+// other free space is the corridor, occupied cells are walls, unknown cells are kPlanUnknown
+// (hidden as outside is, but with no ground truth: a prediction there is not scored), and the
 // door's leaf is the row of cells on the far side of the doorway.
 //
 // Thread-safety: stateless.
