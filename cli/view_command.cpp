@@ -69,11 +69,14 @@ int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   const view::ViewTraffic traffic = (*view)->traffic();
   view->reset();  // the web server, then the participant, before the process ends
   out << fmt::format(
-      "fleetmap view: stopped; {} browsers served, {} refused (more than {} at once), {} resyncs\n",
-      counters.connected, counters.refused, options.max_clients, counters.resyncs);
+      "fleetmap view: stopped; {} browsers served ({} bytes sent, gzip), {} refused (more than "
+      "{} at once), {} resyncs\n",
+      counters.connected, traffic.bytes_to_browsers, counters.refused, options.max_clients,
+      counters.resyncs);
   const double seconds = std::max(traffic.seconds, 1e-3);
   out << fmt::format(
-      "fleetmap view: per browser, {} deltas, {} bytes in {:.0f} s ({:.0f} B/s; whole state now "
+      "fleetmap view: per browser, {} deltas, {} bytes of JSON in {:.0f} s ({:.0f} B/s; whole "
+      "state now "
       "{} bytes); the fused grid as PNG at each of its {} updates: {} bytes ({:.0f} B/s, {})\n",
       traffic.deltas, traffic.delta_bytes, seconds, traffic.delta_bytes / seconds,
       traffic.last_full_bytes, traffic.grids, traffic.grid_png_bytes,

@@ -125,6 +125,7 @@ int FleetView::port() const { return web_->port(); }
 ViewTraffic FleetView::traffic() const {
   std::lock_guard lock(traffic_mutex_);
   ViewTraffic traffic = traffic_;
+  traffic.bytes_to_browsers = web_->bytes_sent();
   traffic.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   return traffic;

@@ -35,10 +35,11 @@ struct FleetViewOptions {
 // OccupancyGrid): the figures `fleetmap view` prints when it stops (docs/results.md).
 struct ViewTraffic {
   uint64_t deltas = 0;
-  uint64_t delta_bytes = 0;      // one browser's stream, keep-alives aside
-  uint64_t last_full_bytes = 0;  // the whole state, as a browser connecting now would get it
-  uint64_t grids = 0;            // rt/fleetmap/map updates received
-  uint64_t grid_png_bytes = 0;   // their PNGs, summed
+  uint64_t delta_bytes = 0;        // one browser's stream, keep-alives aside
+  uint64_t last_full_bytes = 0;    // the whole state, as a browser connecting now would get it
+  uint64_t grids = 0;              // rt/fleetmap/map updates received
+  uint64_t grid_png_bytes = 0;     // their PNGs, summed
+  uint64_t bytes_to_browsers = 0;  // written to every browser's stream, compressed, summed
   double seconds = 0.0;
 };
 

@@ -26,6 +26,17 @@ const char* LivelinessName(int liveliness) {
   return kNames[liveliness];
 }
 
+// [x0, y0, x1, y1, ...]
+template <typename Points>
+json FlatPoints(const Points& points) {
+  json flat = json::array();
+  for (const Point2& point : points) {
+    flat.push_back(Millimetres(point.x()));
+    flat.push_back(Millimetres(point.y()));
+  }
+  return flat;
+}
+
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -77,6 +88,7 @@ void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp 
         const Point2 here = pose->translation();
         if (robot.path.empty() || (robot.path.back() - here).norm() >= options_.path_spacing_m) {
           robot.path.push_back(here);
+          robot.path_gained.push_back(here);
           if (robot.path.size() > options_.path_points) robot.path.pop_front();
         }
       }
@@ -193,12 +205,6 @@ json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timest
     out["y"] = Millimetres(pose->y);
     out["yaw"] = Millimetres(pose->yaw);
   }
-  json path = json::array();
-  for (const Point2& point : robot.path) {
-    path.push_back(Millimetres(point.x()));
-    path.push_back(Millimetres(point.y()));
-  }
-  out["path"] = std::move(path);
   if (robot.status) {
     out["rev"] = robot.status->map_revision;
     out["tiles_published"] = robot.status->tiles_published;
@@ -271,10 +277,17 @@ json FleetViewModel::StatusJson() const {
 }
 
 std::string FleetViewModel::FullEvent() const {
+  // Paths travel apart from the robots: whole here, then only the points they gain (a robot's
+  // item changes several times a second; resending its path with it would be most of the stream).
+  json paths = json::object();
+  for (const auto& [id, robot] : robot_state_) {
+    if (robots_.items().count(id) > 0) paths[id] = FlatPoints(robot.path);
+  }
   return json{{"type", "full"},
               {"seq", seq_},
               {"tiles", tiles_.All()},
               {"robots", robots_.All()},
+              {"paths", std::move(paths)},
               {"submaps", submaps_.All()},
               {"objects", objects_.All()},
               {"templates", templates_.All()},
@@ -293,6 +306,16 @@ std::optional<std::string> FleetViewModel::TakeDelta() {
     json changes = section->TakeChanges();
     if (changes.empty()) continue;
     delta[name] = std::move(changes);
+    changed = true;
+  }
+  json gained = json::object();
+  for (auto& [id, robot] : robot_state_) {
+    if (robot.path_gained.empty()) continue;
+    gained[id] = FlatPoints(robot.path_gained);
+    robot.path_gained.clear();
+  }
+  if (!gained.empty()) {
+    delta["path_points"] = std::move(gained);
     changed = true;
   }
   json status = StatusJson();

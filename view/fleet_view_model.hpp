@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -59,11 +60,12 @@ class FleetViewModel {
   // Brings the time-driven parts up to `now`: live robots that went quiet turn stale, rates move.
   void Tick(Timestamp now);
 
-  // The whole state: {"type": "full", "seq", "tiles", "robots", "submaps", "objects",
+  // The whole state: {"type": "full", "seq", "tiles", "robots", "paths", "submaps", "objects",
   // "templates", "status"} (docs/view.md).
   std::string FullEvent() const;
   // The sections that changed since the previous delta (same layout, "type": "delta", removed
-  // items null), or nullopt when nothing did. Each delta advances `seq`.
+  // items null; "path_points" instead of "paths": only the points each path gained), or nullopt
+  // when nothing did. Each delta advances `seq`.
   std::optional<std::string> TakeDelta();
 
   size_t tile_count() const { return tiles_.size(); }
@@ -82,7 +84,8 @@ class FleetViewModel {
     Liveliness liveliness = Liveliness::kLive;
     Timestamp last_status{};
     std::deque<Point2> path;
-    std::deque<TileSample> tiles;  // received within the rate window
+    std::vector<Point2> path_gained;  // since the previous delta
+    std::deque<TileSample> tiles;     // received within the rate window
   };
 
   Robot& RobotNamed(const RobotId& id);

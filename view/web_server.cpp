@@ -4,6 +4,8 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include "view/gzip_stream.hpp"
+
 namespace fleetmap::view {
 namespace {
 
@@ -82,7 +84,7 @@ std::shared_ptr<const std::string> WebServer::MapImage() const {
 
 void WebServer::AddRoutes() {
   httplib::Server& server = *server_;
-  server.Get("/events", [this](const httplib::Request&, httplib::Response& response) {
+  server.Get("/events", [this](const httplib::Request& request, httplib::Response& response) {
     std::shared_ptr<EventBroadcaster::Client> client = broadcaster_.Connect();
     if (client == nullptr) {
       response.status = 503;
@@ -92,18 +94,25 @@ void WebServer::AddRoutes() {
       return;
     }
     response.set_header("Cache-Control", "no-store");
+    // Compressed for browsers that accept gzip (all do): the JSON shrinks several times.
+    std::shared_ptr<GzipStream> gzip;
+    if (request.get_header_value("Accept-Encoding").find("gzip") != std::string::npos) {
+      gzip = GzipStream::Create();
+      if (gzip != nullptr) response.set_header("Content-Encoding", "gzip");
+    }
     response.set_chunked_content_provider(
         "text/event-stream",
-        [this, client](size_t /*offset*/, httplib::DataSink& sink) {
+        [this, client, gzip](size_t /*offset*/, httplib::DataSink& sink) {
           const std::optional<Event> event = broadcaster_.Next(*client, options_.keep_alive);
           if (!event) {
             sink.done();  // the view is stopping
             return true;
           }
+          std::string frame = *event == nullptr ? std::string(kKeepAliveFrame) : SseFrame(**event);
+          if (gzip != nullptr) frame = gzip->Compress(frame);
+          bytes_sent_ += frame.size();
           // A false return (the socket stalled past the write timeout, or the browser left)
           // closes the connection; the releaser below then disconnects the client.
-          if (*event == nullptr) return sink.write(kKeepAliveFrame, sizeof(kKeepAliveFrame) - 1);
-          const std::string frame = SseFrame(**event);
           return sink.write(frame.data(), frame.size());
         },
         [this, client](bool /*success*/) { broadcaster_.Disconnect(client); });

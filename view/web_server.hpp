@@ -10,7 +10,9 @@
 // Each browser's event stream runs on its own thread of a bounded pool; the broadcaster bounds the
 // clients, and a socket that accepts nothing for `write_timeout` is closed.
 
+#include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -47,6 +49,8 @@ class WebServer {
   WebServer& operator=(const WebServer&) = delete;
 
   int port() const { return port_; }
+  // Bytes written to browsers' event streams (after compression), since start.
+  uint64_t bytes_sent() const { return bytes_sent_; }
   // The PNG GET /map.png answers with from now on.
   void SetMapImage(std::shared_ptr<const std::string> png);
 
@@ -60,6 +64,7 @@ class WebServer {
   std::unique_ptr<httplib::Server> server_;
   std::thread listener_;
   int port_ = 0;
+  std::atomic<uint64_t> bytes_sent_{0};
   mutable std::mutex map_mutex_;
   std::shared_ptr<const std::string> map_png_;
 };

@@ -264,6 +264,23 @@ TEST(ViewHttpTest, ServesThePageAndRefusesEverythingElse) {
     EXPECT_EQ(response->status, 404) << path;
     EXPECT_THAT(response->body, ::testing::Not(HasSubstr("root:"))) << path;
   }
+  // The event stream is gzip for a browser that accepts it (they all do).
+  {
+    httplib::Client browser("127.0.0.1", view.port());
+    browser.set_decompress(false);
+    std::string encoding;
+    std::string type;
+    browser.Get(
+        "/events", httplib::Headers{{"Accept-Encoding", "gzip, deflate, br"}},
+        [&](const httplib::Response& response) {
+          encoding = response.get_header_value("Content-Encoding");
+          type = response.get_header_value("Content-Type");
+          return false;  // the headers are all this needs
+        },
+        [](const char*, size_t) { return false; });
+    EXPECT_EQ(encoding, "gzip");
+    EXPECT_EQ(type, "text/event-stream");
+  }
   // No fused map on this empty domain yet.
   EXPECT_EQ(client.Get("/map.png")->status, 404);
   // Read-only: a request that would write is not served.

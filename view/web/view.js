@@ -56,7 +56,8 @@ const ring = (flat) => {
 
 // What is drawn, by key, so that a delta can replace or remove it.
 const drawn = { tiles: {}, robots: {}, submaps: {}, objects: {} };
-let state = { robots: {}, submaps: {}, templates: {}, status: null };
+let state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
+const PATH_POINTS = 200;  // as many as the view keeps
 let lastSeq = -1;
 let fitted = false;
 
@@ -125,7 +126,7 @@ function drawRobot(id, robot) {
   const color = COLORS.robot[robot.state] || COLORS.robot.left;
   const here = ll(robot.x, robot.y);
   const ahead = ll(robot.x + 0.8 * Math.cos(robot.yaw), robot.y + 0.8 * Math.sin(robot.yaw));
-  const path = L.polyline(ring(robot.path), {
+  const path = L.polyline(state.paths[id] || [], {
     renderer: renderers.robots, color: COLORS.path, weight: 1.5, opacity: 0.6, interactive: false,
   });
   const heading = L.polyline([here, ahead], {
@@ -206,7 +207,18 @@ function clearAll() {
   Object.keys(drawn.robots).forEach(removeRobot);
   Object.keys(drawn.submaps).forEach(removeSubmap);
   Object.keys(drawn.objects).forEach(removeObject);
-  state = { robots: {}, submaps: {}, templates: {}, status: null };
+  state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
+}
+
+// Whole paths come with the whole state; deltas bring the points each path gained.
+function applyPaths(paths, replace) {
+  if (!paths) return;
+  Object.entries(paths).forEach(([id, flat]) => {
+    const points = ring(flat);
+    const path = replace ? points : (state.paths[id] || []).concat(points);
+    state.paths[id] = path.slice(-PATH_POINTS);
+    if (state.robots[id]) drawRobot(id, state.robots[id]);
+  });
 }
 
 function apply(event) {
@@ -218,6 +230,7 @@ function apply(event) {
   lastSeq = event.seq;
   applySection(event.tiles, drawTile, removeTile);
   applySection(event.robots, drawRobot, removeRobot, state.robots);
+  applyPaths(event.type === 'full' ? event.paths : event.path_points, event.type === 'full');
   applySection(event.submaps, drawSubmap, removeSubmap, state.submaps);
   applySection(event.objects, drawObject, removeObject);
   applySection(event.templates, () => {}, () => {}, state.templates);

@@ -101,17 +101,19 @@ TEST(FleetViewModelTest, RobotsAreShownInTheFleetFrameAndTurnStaleThenLost) {
   FleetViewModel model;
   model.OnRobotEvent(Status("alpha", 1.0), kStart);
   model.Tick(kStart);
-  json alpha = Parse(model.TakeDelta())["robots"]["alpha"];
+  const json alpha = Parse(model.TakeDelta())["robots"]["alpha"];
   EXPECT_EQ(alpha["state"], "live");
   EXPECT_DOUBLE_EQ(alpha["x"].get<double>(), 11.0) << "fleet_from_map moves it 10 m";
   EXPECT_DOUBLE_EQ(alpha["y"].get<double>(), 2.0);
   EXPECT_EQ(alpha["rev"], 3);
 
-  // Moving: the path grows.
+  // Moving: a delta carries only the point the path gained; the whole state, the whole path.
   model.OnRobotEvent(Status("alpha", 2.0), kStart + milliseconds(500));
   model.Tick(kStart + milliseconds(500));
-  alpha = Parse(model.TakeDelta())["robots"]["alpha"];
-  EXPECT_EQ(alpha["path"], json({11.0, 2.0, 12.0, 2.0}));
+  const json moved = Parse(model.TakeDelta());
+  EXPECT_EQ(moved["robots"]["alpha"]["x"], 12.0);
+  EXPECT_EQ(moved["path_points"]["alpha"], json({12.0, 2.0}));
+  EXPECT_EQ(json::parse(model.FullEvent())["paths"]["alpha"], json({11.0, 2.0, 12.0, 2.0}));
 
   // Silent past stale_after: stale; then DDS says lost.
   model.Tick(kStart + seconds(3));
