@@ -171,7 +171,7 @@ void FleetViewModel::OnFleetMap(const transport::MapMessage& map) {
   grid_ = json{{"count", maps_received_},
                {"w", grid.width()},
                {"h", grid.height()},
-               {"res", grid.resolution()},
+               {"res", Rounded(grid.resolution(), 1e6)},  // the wire's float, not its noise
                {"ox", Millimetres(grid.origin().x)},
                {"oy", Millimetres(grid.origin().y)}};
 }

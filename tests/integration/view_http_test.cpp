@@ -404,5 +404,39 @@ TEST(ViewHttpTest, AStalledBrowserIsDroppedWithoutDelayingTheOthers) {
   EXPECT_TRUE(admitted) << "the stalled browser was never dropped";
 }
 
+TEST(ViewHttpTest, AnEnrolledViewerSeesASecuredFleetAndAnOutsiderNothing) {
+  const std::string dir = testing::FreshTempDir("view_secured") + "/fleet";
+  ASSERT_EQ(testing::RunFleetmap({"security", "init", "--dir", dir}).exit_code, 0);
+  ASSERT_EQ(
+      testing::RunFleetmap({"security", "enroll", "--dir", dir, "--robot", "alpha"}).exit_code, 0);
+  ASSERT_EQ(
+      testing::RunFleetmap({"security", "enroll", "--dir", dir, "--viewer", "watcher"}).exit_code,
+      0);
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server({testing::kServerBinary, "--security", dir, "--duration", "120",
+                              "--no-object-learning", "--no-extrapolation"},
+                             env);
+  process::Subprocess agent({testing::kAgentBinary, "--security", dir, "--robot-id", "alpha",
+                             "--map", testing::kViewTestMap},
+                            env);
+  testing::ViewProcess enrolled(domain, {"--security", dir, "--identity", "watcher"});
+  testing::ViewProcess outsider(domain);
+  ASSERT_GT(enrolled.port(), 0) << enrolled.process().Output();
+  ASSERT_GT(outsider.port(), 0) << outsider.process().Output();
+
+  EventStream watcher(enrolled.port());
+  EXPECT_TRUE(watcher.WaitUntil([](const EventStream& s) {
+    return s.state()["robots"].contains("alpha") && !s.state()["tiles"].empty();
+  })) << server.Output();
+  // By now the outsider has had every chance to see the same; DDS Security gave it nothing.
+  EventStream stranger(outsider.port());
+  ASSERT_TRUE(stranger.WaitUntil([](const EventStream& s) { return s.event_count() > 0; }));
+  std::this_thread::sleep_for(seconds(2));
+  EXPECT_TRUE(stranger.state()["robots"].empty());
+  EXPECT_TRUE(stranger.state()["tiles"].empty());
+}
+
 }  // namespace
 }  // namespace fleetmap
