@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "bench/extrapolation/floor_plan.hpp"
+#include "bench/extrapolation/floor_plan_experiment.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/sim/random.hpp"
 
@@ -110,6 +111,55 @@ TEST(RoomSegmentationTest, SceneHidesExactlyTheRoomsFreeCells) {
   EXPECT_FALSE(scene.door.open);
   EXPECT_TRUE(scene.door.hinge.isApprox(doorway.jamb_a));
   EXPECT_TRUE(scene.door.latch.isApprox(doorway.jamb_b));
+}
+
+// A real map's unknown cells have no ground truth: PlanForRoom labels them so, and a prediction on
+// them is neither right nor wrong.
+TEST(RoomSegmentationTest, PredictionsOnCellsTheMapNeverSawAreUnscored) {
+  grid::OccupancyGrid map = TwoRooms();
+  const grid::CellIndex unscanned{2, 2};  // a wall corner nobody scanned
+  map.at(unscanned.x, unscanned.y) = grid::kUnknownValue;
+  const RoomSegmentationOptions options;
+  const RoomSegmentation seg = SegmentRooms(map, options);
+  ASSERT_FALSE(seg.doorways.empty());
+  const FloorPlan plan = PlanForRoom(map, seg, seg.doorways.front(), options);
+  const std::optional<grid::CellIndex> in_plan =
+      plan.truth.CellAt(map.CellCenter(unscanned.x, unscanned.y));
+  ASSERT_TRUE(in_plan.has_value());
+  EXPECT_EQ(plan.labels[static_cast<size_t>(in_plan->y) * plan.truth.width() + in_plan->x],
+            kPlanUnknown);
+
+  // The hidden room's cells more than 0.8 m past its doorway become cells the scans never reached:
+  // the robot's map is the same (hidden either way), only the truth is gone.
+  const PlanDoor& door = plan.doors.front();
+  const Point2 doorway = 0.5 * (door.jamb_a + door.jamb_b);
+  FloorPlan unscanned_end = plan;
+  for (int y = 0; y < plan.truth.height(); ++y) {
+    for (int x = 0; x < plan.truth.width(); ++x) {
+      int32_t& label = unscanned_end.labels[static_cast<size_t>(y) * plan.truth.width() + x];
+      if (label == door.room && (plan.truth.CellCenter(x, y) - doorway).dot(door.into_room) > 0.8) {
+        label = kPlanUnknown;
+      }
+    }
+  }
+  FloorPlanExperimentOptions experiment;
+  experiment.dropout = 0.0;
+  const auto whole = RunHiddenRoomExperiment(plan, experiment);
+  const auto cut = RunHiddenRoomExperiment(unscanned_end, experiment);
+  ASSERT_TRUE(whole.ok() && cut.ok());
+  ASSERT_EQ(whole->size(), cut->size());
+  int64_t unscored = 0;
+  for (size_t r = 0; r < whole->size(); ++r) {
+    for (size_t k = 0; k < experiment.p_th.size(); ++k) {
+      const PlanDoorScore& a = (*whole)[r].scores[k];
+      const PlanDoorScore& b = (*cut)[r].scores[k];
+      EXPECT_EQ(a.unscored, 0);
+      EXPECT_EQ(b.false_free, a.false_free) << "unscanned cells are never counted wrong";
+      EXPECT_EQ(b.true_free + b.unscored, a.true_free);
+      unscored += b.unscored;
+    }
+  }
+  EXPECT_GT(unscored, 0) << "the prediction reaches more than 0.8 m into the room";
 }
 
 }  // namespace
