@@ -9,8 +9,8 @@
 #include <optional>
 #include <sstream>
 
-#include "cli/inputs/exit_codes.hpp"
 #include "cli/extrapolation_outputs.hpp"
+#include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/extrapolation/door_detector.hpp"
 #include "common/extrapolation/entities_json.hpp"

@@ -106,18 +106,9 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
       return fail(writable, kExitBadInput);
     }
   }
-  transport::ParticipantOptions dds;
-  dds.domain_id = options.domain;
-  dds.name = "fleetmap-save-map";
-  if (options.localhost_only) dds.localhost_only = true;
-  if (!options.security_dir.empty()) {
-    if (const Status secured =
-            dds.UseSecurityFolder(options.security_dir, options.security_identity);
-        !secured.ok()) {
-      return fail(secured.WithContext("--security"), kExitBadInput);
-    }
-  }
-  auto participant = transport::Participant::Create(dds);
+  auto dds = options.fleet.Participant("fleetmap-save-map");
+  if (!dds.ok()) return fail(dds.status(), kExitBadInput);
+  auto participant = transport::Participant::Create(*dds);
   if (!participant.ok()) return fail(participant.status(), kExitBadInput);
   auto wake_up = std::make_shared<WakeUp>();
   // Readers go before the participant, on every path.
@@ -205,7 +196,6 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
 
 void AddSaveMapCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<SaveMapOptions>();
-  auto domain = std::make_shared<int>(-1);
   CLI::App* command = app.add_subcommand(
       "save-map", "Save the fleet's fused map as map_server YAML + image (nav2's map saver)");
   command->footer(kDescription);
@@ -224,18 +214,9 @@ void AddSaveMapCommand(CLI::App& app, int* exit_code) {
   command->add_option("--settle", options->settle_s, "then keep the newest for this long")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--domain", *domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
-  command->add_flag("--localhost-only", options->localhost_only,
-                    "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
-  command->add_option("--security", options->security_dir,
-                      "DDS Security folder (fleetmap security): join the secured fleet as "
-                      "--identity");
-  command
-      ->add_option("--identity", options->security_identity,
-                   "the enrolled viewer to join as (fleetmap security enroll --viewer NAME)")
-      ->capture_default_str();
-  command->callback([options, domain, exit_code] {
-    if (*domain >= 0) options->domain = *domain;
+  auto fleet = std::make_shared<FleetReaderFlags>(command, &options->fleet);
+  command->callback([options, fleet, exit_code] {
+    fleet->ApplyDomain();
     *exit_code = RunSaveMap(*options, std::cout, std::cerr);
   });
 }

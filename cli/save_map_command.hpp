@@ -10,6 +10,8 @@
 #include <ostream>
 #include <string>
 
+#include "cli/fleet_reader_options.hpp"
+
 namespace fleetmap::cli {
 
 struct SaveMapOptions {
@@ -21,10 +23,7 @@ struct SaveMapOptions {
   std::string vmap_path;             // the fused vector tiles (empty: none)
   double timeout_s = 30.0;           // for the first fused map
   double settle_s = 2.0;             // then keep the newest map and tiles this long
-  std::optional<int> domain;
-  bool localhost_only = false;
-  std::string security_dir;                  // join a secured fleet
-  std::string security_identity = "viewer";  // ... as this enrolled viewer
+  FleetReaderOptions fleet;
 };
 
 // Runs the saver; progress and errors (naming the path or the domain and what is wrong) go to

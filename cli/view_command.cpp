@@ -40,16 +40,9 @@ int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   auto static_dir = view::FindStaticFolder(options.static_dir);
   if (!static_dir.ok()) return fail(static_dir.status());
   view_options.static_dir = *static_dir;
-  view_options.dds.domain_id = options.domain;
-  view_options.dds.name = "fleetmap-view";
-  if (options.localhost_only) view_options.dds.localhost_only = true;
-  if (!options.security_dir.empty()) {
-    if (const Status secured =
-            view_options.dds.UseSecurityFolder(options.security_dir, options.security_identity);
-        !secured.ok()) {
-      return fail(secured.WithContext("--security"));
-    }
-  }
+  auto dds = options.fleet.Participant("fleetmap-view");
+  if (!dds.ok()) return fail(dds.status());
+  view_options.dds = *std::move(dds);
   auto view = view::FleetView::Start(std::move(view_options));
   if (!view.ok()) return fail(view.status());
   out << fmt::format("fleetmap view: open {} (DDS domain {}; Ctrl-C to stop)\n", (*view)->url(),
@@ -90,7 +83,6 @@ int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err) {
 
 void AddViewCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<ViewOptions>();
-  auto domain = std::make_shared<int>(-1);
   CLI::App* command =
       app.add_subcommand("view", "Serve a live web view of the fleet (map, robots, predictions)");
   command->footer(kDescription);
@@ -98,9 +90,6 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   command->add_option("--bind", options->bind, "address to listen on")->capture_default_str();
-  command->add_option("--domain", *domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
-  command->add_flag("--localhost-only", options->localhost_only,
-                    "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   command->add_option("--max-clients", options->max_clients, "browsers served at once")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
@@ -108,15 +97,9 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--static-dir", options->static_dir,
                       "the page's folder (default: the installed one, or $FLEETMAP_VIEW_DIR)");
-  command->add_option("--security", options->security_dir,
-                      "DDS Security folder (fleetmap security): join the secured fleet as "
-                      "--identity");
-  command
-      ->add_option("--identity", options->security_identity,
-                   "the enrolled viewer to join as (fleetmap security enroll --viewer NAME)")
-      ->capture_default_str();
-  command->callback([options, domain, exit_code] {
-    if (*domain >= 0) options->domain = *domain;
+  auto fleet = std::make_shared<FleetReaderFlags>(command, &options->fleet);
+  command->callback([options, fleet, exit_code] {
+    fleet->ApplyDomain();
     *exit_code = RunView(*options, std::cout, std::cerr);
   });
 }

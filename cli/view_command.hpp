@@ -10,18 +10,17 @@
 #include <ostream>
 #include <string>
 
+#include "cli/fleet_reader_options.hpp"
+
 namespace fleetmap::cli {
 
 struct ViewOptions {
   int port = 8080;  // 0: any free port (printed)
   std::string bind = "127.0.0.1";
-  std::optional<int> domain;
-  bool localhost_only = false;
+  FleetReaderOptions fleet;
   std::string static_dir;  // empty: the installed page
   size_t max_clients = 32;
   double duration_s = 0.0;  // 0: until SIGINT or SIGTERM
-  std::string security_dir;
-  std::string security_identity = "viewer";
 };
 
 // Serves until a signal (or the duration); prints the URL to open on `out` once listening.

@@ -120,49 +120,36 @@ void FleetViewModel::OnRobotFrame(const transport::RobotFrameEvent& event) {
   }
 }
 
-void FleetViewModel::OnSubmap(const transport::SubmapEvent& event) {
-  const std::string key = std::to_string(event.message.submap.id);
+template <typename Message>
+void FleetViewModel::ApplyKeyed(const transport::KeyedEvent<Message>& event, const std::string& key,
+                                JsonDictionary& section, json (*to_json)(const Message&),
+                                std::string_view topic) {
   switch (event.kind) {
-    case transport::SubmapEvent::Kind::kSample:
-      submaps_.Put(key, SubmapJson(event.message));
+    case transport::KeyedEvent<Message>::Kind::kSample:
+      section.Put(key, to_json(event.message));
       break;
-    case transport::SubmapEvent::Kind::kRemoved:
-      submaps_.Remove(key);
+    case transport::KeyedEvent<Message>::Kind::kRemoved:
+      section.Remove(key);
       break;
-    case transport::SubmapEvent::Kind::kRejected:
-      CountRejected(transport::kSubmapGraphTopic);
+    case transport::KeyedEvent<Message>::Kind::kRejected:
+      CountRejected(topic);
       break;
   }
+}
+
+void FleetViewModel::OnSubmap(const transport::SubmapEvent& event) {
+  ApplyKeyed(event, std::to_string(event.message.submap.id), submaps_, &SubmapJson,
+             transport::kSubmapGraphTopic);
 }
 
 void FleetViewModel::OnObject(const transport::ObjectModelEvent& event) {
-  const std::string key = std::to_string(event.message.object_id);
-  switch (event.kind) {
-    case transport::ObjectModelEvent::Kind::kSample:
-      objects_.Put(key, ObjectJson(event.message));
-      break;
-    case transport::ObjectModelEvent::Kind::kRemoved:
-      objects_.Remove(key);
-      break;
-    case transport::ObjectModelEvent::Kind::kRejected:
-      CountRejected(transport::kObjectsTopic);
-      break;
-  }
+  ApplyKeyed(event, std::to_string(event.message.object_id), objects_, &ObjectJson,
+             transport::kObjectsTopic);
 }
 
 void FleetViewModel::OnTemplate(const transport::ObjectTemplateEvent& event) {
-  const std::string key = std::to_string(event.message.template_id);
-  switch (event.kind) {
-    case transport::ObjectTemplateEvent::Kind::kSample:
-      templates_.Put(key, TemplateJson(event.message));
-      break;
-    case transport::ObjectTemplateEvent::Kind::kRemoved:
-      templates_.Remove(key);
-      break;
-    case transport::ObjectTemplateEvent::Kind::kRejected:
-      CountRejected(transport::kObjectTemplatesTopic);
-      break;
-  }
+  ApplyKeyed(event, std::to_string(event.message.template_id), templates_, &TemplateJson,
+             transport::kObjectTemplatesTopic);
 }
 
 void FleetViewModel::OnFleetMap(const transport::MapMessage& map) {

@@ -89,6 +89,11 @@ class FleetViewModel {
   };
 
   Robot& RobotNamed(const RobotId& id);
+  // A keyed state topic's event into its section: put, removed, or counted as refused on `topic`.
+  template <typename Message>
+  void ApplyKeyed(const transport::KeyedEvent<Message>& event, const std::string& key,
+                  JsonDictionary& section, nlohmann::json (*to_json)(const Message&),
+                  std::string_view topic);
   // The robot's pose in the fleet frame: its status pose through the newest placement.
   std::optional<Pose2> FleetPose(const Robot& robot) const;
   nlohmann::json RobotJson(const std::string& id, const Robot& robot, Timestamp now) const;

@@ -64,11 +64,7 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   ASSERT_GT(view.port(), 0) << view.process().Output();
 
   // The test's own reader of the fused tiles, to count what the server published.
-  transport::ParticipantOptions options;
-  options.domain_id = domain;
-  options.localhost_only = true;
-  options.intraprocess_delivery = false;
-  auto participant = transport::Participant::Create(options);
+  auto participant = testing::LoopbackParticipant(domain);
   ASSERT_TRUE(participant.ok()) << participant.status();
   auto wake_up = std::make_shared<WakeUp>();
   auto fused =

@@ -158,11 +158,7 @@ class StalledBrowser {
 class MovingProbe {
  public:
   explicit MovingProbe(int domain) {
-    transport::ParticipantOptions options;
-    options.domain_id = domain;
-    options.localhost_only = true;
-    options.intraprocess_delivery = false;
-    participant_ = std::move(transport::Participant::Create(options)).value();
+    participant_ = std::move(testing::LoopbackParticipant(domain)).value();
     writer_ = std::move(transport::RobotStatusWriter::Create(*participant_)).value();
   }
   ~MovingProbe() {
@@ -192,11 +188,7 @@ class MovingProbe {
 class BigTilePublisher {
  public:
   explicit BigTilePublisher(int domain) {
-    transport::ParticipantOptions options;
-    options.domain_id = domain;
-    options.localhost_only = true;
-    options.intraprocess_delivery = false;
-    participant_ = std::move(transport::Participant::Create(options)).value();
+    participant_ = std::move(testing::LoopbackParticipant(domain)).value();
     writer_ =
         std::move(transport::VectorTileWriter::Create(*participant_, transport::kFusedTilesTopic))
             .value();
