@@ -28,50 +28,48 @@ int EmProblem::max_per_map() const {
   return static_cast<int>(most);
 }
 
-AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments& alignments) {
-  const int cells = problem.cells();
-  const size_t count = problem.snapshots.size();
-  const size_t objects = count == 0 ? 0 : alignments[0].size();
-  AlignedSnapshots aligned;
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(count, cells);
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights(count, cells);
-  std::vector<PatchSampler> samplers;
-  for (const scene::Patch& snapshot : problem.snapshots) samplers.emplace_back(snapshot);
-  for (size_t n = 0; n < objects; ++n) {
-    for (size_t s = 0; s < count; ++s) {
-      samplers[s].Sample(alignments[s][n], rows.row(s).data(), weights.row(s).data());
-    }
-    aligned.values.push_back(rows.cast<double>());
-    aligned.weights.push_back(weights.cast<double>());
-  }
-  return aligned;
-}
-
-Eigen::MatrixXd SnapshotLogLikelihoods(const AlignedSnapshots& aligned,
+Eigen::MatrixXd SnapshotLogLikelihoods(const EmProblem& problem, const PairAlignments& alignments,
                                        const Eigen::MatrixXd& objects, double sigma) {
-  const Eigen::Index count = aligned.values.empty() ? 0 : aligned.values[0].rows();
+  const int cells = problem.cells();
+  const Eigen::Index count = static_cast<Eigen::Index>(problem.snapshots.size());
   Eigen::MatrixXd ll(count, objects.rows());
-  for (Eigen::Index n = 0; n < objects.rows(); ++n) {
-    const Eigen::MatrixXd d = aligned.values[n].rowwise() - objects.row(n);
-    ll.col(n) = -(aligned.weights[n].array() * d.array().square()).rowwise().sum().matrix() /
-                (2.0 * sigma * sigma);
+  std::vector<float> values(cells), weights(cells);
+  const Eigen::MatrixXd by_cell = objects.transpose();  // each object's cells contiguous
+  for (Eigen::Index s = 0; s < count; ++s) {
+    const PatchSampler sampler(problem.snapshots[s]);
+    for (Eigen::Index n = 0; n < objects.rows(); ++n) {
+      sampler.Sample(alignments[s][n], values.data(), weights.data());
+      double sum = 0.0;
+      for (int i = 0; i < cells; ++i) {
+        const double d = values[i] - by_cell(i, n);
+        sum += weights[i] * d * d;
+      }
+      ll(s, n) = -sum / (2.0 * sigma * sigma);
+    }
   }
   return ll;
 }
 
-Eigen::MatrixXd WeightedSnapshotSums(const AlignedSnapshots& aligned,
+Eigen::MatrixXd WeightedSnapshotSums(const EmProblem& problem, const PairAlignments& alignments,
                                      const Eigen::MatrixXd& correspondences,
                                      const Eigen::MatrixXd& objects) {
+  const int cells = problem.cells();
   const Eigen::Index n_count = correspondences.cols();
-  Eigen::MatrixXd sums(n_count, objects.cols());
-  for (Eigen::Index n = 0; n < n_count; ++n) {
-    const Eigen::MatrixXd& w = aligned.weights[n];
-    const Eigen::MatrixXd imputed = (w.array() * aligned.values[n].array() +
-                                     (1.0 - w.array()).rowwise() * objects.row(n).array())
-                                        .matrix();
-    sums.row(n) = correspondences.col(n).transpose() * imputed;
+  Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(objects.cols(), n_count);  // cells x N
+  std::vector<float> values(cells), weights(cells);
+  const Eigen::MatrixXd by_cell = objects.transpose();
+  for (size_t s = 0; s < problem.snapshots.size(); ++s) {
+    const PatchSampler sampler(problem.snapshots[s]);
+    for (Eigen::Index n = 0; n < n_count; ++n) {
+      const double c = correspondences(static_cast<Eigen::Index>(s), n);
+      if (c == 0.0) continue;
+      sampler.Sample(alignments[s][n], values.data(), weights.data());
+      for (int i = 0; i < cells; ++i) {
+        sums(i, n) += c * (weights[i] * values[i] + (1.0 - weights[i]) * by_cell(i, n));
+      }
+    }
   }
-  return sums;
+  return sums.transpose();
 }
 
 double ObservedCells(const EmProblem& problem) {
