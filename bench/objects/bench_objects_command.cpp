@@ -121,23 +121,63 @@ int RunRealPlans(const BenchObjectsOptions& options, std::ostream& out, std::ost
         }
       }
     }
+    if (!options.out_dir.empty()) {
+      // The truth beside the maps, so that `learn-objects` runs on them can be scored too.
+      nlohmann::json truth = nlohmann::json::array();
+      for (size_t t = 0; t < series->pieces.size(); ++t) {
+        for (const PlacedPiece& p : series->pieces[t]) {
+          truth.push_back({{"map_index", t},
+                           {"piece", p.piece},
+                           {"shape", PlanShapeName(p.shape)},
+                           {"x", p.centre.x()},
+                           {"y", p.centre.y()},
+                           {"yaw", p.yaw},
+                           {"cells", p.cells}});
+        }
+      }
+      const std::string path = options.out_dir + "/real_plans/" + stem + "/pieces.json";
+      if (const Status written = WriteFileAtomically(path, truth.dump(1) + "\n"); !written.ok()) {
+        err << name << written.message() << "\n";
+        return cli::kExitBadInput;
+      }
+    }
     StatusOr<RealPlanResult> r = RunRealPlanExperiment(*series, learn);
     if (!r.ok()) {
       err << name << floor << ": " << r.status().message() << "\n";
       return cli::kExitBadInput;
     }
     const double peak_mb = r->peak_rss_bytes < 0 ? -1.0 : r->peak_rss_bytes / 1e6;
+    nlohmann::json missed = nlohmann::json::array(), spurious = nlohmann::json::array();
+    for (size_t i = 0; i < r->score.missed.size(); ++i) {
+      const PlacedPiece& p = r->score.missed[i];
+      missed.push_back({{"map_index", r->score.missed_map[i]},
+                        {"piece", p.piece},
+                        {"shape", PlanShapeName(p.shape)},
+                        {"x", p.centre.x()},
+                        {"y", p.centre.y()}});
+    }
+    for (const object_learning::SnapshotAssignment& a : r->score.spurious) {
+      spurious.push_back({{"map_index", a.map_index}, {"x", a.centre.x()}, {"y", a.centre.y()}});
+    }
     out << "| " << stem << " | " << r->score.true_pieces << " | " << r->score.snapshots << " | "
         << r->score.matched << " | " << Fixed(r->score.precision, 3) << " | "
         << Fixed(r->score.recall, 3) << " | (" << r->num_objects << ", " << r->num_templates
         << ") | " << r->searched << " | " << Fixed(r->seconds, 1) << " | " << Fixed(peak_mb, 0)
         << (r->peak_reset ? "" : " (process)") << " |\n";
+    if (series->unplaced > 0 || series->overlapping_earlier > 0) {
+      out << "  " << stem << ": " << series->unplaced << " piece(s) found no free spot, "
+          << series->overlapping_earlier
+          << " stand where a piece of an earlier map stood (the floor is full)\n";
+    }
     for (const std::string& w : r->warnings) out << "  " << stem << ": " << w << "\n";
     rows.push_back({{"floor", floor},
                     {"maps", r->maps},
                     {"pieces_per_map", r->pieces},
                     {"pieces_drawn", r->score.true_pieces},
                     {"unplaced", r->unplaced},
+                    {"overlapping_earlier", series->overlapping_earlier},
+                    {"missed", missed},
+                    {"spurious", spurious},
                     {"shapes", r->shapes},
                     {"snapshots", r->score.snapshots},
                     {"found", r->score.matched},

@@ -49,6 +49,17 @@ RealPlanScore ScoreAgainstPieces(const RealPlanSeries& series,
       used_pieces.insert(p);
       ++score.matched;
     }
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      if (used_pieces.count(static_cast<int>(p))) continue;
+      score.missed.push_back(pieces[p]);
+      score.missed_map.push_back(static_cast<int>(t));
+    }
+    for (size_t s = 0; s < model.snapshots.size(); ++s) {
+      if (model.snapshots[s].map_index == static_cast<int>(t) &&
+          !used_snapshots.count(static_cast<int>(s))) {
+        score.spurious.push_back(model.snapshots[s]);
+      }
+    }
   }
   score.precision =
       score.snapshots == 0 ? 0.0 : static_cast<double>(score.matched) / score.snapshots;

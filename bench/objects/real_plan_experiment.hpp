@@ -25,6 +25,9 @@ struct RealPlanScore {
   int matched = 0;      // one-to-one snapshot-piece pairs within the distance
   double precision = 0.0;
   double recall = 0.0;
+  std::vector<PlacedPiece> missed;  // pieces no snapshot found (their map in `piece`'s order)
+  std::vector<int> missed_map;
+  std::vector<object_learning::SnapshotAssignment> spurious;  // snapshots that found no piece
 };
 
 // Scores the snapshots of `model` against the pieces of `series`.

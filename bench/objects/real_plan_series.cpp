@@ -39,7 +39,8 @@ ShapeSize SizeOf(PlanShape shape) {
 // Whether the piece-frame point (x, y) (metres, origin at the bounding box's centre) is inside.
 bool Inside(PlanShape shape, double x, double y) {
   const ShapeSize s = SizeOf(shape);
-  const double hx = 0.5 * s.length, hy = 0.5 * s.width;
+  // A hair over half the size, so that a size of whole cells draws whole cells on both sides.
+  const double hx = 0.5 * s.length + 1e-6, hy = 0.5 * s.width + 1e-6;
   switch (shape) {
     case PlanShape::kBin:
     case PlanShape::kSmallBin:
@@ -207,7 +208,16 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
       groups.back().push_back(i);
     }
   }
-  const double pitch = SizeOf(PlanShape::kDesk).length + res;  // desk to desk in a row
+  // Desk to desk in a row, cells: a desk's drawn length and one free cell.
+  int pitch = 0;
+  {
+    int lo = 0, hi = 0;
+    for (const grid::CellIndex& c : Footprint(PlanShape::kDesk, 0, 0, 0.0, res)) {
+      lo = std::min(lo, c.x);
+      hi = std::max(hi, c.x);
+    }
+    pitch = hi - lo + 2;
+  }
   constexpr int kTries = 3000;
   for (int t = 0; t < options.maps; ++t) {
     grid::OccupancyGrid map = base;
@@ -226,7 +236,7 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
         bool fits = true;
         bool touches_earlier = false;
         for (size_t k = 0; k < group.size() && fits; ++k) {
-          const double along = (k - 0.5 * (group.size() - 1.0)) * pitch / res;  // cells
+          const double along = (k - 0.5 * (group.size() - 1.0)) * pitch;  // cells
           const int cx = at.x + static_cast<int>(std::lround(along * std::cos(yaw)));
           const int cy = at.y + static_cast<int>(std::lround(along * std::sin(yaw)));
           candidate.push_back(Footprint(shape_of[group[k]], cx, cy, yaw, res));

@@ -12,6 +12,22 @@
 
 namespace fleetmap::object_learning {
 
+namespace {
+
+// The content size of every row of `rows` (patches of the problem's size).
+std::vector<ShapeSize> RowSizes(
+    const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& rows,
+    const EmProblem& problem) {
+  const scene::Patch& shape = problem.snapshots.front();
+  std::vector<ShapeSize> sizes;
+  for (Eigen::Index n = 0; n < rows.rows(); ++n) {
+    sizes.push_back(SizeOfContent(rows.row(n).data(), shape.width, shape.height));
+  }
+  return sizes;
+}
+
+}  // namespace
+
 EmProblem MakeEmProblem(const SnapshotSet& set) {
   EmProblem problem;
   problem.maps.resize(set.per_map.size());
@@ -130,9 +146,17 @@ void AlignmentStep(const EmProblem& problem, const Eigen::MatrixXd& corresponden
   constexpr double kActive = 1e-3;
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();
+  const std::vector<ShapeSize> object_sizes = RowSizes(targets, problem);
   for (size_t s = 0; s < problem.snapshots.size(); ++s) {
+    const scene::Patch& snapshot = problem.snapshots[s];
+    const ShapeSize size =
+        SizeOfContent(snapshot.occupancy.data(), snapshot.width, snapshot.height);
     for (Eigen::Index n = 0; n < objects.rows(); ++n) {
       if (!all_pairs && correspondences(s, n) < kActive) continue;
+      // An unlike pair that carries no weight is not worth a rotation scan.
+      if (all_pairs && correspondences(s, n) < kActive && !MayMatch(size, object_sizes[n])) {
+        continue;
+      }
       (*alignments)[s][n] = AlignSnapshot(problem.snapshots[s], targets.row(n).data(),
                                           (*alignments)[s][n], all_pairs, 0.25, options)
                                 .alignment;
@@ -161,11 +185,17 @@ void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& opt
   EmOptions scan = options;
   scan.min_shift_step = options.initial_shift_step;  // the scan and one coarse climb round
   alignments->assign(count, std::vector<Alignment>(num_objects));
+  const std::vector<ShapeSize> object_sizes = RowSizes(targets, problem);
   for (int s = 0; s < count; ++s) {
+    const scene::Patch& snapshot = problem.snapshots[s];
+    const ShapeSize size =
+        SizeOfContent(snapshot.occupancy.data(), snapshot.width, snapshot.height);
     for (int n = 0; n < num_objects; ++n) {
       (*alignments)[s][n] =
-          AlignSnapshot(problem.snapshots[s], targets.row(n).data(), Alignment{}, true, 1.0, scan)
-              .alignment;
+          MayMatch(size, object_sizes[n])
+              ? AlignSnapshot(snapshot, targets.row(n).data(), Alignment{}, true, 1.0, scan)
+                    .alignment
+              : CentroidAlignment(snapshot, targets.row(n).data()).alignment;
     }
   }
 }

@@ -85,12 +85,20 @@ bool RegroupTemplates(const EmProblem& problem, const Eigen::MatrixXd& responsib
   PairAlignments onto(n_count, std::vector<Alignment>(n_count));
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();
+  std::vector<ShapeSize> sizes;
+  for (int n = 0; n < n_count; ++n) {
+    sizes.push_back(SizeOfContent(targets.row(n).data(), shape.width, shape.height));
+  }
   for (int n = 0; n < n_count; ++n) {
     const scene::Patch object = RowPatch(objects, n, shape);
     for (int k = 0; k < n_count; ++k) {
       if (k == n) continue;
+      // Unlike objects are far apart at any rotation: their unturned distance is enough to
+      // keep them in different groups, without a scan.
       const AlignmentResult r =
-          AlignSnapshot(object, targets.row(k).data(), Alignment{}, true, 1.0, options);
+          MayMatch(sizes[n], sizes[k])
+              ? AlignSnapshot(object, targets.row(k).data(), Alignment{}, true, 1.0, options)
+              : CentroidAlignment(object, targets.row(k).data());
       distance(n, k) = r.squared_distance;
       onto[n][k] = r.alignment;
     }

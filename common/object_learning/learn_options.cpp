@@ -113,6 +113,7 @@ Status LearnOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(selection.Validate());
   if (restarts < 1 || restarts > 1000) return Bad("restarts", restarts, "in [1, 1000]");
   if (!Positive(memory_budget_mb)) return Bad("memory_budget_mb", memory_budget_mb, "> 0");
+  if (!Positive(work_budget)) return Bad("work_budget", work_budget, "> 0");
   return Status::Ok();
 }
 
@@ -163,6 +164,7 @@ void LearnOptions::Describe(OptionsPrinter& out) const {
   out.Add("seed", seed);
   out.Add("hierarchical", hierarchical);
   out.Add("memory_budget_mb", memory_budget_mb);
+  out.Add("work_budget", work_budget);
 }
 
 }  // namespace fleetmap::object_learning

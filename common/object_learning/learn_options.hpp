@@ -117,6 +117,12 @@ struct LearnOptions {
   // coarsened (2x, 4x: coarser alignment), then the oldest maps dropped (fewer sessions), and at
   // last a cap on the objects searched. It never fails for memory. > 0.
   double memory_budget_mb = 1024.0;
+  // Time: one EM iteration costs about snapshots x objects x patch cells (every pair is resampled
+  // and aligned). Above this product (at the fewest objects searched) the patches are coarsened
+  // 2x (at most twice; 4x fewer cells each time) and a warning says so. The lab's 23 snapshots
+  // x 4 objects x 29^2 cells are 7.7e4; 160 pieces of furniture x 40 objects x 39^2 cells 1e7.
+  // > 0.
+  double work_budget = 4e6;
   // Progress reports (learn_progress.hpp); empty: none.
   LearnProgressCallback progress;
 

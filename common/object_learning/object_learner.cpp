@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "common/object_learning/em_problem.hpp"
 #include "common/object_learning/memory_plan.hpp"
@@ -121,11 +122,39 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
     }
     break;
   }
+  auto cell_size = [&](int factor) {
+    std::ostringstream text;
+    text << factor * maps[0].resolution();
+    return text.str();
+  };
   if (coarsened > 1) {
-    degraded.push_back(
-        "memory budget " + mb(budget) + " MB: learning would take about " + mb(first_estimate) +
-        " MB; snapshot patches were coarsened " + std::to_string(coarsened) + "x (cells of " +
-        std::to_string(coarsened * maps[0].resolution()) + " m: coarser alignment and templates)");
+    degraded.push_back("memory budget " + mb(budget) + " MB: learning would take about " +
+                       mb(first_estimate) + " MB; snapshot patches were coarsened " +
+                       std::to_string(coarsened) + "x (cells of " + cell_size(coarsened) +
+                       " m: coarser alignment and templates)");
+  }
+  // Time: EM's cost grows with snapshots x objects x patch cells (every pair is resampled and
+  // aligned). Past the work budget the patches are coarsened as for memory.
+  auto work = [&] {
+    const double cells = set.snapshots.empty() ? 0.0
+                                               : static_cast<double>(set.snapshots[0].patch.width) *
+                                                     set.snapshots[0].patch.height;
+    return static_cast<double>(set.snapshots.size()) * std::max(1, per_map()) * cells;
+  };
+  const double first_work = work();
+  const int coarsened_for_memory = coarsened;
+  while (work() > options.work_budget && coarsened < 4 && !set.snapshots.empty() &&
+         set.snapshots[0].patch.width >= 15) {
+    CoarsenSnapshots(&set);
+    coarsened *= 2;
+  }
+  if (coarsened > coarsened_for_memory) {
+    std::ostringstream text;
+    text << "work budget: " << set.snapshots.size() << " snapshots x " << per_map()
+         << " objects x patch cells = " << first_work << " is above work_budget "
+         << options.work_budget << "; snapshot patches were coarsened " << coarsened
+         << "x (cells of " << cell_size(coarsened) << " m: coarser alignment and templates)";
+    degraded.push_back(text.str());
   }
   if (first_map > first_map_for_differencing) {
     degraded.push_back("memory budget " + mb(budget) + " MB: the oldest " +
