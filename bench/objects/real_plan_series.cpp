@@ -189,7 +189,12 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
   std::mt19937_64 random(options.seed);
   std::uniform_int_distribution<size_t> pick(0, clear.size() - 1);
   std::uniform_int_distribution<int> quarter(0, 3);
-  Mask earlier(cells, 0);  // where pieces of earlier maps stood (with the gap)
+  // How many earlier maps had a piece on each cell (with the gap). A piece is drawn where no
+  // earlier one stood if the floor allows, else where at most maps - 2 earlier ones stood: every
+  // cell of every piece is then free in at least one other map, so it is a difference (a piece
+  // standing where pieces stand in all other maps cannot be found by differencing at all).
+  std::vector<uint8_t> earlier(cells, 0);
+  const int most_earlier = options.maps - 2;
   // Placement groups: rows of desks (kRowLength desks end to end, one free cell between them,
   // as desks in an office stand) first, then single pieces of the other shapes in turn.
   constexpr int kRowLength = 4;
@@ -235,6 +240,7 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
         std::vector<std::vector<grid::CellIndex>> candidate;
         bool fits = true;
         bool touches_earlier = false;
+        bool too_covered = false;
         for (size_t k = 0; k < group.size() && fits; ++k) {
           const double along = (k - 0.5 * (group.size() - 1.0)) * pitch;  // cells
           const int cx = at.x + static_cast<int>(std::lround(along * std::cos(yaw)));
@@ -245,10 +251,12 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
               fits = false;
               break;
             }
-            touches_earlier = touches_earlier || earlier[static_cast<size_t>(c.y) * w + c.x];
+            const int covered = earlier[static_cast<size_t>(c.y) * w + c.x];
+            touches_earlier = touches_earlier || covered > 0;
+            too_covered = too_covered || covered > most_earlier;
           }
         }
-        if (!fits || (strict && touches_earlier)) continue;
+        if (!fits || too_covered || (strict && touches_earlier)) continue;
         cells_of = std::move(candidate);
         yaws.assign(group.size(), yaw);
         over_earlier = touches_earlier;
@@ -280,7 +288,9 @@ StatusOr<RealPlanSeries> MakeRealPlanSeries(const grid::OccupancyGrid& floor,
         footprints.push_back(std::move(f));
       }
     }
-    for (const std::vector<grid::CellIndex>& f : footprints) MarkAround(f, gap, w, h, &earlier);
+    Mask mine(cells, 0);
+    for (const std::vector<grid::CellIndex>& f : footprints) MarkAround(f, gap, w, h, &mine);
+    for (size_t i = 0; i < cells; ++i) earlier[i] += mine[i];
     series.maps.push_back(std::move(map));
     series.pieces.push_back(std::move(placed));
   }

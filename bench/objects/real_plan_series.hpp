@@ -7,7 +7,8 @@
 // the series gets the same pieces (rectangles, L-shapes, small discs) at new random poses (yaw a
 // multiple of 90 degrees, as furniture stands along walls), each with a gap of free floor around
 // it, but for rows of desks standing one cell apart. A piece is kept away from where any piece
-// stood in the earlier maps when the floor allows it, so every piece is a difference in every map.
+// stood in the earlier maps when the floor allows it, and else from where pieces stood in all
+// other maps but one, so every cell of every piece is a difference (free in some other map).
 // Same seed, same series.
 //
 // Thread-safety: stateless.
@@ -52,7 +53,7 @@ struct RealPlanSeries {
   std::vector<grid::OccupancyGrid> maps;
   std::vector<std::vector<PlacedPiece>> pieces;  // per map, the pieces it shows
   int unplaced = 0;             // pieces that found no free spot in some map (not drawn there)
-  int overlapping_earlier = 0;  // pieces placed over an earlier map's piece (floor too small)
+  int overlapping_earlier = 0;  // pieces placed over an earlier map's piece (floor too full)
 };
 
 // Errors: the floor map cannot be read (the message names it), options out of range.

@@ -138,7 +138,14 @@ SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& option
       break;
     }
   }
-  if (capped && last_n == highest && result.num_objects >= highest - patience) {
+  if (capped && highest == lowest) {
+    // A map shows more snapshots than max_objects: N cannot be smaller than that, and the cap
+    // leaves only that one value to try.
+    result.warnings.push_back("one map has " + std::to_string(lowest) +
+                              " snapshots, more than selection.max_objects (" +
+                              std::to_string(options.selection.max_objects) +
+                              "): only N = " + std::to_string(lowest) + " was tried");
+  } else if (capped && last_n == highest && result.num_objects >= highest - patience) {
     result.warnings.push_back("the number of objects was searched up to " +
                               std::to_string(highest) + " (selection.max_objects), not " +
                               std::to_string(total) + " (all snapshots), and the best was near it");
