@@ -104,6 +104,8 @@ nlohmann::json ModelJson(const ol::LearnedModel& model, const std::vector<std::s
           {"templates", templates},
           {"snapshots", snapshots},
           {"warnings", model.warnings},
+          {"degraded", model.degraded},
+          {"estimated_memory_mb", model.estimated_memory_mb},
           {"seconds", seconds}};
 }
 
@@ -192,7 +194,7 @@ int RunLearnObjects(const LearnObjectsOptions& options, std::ostream& out, std::
     out << model->snapshots.size() << " snapshots -> " << model->num_objects << " objects, "
         << model->num_templates << " templates (log posterior " << model->log_posterior << ", "
         << model->searched.size() << " (N, M) searched, " << seconds << " s"
-        << (model->degraded ? ", degraded to fit the memory budget: see the warnings" : "")
+        << (model->degraded ? ", degraded to fit the memory or work budget: see the warnings" : "")
         << "). Wrote " << options.out_dir
         << "/model.json, object_*.pgm, template_*.pgm, montage.png.\n";
   }

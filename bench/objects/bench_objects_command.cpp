@@ -188,6 +188,7 @@ int RunRealPlans(const BenchObjectsOptions& options, std::ostream& out, std::ost
                     {"searched", r->searched},
                     {"seconds", r->seconds},
                     {"peak_rss_bytes", r->peak_rss_bytes},
+                    {"learner_estimate_mb", r->estimated_mb},
                     {"peak_is_learning_only", r->peak_reset},
                     {"warnings", r->warnings}});
     csv << stem << "," << r->maps << "," << r->pieces << "," << r->score.true_pieces << ","

@@ -93,6 +93,7 @@ StatusOr<RealPlanResult> RunRealPlanExperiment(const RealPlanSeries& series,
   result.num_templates = model->num_templates;
   result.searched = static_cast<int>(model->searched.size());
   result.warnings = model->warnings;
+  result.estimated_mb = model->estimated_memory_mb;
   return result;
 }
 

@@ -46,6 +46,7 @@ struct RealPlanResult {
   int searched = 0;  // (N, M) candidates tried
   double seconds = 0.0;
   int64_t peak_rss_bytes = 0;  // -1 when it could not be read
+  double estimated_mb = 0.0;   // the learner's own estimate of its peak (LearnedModel)
   bool peak_reset = false;     // the peak was reset before learning (else it includes earlier work)
   std::vector<std::string> warnings;
 };

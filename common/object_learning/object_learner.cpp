@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "common/object_learning/em_problem.hpp"
@@ -54,7 +55,9 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
   const double budget = options.memory_budget_mb * 1e6;
   std::vector<std::string> degraded;
   auto mb = [](double bytes) {
-    return std::to_string(static_cast<int64_t>(std::ceil(bytes / 1e6)));
+    std::ostringstream text;
+    text << std::setprecision(3) << bytes / 1e6;
+    return text.str();
   };
   // Fewer sessions: the oldest maps go first, while at least two are left.
   size_t first_map = 0;
