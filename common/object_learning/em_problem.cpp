@@ -66,6 +66,8 @@ Eigen::MatrixXd SnapshotLogLikelihoods(const EmProblem& problem, const PairAlign
   return ll;
 }
 
+constexpr double kNegligibleCorrespondence = 1e-9;
+
 Eigen::MatrixXd WeightedSnapshotSums(const EmProblem& problem, const PairAlignments& alignments,
                                      const Eigen::MatrixXd& correspondences,
                                      const Eigen::MatrixXd& objects) {
@@ -77,8 +79,9 @@ Eigen::MatrixXd WeightedSnapshotSums(const EmProblem& problem, const PairAlignme
   for (size_t s = 0; s < problem.snapshots.size(); ++s) {
     const PatchSampler sampler(problem.snapshots[s]);
     for (Eigen::Index n = 0; n < n_count; ++n) {
+      // A pair this unlikely adds less than 1e-9 of a snapshot to any cell: not worth resampling.
       const double c = correspondences(static_cast<Eigen::Index>(s), n);
-      if (c == 0.0) continue;
+      if (c < kNegligibleCorrespondence) continue;
       sampler.Sample(alignments[s][n], values.data(), weights.data());
       for (int i = 0; i < cells; ++i) {
         sums(i, n) += c * (weights[i] * values[i] + (1.0 - weights[i]) * by_cell(i, n));

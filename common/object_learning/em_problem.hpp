@@ -63,7 +63,7 @@ Eigen::MatrixXd SnapshotLogLikelihoods(const EmProblem& problem, const PairAlign
 
 // sum_s E[c_s = n] (w f + (1 - w) theta_n), N x cells: the data side of the M-step, unobserved
 // cells imputed with their expectation under the current object (EM for missing data), which
-// keeps the M-step's matrix the same for every cell. Pairs with E[c_s = n] = 0 are skipped.
+// keeps the M-step's matrix the same for every cell. Pairs with E[c_s = n] < 1e-9 are skipped.
 Eigen::MatrixXd WeightedSnapshotSums(const EmProblem& problem, const PairAlignments& alignments,
                                      const Eigen::MatrixXd& correspondences,
                                      const Eigen::MatrixXd& objects);

@@ -43,8 +43,8 @@ Status SnapshotOptions::Validate() const {
   if (o.small_region_cells < 0 || o.small_region_cells > o.min_region_cells) {
     return Bad("snapshots.small_region_cells", o.small_region_cells, "in [0, min_region_cells]");
   }
-  if (o.max_region_radius_cells < 1) {
-    return Bad("snapshots.max_region_radius_cells", o.max_region_radius_cells, ">= 1");
+  if (!Positive(o.max_region_radius_m)) {
+    return Bad("snapshots.max_region_radius_m", o.max_region_radius_m, "> 0");
   }
   if (o.max_region_cells < o.min_region_cells) {
     return Bad("snapshots.max_region_cells", o.max_region_cells, ">= min_region_cells");
@@ -126,7 +126,7 @@ void SnapshotOptions::Describe(OptionsPrinter& out) const {
   out.Add("min_region_cells", min_region_cells);
   out.Add("small_region_cells", small_region_cells);
   out.Add("max_region_cells", max_region_cells);
-  out.Add("max_region_radius_cells", max_region_radius_cells);
+  out.Add("max_region_radius_m", max_region_radius_m);
   out.Add("margin_cells", margin_cells);
   out.Add("patch_cells", patch_cells);
   out.Add("blur_cells", blur_cells);

@@ -39,11 +39,11 @@ struct SnapshotOptions {
   // Larger regions (a row of desks, furniture against furniture) are split into objects: first
   // into the parts that are apart at all (8-connected), then at their narrow necks (the cells
   // left by erosion seed a geodesic watershed), and a part that is still too large is cut into
-  // slices across its long axis (with a warning). A region wider than 2 max_region_radius_cells
+  // slices across its long axis (with a warning). A region wider than 2 max_region_radius_m
   // is split the same way: one size is shared by every patch, so one huge region would make
   // every patch (and the time and memory of learning) huge.
   int max_region_cells = 4000;       // >= min_region_cells
-  int max_region_radius_cells = 30;  // >= 1 (30 cells: 1.5 m at 5 cm)
+  double max_region_radius_m = 1.5;  // metres from its centroid to its farthest cell, > 0
   int margin_cells = 3;              // empty border around the largest snapshot, >= 0
   int patch_cells = 0;               // side of every patch in cells; 0: from the largest snapshot
   // Gaussian smoothing of each snapshot patch (standard deviation, cells; 0: none). A laser sees
@@ -119,7 +119,8 @@ struct LearnOptions {
   double memory_budget_mb = 1024.0;
   // Time: one EM iteration costs about snapshots x objects x patch cells (every pair is resampled
   // and aligned). Above this product (at the fewest objects searched) the patches are coarsened
-  // 2x (at most twice; 4x fewer cells each time) and a warning says so. The lab's 23 snapshots
+  // 2x (at most twice, and not beyond 10 cm cells; 4x fewer cells each time) and a warning says
+  // so. The lab's 23 snapshots
   // x 4 objects x 29^2 cells are 7.7e4; 160 pieces of furniture x 40 objects x 39^2 cells 1e7.
   // > 0.
   double work_budget = 4e6;

@@ -146,8 +146,12 @@ StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps
   };
   const double first_work = work();
   const int coarsened_for_memory = coarsened;
+  // Not coarser than 10 cm for time: a bin of 20 cm must stay more than a cell or two (memory
+  // may coarsen further, above).
+  constexpr double kCoarsestForWork = 0.1 + 1e-9;
   while (work() > options.work_budget && coarsened < 4 && !set.snapshots.empty() &&
-         set.snapshots[0].patch.width >= 15) {
+         set.snapshots[0].patch.width >= 15 &&
+         2.0 * set.snapshots[0].patch.resolution <= kCoarsestForWork) {
     CoarsenSnapshots(&set);
     coarsened *= 2;
   }

@@ -209,7 +209,10 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
   std::vector<Found> found;
   SnapshotSet result;
   result.per_map.assign(maps.size(), 0);
-  const RegionLimits limits{options.max_region_cells, options.max_region_radius_cells};
+  // The radius limit is metric: a row of desks is as long in metres at any resolution.
+  const int max_radius_cells =
+      std::max(1, static_cast<int>(std::floor(options.max_region_radius_m / maps[0].resolution())));
+  const RegionLimits limits{options.max_region_cells, max_radius_cells};
   const int smallest =
       options.small_region_cells > 0 ? options.small_region_cells : options.min_region_cells;
   for (size_t t = first_map; t < maps.size(); ++t) {
@@ -226,7 +229,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
     for (Region& grown : GrowRegions(std::move(diff), width, height, options.link_cells)) {
       std::vector<Region> regions;
       if (static_cast<int>(grown.cells.size()) > options.max_region_cells ||
-          RegionRadius(grown.cells) > options.max_region_radius_cells) {
+          RegionRadius(grown.cells) > max_radius_cells) {
         SplitRegions pieces = SplitRegion(grown.cells, limits);
         ++split;
         parts += static_cast<int>(pieces.parts.size());
@@ -258,9 +261,9 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
       result.warnings.push_back(
           "map " + std::to_string(t) + ": " + std::to_string(split) +
           " changed region(s) larger than max_region_cells (" +
-          std::to_string(options.max_region_cells) + ") or max_region_radius_cells (" +
-          std::to_string(options.max_region_radius_cells) + ") were split into " +
-          std::to_string(parts) + " parts" +
+          std::to_string(options.max_region_cells) + " cells) or max_region_radius_m (" +
+          Number(options.max_region_radius_m) + " m) were split into " + std::to_string(parts) +
+          " parts" +
           (sliced ? ", some cut into slices (touching objects with no neck between them)" : ""));
     }
   }
@@ -280,7 +283,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
       }
       return b;
     };
-    const int isolation = std::max(10, 3 * options.link_cells);  // cells between boxes
+    const int isolation = 2 * options.link_cells + 1;  // cells between bounding boxes
     auto isolated = [&](size_t i) {
       const Box a = box_of(found[i].region);
       for (size_t j = 0; j < found.size(); ++j) {
