@@ -1,14 +1,11 @@
 #include "bench/objects/real_plan_experiment.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <set>
+#include <string>
 #include <tuple>
-
-#include "common/process/subprocess.hpp"
 
 namespace fleetmap::bench {
 namespace {
@@ -21,6 +18,16 @@ bool ResetPeakMemory() {
   clear_refs << "5";
   clear_refs.flush();
   return static_cast<bool>(clear_refs);
+}
+
+// This process's peak resident memory since the last reset (VmHWM of /proc/self/status), or -1.
+int64_t PeakMemoryBytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoll(line.substr(6)) * 1024;
+  }
+  return -1;
 }
 
 }  // namespace
@@ -85,8 +92,7 @@ StatusOr<RealPlanResult> RunRealPlanExperiment(const RealPlanSeries& series,
   const auto start = std::chrono::steady_clock::now();
   StatusOr<object_learning::LearnedModel> model = object_learning::LearnObjects(series.maps, learn);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::optional<process::ProcessUsage> usage = process::ReadUsage(getpid());
-  result.peak_rss_bytes = usage ? usage->peak_rss_bytes : -1;
+  result.peak_rss_bytes = PeakMemoryBytes();
   if (!model.ok()) return model.status();
   result.score = ScoreAgainstPieces(series, *model, match_distance);
   result.num_objects = model->num_objects;
