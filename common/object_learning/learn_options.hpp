@@ -112,10 +112,11 @@ struct LearnOptions {
   // Null: never cancelled. Must outlive the call.
   const std::atomic<bool>* cancel = nullptr;
   // Memory the learner may use, MB (its own tables; the input maps are the caller's). Before
-  // each stage it estimates its peak (MemoryPlan); when that is over the budget it degrades and
-  // says so in LearnedModel::warnings and `degraded`: one restart per (N, M), then patches
-  // coarsened (2x, 4x: coarser alignment), then the oldest maps dropped (fewer sessions), and at
-  // last a cap on the objects searched. It never fails for memory. > 0.
+  // each stage it estimates its peak (memory_plan.hpp); when that is over the budget it degrades
+  // and says so in LearnedModel::warnings and `degraded`: the oldest maps left out of differencing,
+  // one restart per (N, M), a lower exact E-step bound, patches coarsened (2x, 4x: coarser
+  // alignment), the oldest maps left out (fewer sessions), and at last a cap on the objects
+  // searched. It never fails for memory. > 0.
   double memory_budget_mb = 1024.0;
   // Time: one EM iteration costs about snapshots x objects x patch cells (every pair is resampled
   // and aligned). Above this product (at the fewest objects searched) the patches are coarsened
