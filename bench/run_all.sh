@@ -48,6 +48,8 @@ for seed in 1 2 3; do
 done
 run objects_office1 "$fleetmap" bench objects --terrain office --size 40 \
   --out "$out/objects_office1" --starts 20 --seed 1
+run objects_real "$fleetmap" bench objects --no-sim --maps "$maps" --out "$out/objects_real" \
+  --seed 1
 run extrapolation_1 "$fleetmap" bench extrapolation --out "$out/extrapolation_1" --scenes 100 \
   --seed 1 --no-progress
 run extrapolation_1001 "$fleetmap" bench extrapolation --out "$out/extrapolation_1001" \

@@ -1,5 +1,7 @@
 #include "cli/learn_objects_command.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +14,7 @@
 
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"
+#include "cli/learn_progress_printer.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/object_learning/object_learner.hpp"
@@ -101,6 +104,8 @@ nlohmann::json ModelJson(const ol::LearnedModel& model, const std::vector<std::s
           {"templates", templates},
           {"snapshots", snapshots},
           {"warnings", model.warnings},
+          {"degraded", model.degraded},
+          {"estimated_memory_mb", model.estimated_memory_mb},
           {"seconds", seconds}};
 }
 
@@ -153,6 +158,12 @@ int RunLearnObjects(const LearnObjectsOptions& options, std::ostream& out, std::
   if (options.object_penalty >= 0.0) learn.selection.object_penalty = options.object_penalty;
   if (options.template_penalty >= 0.0) learn.selection.template_penalty = options.template_penalty;
   learn.hierarchical = !options.flat;
+  if (options.memory_budget_mb > 0.0) learn.memory_budget_mb = options.memory_budget_mb;
+  const bool show_progress = options.progress > 0 || (options.progress < 0 && !options.json);
+  LearnProgressPrinter printer(err, options.err_is_terminal);
+  if (show_progress) {
+    learn.progress = [&printer](const ol::LearnProgress& p) { printer.Report(p); };
+  }
   const auto start = std::chrono::steady_clock::now();
   StatusOr<ol::LearnedModel> model = ol::LearnObjects(grids, learn);
   const double seconds =
@@ -182,8 +193,10 @@ int RunLearnObjects(const LearnObjectsOptions& options, std::ostream& out, std::
   } else {
     out << model->snapshots.size() << " snapshots -> " << model->num_objects << " objects, "
         << model->num_templates << " templates (log posterior " << model->log_posterior << ", "
-        << model->searched.size() << " (N, M) searched, " << seconds << " s). Wrote "
-        << options.out_dir << "/model.json, object_*.pgm, template_*.pgm, montage.png.\n";
+        << model->searched.size() << " (N, M) searched, " << seconds << " s"
+        << (model->degraded ? ", degraded to fit the memory or work budget: see the warnings" : "")
+        << "). Wrote " << options.out_dir
+        << "/model.json, object_*.pgm, template_*.pgm, montage.png.\n";
   }
   return kExitOk;
 }
@@ -205,8 +218,17 @@ void AddLearnObjectsCommand(CLI::App& app, int* exit_code) {
   command->add_option("--template-penalty", options->template_penalty,
                       "c_M, nats per template (negative: default)");
   command->add_flag("--flat", options->flat, "the flat model (objects only, no templates)");
-  command->callback(
-      [options, exit_code] { *exit_code = RunLearnObjects(*options, std::cout, std::cerr); });
+  command->add_option("--memory-budget", options->memory_budget_mb,
+                      "memory the learner may use, MB (past it, it degrades and warns; default "
+                      "1024)");
+  command
+      ->add_option("--progress", options->progress,
+                   "progress on stderr: -1 automatic (off with --json), 0 never, 1 always")
+      ->capture_default_str();
+  command->callback([options, exit_code] {
+    options->err_is_terminal = isatty(STDERR_FILENO) != 0;
+    *exit_code = RunLearnObjects(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace fleetmap::cli

@@ -47,6 +47,9 @@ int main(int argc, char** argv) {
   app.add_option("--learn-sessions", options.learning.max_sessions,
                  "object learning uses at most this many newest finished sessions")
       ->check(CLI::PositiveNumber);
+  app.add_option("--learn-memory-budget", options.learning.memory_budget_mb,
+                 "memory one object-learning run may use, MB (past it, it degrades and warns)")
+      ->check(CLI::PositiveNumber);
   bool no_prediction = false;
   app.add_flag("--no-extrapolation", no_prediction,
                "do not predict sub-maps from the entities robots publish");

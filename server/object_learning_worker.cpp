@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "server/session_grids.hpp"
@@ -16,6 +17,10 @@ Status ObjectLearningOptions::Validate() const {
   if (max_sessions < min_sessions) {
     return InvalidArgumentError("max_sessions " + std::to_string(max_sessions) +
                                 " is below min_sessions " + std::to_string(min_sessions));
+  }
+  if (!(memory_budget_mb > 0.0)) {
+    return InvalidArgumentError("memory_budget_mb " + std::to_string(memory_budget_mb) +
+                                " must be > 0");
   }
   return learn.Validate();
 }
@@ -90,8 +95,26 @@ Status ObjectLearningWorker::Learn(const std::vector<MappingSession>& sessions) 
                             SessionGrids(sessions, fusion_));
   object_learning::LearnOptions learn = options_.learn;
   learn.cancel = &cancel_;
-  FLEETMAP_ASSIGN_OR_RETURN(const object_learning::LearnedModel model,
-                            object_learning::LearnObjects(grids, learn));
+  learn.memory_budget_mb = options_.memory_budget_mb;
+  // Progress: kept for the status counters on every report, logged at a low rate.
+  auto last_log = std::chrono::steady_clock::now();
+  learn.progress = [this, &last_log](const object_learning::LearnProgress& p) {
+    {
+      std::lock_guard lock(mutex_);
+      stats_.progress = p;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_log).count() >= options_.progress_log_seconds) {
+      last_log = now;
+      spdlog::info("server: object learning: {}", object_learning::DescribeProgress(p));
+    }
+  };
+  StatusOr<object_learning::LearnedModel> learned = object_learning::LearnObjects(grids, learn);
+  {
+    std::lock_guard lock(mutex_);
+    stats_.progress.stage = object_learning::LearnStage::kDone;
+  }
+  FLEETMAP_ASSIGN_OR_RETURN(const object_learning::LearnedModel model, std::move(learned));
   for (const std::string& warning : model.warnings) {
     spdlog::info("server: object learning: {}", warning);
   }
@@ -103,6 +126,7 @@ Status ObjectLearningWorker::Learn(const std::vector<MappingSession>& sessions) 
   stats_.num_objects = model.num_objects;
   stats_.num_templates = model.num_templates;
   stats_.sessions_used = sessions.size();
+  if (model.degraded) ++stats_.degraded_runs;
   return Status::Ok();
 }
 
@@ -161,6 +185,8 @@ void ObjectLearningOptions::Describe(OptionsPrinter& out) const {
   out.Add("enabled", enabled);
   out.Add("min_sessions", min_sessions);
   out.Add("max_sessions", max_sessions);
+  out.Add("memory_budget_mb", memory_budget_mb);
+  out.Add("progress_log_seconds", progress_log_seconds);
   out.Nested("learn", learn);
 }
 

@@ -23,6 +23,12 @@ struct ObjectLearningOptions {
   // Learning starts once this many sessions have finished; it uses the newest `max_sessions`.
   size_t min_sessions = 2;
   size_t max_sessions = 12;
+  // The server's own memory budget for one learning run (it replaces learn.memory_budget_mb):
+  // the learner degrades past it (fewer sessions, coarser patches) rather than take the server's
+  // memory with it. 12 sessions of an 80 x 60 m building at 5 cm are 23 MB of grids.
+  double memory_budget_mb = 512.0;
+  // How often a learning run in progress is logged (its stage, (N, M), elapsed, estimate).
+  double progress_log_seconds = 30.0;
   object_learning::LearnOptions learn;
 
   Status Validate() const;
@@ -36,6 +42,9 @@ struct ObjectLearningStats {
   int num_objects = 0;  // of the last successful run
   int num_templates = 0;
   size_t sessions_used = 0;
+  uint64_t degraded_runs = 0;  // runs the memory budget made degrade
+  // The run in progress (stage kDone when none): its last progress report.
+  object_learning::LearnProgress progress{object_learning::LearnStage::kDone};
 };
 
 // Runs the object-template learner (hierarchical EM over the differences between mapping

@@ -411,10 +411,13 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
   if (learning_worker_) {
     const ObjectLearningStats learning = learning_worker_->stats();
     fmt::print(
-        "object learning: {} sessions finished; {} runs ({} failed); last: {} objects of {} "
-        "templates from {} sessions\n",
-        fusion.sessions_finished, learning.runs, learning.failures, learning.num_objects,
-        learning.num_templates, learning.sessions_used);
+        "object learning: {} sessions finished; {} runs ({} failed, {} degraded by the memory "
+        "budget); last: {} objects of {} templates from {} sessions{}\n",
+        fusion.sessions_finished, learning.runs, learning.failures, learning.degraded_runs,
+        learning.num_objects, learning.num_templates, learning.sessions_used,
+        learning.progress.stage == object_learning::LearnStage::kDone
+            ? std::string()
+            : "; now " + object_learning::DescribeProgress(learning.progress));
   }
   if (prediction_worker_) {
     const PredictionStats prediction = prediction_worker_->stats();

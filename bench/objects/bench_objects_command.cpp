@@ -1,5 +1,6 @@
 #include "bench/objects/bench_objects_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,8 @@
 #include <thread>
 
 #include "bench/objects/object_experiment.hpp"
+#include "bench/objects/real_plan_experiment.hpp"
+#include "bench/objects/real_plan_series.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -49,6 +52,172 @@ nlohmann::json ToJson(const ModelComparison& c) {
           {"seconds_cross_validation", c.seconds_cross_validation}};
 }
 
+// The floor YAML files named by `inputs`: files as given, directories' *.yaml sorted by name.
+std::vector<std::string> FloorFiles(const std::vector<std::string>& inputs) {
+  std::vector<std::string> files;
+  for (const std::string& input : inputs) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(input, ec)) {
+      files.push_back(input);
+      continue;
+    }
+    std::vector<std::string> in_dir;
+    for (const auto& entry : std::filesystem::directory_iterator(input, ec)) {
+      if (entry.path().extension() == ".yaml") in_dir.push_back(entry.path().string());
+    }
+    std::sort(in_dir.begin(), in_dir.end());
+    files.insert(files.end(), in_dir.begin(), in_dir.end());
+  }
+  return files;
+}
+
+// The real-plan benchmark (issue 22): prints its table, writes its files under options.out_dir.
+int RunRealPlans(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
+  const std::string name = "fleetmap bench objects: ";
+  const std::vector<std::string> floors = FloorFiles(options.floors);
+  if (floors.empty()) {
+    err << name << "--maps names no map YAML file\n";
+    return cli::kExitBadInput;
+  }
+  object_learning::LearnOptions learn;
+  learn.seed = options.seed;
+  if (options.restarts > 0) learn.restarts = options.restarts;
+  if (options.memory_budget_mb > 0.0) learn.memory_budget_mb = options.memory_budget_mb;
+  RealPlanOptions plan;
+  plan.maps = options.plan_maps;
+  plan.pieces = options.plan_pieces;
+  plan.width = options.plan_width;
+  plan.height = options.plan_height;
+  plan.seed = options.seed;
+  out << "\nObject learning on real building maps: " << plan.maps << " maps of " << plan.width
+      << " x " << plan.height << " cells per floor, " << plan.pieces
+      << " pieces per map (desks, cabinets, tables, L-shapes, bins, small bins) moved between "
+         "maps (seed "
+      << plan.seed << "); found = snapshot centre within 0.3 m of a piece, one thread, budget "
+      << Fixed(learn.memory_budget_mb, 0) << " MB.\n\n";
+  out << "| floor | pieces drawn | snapshots | found | precision | recall | chosen (N, M) | "
+         "(N, M) searched | s | peak MB |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  nlohmann::json rows = nlohmann::json::array();
+  std::ostringstream csv;
+  csv << "floor,maps,pieces_per_map,pieces_drawn,snapshots,found,precision,recall,objects,"
+         "templates,searched,seconds,peak_rss_mb\n";
+  for (const std::string& floor : floors) {
+    StatusOr<RealPlanSeries> series = MakeRealPlanSeries(floor, plan);
+    if (!series.ok()) {
+      err << name << series.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    const std::string stem = std::filesystem::path(floor).stem().string();
+    if (!options.out_dir.empty()) {
+      const std::string dir = options.out_dir + "/real_plans/" + stem;
+      std::error_code ec;
+      std::filesystem::create_directories(dir, ec);
+      for (size_t t = 0; t < series->maps.size() && !ec; ++t) {
+        const Status saved =
+            grid::SaveMap(series->maps[t], dir + "/map_" + std::to_string(t) + ".yaml");
+        if (!saved.ok()) {
+          err << name << saved.message() << "\n";
+          return cli::kExitBadInput;
+        }
+      }
+    }
+    if (!options.out_dir.empty()) {
+      // The truth beside the maps, so that `learn-objects` runs on them can be scored too.
+      nlohmann::json truth = nlohmann::json::array();
+      for (size_t t = 0; t < series->pieces.size(); ++t) {
+        for (const PlacedPiece& p : series->pieces[t]) {
+          truth.push_back({{"map_index", t},
+                           {"piece", p.piece},
+                           {"shape", PlanShapeName(p.shape)},
+                           {"x", p.centre.x()},
+                           {"y", p.centre.y()},
+                           {"yaw", p.yaw},
+                           {"cells", p.cells}});
+        }
+      }
+      const std::string path = options.out_dir + "/real_plans/" + stem + "/pieces.json";
+      if (const Status written = WriteFileAtomically(path, truth.dump(1) + "\n"); !written.ok()) {
+        err << name << written.message() << "\n";
+        return cli::kExitBadInput;
+      }
+    }
+    StatusOr<RealPlanResult> r = RunRealPlanExperiment(*series, learn);
+    if (!r.ok()) {
+      err << name << floor << ": " << r.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    const double peak_mb = r->peak_rss_bytes < 0 ? -1.0 : r->peak_rss_bytes / 1e6;
+    nlohmann::json missed = nlohmann::json::array(), spurious = nlohmann::json::array();
+    for (size_t i = 0; i < r->score.missed.size(); ++i) {
+      const PlacedPiece& p = r->score.missed[i];
+      missed.push_back({{"map_index", r->score.missed_map[i]},
+                        {"piece", p.piece},
+                        {"shape", PlanShapeName(p.shape)},
+                        {"x", p.centre.x()},
+                        {"y", p.centre.y()}});
+    }
+    for (const object_learning::SnapshotAssignment& a : r->score.spurious) {
+      spurious.push_back({{"map_index", a.map_index}, {"x", a.centre.x()}, {"y", a.centre.y()}});
+    }
+    out << "| " << stem << " | " << r->score.true_pieces << " | " << r->score.snapshots << " | "
+        << r->score.matched << " | " << Fixed(r->score.precision, 3) << " | "
+        << Fixed(r->score.recall, 3) << " | (" << r->num_objects << ", " << r->num_templates
+        << ") | " << r->searched << " | " << Fixed(r->seconds, 1) << " | " << Fixed(peak_mb, 0)
+        << (r->peak_reset ? "" : " (process)") << " |\n";
+    if (series->unplaced > 0 || series->overlapping_earlier > 0) {
+      out << "  " << stem << ": " << series->unplaced << " piece(s) found no free spot, "
+          << series->overlapping_earlier
+          << " stand where a piece of an earlier map stood (the floor is full)\n";
+    }
+    for (const std::string& w : r->warnings) out << "  " << stem << ": " << w << "\n";
+    rows.push_back({{"floor", floor},
+                    {"maps", r->maps},
+                    {"pieces_per_map", r->pieces},
+                    {"pieces_drawn", r->score.true_pieces},
+                    {"unplaced", r->unplaced},
+                    {"overlapping_earlier", series->overlapping_earlier},
+                    {"missed", missed},
+                    {"spurious", spurious},
+                    {"shapes", r->shapes},
+                    {"snapshots", r->score.snapshots},
+                    {"found", r->score.matched},
+                    {"precision", r->score.precision},
+                    {"recall", r->score.recall},
+                    {"objects", r->num_objects},
+                    {"templates", r->num_templates},
+                    {"searched", r->searched},
+                    {"seconds", r->seconds},
+                    {"peak_rss_bytes", r->peak_rss_bytes},
+                    {"learner_estimate_mb", r->estimated_mb},
+                    {"peak_is_learning_only", r->peak_reset},
+                    {"warnings", r->warnings}});
+    csv << stem << "," << r->maps << "," << r->pieces << "," << r->score.true_pieces << ","
+        << r->score.snapshots << "," << r->score.matched << "," << Fixed(r->score.precision, 4)
+        << "," << Fixed(r->score.recall, 4) << "," << r->num_objects << "," << r->num_templates
+        << "," << r->searched << "," << Fixed(r->seconds, 3) << "," << Fixed(peak_mb, 1) << "\n";
+  }
+  if (!options.out_dir.empty()) {
+    const nlohmann::json json = {{"width", plan.width},
+                                 {"height", plan.height},
+                                 {"maps", plan.maps},
+                                 {"pieces", plan.pieces},
+                                 {"seed", plan.seed},
+                                 {"match_distance_m", 0.3},
+                                 {"memory_budget_mb", learn.memory_budget_mb},
+                                 {"machine", MachineDescription()},
+                                 {"floors", rows}};
+    for (const auto& [path, contents] :
+         {std::pair{options.out_dir + "/real_plans.json", json.dump(2) + "\n"},
+          std::pair{options.out_dir + "/real_plans.csv", csv.str()}}) {
+      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
+        err << name << written.message() << "\n";
+        return cli::kExitBadInput;
+      }
+    }
+  }
+  return cli::kExitOk;
+}
+
 }  // namespace
 
 int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
@@ -64,6 +233,22 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
     err << "fleetmap bench objects: --restarts " << options.restarts << " must be in [0, 100]\n";
     return cli::kExitBadInput;
   }
+  if (options.plan_maps < 2 || options.plan_maps > 50 || options.plan_pieces < 1 ||
+      options.plan_pieces > 500) {
+    err << "fleetmap bench objects: --plan-maps must be in [2, 50] and --pieces in [1, 500]\n";
+    return cli::kExitBadInput;
+  }
+  if (!options.out_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.out_dir, ec);
+    if (ec) {
+      err << "fleetmap bench objects: cannot create " << options.out_dir << ": " << ec.message()
+          << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  if (options.skip_sim)
+    return options.floors.empty() ? cli::kExitOk : RunRealPlans(options, out, err);
   ObjectDatasetOptions dataset_options;
   dataset_options.terrain = options.terrain;
   dataset_options.size = options.size;
@@ -148,6 +333,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
       }
     }
   }
+  if (!options.floors.empty()) return RunRealPlans(options, out, err);
   return cli::kExitOk;
 }
 
@@ -168,6 +354,19 @@ void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
       ->add_option("--restarts", options->restarts,
                    "random starts per (N, M) in selection and cross validation (0: default)")
       ->capture_default_str();
+  command->add_option("--maps", options->floors,
+                      "real-plan benchmark: floor maps (map_server YAML files or directories)");
+  command->add_option("--plan-maps", options->plan_maps, "real-plan maps per floor")
+      ->capture_default_str();
+  command->add_option("--pieces", options->plan_pieces, "real-plan pieces per map")
+      ->capture_default_str();
+  command->add_option("--width", options->plan_width, "real-plan map width (cells)")
+      ->capture_default_str();
+  command->add_option("--height", options->plan_height, "real-plan map height (cells)")
+      ->capture_default_str();
+  command->add_flag("--no-sim", options->skip_sim, "skip the simulated lab (real plans only)");
+  command->add_option("--memory-budget", options->memory_budget_mb,
+                      "the learner's memory budget on real plans, MB (0: default)");
   command->callback(
       [options, exit_code] { *exit_code = RunBenchObjects(*options, std::cout, std::cerr); });
 }

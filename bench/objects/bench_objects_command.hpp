@@ -7,11 +7,18 @@
 // the good solution, the leave-one-map-out test log-likelihood, the (N, M) model selection
 // chooses and the time; prints a table, writes DIR/results.json, DIR/results.csv and the maps
 // under DIR/maps/ (so `fleetmap learn-objects DIR/maps/*.yaml` can be run on them).
+//
+// With `--maps DIR_OR_FILES` (map_server YAML floors), also the real-plan benchmark of issue 22:
+// for each floor a series of maps with furniture drawn in free space and moved between them
+// (RealPlanSeries), learned on as `learn-objects` would, and scored against the drawn pieces
+// (precision / recall by position), with the learned (N, M), time and peak memory; written to
+// DIR/real_plans.json, DIR/real_plans.csv and the series' maps to DIR/real_plans/<floor>/.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace fleetmap::bench {
 
@@ -23,6 +30,14 @@ struct BenchObjectsOptions {
   double size = 10.0;           // metres
   int sessions = 9;
   int restarts = 0;  // random starts per (N, M) in model selection and cross validation; 0: default
+  // The real-plan benchmark: floors (YAML files, or directories of them); empty: not run.
+  std::vector<std::string> floors;
+  int plan_maps = 4;              // maps per series
+  int plan_pieces = 40;           // pieces per map
+  int plan_width = 800;           // cells
+  int plan_height = 544;          // cells
+  bool skip_sim = false;          // only the real-plan benchmark
+  double memory_budget_mb = 0.0;  // the learner's budget (0: its default)
 };
 
 // Bad options print a message naming the option and return cli::kExitBadInput.

@@ -30,6 +30,49 @@ Point2 Centroid(const float* values, const scene::Patch& shape) {
 
 }  // namespace
 
+ShapeSize SizeOfContent(const float* values, int width, int height) {
+  double m = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const double v = std::max(0.0f, values[static_cast<size_t>(y) * width + x]);
+      m += v;
+      sx += v * x;
+      sy += v * y;
+      sxx += v * x * x;
+      sxy += v * x * y;
+      syy += v * y * y;
+    }
+  }
+  ShapeSize size;
+  size.mass = m;
+  if (m <= 0.0) return size;
+  const double cxx = sxx / m - (sx / m) * (sx / m);
+  const double cxy = sxy / m - (sx / m) * (sy / m);
+  const double cyy = syy / m - (sy / m) * (sy / m);
+  const double mean = 0.5 * (cxx + cyy);
+  const double spread = std::sqrt(std::max(0.0, 0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy));
+  size.major = std::sqrt(std::max(0.0, mean + spread));
+  size.minor = std::sqrt(std::max(0.0, mean - spread));
+  return size;
+}
+
+bool MayMatch(const ShapeSize& a, const ShapeSize& b) {
+  auto within = [](double p, double q, double factor) {
+    return p <= factor * q && q <= factor * p;
+  };
+  return within(a.mass + 1.0, b.mass + 1.0, 2.5) && within(a.major + 1.0, b.major + 1.0, 2.0) &&
+         within(a.minor + 1.0, b.minor + 1.0, 2.0);
+}
+
+AlignmentResult CentroidAlignment(const scene::Patch& snapshot, const float* target) {
+  const PatchSampler sampler(snapshot);
+  const Point2 shift = Centroid(target, snapshot) - Centroid(snapshot.occupancy.data(), snapshot);
+  const Alignment a{shift.x(), shift.y(), 0.0};
+  const CellBox target_box = NonZeroBox(target, snapshot.width, snapshot.height);
+  return {a,
+          sampler.SquaredDistance(a, target, target_box, std::numeric_limits<double>::infinity())};
+}
+
 AlignmentResult AlignSnapshot(const scene::Patch& snapshot, const float* target,
                               const Alignment& start, bool scan_rotations, double fine_factor,
                               const EmOptions& options) {

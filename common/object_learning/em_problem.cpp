@@ -12,6 +12,22 @@
 
 namespace fleetmap::object_learning {
 
+namespace {
+
+// The content size of every row of `rows` (patches of the problem's size).
+std::vector<ShapeSize> RowSizes(
+    const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& rows,
+    const EmProblem& problem) {
+  const scene::Patch& shape = problem.snapshots.front();
+  std::vector<ShapeSize> sizes;
+  for (Eigen::Index n = 0; n < rows.rows(); ++n) {
+    sizes.push_back(SizeOfContent(rows.row(n).data(), shape.width, shape.height));
+  }
+  return sizes;
+}
+
+}  // namespace
+
 EmProblem MakeEmProblem(const SnapshotSet& set) {
   EmProblem problem;
   problem.maps.resize(set.per_map.size());
@@ -28,50 +44,51 @@ int EmProblem::max_per_map() const {
   return static_cast<int>(most);
 }
 
-AlignedSnapshots AlignedPerObject(const EmProblem& problem, const PairAlignments& alignments) {
-  const int cells = problem.cells();
-  const size_t count = problem.snapshots.size();
-  const size_t objects = count == 0 ? 0 : alignments[0].size();
-  AlignedSnapshots aligned;
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(count, cells);
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> weights(count, cells);
-  std::vector<PatchSampler> samplers;
-  for (const scene::Patch& snapshot : problem.snapshots) samplers.emplace_back(snapshot);
-  for (size_t n = 0; n < objects; ++n) {
-    for (size_t s = 0; s < count; ++s) {
-      samplers[s].Sample(alignments[s][n], rows.row(s).data(), weights.row(s).data());
-    }
-    aligned.values.push_back(rows.cast<double>());
-    aligned.weights.push_back(weights.cast<double>());
-  }
-  return aligned;
-}
-
-Eigen::MatrixXd SnapshotLogLikelihoods(const AlignedSnapshots& aligned,
+Eigen::MatrixXd SnapshotLogLikelihoods(const EmProblem& problem, const PairAlignments& alignments,
                                        const Eigen::MatrixXd& objects, double sigma) {
-  const Eigen::Index count = aligned.values.empty() ? 0 : aligned.values[0].rows();
+  const int cells = problem.cells();
+  const Eigen::Index count = static_cast<Eigen::Index>(problem.snapshots.size());
   Eigen::MatrixXd ll(count, objects.rows());
-  for (Eigen::Index n = 0; n < objects.rows(); ++n) {
-    const Eigen::MatrixXd d = aligned.values[n].rowwise() - objects.row(n);
-    ll.col(n) = -(aligned.weights[n].array() * d.array().square()).rowwise().sum().matrix() /
-                (2.0 * sigma * sigma);
+  std::vector<float> values(cells), weights(cells);
+  const Eigen::MatrixXd by_cell = objects.transpose();  // each object's cells contiguous
+  for (Eigen::Index s = 0; s < count; ++s) {
+    const PatchSampler sampler(problem.snapshots[s]);
+    for (Eigen::Index n = 0; n < objects.rows(); ++n) {
+      sampler.Sample(alignments[s][n], values.data(), weights.data());
+      double sum = 0.0;
+      for (int i = 0; i < cells; ++i) {
+        const double d = values[i] - by_cell(i, n);
+        sum += weights[i] * d * d;
+      }
+      ll(s, n) = -sum / (2.0 * sigma * sigma);
+    }
   }
   return ll;
 }
 
-Eigen::MatrixXd WeightedSnapshotSums(const AlignedSnapshots& aligned,
+constexpr double kNegligibleCorrespondence = 1e-9;
+
+Eigen::MatrixXd WeightedSnapshotSums(const EmProblem& problem, const PairAlignments& alignments,
                                      const Eigen::MatrixXd& correspondences,
                                      const Eigen::MatrixXd& objects) {
+  const int cells = problem.cells();
   const Eigen::Index n_count = correspondences.cols();
-  Eigen::MatrixXd sums(n_count, objects.cols());
-  for (Eigen::Index n = 0; n < n_count; ++n) {
-    const Eigen::MatrixXd& w = aligned.weights[n];
-    const Eigen::MatrixXd imputed = (w.array() * aligned.values[n].array() +
-                                     (1.0 - w.array()).rowwise() * objects.row(n).array())
-                                        .matrix();
-    sums.row(n) = correspondences.col(n).transpose() * imputed;
+  Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(objects.cols(), n_count);  // cells x N
+  std::vector<float> values(cells), weights(cells);
+  const Eigen::MatrixXd by_cell = objects.transpose();
+  for (size_t s = 0; s < problem.snapshots.size(); ++s) {
+    const PatchSampler sampler(problem.snapshots[s]);
+    for (Eigen::Index n = 0; n < n_count; ++n) {
+      // A pair this unlikely adds less than 1e-9 of a snapshot to any cell: not worth resampling.
+      const double c = correspondences(static_cast<Eigen::Index>(s), n);
+      if (c < kNegligibleCorrespondence) continue;
+      sampler.Sample(alignments[s][n], values.data(), weights.data());
+      for (int i = 0; i < cells; ++i) {
+        sums(i, n) += c * (weights[i] * values[i] + (1.0 - weights[i]) * by_cell(i, n));
+      }
+    }
   }
-  return sums;
+  return sums.transpose();
 }
 
 double ObservedCells(const EmProblem& problem) {
@@ -132,9 +149,17 @@ void AlignmentStep(const EmProblem& problem, const Eigen::MatrixXd& corresponden
   constexpr double kActive = 1e-3;
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();
+  const std::vector<ShapeSize> object_sizes = RowSizes(targets, problem);
   for (size_t s = 0; s < problem.snapshots.size(); ++s) {
+    const scene::Patch& snapshot = problem.snapshots[s];
+    const ShapeSize size =
+        SizeOfContent(snapshot.occupancy.data(), snapshot.width, snapshot.height);
     for (Eigen::Index n = 0; n < objects.rows(); ++n) {
       if (!all_pairs && correspondences(s, n) < kActive) continue;
+      // An unlike pair that carries no weight is not worth a rotation scan.
+      if (all_pairs && correspondences(s, n) < kActive && !MayMatch(size, object_sizes[n])) {
+        continue;
+      }
       (*alignments)[s][n] = AlignSnapshot(problem.snapshots[s], targets.row(n).data(),
                                           (*alignments)[s][n], all_pairs, 0.25, options)
                                 .alignment;
@@ -163,11 +188,17 @@ void RandomStart(const EmProblem& problem, int num_objects, const EmOptions& opt
   EmOptions scan = options;
   scan.min_shift_step = options.initial_shift_step;  // the scan and one coarse climb round
   alignments->assign(count, std::vector<Alignment>(num_objects));
+  const std::vector<ShapeSize> object_sizes = RowSizes(targets, problem);
   for (int s = 0; s < count; ++s) {
+    const scene::Patch& snapshot = problem.snapshots[s];
+    const ShapeSize size =
+        SizeOfContent(snapshot.occupancy.data(), snapshot.width, snapshot.height);
     for (int n = 0; n < num_objects; ++n) {
       (*alignments)[s][n] =
-          AlignSnapshot(problem.snapshots[s], targets.row(n).data(), Alignment{}, true, 1.0, scan)
-              .alignment;
+          MayMatch(size, object_sizes[n])
+              ? AlignSnapshot(snapshot, targets.row(n).data(), Alignment{}, true, 1.0, scan)
+                    .alignment
+              : CentroidAlignment(snapshot, targets.row(n).data()).alignment;
     }
   }
 }

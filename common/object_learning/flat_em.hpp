@@ -8,6 +8,7 @@
 // Thread-safety: stateless; runs may go concurrently.
 
 #include <cstdint>
+#include <functional>
 
 #include "common/object_learning/em_problem.hpp"
 #include "common/object_learning/learn_options.hpp"
@@ -15,7 +16,8 @@
 namespace fleetmap::object_learning {
 
 // Requires N >= problem.max_per_map() and N <= number of snapshots.
+// `on_iteration`, when set, is called after each EM iteration with the iterations done.
 EmResult RunFlatEm(const EmProblem& problem, int num_objects, const EmOptions& options,
-                   uint64_t seed);
+                   uint64_t seed, const std::function<void(int)>& on_iteration = {});
 
 }  // namespace fleetmap::object_learning

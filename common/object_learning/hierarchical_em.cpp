@@ -85,12 +85,20 @@ bool RegroupTemplates(const EmProblem& problem, const Eigen::MatrixXd& responsib
   PairAlignments onto(n_count, std::vector<Alignment>(n_count));
   const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> targets =
       objects.cast<float>();
+  std::vector<ShapeSize> sizes;
+  for (int n = 0; n < n_count; ++n) {
+    sizes.push_back(SizeOfContent(targets.row(n).data(), shape.width, shape.height));
+  }
   for (int n = 0; n < n_count; ++n) {
     const scene::Patch object = RowPatch(objects, n, shape);
     for (int k = 0; k < n_count; ++k) {
       if (k == n) continue;
+      // Unlike objects are far apart at any rotation: their unturned distance is enough to
+      // keep them in different groups, without a scan.
       const AlignmentResult r =
-          AlignSnapshot(object, targets.row(k).data(), Alignment{}, true, 1.0, options);
+          MayMatch(sizes[n], sizes[k])
+              ? AlignSnapshot(object, targets.row(k).data(), Alignment{}, true, 1.0, options)
+              : CentroidAlignment(object, targets.row(k).data());
       distance(n, k) = r.squared_distance;
       onto[n][k] = r.alignment;
     }
@@ -199,7 +207,8 @@ double ObjectLevelLogLikelihood(const Eigen::MatrixXd& log_weights, Eigen::Index
 }
 
 EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_templates,
-                           const EmOptions& options, uint64_t seed) {
+                           const EmOptions& options, uint64_t seed,
+                           const std::function<void(int)>& on_iteration) {
   FLEETMAP_CHECK(num_templates >= 1 && num_templates <= num_objects);
   FLEETMAP_CHECK(num_objects >= problem.max_per_map());
   std::mt19937_64 random(seed);
@@ -247,14 +256,13 @@ EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_te
     const Eigen::MatrixXd log_weights = TemplateStep(
         problem, r.templates, tau, scan, options, &r.objects, &object_to_template, &r.alignments);
     r.responsibilities = Responsibilities(log_weights);
-    const AlignedSnapshots aligned = AlignedPerObject(problem, r.alignments);
     const CorrespondenceStep c = CorrespondenceEStep(
-        problem, SnapshotLogLikelihoods(aligned, r.objects, sigma), options, &random);
+        problem, SnapshotLogLikelihoods(problem, r.alignments, r.objects, sigma), options, &random);
     r.approximate = r.approximate || c.approximate;
     r.correspondences = c.expectations;
     const Eigen::MatrixXd previous_objects = r.objects;
     HierarchicalParameters p =
-        HierarchicalMStep(WeightedSnapshotSums(aligned, r.correspondences, r.objects),
+        HierarchicalMStep(WeightedSnapshotSums(problem, r.alignments, r.correspondences, r.objects),
                           r.correspondences, r.responsibilities, sigma, tau, r.templates);
     r.objects = std::move(p.objects);
     r.templates = std::move(p.templates);
@@ -262,6 +270,7 @@ EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_te
                                         &r.templates, &object_to_template);
     AlignmentStep(problem, r.correspondences, r.objects, scan, options, &r.alignments);
     r.iterations = j + 1;
+    if (on_iteration) on_iteration(r.iterations);
     const bool annealed = sigma == options.sigma && tau == options.tau;
     if (annealed && !reseeded && previous_c.size() == r.correspondences.size() &&
         (r.correspondences - previous_c).cwiseAbs().maxCoeff() < kExpectationTolerance &&
@@ -278,8 +287,8 @@ EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_te
       TemplateStep(problem, r.templates, options.tau, false, options, &r.objects,
                    &object_to_template, &r.alignments);
   r.responsibilities = Responsibilities(template_log_weights);
-  const AlignedSnapshots aligned = AlignedPerObject(problem, r.alignments);
-  const Eigen::MatrixXd ll = SnapshotLogLikelihoods(aligned, r.objects, options.sigma);
+  const Eigen::MatrixXd ll =
+      SnapshotLogLikelihoods(problem, r.alignments, r.objects, options.sigma);
   const CorrespondenceStep c = CorrespondenceEStep(problem, ll, options, &random);
   r.approximate = r.approximate || c.approximate;
   r.correspondences = c.expectations;

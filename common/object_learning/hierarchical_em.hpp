@@ -12,6 +12,7 @@
 // Thread-safety: stateless; runs may go concurrently.
 
 #include <cstdint>
+#include <functional>
 
 #include "common/object_learning/em_problem.hpp"
 #include "common/object_learning/learn_options.hpp"
@@ -19,8 +20,10 @@
 namespace fleetmap::object_learning {
 
 // Requires 1 <= M <= N, N >= problem.max_per_map(), N <= number of snapshots.
+// `on_iteration`, when set, is called after each EM iteration with the iterations done.
 EmResult RunHierarchicalEm(const EmProblem& problem, int num_objects, int num_templates,
-                           const EmOptions& options, uint64_t seed);
+                           const EmOptions& options, uint64_t seed,
+                           const std::function<void(int)>& on_iteration = {});
 
 // The object level of the log joint, sum_n log((1 / M) sum_m N(theta_n; alpha_m, tau^2 I)),
 // from log_weights(n, m) = -|theta_n - alpha_m|^2 / (2 tau^2) (objects aligned to templates)

@@ -40,6 +40,12 @@ Status SnapshotOptions::Validate() const {
     return Bad("snapshots.link_cells", o.link_cells, "in [1, 20]");
   }
   if (o.min_region_cells < 1) return Bad("snapshots.min_region_cells", o.min_region_cells, ">= 1");
+  if (o.small_region_cells < 0 || o.small_region_cells > o.min_region_cells) {
+    return Bad("snapshots.small_region_cells", o.small_region_cells, "in [0, min_region_cells]");
+  }
+  if (!Positive(o.max_region_radius_m)) {
+    return Bad("snapshots.max_region_radius_m", o.max_region_radius_m, "> 0");
+  }
   if (o.max_region_cells < o.min_region_cells) {
     return Bad("snapshots.max_region_cells", o.max_region_cells, ">= min_region_cells");
   }
@@ -106,6 +112,8 @@ Status LearnOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(em.Validate());
   FLEETMAP_RETURN_IF_ERROR(selection.Validate());
   if (restarts < 1 || restarts > 1000) return Bad("restarts", restarts, "in [1, 1000]");
+  if (!Positive(memory_budget_mb)) return Bad("memory_budget_mb", memory_budget_mb, "> 0");
+  if (!Positive(work_budget)) return Bad("work_budget", work_budget, "> 0");
   return Status::Ok();
 }
 
@@ -116,7 +124,9 @@ void SnapshotOptions::Describe(OptionsPrinter& out) const {
   out.Add("filter_threshold", filter_threshold);
   out.Add("link_cells", link_cells);
   out.Add("min_region_cells", min_region_cells);
+  out.Add("small_region_cells", small_region_cells);
   out.Add("max_region_cells", max_region_cells);
+  out.Add("max_region_radius_m", max_region_radius_m);
   out.Add("margin_cells", margin_cells);
   out.Add("patch_cells", patch_cells);
   out.Add("blur_cells", blur_cells);
@@ -153,6 +163,8 @@ void LearnOptions::Describe(OptionsPrinter& out) const {
   out.Add("restarts", restarts);
   out.Add("seed", seed);
   out.Add("hierarchical", hierarchical);
+  out.Add("memory_budget_mb", memory_budget_mb);
+  out.Add("work_budget", work_budget);
 }
 
 }  // namespace fleetmap::object_learning

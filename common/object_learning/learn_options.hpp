@@ -11,6 +11,7 @@
 #include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/learn_progress.hpp"
 
 namespace fleetmap::object_learning {
 
@@ -28,11 +29,23 @@ struct SnapshotOptions {
   double filter_threshold = 0.25;    // in [0, 1]
   // Region growing joins difference cells up to this many cells apart (Chebyshev distance), so an
   // object whose outline is seen with a gap stays one snapshot; objects closer than this merge.
-  int link_cells = 3;           // >= 1 (1: 8-connected)
-  int min_region_cells = 8;     // smaller regions are noise, >= 1
-  int max_region_cells = 4000;  // larger ones are not objects (a wall moved), >= min
-  int margin_cells = 3;         // empty border around the largest snapshot, >= 0
-  int patch_cells = 0;          // side of every patch in cells; 0: from the largest snapshot
+  int link_cells = 3;        // >= 1 (1: 8-connected)
+  int min_region_cells = 8;  // smaller regions are noise, >= 1, unless they recur (below)
+  // A region of at least small_region_cells (and fewer than min_region_cells) is kept when a
+  // region of a similar size (cells within a factor of 1.5, bounding box within a cell) appears in
+  // another map: a bin of a few cells that moves recurs; lone speckle is dropped.
+  // 0: never (the old behaviour). In [0, min_region_cells].
+  int small_region_cells = 3;
+  // Larger regions (a row of desks, furniture against furniture) are split into objects: first
+  // into the parts that are apart at all (8-connected), then at their narrow necks (the cells
+  // left by erosion seed a geodesic watershed), and a part that is still too large is cut into
+  // slices across its long axis (with a warning). A region wider than 2 max_region_radius_m
+  // is split the same way: one size is shared by every patch, so one huge region would make
+  // every patch (and the time and memory of learning) huge.
+  int max_region_cells = 4000;       // >= min_region_cells
+  double max_region_radius_m = 1.5;  // metres from its centroid to its farthest cell, > 0
+  int margin_cells = 3;              // empty border around the largest snapshot, >= 0
+  int patch_cells = 0;               // side of every patch in cells; 0: from the largest snapshot
   // Gaussian smoothing of each snapshot patch (standard deviation, cells; 0: none). A laser sees
   // an object's outline, one or two cells thick: unsmoothed, two outlines one cell apart share no
   // cell, and alignment has no slope to climb.
@@ -98,6 +111,22 @@ struct LearnOptions {
   // with kUnavailable: a server shutting down need not wait for a run of several seconds.
   // Null: never cancelled. Must outlive the call.
   const std::atomic<bool>* cancel = nullptr;
+  // Memory the learner may use, MB (its own tables; the input maps are the caller's). Before
+  // each stage it estimates its peak (memory_plan.hpp); when that is over the budget it degrades
+  // and says so in LearnedModel::warnings and `degraded`: the oldest maps left out of differencing,
+  // one restart per (N, M), a lower exact E-step bound, patches coarsened (2x, 4x: coarser
+  // alignment), the oldest maps left out (fewer sessions), and at last a cap on the objects
+  // searched. It never fails for memory. > 0.
+  double memory_budget_mb = 1024.0;
+  // Time: one EM iteration costs about snapshots x objects x patch cells (every pair is resampled
+  // and aligned). Above this product (at the fewest objects searched) the patches are coarsened
+  // 2x (at most twice, and not beyond 10 cm cells; 4x fewer cells each time) and a warning says
+  // so. The lab's 23 snapshots
+  // x 4 objects x 29^2 cells are 7.7e4; 160 pieces of furniture x 40 objects x 39^2 cells 1e7.
+  // > 0.
+  double work_budget = 4e6;
+  // Progress reports (learn_progress.hpp); empty: none.
+  LearnProgressCallback progress;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;

@@ -9,6 +9,7 @@
 // Thread-safety: stateless.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,14 +34,19 @@ uint64_t RestartSeed(uint32_t seed, int num_objects, int num_templates, int rest
 
 // The best of options.restarts EM runs for a fixed (N, M) (hierarchical, or flat when
 // options.hierarchical is false; M is ignored then).
+// `on_iteration(restart, iteration)`, when set, is called after each EM iteration.
 EmResult BestOfRestarts(const EmProblem& problem, int num_objects, int num_templates,
-                        const LearnOptions& options);
+                        const LearnOptions& options,
+                        const std::function<void(int, int)>& on_iteration = {});
 
 // log p(data, model) - c_N N - c_M M.
 double LogPosterior(const EmResult& result, int num_objects, int num_templates,
                     const SelectionOptions& options);
 
 // Requires at least one snapshot.
-SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& options);
+// Reports progress through options.progress (stage kSearching), starting from `base` (maps,
+// snapshots, and the elapsed seconds before the search); the search's own time is added.
+SelectionResult SelectModel(const EmProblem& problem, const LearnOptions& options,
+                            const LearnProgress& base = {});
 
 }  // namespace fleetmap::object_learning

@@ -54,12 +54,18 @@ struct LearnedModel {
   std::vector<SnapshotAssignment> snapshots;  // every snapshot, in extraction order
   std::vector<ModelScore> searched;           // the (N, M) grid, in search order
   std::vector<std::string> warnings;          // e.g. the approximate E-step was used
+  // The memory budget made the learner degrade (fewer restarts or sessions, coarser patches,
+  // fewer objects searched); the warnings say how.
+  bool degraded = false;
+  double estimated_memory_mb = 0.0;  // the learner's estimate of its own peak (memory_plan.hpp)
 };
 
 // Learns objects and templates from `maps` (at least two, same size, resolution and origin; they
 // must share a frame). A difference-free set of maps gives an empty model (N = M = 0) and a
 // warning saying so. Errors (kInvalidArgument): fewer than two maps, maps whose geometry differs
 // (the message names the map indices), invalid options (the message names the option).
+// Memory stays within options.memory_budget_mb by degrading (never by failing); progress goes
+// to options.progress.
 StatusOr<LearnedModel> LearnObjects(const std::vector<grid::OccupancyGrid>& maps,
                                     const LearnOptions& options = {});
 

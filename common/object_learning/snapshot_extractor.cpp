@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <sstream>
 
+#include "common/object_learning/region_splitter.hpp"
+
 namespace fleetmap::object_learning {
 namespace {
 
@@ -158,9 +160,9 @@ std::string GeometryMismatch(const grid::OccupancyGrid& a, const grid::Occupancy
 }
 
 StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& maps,
-                                       const SnapshotOptions& options) {
+                                       const SnapshotOptions& options, size_t first_map) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
-  if (maps.size() < 2) {
+  if (maps.size() < 2 || first_map + 2 > maps.size()) {
     return InvalidArgumentError("object learning needs at least two maps of the same place, got " +
                                 std::to_string(maps.size()));
   }
@@ -176,9 +178,12 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
   if (width == 0 || height == 0) return InvalidArgumentError("map 0 is empty");
   const size_t cells = static_cast<size_t>(width) * height;
 
-  std::vector<Mask> occupied(maps.size(), Mask(cells, 0));
-  std::vector<Mask> clear(maps.size(), Mask(cells, 0));  // free, nothing but free cells near
-  for (size_t t = 0; t < maps.size(); ++t) {
+  // Only the maps in use hold masks (memory grows with the maps differenced).
+  std::vector<Mask> occupied(maps.size());
+  std::vector<Mask> clear(maps.size());  // free, nothing but free cells near
+  for (size_t t = first_map; t < maps.size(); ++t) {
+    occupied[t].assign(cells, 0);
+    clear[t].assign(cells, 0);
     Mask free(cells, 0);
     for (size_t i = 0; i < cells; ++i) {
       const grid::CellState state = grid::StateOf(maps[t].data()[i], options.thresholds);
@@ -198,41 +203,139 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
     Region region;
     grid::CellIndex centre;
     double radius;  // cells, farthest region cell from the centre cell
+    bool small;     // below min_region_cells: kept only if it recurs in another map
+    bool drop = false;
   };
   std::vector<Found> found;
   SnapshotSet result;
   result.per_map.assign(maps.size(), 0);
-  for (size_t t = 0; t < maps.size(); ++t) {
+  // The radius limit is metric: a row of desks is as long in metres at any resolution.
+  const int max_radius_cells =
+      std::max(1, static_cast<int>(std::floor(options.max_region_radius_m / maps[0].resolution())));
+  const RegionLimits limits{options.max_region_cells, max_radius_cells};
+  const int smallest =
+      options.small_region_cells > 0 ? options.small_region_cells : options.min_region_cells;
+  for (size_t t = first_map; t < maps.size(); ++t) {
     Mask diff(cells, 0);
     for (size_t i = 0; i < cells; ++i) {
       if (!occupied[t][i]) continue;
-      for (size_t u = 0; u < maps.size() && !diff[i]; ++u) diff[i] = u != t && clear[u][i];
+      for (size_t u = first_map; u < maps.size() && !diff[i]; ++u) {
+        diff[i] = u != t && clear[u][i];
+      }
     }
     diff = LowPass(diff, width, height, options.filter_radius, options.filter_threshold);
-    for (Region& region : GrowRegions(std::move(diff), width, height, options.link_cells)) {
-      const int n = static_cast<int>(region.cells.size());
-      if (n < options.min_region_cells) continue;
-      if (n > options.max_region_cells) {
-        result.warnings.push_back("map " + std::to_string(t) + ": a changed region of " +
-                                  std::to_string(n) + " cells is larger than max_region_cells (" +
-                                  std::to_string(options.max_region_cells) + ") and was ignored");
-        continue;
+    int split = 0, parts = 0;
+    bool sliced = false;
+    for (Region& grown : GrowRegions(std::move(diff), width, height, options.link_cells)) {
+      std::vector<Region> regions;
+      if (static_cast<int>(grown.cells.size()) > options.max_region_cells ||
+          RegionRadius(grown.cells) > max_radius_cells) {
+        SplitRegions pieces = SplitRegion(grown.cells, limits);
+        ++split;
+        parts += static_cast<int>(pieces.parts.size());
+        sliced = sliced || pieces.sliced;
+        for (std::vector<grid::CellIndex>& part : pieces.parts)
+          regions.push_back({std::move(part)});
+      } else {
+        regions.push_back(std::move(grown));
       }
-      double sx = 0.0, sy = 0.0;
-      for (const grid::CellIndex& c : region.cells) {
-        sx += c.x;
-        sy += c.y;
+      for (Region& region : regions) {
+        const int n = static_cast<int>(region.cells.size());
+        if (n < smallest) continue;
+        double sx = 0.0, sy = 0.0;
+        for (const grid::CellIndex& c : region.cells) {
+          sx += c.x;
+          sy += c.y;
+        }
+        const grid::CellIndex centre{static_cast<int>(std::lround(sx / n)),
+                                     static_cast<int>(std::lround(sy / n))};
+        double radius = 0.0;
+        for (const grid::CellIndex& c : region.cells) {
+          radius = std::max(radius, std::hypot(c.x - centre.x, c.y - centre.y));
+        }
+        found.push_back(
+            {static_cast<int>(t), std::move(region), centre, radius, n < options.min_region_cells});
       }
-      const grid::CellIndex centre{static_cast<int>(std::lround(sx / n)),
-                                   static_cast<int>(std::lround(sy / n))};
-      double radius = 0.0;
-      for (const grid::CellIndex& c : region.cells) {
-        radius = std::max(radius, std::hypot(c.x - centre.x, c.y - centre.y));
-      }
-      found.push_back({static_cast<int>(t), std::move(region), centre, radius});
-      ++result.per_map[t];
+    }
+    if (split > 0) {
+      result.warnings.push_back(
+          "map " + std::to_string(t) + ": " + std::to_string(split) +
+          " changed region(s) larger than max_region_cells (" +
+          std::to_string(options.max_region_cells) + " cells) or max_region_radius_m (" +
+          Number(options.max_region_radius_m) + " m) were split into " + std::to_string(parts) +
+          " parts" +
+          (sliced ? ", some cut into slices (touching objects with no neck between them)" : ""));
     }
   }
+  // Small regions are kept when one of a similar size shows in another map (a small object that
+  // moved recurs, a lone cluster of speckle does not) and they stand apart from every other
+  // region of their map: a small piece next to a larger one is a fragment of that object's
+  // outline (a chair's leg seen apart), which as a snapshot of its own would split the object.
+  {
+    struct Box {
+      int x0, y0, x1, y1;
+    };
+    auto box_of = [](const Region& region) {
+      Box b{region.cells[0].x, region.cells[0].y, region.cells[0].x, region.cells[0].y};
+      for (const grid::CellIndex& c : region.cells) {
+        b.x0 = std::min(b.x0, c.x), b.x1 = std::max(b.x1, c.x);
+        b.y0 = std::min(b.y0, c.y), b.y1 = std::max(b.y1, c.y);
+      }
+      return b;
+    };
+    const int isolation = 2 * options.link_cells + 1;  // cells between bounding boxes
+    auto isolated = [&](size_t i) {
+      const Box a = box_of(found[i].region);
+      for (size_t j = 0; j < found.size(); ++j) {
+        if (j == i || found[j].map_index != found[i].map_index) continue;
+        const Box b = box_of(found[j].region);
+        const int gap = std::max({b.x0 - a.x1, a.x0 - b.x1, b.y0 - a.y1, a.y0 - b.y1});
+        if (gap < isolation) return false;
+      }
+      return true;
+    };
+    std::vector<Found> kept;
+    int recurring = 0;
+    // Sorted extents of a region's bounding box: a moved object keeps them (up to a turn).
+    auto extents = [](const Region& region) {
+      int x0 = region.cells[0].x, x1 = x0, y0 = region.cells[0].y, y1 = y0;
+      for (const grid::CellIndex& c : region.cells) {
+        x0 = std::min(x0, c.x), x1 = std::max(x1, c.x);
+        y0 = std::min(y0, c.y), y1 = std::max(y1, c.y);
+      }
+      return std::minmax(x1 - x0, y1 - y0);
+    };
+    for (size_t i = 0; i < found.size(); ++i) {
+      if (!found[i].small) continue;
+      const double n = static_cast<double>(found[i].region.cells.size());
+      bool recurs = false;
+      if (!isolated(i)) {
+        found[i].drop = true;
+        continue;
+      }
+      for (size_t j = 0; j < found.size() && !recurs; ++j) {
+        if (found[j].map_index == found[i].map_index) continue;
+        const double m = static_cast<double>(found[j].region.cells.size());
+        const auto [a0, a1] = extents(found[i].region);
+        const auto [b0, b1] = extents(found[j].region);
+        recurs = m <= 1.5 * n && n <= 1.5 * m && std::abs(a0 - b0) <= 1 && std::abs(a1 - b1) <= 1;
+      }
+      found[i].drop = !recurs;
+      if (recurs) ++recurring;
+    }
+    for (Found& f : found) {
+      if (!f.drop) kept.push_back(std::move(f));
+    }
+    found = std::move(kept);
+    if (recurring > 0) {
+      result.warnings.push_back(std::to_string(recurring) + " small region(s) of fewer than " +
+                                std::to_string(options.min_region_cells) +
+                                " cells were kept because regions of their size recur in other "
+                                "maps (small_region_cells " +
+                                std::to_string(options.small_region_cells) + ")");
+    }
+  }
+  for (const Found& f : found) ++result.per_map[f.map_index];
 
   // One size for all: a disc of the largest radius fits at any rotation, plus the margin.
   int side = options.patch_cells;

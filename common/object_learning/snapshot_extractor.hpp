@@ -38,10 +38,14 @@ struct SnapshotSet {
   std::vector<std::string> warnings;
 };
 
-// Errors (kInvalidArgument): fewer than two maps, maps whose size, resolution or origin differ
-// (naming the two map indices), snapshot options out of range.
+// Regions larger than the limits are split (region_splitter.hpp); regions below
+// min_region_cells are kept only when they recur (SnapshotOptions::small_region_cells).
+// Maps before `first_map` are left out (a learner over its memory budget drops the oldest
+// sessions); snapshot map indices stay those of `maps`, and per_map has a 0 for each left out.
+// Errors (kInvalidArgument): fewer than two maps (from first_map on), maps whose size, resolution
+// or origin differ (naming the two map indices), snapshot options out of range.
 StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& maps,
-                                       const SnapshotOptions& options);
+                                       const SnapshotOptions& options, size_t first_map = 0);
 
 // Kinds of geometry mismatch, for callers that name files: "" when `a` and `b` share size,
 // resolution and origin, otherwise what differs ("size 100 x 80 vs 120 x 80 cells").

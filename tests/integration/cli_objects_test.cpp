@@ -20,6 +20,7 @@ namespace fleetmap::cli {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using testing::ReadFile;
 using testing::RunFleetmap;
 
@@ -68,6 +69,29 @@ TEST(CliObjectsTest, LearnsMovedBoxesAndWritesTheModel) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/object_0.pgm"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/template_0.pgm"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/montage.png"));
+  EXPECT_THAT(run.err, Not(HasSubstr("learn-objects: searching")));  // --json: no progress
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliObjectsTest, ShowsProgressOnStderrAndKeepsTheBudget) {
+  const std::string dir = TempDir("progress");
+  const std::string a = SaveRoom(dir, "a", {{10, 10}, {60, 60}});
+  const std::string b = SaveRoom(dir, "b", {{30, 70}, {70, 20}});
+  const std::string c = SaveRoom(dir, "c", {{15, 50}});
+  process::CommandResult run = RunFleetmap({"learn-objects", a, b, c, "--out", dir + "/out"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Not a terminal: a line at each stage change (and every 10 s).
+  EXPECT_THAT(run.err, HasSubstr("learn-objects: extracting snapshots from 3 maps"));
+  EXPECT_THAT(run.err, HasSubstr("learn-objects: searching (N "));
+  EXPECT_THAT(run.err, HasSubstr("learn-objects: done: "));
+  // A budget far too small: the model is still learned, degraded, and the warnings say so.
+  run = RunFleetmap(
+      {"learn-objects", a, b, c, "--out", dir + "/small", "--memory-budget", "0.01", "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("memory budget"));
+  const nlohmann::json model = nlohmann::json::parse(run.out);
+  EXPECT_GE(model["num_objects"].get<int>(), 1);
+  EXPECT_TRUE(model["degraded"].get<bool>());
   std::filesystem::remove_all(dir);
 }
 

@@ -73,6 +73,67 @@ TEST(ObjectLearnerTest, ApproximateEStepAboveTheBoundIsSaid) {
   EXPECT_NE(model->snapshots[0].object, model->snapshots[1].object);
 }
 
+TEST(ObjectLearnerTest, ATightMemoryBudgetDegradesAndSaysSo) {
+  const std::vector<grid::OccupancyGrid> maps = {
+      Room({{10, 10}, {60, 60}}), Room({{30, 70}, {70, 20}}), Room({{15, 50}}), Room({{50, 30}})};
+  LearnOptions options;
+  options.restarts = 2;
+  options.memory_budget_mb = 0.05;  // far below what four maps need: every step is taken
+  const StatusOr<LearnedModel> model = LearnObjects(maps, options);
+  ASSERT_TRUE(model.ok()) << model.status();  // degraded, never failed
+  EXPECT_TRUE(model->degraded);
+  std::string all;
+  for (const std::string& w : model->warnings) all += w + "\n";
+  EXPECT_THAT(all, HasSubstr("memory budget"));
+  EXPECT_THAT(all, HasSubstr("one random start"));
+  EXPECT_THAT(all, HasSubstr("left out (fewer sessions)"));
+  // The oldest maps went first: what is left comes from the newest two.
+  for (const SnapshotAssignment& s : model->snapshots) EXPECT_GE(s.map_index, 2);
+  EXPECT_GE(model->num_objects, 1);
+}
+
+TEST(ObjectLearnerTest, AnAmpleBudgetChangesNothing) {
+  const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
+                                                 Room({{30, 70}, {70, 20}})};
+  const StatusOr<LearnedModel> model = LearnObjects(maps);
+  ASSERT_TRUE(model.ok()) << model.status();
+  EXPECT_FALSE(model->degraded);
+  EXPECT_GT(model->estimated_memory_mb, 0.0);
+  EXPECT_LT(model->estimated_memory_mb, LearnOptions{}.memory_budget_mb);
+}
+
+TEST(ObjectLearnerTest, ProgressIsReportedWithStagesInOrder) {
+  const std::vector<grid::OccupancyGrid> maps = {Room({{10, 10}, {60, 60}}),
+                                                 Room({{30, 70}, {70, 20}}), Room({{15, 50}})};
+  std::vector<LearnProgress> reports;
+  LearnOptions options;
+  options.progress = [&reports](const LearnProgress& p) { reports.push_back(p); };
+  const StatusOr<LearnedModel> model = LearnObjects(maps, options);
+  ASSERT_TRUE(model.ok()) << model.status();
+  ASSERT_GE(reports.size(), 3u);
+  EXPECT_EQ(reports.front().stage, LearnStage::kExtracting);
+  EXPECT_EQ(reports.back().stage, LearnStage::kDone);
+  bool searched = false, iterated = false;
+  for (size_t i = 1; i < reports.size(); ++i) {
+    EXPECT_LE(static_cast<int>(reports[i - 1].stage), static_cast<int>(reports[i].stage));
+    EXPECT_LE(reports[i - 1].candidates_done, reports[i].candidates_done);
+    EXPECT_LE(reports[i - 1].elapsed_seconds, reports[i].elapsed_seconds);
+    EXPECT_EQ(reports[i].maps, 3);
+    if (reports[i].stage == LearnStage::kSearching) {
+      searched = true;
+      EXPECT_EQ(reports[i].snapshots, 5);
+      EXPECT_GE(reports[i].num_objects, 2);
+      EXPECT_GE(reports[i].candidates_estimate, reports[i].candidates_done + 1);
+      iterated = iterated || reports[i].em_iteration > 0;
+    }
+  }
+  EXPECT_TRUE(searched);
+  EXPECT_TRUE(iterated);
+  EXPECT_EQ(reports.back().candidates_done, static_cast<int>(model->searched.size()));
+  EXPECT_EQ(reports.back().num_objects, model->num_objects);
+  EXPECT_THAT(DescribeProgress(reports[reports.size() / 2]), HasSubstr("EM iteration"));
+}
+
 TEST(ObjectLearnerTest, ObjectPoseUndoesTheAlignment) {
   SnapshotAssignment s;
   s.centre = Point2(2.0, 3.0);

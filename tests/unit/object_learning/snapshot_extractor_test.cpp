@@ -69,6 +69,59 @@ TEST(SnapshotExtractorTest, TouchingObjectsMergeIntoOneSnapshot) {
   EXPECT_EQ(set->snapshots[1].cells, 32);
 }
 
+// A solid piece of furniture, as floor-plan data sets draw it.
+void AddSolid(grid::OccupancyGrid* map, int x0, int y0, int w, int h) {
+  for (int y = y0; y < y0 + h; ++y) {
+    for (int x = x0; x < x0 + w; ++x) map->at(x, y) = grid::kOccupiedValue;
+  }
+}
+
+TEST(SnapshotExtractorTest, ALargeChangedRegionIsSplitIntoObjects) {
+  grid::OccupancyGrid a = Room(), b = Room();
+  // A row of three desks (24 x 12 cells) two cells apart (linked by region growing) and a lone
+  // table: with max_region_cells 500 the row is too large to be one object.
+  AddSolid(&a, 10, 40, 24, 12);
+  AddSolid(&a, 36, 40, 24, 12);
+  AddSolid(&a, 62, 40, 24, 12);
+  AddSolid(&a, 20, 90, 16, 16);
+  SnapshotOptions options;
+  options.max_region_cells = 500;
+  const StatusOr<SnapshotSet> set = ExtractSnapshots({a, b}, options);
+  ASSERT_TRUE(set.ok()) << set.status();
+  ASSERT_EQ(set->snapshots.size(), 4u);  // three desks and the table, none ignored
+  int desks = 0;
+  for (const Snapshot& s : set->snapshots) desks += s.cells == 24 * 12;
+  EXPECT_EQ(desks, 3);
+  ASSERT_FALSE(set->warnings.empty());
+  EXPECT_THAT(set->warnings[0], HasSubstr("split into 3 parts"));
+}
+
+TEST(SnapshotExtractorTest, SmallObjectsAreKeptWhenTheyRecur) {
+  grid::OccupancyGrid a = Room(), b = Room(), c = Room();
+  // A bin of 5 cells (a plus sign, below min_region_cells 8) moves between the three maps.
+  auto bin = [](grid::OccupancyGrid* map, int x, int y) {
+    for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      map->at(x + dx, y + dy) = grid::kOccupiedValue;
+    }
+  };
+  bin(&a, 30, 30);
+  bin(&b, 80, 40);
+  bin(&c, 50, 90);
+  const StatusOr<SnapshotSet> set = ExtractSnapshots({a, b, c}, SnapshotOptions{});
+  ASSERT_TRUE(set.ok()) << set.status();
+  ASSERT_EQ(set->snapshots.size(), 3u);
+  EXPECT_EQ(set->per_map, (std::vector<int>{1, 1, 1}));
+  EXPECT_EQ(set->snapshots[0].cells, 5);
+  // A lone small blob that recurs nowhere is still dropped, and so is everything with the old
+  // behaviour (small_region_cells 0).
+  grid::OccupancyGrid d = Room();
+  AddSolid(&d, 60, 60, 2, 3);
+  EXPECT_TRUE(ExtractSnapshots({d, Room()}, SnapshotOptions{})->snapshots.empty());
+  SnapshotOptions old;
+  old.small_region_cells = 0;
+  EXPECT_TRUE(ExtractSnapshots({a, b, c}, old)->snapshots.empty());
+}
+
 TEST(SnapshotExtractorTest, BadInputsAreErrors) {
   const grid::OccupancyGrid a = Room();
   EXPECT_THAT(ExtractSnapshots({a}, SnapshotOptions{}).status().message(),
