@@ -48,14 +48,30 @@ double Median(std::vector<double> values) {
 
 FleetViewModel::FleetViewModel(ViewModelOptions options) : options_(options) {}
 
-FleetViewModel::Robot& FleetViewModel::RobotNamed(const RobotId& id) {
-  return robot_state_[id.value];
+FleetViewModel::Robot* FleetViewModel::RobotNamed(const RobotId& id, std::string_view topic) {
+  const auto it = robot_state_.find(id.value);
+  if (it != robot_state_.end()) return &it->second;
+  if (robot_state_.size() >= options_.max_robots) {
+    CountRejected(topic);
+    return nullptr;
+  }
+  return &robot_state_[id.value];
+}
+
+bool FleetViewModel::Admit(const JsonDictionary& section, const std::string& key,
+                           std::string_view topic) {
+  if (section.contains(key) || section.size() < options_.max_items) return true;
+  CountRejected(topic);
+  return false;
 }
 
 void FleetViewModel::OnFusedTile(const transport::TileEvent& event) {
   switch (event.kind) {
     case transport::TileEvent::Kind::kTile:
-      tiles_.Put(TileKey(event.tile.tile), TileJson(event.tile));
+      if (const std::string key = TileKey(event.tile.tile);
+          Admit(tiles_, key, transport::kFusedTilesTopic)) {
+        tiles_.Put(key, TileJson(event.tile));
+      }
       break;
     case transport::TileEvent::Kind::kRemoved:
       tiles_.Remove(TileKey(event.tile.tile));
@@ -72,34 +88,39 @@ void FleetViewModel::OnRobotTile(const transport::TileEvent& event) {
     return;
   }
   if (event.kind != transport::TileEvent::Kind::kTile) return;
-  Robot& robot = RobotNamed(event.tile.robot_id);
-  robot.tiles.push_back({event.received, event.serialized_bytes,
-                         1000.0 * SecondsBetween(event.tile.stamp, event.received)});
+  Robot* robot = RobotNamed(event.tile.robot_id, transport::kRobotTilesTopic);
+  if (robot == nullptr) return;
+  robot->tiles.push_back({event.received, event.serialized_bytes,
+                          1000.0 * SecondsBetween(event.tile.stamp, event.received)});
 }
 
 void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp now) {
   switch (event.kind) {
     case transport::RobotEvent::Kind::kStatus: {
-      Robot& robot = RobotNamed(event.robot);
-      robot.status = event.status;
-      robot.liveliness = Liveliness::kLive;
-      robot.last_status = now;
-      if (const std::optional<Pose2> pose = FleetPose(robot)) {
+      Robot* robot = RobotNamed(event.robot, transport::kRobotStatusTopic);
+      if (robot == nullptr) return;
+      robot->status = event.status;
+      robot->liveliness = Liveliness::kLive;
+      robot->last_status = now;
+      if (const std::optional<Pose2> pose = FleetPose(*robot)) {
         const Point2 here = pose->translation();
-        if (robot.path.empty() || (robot.path.back() - here).norm() >= options_.path_spacing_m) {
-          robot.path.push_back(here);
-          robot.path_gained.push_back(here);
-          if (robot.path.size() > options_.path_points) robot.path.pop_front();
+        if (robot->path.empty() || (robot->path.back() - here).norm() >= options_.path_spacing_m) {
+          robot->path.push_back(here);
+          robot->path_gained.push_back(here);
+          if (robot->path.size() > options_.path_points) robot->path.pop_front();
         }
       }
       break;
     }
     case transport::RobotEvent::Kind::kLeft:
-      RobotNamed(event.robot).liveliness = Liveliness::kLeft;
+    case transport::RobotEvent::Kind::kLost: {
+      // Only a robot the view knows can leave or be lost.
+      const auto it = robot_state_.find(event.robot.value);
+      if (it == robot_state_.end()) return;
+      it->second.liveliness =
+          event.kind == transport::RobotEvent::Kind::kLeft ? Liveliness::kLeft : Liveliness::kLost;
       break;
-    case transport::RobotEvent::Kind::kLost:
-      RobotNamed(event.robot).liveliness = Liveliness::kLost;
-      break;
+    }
     case transport::RobotEvent::Kind::kRejected:
       CountRejected(transport::kRobotStatusTopic);
       return;
@@ -112,11 +133,12 @@ void FleetViewModel::OnRobotFrame(const transport::RobotFrameEvent& event) {
     CountRejected(transport::kRobotFramesTopic);
     return;
   }
-  Robot& robot = RobotNamed(event.message.robot);
+  Robot* robot = RobotNamed(event.message.robot, transport::kRobotFramesTopic);
+  if (robot == nullptr) return;
   if (event.kind == transport::RobotFrameEvent::Kind::kSample) {
-    robot.frame = event.message;
+    robot->frame = event.message;
   } else {
-    robot.frame.reset();
+    robot->frame.reset();
   }
 }
 
@@ -126,7 +148,7 @@ void FleetViewModel::ApplyKeyed(const transport::KeyedEvent<Message>& event, con
                                 std::string_view topic) {
   switch (event.kind) {
     case transport::KeyedEvent<Message>::Kind::kSample:
-      section.Put(key, to_json(event.message));
+      if (Admit(section, key, topic)) section.Put(key, to_json(event.message));
       break;
     case transport::KeyedEvent<Message>::Kind::kRemoved:
       section.Remove(key);

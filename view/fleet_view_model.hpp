@@ -35,6 +35,11 @@ struct ViewModelOptions {
   // The recent path: this many points, one at least this far from the previous.
   size_t path_points = 200;
   double path_spacing_m = 0.2;
+  // Bounds on what any peer can make the view hold: past them, new robots and new items of a
+  // section (tiles, sub-maps, objects, templates) are refused and counted with their topic's
+  // refusals; known ones still update.
+  size_t max_robots = 1024;
+  size_t max_items = 100000;
 };
 
 class FleetViewModel {
@@ -88,7 +93,12 @@ class FleetViewModel {
     std::deque<TileSample> tiles;     // received within the rate window
   };
 
-  Robot& RobotNamed(const RobotId& id);
+  // The robot's record, made on first sight; nullptr (counted as refused on `topic`) for a new
+  // robot past max_robots.
+  Robot* RobotNamed(const RobotId& id, std::string_view topic);
+  // Whether `key` may be stored in `section`: known, or a new key within max_items (else counted
+  // as refused on `topic`).
+  bool Admit(const JsonDictionary& section, const std::string& key, std::string_view topic);
   // A keyed state topic's event into its section: put, removed, or counted as refused on `topic`.
   template <typename Message>
   void ApplyKeyed(const transport::KeyedEvent<Message>& event, const std::string& key,

@@ -43,6 +43,7 @@ class JsonDictionary {
   }
 
   size_t size() const { return items_.size(); }
+  bool contains(const std::string& key) const { return items_.count(key) > 0; }
   const std::map<std::string, nlohmann::json>& items() const { return items_; }
 
  private:

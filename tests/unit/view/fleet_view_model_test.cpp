@@ -214,5 +214,30 @@ TEST(FleetViewModelTest, PredictionsCarryTheirStateAndOutline) {
   EXPECT_EQ(delta["status"]["submaps"]["confirmed"], 1);
 }
 
+TEST(FleetViewModelTest, NoPeerCanMakeTheViewHoldMoreThanItsBounds) {
+  ViewModelOptions options;
+  options.max_robots = 2;
+  options.max_items = 3;
+  FleetViewModel model(options);
+  for (int i = 0; i < 10; ++i) {
+    model.OnFusedTile(FusedTile(i, 0, 1));
+    model.OnRobotEvent(Status("robot" + std::to_string(i), 1.0), kStart);
+  }
+  // Known ones still update.
+  model.OnFusedTile(FusedTile(0, 0, 2));
+  model.Tick(kStart);
+  const json delta = Parse(model.TakeDelta());
+  EXPECT_EQ(delta["tiles"].size(), 3u);
+  EXPECT_EQ(delta["tiles"]["0,0"]["rev"], 2);
+  EXPECT_EQ(delta["robots"].size(), 2u);
+  EXPECT_EQ(delta["status"]["rejected_by_topic"][transport::kFusedTilesTopic], 7);
+  EXPECT_EQ(delta["status"]["rejected_by_topic"][transport::kRobotStatusTopic], 8);
+  // A robot the view never held cannot be lost either.
+  model.OnRobotEvent(
+      transport::RobotEvent::Gone(transport::RobotEvent::Kind::kLost, RobotId{"robot9"}, "writer"),
+      kStart);
+  EXPECT_EQ(model.robot_count(), 2u);
+}
+
 }  // namespace
 }  // namespace fleetmap::view
