@@ -7,11 +7,13 @@
 #include "bench/extrapolation/bench_extrapolation_command.hpp"
 #include "bench/fleet/bench_fleet_command.hpp"
 #include "bench/fleet/bench_loss_command.hpp"
+#include "bench/fleet/bench_quarantine_command.hpp"
 #include "bench/fleet/sim_command.hpp"
 #include "bench/objects/bench_objects_command.hpp"
 #include "bench/paper/bench_paper_command.hpp"
 #include "bench/register/bench_register_command.hpp"
 #include "bench/vectorize/bench_vectorize_command.hpp"
+#include "cli/admit_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/extrapolate_command.hpp"
 #include "cli/info_command.hpp"
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddSimCommand(app, &exit_code);
   fleetmap::bench::AddBenchFleetCommand(app, &exit_code);
   fleetmap::bench::AddBenchLossCommand(app, &exit_code);
+  fleetmap::bench::AddBenchQuarantineCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::bench::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);
@@ -53,6 +56,7 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddSecurityCommand(app, &exit_code);
   fleetmap::cli::AddSaveMapCommand(app, &exit_code);
   fleetmap::cli::AddViewCommand(app, &exit_code);
+  fleetmap::cli::AddAdmitCommand(app, &exit_code);
   CLI11_PARSE(app, argc, argv);
   return exit_code;
 }

@@ -60,6 +60,8 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
                                                        participant, transport::kFusedTilesTopic));
   FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
                                                      participant, transport::kFleetMapTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->admission_reader_, transport::RobotAdmissionReader::Create(
+                                                           participant, worker->thread_.wake_up()));
   FLEETMAP_ASSIGN_OR_RETURN(worker->placer_, RobotPlacer::Create(participant, options.placement));
   if (!options.store_path.empty()) {
     store::StoreOptions store_options;
@@ -90,6 +92,7 @@ FusionWorker::~FusionWorker() {
   tile_reader_.reset();
   fused_writer_.reset();
   map_writer_.reset();
+  admission_reader_.reset();
   placer_.reset();
 }
 
@@ -152,6 +155,7 @@ FusionStats FusionWorker::stats() const {
 }
 
 bool FusionWorker::Round() {
+  HandleAdmissions();
   HandleTileEvents();
   // Bounded, so that new samples are drained (and a flood coalesced) while a backlog lasts.
   FuseQueuedTiles(kFusionSlice);
@@ -309,6 +313,53 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
   queue_.Push(robot, key, PendingTile{std::move(event.tile), evidence, event.serialized_bytes});
 }
 
+void FusionWorker::HandleAdmissions() {
+  for (transport::RobotAdmissionEvent& event : admission_reader_->Drain()) {
+    if (event.kind == transport::RobotAdmissionEvent::Kind::kRejected) {
+      spdlog::warn("server: refused an admission: {}", event.error.message());
+      continue;
+    }
+    if (event.kind != transport::RobotAdmissionEvent::Kind::kSample) continue;
+    const transport::RobotAdmissionMessage& admission = event.message;
+    const bool quarantined =
+        fusion_.TrustOf(admission.robot).standing == fusion::Standing::kQuarantined;
+    if (!fusion_.AdmitRobot(admission.robot)) continue;  // admitted before: nothing changes
+    spdlog::warn("server: robot {} admitted by {}{}; its tiles are fused from now on",
+                 admission.robot.value,
+                 admission.operator_name.empty() ? "an operator" : admission.operator_name,
+                 quarantined ? " out of quarantine" : " (it was not quarantined)");
+  }
+}
+
+void FusionWorker::ReportStandings() {
+  std::vector<fusion::TrustReport> changes = fusion_.TakeTrustChanges();
+  if (changes.empty()) return;
+  for (const fusion::TrustReport& report : changes) {
+    if (report.standing == fusion::Standing::kQuarantined) {
+      spdlog::warn(
+          "server: robot {} quarantined: {}, around ({:.1f}, {:.1f})..({:.1f}, {:.1f}) m; its "
+          "tiles are kept, not fused, until its map agrees, another robot confirms the change, "
+          "or an operator runs `fleetmap admit {}`",
+          report.robot.value, report.reason, report.area_min.x(), report.area_min.y(),
+          report.area_max.x(), report.area_max.y(), report.robot.value);
+    } else if (report.standing == fusion::Standing::kTrusted) {
+      spdlog::info("server: robot {} {}; its tiles are fused again", report.robot.value,
+                   report.reason);
+    }
+    placer_->SetStanding(report);
+  }
+  std::lock_guard lock(stats_mutex_);
+  for (fusion::TrustReport& report : changes) {
+    if (report.standing == fusion::Standing::kQuarantined) ++stats_.quarantines;
+    stats_.standings[report.robot] = std::move(report);
+  }
+}
+
+void FusionWorker::NoteSource(const RobotId& robot) {
+  const std::string owner = registry_->OwnerOf(robot);
+  if (!owner.empty()) fusion_.SetRobotSource(robot, RobotRegistry::ParticipantOf(owner));
+}
+
 void FusionWorker::RemoveTile(const RobotId& robot, const TileId& tile) {
   queue_.Erase(robot, tile);
   admission_.Forget(robot, tile);
@@ -375,6 +426,7 @@ void FusionWorker::ApplyTile(const RobotId& robot, PendingTile pending) {
     stats.bytes += pending.bytes;
     return;
   }
+  NoteSource(robot);
   const Status updated =
       fusion_.UpdateRobotTile(robot, tile.tile, tile.map, pending.evidence_stamp);
   if (!updated.ok()) {
@@ -417,6 +469,7 @@ void FusionWorker::HandleGrids() {
       }
       continue;
     }
+    NoteSource(update.robot);
     for (const auto& [tile, map] : tiled->tiles) {
       const Status updated = fusion_.UpdateRobotTile(update.robot, tile, map, update.map.stamp);
       if (!updated.ok()) {
@@ -431,6 +484,7 @@ void FusionWorker::HandleGrids() {
 
 void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   StatusOr<std::vector<fusion::FusedTile>> changed = fusion_.FuseChanged();
+  ReportStandings();
   if (!changed.ok()) {
     spdlog::error("server: fusion failed: {}", changed.status().message());
     return;
@@ -504,6 +558,7 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
 
 void FusionWorker::ApplyMapFrameTile(const RobotId& robot, const transport::VectorTileMessage& tile,
                                      Timestamp stamp) {
+  NoteSource(robot);
   RefuseMapFrameRobot(robot, map_frames_.UpdateTile(robot, tile.tile, tile.map, stamp));
   if (store_ == nullptr) return;
   // Kept in the store apart from the fleet-frame rows: the fused map is not rebuilt from them.

@@ -15,6 +15,7 @@
 #include "common/core/worker_thread.hpp"
 #include "common/fusion/tile_fusion.hpp"
 #include "common/store/map_store.hpp"
+#include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/map_message.hpp"
 #include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
@@ -80,6 +81,9 @@ struct FusionStats {
   uint64_t robot_records_dropped = 0;
   // Every robot's map frame as rt/fleetmap/robot_frames last said.
   std::map<RobotId, transport::RobotFrameMessage> frames;
+  // Robots whose standing is not the default: quarantined, admitted, or released (with why).
+  std::map<RobotId, fusion::TrustReport> standings;
+  uint64_t quarantines = 0;  // times a robot entered quarantine
 };
 
 // The server's fusion worker: drains robot tiles (and grids of robots on the grid wire), fuses
@@ -158,6 +162,12 @@ class FusionWorker {
   void HandleTileEvents();
   void Admit(transport::TileEvent event, Timestamp now,
              std::chrono::steady_clock::time_point steady);
+  // Operators' admissions of quarantined robots (rt/fleetmap/admissions).
+  void HandleAdmissions();
+  // Robots that entered or left quarantine in the last fusion: log, robot_frames, stats.
+  void ReportStandings();
+  // Robots of one participant never confirm each other's changes (quarantine).
+  void NoteSource(const RobotId& robot);
   void Refuse(const RobotId& robot, Refusal reason, const std::string& detail);
   void RemoveTile(const RobotId& robot, const TileId& tile);
   // Tiles held for robot ids that a status has claimed since, or that waited too long.
@@ -196,6 +206,7 @@ class FusionWorker {
   std::unique_ptr<transport::VectorTileReader> tile_reader_;
   std::unique_ptr<transport::VectorTileWriter> fused_writer_;
   std::unique_ptr<transport::OccupancyGridWriter> map_writer_;
+  std::unique_ptr<transport::RobotAdmissionReader> admission_reader_;
   SampleQueue<GridUpdate> grids_{64};
   SampleQueue<RobotFrameNote> frame_notes_{1024};
   MapFrameRobots map_frames_{options_.fusion.tile_size};  // worker thread only

@@ -58,10 +58,36 @@ RobotPlacer::~RobotPlacer() {
 
 void RobotPlacer::Publish(transport::RobotFrameMessage frame) {
   frame.stamp = Clock::now();
+  if (const auto standing = standings_.find(frame.robot); standing != standings_.end()) {
+    const fusion::TrustReport& report = standing->second;
+    using Standing = transport::RobotFrameMessage::Standing;
+    switch (report.standing) {
+      case fusion::Standing::kTrusted:
+        frame.standing = Standing::kTrusted;
+        break;
+      case fusion::Standing::kQuarantined:
+        frame.standing = Standing::kQuarantined;
+        break;
+      case fusion::Standing::kAdmitted:
+        frame.standing = Standing::kAdmitted;
+        break;
+    }
+    frame.standing_reason = report.reason;
+    frame.contradicted_share = std::clamp(report.share, 0.0, 1.0);
+    frame.contradicted_m = report.contradicted_m;
+    frame.area_min = report.area_min;
+    frame.area_max = report.area_max;
+  }
   if (StatusOr<size_t> written = frame_writer_->Write(frame); !written.ok()) {
     spdlog::warn("server: {}", written.status().message());
   }
   frames_[frame.robot] = std::move(frame);
+}
+
+void RobotPlacer::SetStanding(const fusion::TrustReport& report) {
+  standings_[report.robot] = report;
+  const auto frame = frames_.find(report.robot);
+  if (frame != frames_.end()) Publish(frame->second);
 }
 
 void RobotPlacer::Unplaced(const RobotId& robot) {

@@ -14,6 +14,7 @@
 #include "common/core/sample_queue.hpp"
 #include "common/core/status.hpp"
 #include "common/core/worker_thread.hpp"
+#include "common/fusion/robot_trust.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/registration/registration.hpp"
 #include "common/transport/keyed_state_topic.hpp"
@@ -105,6 +106,10 @@ class RobotPlacer {
   using PlacementOf = std::function<std::optional<Pose2>(const RobotId&)>;
   std::vector<Decision> Decide(const PlacementOf& placement_of);
 
+  // Whether the robot's tiles are fused (quarantine): carried by every frame published for it,
+  // and its current frame is published again with it.
+  void SetStanding(const fusion::TrustReport& report);
+
   // Publishes rt/tf when due.
   void PublishTf(std::chrono::steady_clock::time_point now);
 
@@ -144,6 +149,7 @@ class RobotPlacer {
   std::unique_ptr<transport::RobotFrameWriter> frame_writer_;
   std::unique_ptr<transport::TfWriter> tf_writer_;
   std::map<RobotId, transport::RobotFrameMessage> frames_;
+  std::map<RobotId, fusion::TrustReport> standings_;         // robots not trusted, or no longer
   std::map<std::pair<RobotId, RobotId>, Attempt> attempts_;  // by (robot, target)
   std::map<RobotId, Follower> followers_;
   std::chrono::steady_clock::time_point last_tf_{};

@@ -392,6 +392,16 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
       "rt/fleetmap/map; {} samples rejected before they named a robot\n",
       fusion.fused_tiles, fusion.fused_tiles_published, fusion.fused_bytes_published,
       fusion.maps_published, fusion.rejected_unattributed);
+  if (fusion.quarantines > 0 || !fusion.standings.empty()) {
+    std::string now;
+    for (const auto& [robot, report] : fusion.standings) {
+      if (report.standing == fusion::Standing::kTrusted) continue;
+      now += fmt::format("{}{} {}", now.empty() ? "" : ", ", robot.value,
+                         fusion::StandingName(report.standing));
+    }
+    fmt::print("quarantine: {} robots entered it; now {}\n", fusion.quarantines,
+               now.empty() ? "none quarantined or admitted" : now);
+  }
   if (!fusion.refusals_by_reason.empty() || refusals_.total() > 0) {
     std::string reasons;
     for (const auto& [reason, count] : fusion.refusals_by_reason) {

@@ -209,6 +209,17 @@ json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timest
     placement = "unplaced";
   }
   out["placement"] = placement;
+  // Whether the server fuses its tiles (docs/fleet.md, "Quarantine"), why not, and where.
+  out["standing"] = robot.frame ? transport::RobotStandingName(robot.frame->standing) : "trusted";
+  if (robot.frame && robot.frame->standing != transport::RobotFrameMessage::Standing::kTrusted) {
+    out["standing_reason"] = robot.frame->standing_reason;
+  }
+  if (robot.frame &&
+      robot.frame->standing == transport::RobotFrameMessage::Standing::kQuarantined &&
+      robot.frame->area_min.x() <= robot.frame->area_max.x()) {
+    out["area"] = {Millimetres(robot.frame->area_min.x()), Millimetres(robot.frame->area_min.y()),
+                   Millimetres(robot.frame->area_max.x()), Millimetres(robot.frame->area_max.y())};
+  }
   if (const std::optional<Pose2> pose = FleetPose(robot)) {
     out["x"] = Millimetres(pose->x);
     out["y"] = Millimetres(pose->y);

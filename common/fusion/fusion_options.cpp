@@ -6,6 +6,32 @@
 
 namespace fleetmap::fusion {
 
+Status QuarantineOptions::Validate() const {
+  const auto bad = [](double v) { return !std::isfinite(v) || v < 0.0; };
+  if (bad(tolerance_m) || tolerance_m > 5.0) {
+    return InvalidArgumentError("quarantine tolerance_m must be in [0, 5] m");
+  }
+  if (bad(min_contradicted_m) || bad(max_contradicted_m) ||
+      max_contradicted_m < min_contradicted_m) {
+    return InvalidArgumentError(
+        "quarantine min_contradicted_m and max_contradicted_m must be >= 0, max >= min");
+  }
+  if (bad(enter_share) || enter_share > 1.0 || bad(leave_share) || leave_share > enter_share) {
+    return InvalidArgumentError(
+        "quarantine shares must satisfy 0 <= leave_share <= enter_share <= 1");
+  }
+  return Status::Ok();
+}
+
+void QuarantineOptions::Describe(OptionsPrinter& out) const {
+  out.Add("enabled", enabled);
+  out.Add("tolerance_m", tolerance_m);
+  out.Add("min_contradicted_m", min_contradicted_m);
+  out.Add("enter_share", enter_share);
+  out.Add("max_contradicted_m", max_contradicted_m);
+  out.Add("leave_share", leave_share);
+}
+
 Status FusionOptions::Validate() const {
   if (!std::isfinite(tile_size) || tile_size <= 0.0) {
     return InvalidArgumentError("fusion tile_size " + std::to_string(tile_size) +
@@ -33,7 +59,7 @@ Status FusionOptions::Validate() const {
         " must hold at least one tile of " + std::to_string(CellsPerTile()) + " x " +
         std::to_string(CellsPerTile()) + " cells");
   }
-  return Status::Ok();
+  return quarantine.Validate();
 }
 
 Status FusionOptions::CheckTileInRange(const TileId& tile) const {
@@ -62,6 +88,7 @@ void FusionOptions::Describe(OptionsPrinter& out) const {
   out.Nested("vectorizer", vectorizer);
   out.Add("max_coordinate", max_coordinate);
   out.Add("max_grid_cells", max_grid_cells);
+  out.Nested("quarantine", quarantine);
 }
 
 }  // namespace fleetmap::fusion

@@ -64,8 +64,10 @@ TileRect CutAroundMedian(std::vector<TileId> group, const TileRect& bounds, int6
     first = std::max<int64_t>(lo, last - side + 1);
     return std::pair{static_cast<int32_t>(first), static_cast<int32_t>(last)};
   };
-  const auto [x0, x1] = span(median([](const TileId& t) { return t.x; }), bounds.min.x, bounds.max.x);
-  const auto [y0, y1] = span(median([](const TileId& t) { return t.y; }), bounds.min.y, bounds.max.y);
+  const auto [x0, x1] =
+      span(median([](const TileId& t) { return t.x; }), bounds.min.x, bounds.max.x);
+  const auto [y0, y1] =
+      span(median([](const TileId& t) { return t.y; }), bounds.min.y, bounds.max.y);
   return TileRect{{x0, y0}, {x1, y1}};
 }
 

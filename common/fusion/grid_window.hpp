@@ -44,7 +44,6 @@ struct SourcedTile {
 // cannot take the view from the fleet. It is cut around its median tile if even the group is
 // too large. Memory and time follow
 // the number of tiles, never their bounding box. `tiles` must not be empty; max_tiles >= 1.
-GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_tiles,
-                            int gap = 2);
+GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_tiles, int gap = 2);
 
 }  // namespace fleetmap::fusion

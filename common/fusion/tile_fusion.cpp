@@ -1,6 +1,7 @@
 #include "common/fusion/tile_fusion.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -40,7 +41,8 @@ TileFusion::TileFusion(const FusionOptions& options)
         vectorizer.frame_id = "fleet";
         return vector_map::Vectorizer(vectorizer);
       }()),
-      epoch_(kEvidenceEpoch) {}
+      epoch_(kEvidenceEpoch),
+      trust_(options.quarantine, options.tile_size, options.FusedResolution()) {}
 
 grid::OccupancyGrid TileFusion::EmptyTileGrid(const TileId& tile) const {
   const int cells = options_.CellsPerTile();
@@ -84,6 +86,7 @@ Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
   contribution.stamp = std::max(contribution.stamp, stamp);
   state.newest_input = std::max(state.newest_input, stamp);
   to_refuse_.insert(tile);
+  to_review_.insert({tile, robot});
   return Status::Ok();
 }
 
@@ -91,6 +94,8 @@ void TileFusion::RemoveRobotTile(const RobotId& robot, const TileId& tile) {
   const auto it = tiles_.find(tile);
   if (it == tiles_.end() || it->second.robots.erase(robot) == 0) return;
   to_refuse_.insert(tile);
+  trust_.ForgetTile(robot, tile);
+  to_decide_.insert(robot);
 }
 
 std::optional<ContributionEvidence> TileFusion::ExportContribution(const RobotId& robot,
@@ -132,19 +137,24 @@ Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
   contribution.stamp = evidence.stamp;
   state.newest_input = std::max(state.newest_input, evidence.stamp);
   to_refuse_.insert(tile);
+  to_review_.insert({tile, robot});
   return Status::Ok();
 }
 
 grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& state,
-                                          const RobotId* without) const {
+                                          const RobotId* without, std::vector<uint32_t>* dates,
+                                          const std::string* walls_only_source) const {
   grid::OccupancyGrid fused = EmptyTileGrid(tile);
-  std::vector<uint32_t> best(static_cast<size_t>(fused.cell_count()), 0);
+  std::vector<uint32_t> own_dates;
+  std::vector<uint32_t>& best = dates != nullptr ? *dates : own_dates;
+  best.assign(static_cast<size_t>(fused.cell_count()), 0);
   for (const auto& [robot, contribution] : state.robots) {
-    if (without != nullptr && robot == *without) continue;
+    if ((without != nullptr && robot == *without) || !Fused(robot)) continue;
+    const bool walls_only = walls_only_source != nullptr && SourceOf(robot) == *walls_only_source;
     const int8_t* values = contribution.cells.data().data();
     for (size_t i = 0; i < best.size(); ++i) {
       const int8_t value = values[i];
-      if (value == kUnknownValue) continue;
+      if (value == kUnknownValue || (walls_only && value != kOccupiedValue)) continue;
       const uint32_t at = contribution.changed_at[i];
       // Newer evidence wins; at equal age an obstacle wins over free space.
       if (at > best[i] || (at == best[i] && value == kOccupiedValue)) {
@@ -219,7 +229,108 @@ StatusOr<vector_map::VectorMap> TileFusion::VectorizeWithContext(const TileId& t
   return vectorizer_.VectorizeTile(window, grid::CellRect{margin, margin, cells, cells});
 }
 
+const std::string& TileFusion::SourceOf(const RobotId& robot) const {
+  const auto it = sources_.find(robot);
+  return it == sources_.end() ? robot.value : it->second;
+}
+
+void TileFusion::SetRobotSource(const RobotId& robot, std::string source) {
+  sources_[robot] = std::move(source);
+}
+
+TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state,
+                                      const RobotId& robot) const {
+  const Contribution& mine = state.robots.at(robot);
+  // The others' cells; robots of the robot's own participant add their walls, never their free
+  // space (they cannot confirm its changes).
+  std::vector<uint32_t> dates;
+  const grid::OccupancyGrid others = FuseCells(tile, state, &robot, &dates, &SourceOf(robot));
+  // What quarantined robots of other participants saw free: not fused, but it confirms a change.
+  std::vector<uint32_t> confirmed;
+  for (const auto& [other, contribution] : state.robots) {
+    if (other == robot || Fused(other) || SourceOf(other) == SourceOf(robot)) continue;
+    if (confirmed.empty()) confirmed.assign(dates.size(), 0);
+    for (size_t i = 0; i < confirmed.size(); ++i) {
+      if (contribution.cells.data()[i] == grid::kFreeValue) {
+        confirmed[i] = std::max(confirmed[i], contribution.changed_at[i]);
+      }
+    }
+  }
+  const int tolerance =
+      static_cast<int>(std::lround(options_.quarantine.tolerance_m / options_.FusedResolution()));
+  return CountContradiction(mine.cells, mine.changed_at,
+                            EstablishedCells{&others, &dates, &confirmed}, tolerance);
+}
+
+void TileFusion::StandingChanged(const RobotId& robot) {
+  trust_changed_.insert(robot);
+  for (auto& [tile, state] : tiles_) {
+    if (state.robots.count(robot) == 0) continue;
+    to_refuse_.insert(tile);
+    // Its evidence joined or left the fleet's: the quarantined robots here are weighed again.
+    for (const auto& [other, contribution] : state.robots) {
+      if (other != robot && !Fused(other)) to_review_.insert({tile, other});
+    }
+  }
+}
+
+void TileFusion::ReviewTrust() {
+  if (!options_.quarantine.enabled) {
+    to_review_.clear();
+    to_decide_.clear();
+    return;
+  }
+  // Changed tiles may confirm (or no longer contradict) a quarantined robot's view there.
+  for (const TileId& tile : to_refuse_) {
+    for (const auto& [robot, contribution] : tiles_.at(tile).robots) {
+      if (!Fused(robot)) to_review_.insert({tile, robot});
+    }
+  }
+  // A change of standing changes what the others are weighed against; a few passes settle it
+  // (each pass only follows robots whose standing just changed).
+  constexpr int kMaxPasses = 4;
+  for (int pass = 0; pass < kMaxPasses && !(to_review_.empty() && to_decide_.empty()); ++pass) {
+    std::set<RobotId> decide = std::move(to_decide_);
+    to_decide_.clear();
+    const auto reviews = std::move(to_review_);
+    to_review_.clear();
+    for (const auto& [tile, robot] : reviews) {
+      const auto state = tiles_.find(tile);
+      if (state == tiles_.end() || state->second.robots.count(robot) == 0) {
+        trust_.ForgetTile(robot, tile);
+      } else {
+        trust_.Record(robot, tile, CountOn(tile, state->second, robot));
+      }
+      decide.insert(robot);
+    }
+    for (const RobotId& robot : decide) {
+      if (trust_.Decide(robot)) StandingChanged(robot);
+    }
+  }
+  to_review_.clear();
+  to_decide_.clear();
+}
+
+bool TileFusion::AdmitRobot(const RobotId& robot) {
+  const bool was_quarantined = trust_.quarantined(robot);
+  if (!trust_.Admit(robot)) return false;
+  if (was_quarantined) {
+    StandingChanged(robot);
+  } else {
+    trust_changed_.insert(robot);
+  }
+  return true;
+}
+
+std::vector<TrustReport> TileFusion::TakeTrustChanges() {
+  std::vector<TrustReport> out;
+  for (const RobotId& robot : trust_changed_) out.push_back(trust_.Report(robot));
+  trust_changed_.clear();
+  return out;
+}
+
 StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
+  ReviewTrust();
   for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
   to_refuse_.clear();
   std::vector<FusedTile> changed;

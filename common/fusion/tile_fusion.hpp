@@ -13,6 +13,7 @@
 #include "common/core/status.hpp"
 #include "common/fusion/fusion_options.hpp"
 #include "common/fusion/grid_window.hpp"
+#include "common/fusion/robot_trust.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/vector_map.hpp"
 #include "common/vector_map/vectorizer.hpp"
@@ -42,6 +43,9 @@ struct ContributionEvidence {
 // evidence for a cell dates from the revision in which that cell last changed state. Ties go to
 // occupied. A robot that left keeps its contribution (marked stale by the server, not here).
 // Changed tiles, and neighbours whose border context changed, are re-vectorized by FuseChanged().
+// A robot whose map contradicts what the other robots established is quarantined: its
+// contributions are kept (and exported) but not fused until it agrees again, another robot
+// confirms what it saw, or an operator admits it (QuarantineOptions, RobotTrust).
 //
 // Not thread-safe: one fusion worker owns it.
 class TileFusion {
@@ -64,8 +68,20 @@ class TileFusion {
                             ContributionEvidence evidence);
 
   // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
-  // changed.
+  // changed. Robots whose tiles changed are weighed against the fleet first, so a tile that
+  // puts its robot in quarantine is never fused.
   StatusOr<std::vector<FusedTile>> FuseChanged();
+
+  // Which participant speaks for `robot`: robots of one participant never confirm each other's
+  // changes. Unset, a robot is its own source.
+  void SetRobotSource(const RobotId& robot, std::string source);
+  // An operator's word: the robot is fused from the next FuseChanged() on and never quarantined
+  // again. False when it already was admitted.
+  bool AdmitRobot(const RobotId& robot);
+  // The robot's standing, why, and what it contradicts.
+  TrustReport TrustOf(const RobotId& robot) const { return trust_.Report(robot); }
+  // Robots whose standing changed in the FuseChanged() calls since the last call.
+  std::vector<TrustReport> TakeTrustChanges();
 
   // The fused cells as one fleet-frame grid (yaw 0): the smallest that holds every tile when it
   // has at most options().max_grid_cells cells, else the window ChooseGridWindow() picks (the
@@ -102,9 +118,21 @@ class TileFusion {
   // The tile's state, created (all unknown) when it is new.
   TileState& StateOf(const TileId& tile);
   uint32_t Deciseconds(Timestamp stamp) const;
-  // A tile's fused cells from its contributions, leaving out `without`'s if given.
-  grid::OccupancyGrid FuseCells(const TileId& tile, const TileState& state,
-                                const RobotId* without) const;
+  // A tile's fused cells from its trusted contributions, leaving out `without`'s if given;
+  // `dates`, if given, receives each cell's evidence date (0: unknown). Robots of
+  // `walls_only_source`, if given, contribute their occupied cells only.
+  grid::OccupancyGrid FuseCells(const TileId& tile, const TileState& state, const RobotId* without,
+                                std::vector<uint32_t>* dates = nullptr,
+                                const std::string* walls_only_source = nullptr) const;
+  bool Fused(const RobotId& robot) const { return !trust_.quarantined(robot); }
+  const std::string& SourceOf(const RobotId& robot) const;
+  // Counts `robot`'s contradiction of the rest of the fleet on `tile` (it contributes there).
+  TileContradiction CountOn(const TileId& tile, const TileState& state, const RobotId& robot) const;
+  // Weighs the robots queued in to_review_ and applies what RobotTrust decides: a robot whose
+  // standing changed has all its tiles fused again (and the quarantined robots there weighed
+  // again: a robot released may confirm another's change).
+  void ReviewTrust();
+  void StandingChanged(const RobotId& robot);
   // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
   // border margin changed.
   bool Refuse(const TileId& tile, TileState* state);
@@ -119,6 +147,11 @@ class TileFusion {
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;
+  RobotTrust trust_;
+  std::map<RobotId, std::string> sources_;
+  std::set<std::pair<TileId, RobotId>> to_review_;  // contributions to weigh again
+  std::set<RobotId> to_decide_;                     // robots whose counts changed otherwise
+  std::set<RobotId> trust_changed_;                 // since TakeTrustChanges()
 };
 
 }  // namespace fleetmap::fusion

@@ -28,6 +28,7 @@ inline constexpr const char* kServerTopics[] = {"rt/fleetmap/fused_tiles",
                                                 "rt/fleetmap/object_templates",
                                                 "rt/fleetmap/objects",
                                                 "rt/fleetmap/robot_frames",
+                                                "rt/fleetmap/admissions",
                                                 "rt/tf"};
 inline constexpr const char* kRobotOwnedTopics[] = {
     "rt/fleetmap/robot_tiles", "rt/fleetmap/robot_status", "rt/fleetmap/entities"};

@@ -103,6 +103,21 @@ struct TopicTraits<RobotFrameMessage> {
   }
 };
 
+template <>
+struct TopicTraits<RobotAdmissionMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::RobotAdmission_;
+  static constexpr const char* kTopic = kAdmissionsTopic;
+  static dds::TypeSupport Type() { return RobotAdmissionTypeSupport(); }
+  static RobotAdmissionMessage KeyOf(const RobotAdmissionMessage& message) {
+    RobotAdmissionMessage key;
+    key.robot = message.robot;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "admission of " + sample.robot_id().substr(0, 64);
+  }
+};
+
 }  // namespace
 
 template <typename Message>
@@ -254,5 +269,7 @@ template class KeyedStateWriter<ObjectModelMessage>;
 template class KeyedStateReader<ObjectModelMessage>;
 template class KeyedStateWriter<RobotFrameMessage>;
 template class KeyedStateReader<RobotFrameMessage>;
+template class KeyedStateWriter<RobotAdmissionMessage>;
+template class KeyedStateReader<RobotAdmissionMessage>;
 
 }  // namespace fleetmap::transport

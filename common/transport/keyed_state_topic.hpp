@@ -86,5 +86,8 @@ using ObjectModelReader = KeyedStateReader<ObjectModelMessage>;
 using RobotFrameEvent = KeyedEvent<RobotFrameMessage>;
 using RobotFrameWriter = KeyedStateWriter<RobotFrameMessage>;
 using RobotFrameReader = KeyedStateReader<RobotFrameMessage>;
+using RobotAdmissionEvent = KeyedEvent<RobotAdmissionMessage>;
+using RobotAdmissionWriter = KeyedStateWriter<RobotAdmissionMessage>;
+using RobotAdmissionReader = KeyedStateReader<RobotAdmissionMessage>;
 
 }  // namespace fleetmap::transport

@@ -75,11 +75,28 @@ struct RobotFrameMessage {
   double overlap = 0.0;        // share of the robot's known cells on the map it was placed on
   uint32_t placements = 0;     // times the server placed the robot (revisions + 1)
   std::string placed_against;  // "fleet", or the robot whose map it was registered to
+  // Whether its tiles are fused (docs/fleet.md, "Quarantine").
+  enum class Standing : uint8_t { kTrusted = 0, kQuarantined = 1, kAdmitted = 2 };
+  Standing standing = Standing::kTrusted;
+  std::string standing_reason;      // for people; empty when trusted
+  double contradicted_share = 0.0;  // of the fleet's established walls it sees, called free
+  double contradicted_m = 0.0;      // metres of those walls
+  // The contradicting area in the fleet frame; min > max when there is none.
+  Point2 area_min = Point2::Zero();
+  Point2 area_max = Point2(-1.0, -1.0);
 
   // The robot's frame is known: every state but kUnplaced.
   bool placed() const { return state != State::kUnplaced; }
 };
 
 const char* RobotFrameStateName(RobotFrameMessage::State state);
+const char* RobotStandingName(RobotFrameMessage::Standing standing);
+
+// An operator admits a quarantined robot (rt/fleetmap/admissions, `fleetmap admit`).
+struct RobotAdmissionMessage {
+  RobotId robot;
+  Timestamp stamp{};
+  std::string operator_name;
+};
 
 }  // namespace fleetmap::transport

@@ -12,6 +12,7 @@ const COLORS = {
   retracted: '#d03030',
   object: '#8e44ad',
   path: '#1565c0',
+  quarantine: '#c62828',  // the area a quarantined robot's map contradicts
   robot: { live: '#1565c0', stale: '#ef8f00', lost: '#c62828', left: '#777777' },
 };
 
@@ -139,6 +140,14 @@ function drawRobot(id, robot) {
     permanent: true, direction: 'right', offset: [8, 0], className: 'robot-label',
   });
   drawn.robots[id] = [path, heading, marker];
+  if (robot.standing === 'quarantined' && robot.area) {
+    // What its map contradicts: drawn so an operator can look there before admitting it.
+    const [x0, y0, x1, y1] = robot.area;
+    drawn.robots[id].push(L.rectangle([ll(x0, y0), ll(x1, y1)], {
+      renderer: renderers.robots, color: COLORS.quarantine, weight: 2, dashArray: '6 4',
+      fill: false, interactive: false,
+    }));
+  }
   drawn.robots[id].forEach((layer) => layers.robots.addLayer(layer));
 }
 
@@ -273,10 +282,12 @@ function renderTables() {
   robots.replaceChildren(...Object.keys(state.robots).sort().map((id) => {
     const r = state.robots[id];
     const where = r.x === undefined ? '-' : `${r.x.toFixed(2)}, ${r.y.toFixed(2)}`;
-    return row([id, r.state, r.placement, where, r.yaw === undefined ? '-' : degrees(r.yaw),
+    const standing = r.standing === 'trusted' ? 'fused' : r.standing;
+    return row([id, r.state, r.placement, standing, where, r.yaw === undefined ? '-' : degrees(r.yaw),
       r.rev ?? '-', rate(r.bps), r.ups.toFixed(1),
       r.latency_ms === null ? '-' : `${r.latency_ms.toFixed(1)} ms`],
-    { 'data-robot': id, 'data-state': r.state });
+    { 'data-robot': id, 'data-state': r.state, 'data-standing': r.standing,
+      title: r.standing_reason || '' });
   }));
   const predictions = document.querySelector('#predictions tbody');
   predictions.replaceChildren(...Object.keys(state.submaps)

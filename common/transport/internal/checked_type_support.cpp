@@ -5,6 +5,7 @@
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
+#include "fleetmap_msgs/msg/RobotAdmissionPubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
 #include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
@@ -79,6 +80,12 @@ eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport() {
 eprosima::fastdds::dds::TypeSupport RobotFrameTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<fleetmap_msgs::msg::dds_::RobotFrame_PubSubType>(RobotFrameShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport RobotAdmissionTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::RobotAdmission_PubSubType>(
+          RobotAdmissionShape()));
 }
 
 eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport() {

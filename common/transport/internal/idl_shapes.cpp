@@ -166,11 +166,28 @@ const CdrShape& ObjectModelShape() {
 }
 
 const CdrShape& RobotFrameShape() {
-  static const CdrShape shape = {
-      String("robot_id"),         Struct("stamp", TimeShape()),
-      Primitive("state", 1),      Struct("fleet_from_map", Pose2DShape()),
-      Primitive("confidence", 8), Primitive("overlap", 4),
-      Primitive("placements", 4), String("placed_against")};
+  static const CdrShape shape = {String("robot_id"),
+                                 Struct("stamp", TimeShape()),
+                                 Primitive("state", 1),
+                                 Struct("fleet_from_map", Pose2DShape()),
+                                 Primitive("confidence", 8),
+                                 Primitive("overlap", 4),
+                                 Primitive("placements", 4),
+                                 String("placed_against"),
+                                 Primitive("standing", 1),
+                                 String("standing_reason"),
+                                 Primitive("contradicted_share", 4),
+                                 Primitive("contradicted_m", 4),
+                                 Primitive("area_min_x", 8),
+                                 Primitive("area_min_y", 8),
+                                 Primitive("area_max_x", 8),
+                                 Primitive("area_max_y", 8)};
+  return shape;
+}
+
+const CdrShape& RobotAdmissionShape() {
+  static const CdrShape shape = {String("robot_id"), Struct("stamp", TimeShape()),
+                                 String("operator_name")};
   return shape;
 }
 

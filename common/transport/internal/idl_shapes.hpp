@@ -23,6 +23,7 @@ const CdrShape& SubmapShape();
 const CdrShape& ObjectTemplateShape();
 const CdrShape& ObjectModelShape();
 const CdrShape& RobotFrameShape();
+const CdrShape& RobotAdmissionShape();
 const CdrShape& TfMessageShape();
 
 }  // namespace fleetmap::transport

@@ -12,11 +12,14 @@ namespace {
 using fleetmap_msgs::msg::dds_::Entity_;
 using fleetmap_msgs::msg::dds_::ObjectModel_;
 using fleetmap_msgs::msg::dds_::ObjectTemplate_;
+using fleetmap_msgs::msg::dds_::RobotAdmission_;
 using fleetmap_msgs::msg::dds_::RobotFrame_;
 using fleetmap_msgs::msg::dds_::Submap_;
 
 // Ids are names a log can print: bounded, printable, no spaces.
 constexpr size_t kMaxIdLength = 128;
+// A reason is a sentence for people.
+constexpr size_t kMaxReasonLength = 1024;
 // A patch or a predicted sub-map is a local thing: refuse grids beyond this many cells.
 constexpr uint64_t kMaxCells = 64ull * 1024 * 1024;
 
@@ -241,6 +244,17 @@ Status CheckRobotFrame(const RobotFrameMessage& message) {
                                 " has a placed_against longer than " +
                                 std::to_string(kMaxIdLength) + " characters");
   }
+  if (message.standing_reason.size() > kMaxReasonLength) {
+    return InvalidArgumentError("RobotFrame of " + message.robot.value +
+                                " has a standing_reason longer than " +
+                                std::to_string(kMaxReasonLength) + " characters");
+  }
+  if (!(message.contradicted_share >= 0.0 && message.contradicted_share <= 1.0) ||
+      !(message.contradicted_m >= 0.0 && std::isfinite(message.contradicted_m)) ||
+      !message.area_min.allFinite() || !message.area_max.allFinite()) {
+    return InvalidArgumentError("RobotFrame of " + message.robot.value +
+                                " has contradiction figures out of range");
+  }
   return Status::Ok();
 }
 
@@ -464,6 +478,14 @@ StatusOr<RobotFrame_> ToIdl(const RobotFrameMessage& message) {
   sample.overlap(static_cast<float>(message.overlap));
   sample.placements(message.placements);
   sample.placed_against(message.placed_against);
+  sample.standing(static_cast<uint8_t>(message.standing));
+  sample.standing_reason(message.standing_reason);
+  sample.contradicted_share(static_cast<float>(message.contradicted_share));
+  sample.contradicted_m(static_cast<float>(message.contradicted_m));
+  sample.area_min_x(message.area_min.x());
+  sample.area_min_y(message.area_min.y());
+  sample.area_max_x(message.area_max.x());
+  sample.area_max_y(message.area_max.y());
   return sample;
 }
 
@@ -482,8 +504,60 @@ StatusOr<RobotFrameMessage> FromIdl(const RobotFrame_& sample) {
   message.overlap = sample.overlap();
   message.placements = sample.placements();
   message.placed_against = sample.placed_against();
+  if (sample.standing() > static_cast<uint8_t>(RobotFrameMessage::Standing::kAdmitted)) {
+    return InvalidArgumentError("RobotFrame of \"" + sample.robot_id().substr(0, 80) +
+                                "\" has standing " + std::to_string(sample.standing()) +
+                                " (known: 0 to 2)");
+  }
+  message.standing = static_cast<RobotFrameMessage::Standing>(sample.standing());
+  message.standing_reason = sample.standing_reason();
+  message.contradicted_share = sample.contradicted_share();
+  message.contradicted_m = sample.contradicted_m();
+  message.area_min = Point2(sample.area_min_x(), sample.area_min_y());
+  message.area_max = Point2(sample.area_max_x(), sample.area_max_y());
   FLEETMAP_RETURN_IF_ERROR(CheckRobotFrame(message));
   return message;
+}
+
+StatusOr<RobotAdmission_> ToIdl(const RobotAdmissionMessage& message) {
+  if (!IsValidRobotName(message.robot.value)) {
+    return InvalidArgumentError("RobotAdmission robot_id \"" + message.robot.value.substr(0, 80) +
+                                "\" is not a valid robot name");
+  }
+  RobotAdmission_ sample;
+  sample.robot_id(message.robot.value);
+  sample.stamp(ToIdl(message.stamp));
+  sample.operator_name(message.operator_name.substr(0, kMaxIdLength));
+  return sample;
+}
+
+StatusOr<RobotAdmissionMessage> FromIdl(const RobotAdmission_& sample) {
+  if (!IsValidRobotName(sample.robot_id())) {
+    return InvalidArgumentError("RobotAdmission robot_id \"" + sample.robot_id().substr(0, 80) +
+                                "\" is not a valid robot name");
+  }
+  if (sample.operator_name().size() > kMaxIdLength) {
+    return InvalidArgumentError("RobotAdmission of " + sample.robot_id() +
+                                " has an operator_name longer than " +
+                                std::to_string(kMaxIdLength) + " characters");
+  }
+  RobotAdmissionMessage message;
+  message.robot = RobotId{sample.robot_id()};
+  message.stamp = FromIdl(sample.stamp());
+  message.operator_name = sample.operator_name();
+  return message;
+}
+
+const char* RobotStandingName(RobotFrameMessage::Standing standing) {
+  switch (standing) {
+    case RobotFrameMessage::Standing::kTrusted:
+      return "trusted";
+    case RobotFrameMessage::Standing::kQuarantined:
+      return "quarantined";
+    case RobotFrameMessage::Standing::kAdmitted:
+      return "admitted";
+  }
+  return "unknown";
 }
 
 }  // namespace fleetmap::transport

@@ -10,6 +10,7 @@
 #include "fleetmap_msgs/msg/Entity.h"
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
+#include "fleetmap_msgs/msg/RobotAdmission.h"
 #include "fleetmap_msgs/msg/RobotFrame.h"
 #include "fleetmap_msgs/msg/Submap.h"
 
@@ -34,5 +35,7 @@ StatusOr<ObjectModelMessage> FromIdl(const fleetmap_msgs::msg::dds_::ObjectModel
 
 StatusOr<fleetmap_msgs::msg::dds_::RobotFrame_> ToIdl(const RobotFrameMessage& message);
 StatusOr<RobotFrameMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotFrame_& sample);
+StatusOr<fleetmap_msgs::msg::dds_::RobotAdmission_> ToIdl(const RobotAdmissionMessage& message);
+StatusOr<RobotAdmissionMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotAdmission_& sample);
 
 }  // namespace fleetmap::transport

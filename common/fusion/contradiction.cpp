@@ -1,0 +1,84 @@
+#include "common/fusion/contradiction.hpp"
+
+#include <algorithm>
+
+#include "common/core/check.hpp"
+
+namespace fleetmap::fusion {
+namespace {
+
+// Whether each cell has an occupied cell of `cells` within `radius` (a square window), in
+// O(cells): a running count along the rows, then along the columns.
+std::vector<uint8_t> OccupiedWithin(const grid::OccupancyGrid& cells, int radius) {
+  const int w = cells.width();
+  const int h = cells.height();
+  std::vector<uint8_t> rows(static_cast<size_t>(w) * h, 0);
+  for (int y = 0; y < h; ++y) {
+    const int8_t* row = &cells.data()[static_cast<size_t>(y) * w];
+    int count = 0;
+    // The window [x - radius, x + radius], slid along the row.
+    for (int x = 0; x < std::min(radius, w); ++x) count += row[x] == grid::kOccupiedValue;
+    for (int x = 0; x < w; ++x) {
+      if (x + radius < w) count += row[x + radius] == grid::kOccupiedValue;
+      if (x - radius - 1 >= 0) count -= row[x - radius - 1] == grid::kOccupiedValue;
+      rows[static_cast<size_t>(y) * w + x] = count > 0;
+    }
+  }
+  std::vector<uint8_t> near(rows.size(), 0);
+  for (int x = 0; x < w; ++x) {
+    int count = 0;
+    for (int y = 0; y < std::min(radius, h); ++y) count += rows[static_cast<size_t>(y) * w + x];
+    for (int y = 0; y < h; ++y) {
+      if (y + radius < h) count += rows[static_cast<size_t>(y + radius) * w + x];
+      if (y - radius - 1 >= 0) count -= rows[static_cast<size_t>(y - radius - 1) * w + x];
+      near[static_cast<size_t>(y) * w + x] = count > 0;
+    }
+  }
+  return near;
+}
+
+}  // namespace
+
+TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
+                                     const std::vector<uint32_t>& robot_dates,
+                                     const EstablishedCells& established, int tolerance_cells) {
+  FLEETMAP_CHECK(established.cells != nullptr && established.dates != nullptr,
+                 "CountContradiction needs the established cells and their dates");
+  const grid::OccupancyGrid& fleet = *established.cells;
+  FLEETMAP_CHECK(fleet.width() == robot_cells.width() && fleet.height() == robot_cells.height() &&
+                     robot_dates.size() == robot_cells.data().size() &&
+                     established.dates->size() == fleet.data().size(),
+                 "CountContradiction needs cells on one lattice");
+  const std::vector<uint32_t>* confirmed = established.confirmed_free_at;
+  FLEETMAP_CHECK(
+      confirmed == nullptr || confirmed->empty() || confirmed->size() == fleet.data().size(),
+      "CountContradiction: confirmations on another lattice");
+  if (confirmed != nullptr && confirmed->empty()) confirmed = nullptr;
+
+  TileContradiction out;
+  std::vector<uint8_t> robot_wall_near;  // computed once a candidate shows up
+  const int w = fleet.width();
+  for (int y = 0; y < fleet.height(); ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      if (fleet.data()[i] != grid::kOccupiedValue) continue;
+      const int8_t mine = robot_cells.data()[i];
+      if (mine == grid::kUnknownValue) continue;
+      ++out.established_seen;
+      if (mine != grid::kFreeValue) continue;
+      const uint32_t fleet_date = (*established.dates)[i];
+      if (robot_dates[i] <= fleet_date) continue;  // older evidence: it does not win anyway
+      if (confirmed != nullptr && (*confirmed)[i] > fleet_date) continue;
+      if (robot_wall_near.empty()) robot_wall_near = OccupiedWithin(robot_cells, tolerance_cells);
+      if (robot_wall_near[i] != 0) continue;
+      ++out.contradicted;
+      out.min_x = out.contradicted == 1 ? x : std::min(out.min_x, x);
+      out.min_y = out.contradicted == 1 ? y : std::min(out.min_y, y);
+      out.max_x = std::max(out.max_x, x);
+      out.max_y = std::max(out.max_y, y);
+    }
+  }
+  return out;
+}
+
+}  // namespace fleetmap::fusion
