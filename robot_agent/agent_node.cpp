@@ -30,13 +30,6 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError(
         "--unplaced says the robot's fleet_from_map is not known: do not give one too");
   }
-  if (std::abs(fleet_from_map.yaw) > 1e-9 && wire != Wire::kGrid) {
-    return InvalidArgumentError(std::string("--fleet-from-map with a rotation needs --wire grid, "
-                                            "not ")
-                                    .append(WireName(wire))
-                                    .append(" (tiles and patches are cut from axis-aligned "
-                                            "grids)"));
-  }
   if (measure_baselines && wire != Wire::kTiles) {
     return InvalidArgumentError(std::string("--measure-baselines measures the grid wires beside "
                                             "--wire tiles, not --wire ")
@@ -80,17 +73,17 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   if (o.wire != Wire::kTiles) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->grid_publisher_,
-        GridWirePublisher::Create(*node->participant_, o.robot, o.fleet_from_map, o.wire,
+        GridWirePublisher::Create(*node->participant_, o.robot, o.TilingFrame(), o.wire,
                                   o.tiles.tile_size));
   } else {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->tile_publisher_,
-        TilePublisher::Create(*node->participant_, o.robot, o.fleet_from_map, o.tiles));
+        TilePublisher::Create(*node->participant_, o.robot, o.TilingFrame(), o.tiles));
   }
   if (o.measure_baselines) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->baseline_meter_,
-        WireBaselineMeter::Create(o.robot, o.fleet_from_map, o.tiles.tile_size));
+        WireBaselineMeter::Create(o.robot, o.TilingFrame(), o.tiles.tile_size));
   }
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fused_reader_,
@@ -110,7 +103,8 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
   RobotStatus& status = node->status_;
   status.robot = o.robot;
   status.fleet_from_map = o.fleet_from_map;
-  status.tiles_in_map_frame = o.unplaced;
+  status.tiles_in_map_frame = o.TilesInMapFrame();
+  status.fleet_from_map_given = !o.unplaced;
   status.map_from_robot = o.map_from_robot;
   status.map_topic = node->grid_publisher_ != nullptr ? node->grid_publisher_->topic()
                                                       : std::string(transport::kRobotTilesTopic);

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,6 +46,12 @@ struct AgentOptions {
   // server places them by registration; the agent learns its placement from
   // rt/fleetmap/robot_frames.
   bool unplaced = false;
+  // Tiles and patches are cut on axis-aligned cells of the fleet frame, which a rotated map frame
+  // does not have: such a robot cuts them in its own map frame and the server carries them into
+  // the fleet frame at its given fleet_from_map (exactly as it does for a robot it placed).
+  bool TilesInMapFrame() const { return unplaced || std::abs(fleet_from_map.yaw) > 0.0; }
+  // The frame tiles are cut in: the fleet frame, or the robot's own map frame.
+  Pose2 TilingFrame() const { return TilesInMapFrame() ? Pose2{} : fleet_from_map; }
   Pose2 map_from_robot;                          // the robot's pose in its map frame
   std::chrono::milliseconds status_period{500};  // a quarter of the 2 s liveliness lease
   std::chrono::milliseconds map_check_period{200};

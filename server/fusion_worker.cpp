@@ -446,10 +446,14 @@ void FusionWorker::HandleGrids() {
   for (GridUpdate& update : grids_.Drain()) {
     vector_map::TiledVectorizeOptions options;
     options.tile_size = options_.fusion.tile_size;
-    // A grid whose frame is not known is tiled in its own frame and placed like tiles.
-    const Pose2 fleet_from_map = update.fleet_from_map.value_or(Pose2{});
+    // A grid whose frame is not known is tiled in its own frame and placed like tiles; so is one
+    // whose given frame is rotated (fleet tiles are cut on the fleet frame's axis-aligned
+    // cells), then carried into the fleet frame at that transform.
+    const bool rotated = update.fleet_from_map && update.fleet_from_map->yaw != 0.0;
+    const bool in_map_frame = !update.fleet_from_map || rotated;
+    const Pose2 tiling_frame = in_map_frame ? Pose2{} : *update.fleet_from_map;
     const auto tiled =
-        vector_map::VectorizeTiled(update.map.grid, fleet_from_map.ToTransform(), options);
+        vector_map::VectorizeTiled(update.map.grid, tiling_frame.ToTransform(), options);
     if (!tiled.ok()) {
       spdlog::warn("server: cannot fuse the grid of {}: {}", update.robot.value,
                    tiled.status().message());
@@ -457,7 +461,8 @@ void FusionWorker::HandleGrids() {
       ++stats_.robots[update.robot].rejected;
       continue;
     }
-    if (!update.fleet_from_map) {
+    if (in_map_frame) {
+      if (rotated) GiveFrame(update.robot, *update.fleet_from_map);
       for (const auto& [tile, map] : tiled->tiles) {
         transport::VectorTileMessage message;
         message.robot_id = update.robot;
@@ -617,7 +622,7 @@ void FusionWorker::RefuseMapFrameRobot(const RobotId& robot, const std::set<Tile
 void FusionWorker::HandlePlacements(std::chrono::steady_clock::time_point now) {
   for (const RobotFrameNote& note : frame_notes_.Drain()) {
     if (note.fleet_from_map) {
-      placer_->Given(note.robot, *note.fleet_from_map);
+      GiveFrame(note.robot, *note.fleet_from_map);
     } else {
       placer_->Unplaced(note.robot);
     }
@@ -630,6 +635,17 @@ void FusionWorker::HandlePlacements(std::chrono::steady_clock::time_point now) {
   placer_->PublishTf(now);
   std::lock_guard lock(stats_mutex_);
   stats_.frames = placer_->frames();
+}
+
+void FusionWorker::GiveFrame(const RobotId& robot, const Pose2& fleet_from_map) {
+  placer_->Given(robot, fleet_from_map);
+  // Tiles in its own map frame (a rotated given frame) are carried into the fleet frame at it,
+  // exactly as a placement by registration would; fleet-frame tiles need nothing.
+  if (registry_->TilesInMapFrame(robot) || map_frames_.Knows(robot)) {
+    if (map_frames_.placement(robot) != fleet_from_map) {
+      RefuseMapFrameRobot(robot, map_frames_.Place(robot, fleet_from_map));
+    }
+  }
 }
 
 std::optional<Pose2> FusionWorker::PlacementOf(const RobotId& robot) const {

@@ -193,6 +193,8 @@ class FusionWorker {
   void RestoreMapFrameTiles(const std::vector<store::TileRecord>& rows);
   // Placement: frames of new robots, registration results, due registrations, rt/tf.
   void HandlePlacements(std::chrono::steady_clock::time_point now);
+  // The robot's frame is given: published as such, and its map-frame tiles (if any) placed there.
+  void GiveFrame(const RobotId& robot, const Pose2& fleet_from_map);
   void ScheduleRegistration(std::chrono::steady_clock::time_point now);
   // A job for `robot` without its maps (they are copied only once it is due).
   PlacementJob MakePlacementJob(const RobotId& robot) const;

@@ -140,7 +140,7 @@ void RobotPlacer::Forget(const RobotId& robot) {
 
 bool RobotPlacer::Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
                       uint64_t target_changes, std::chrono::steady_clock::time_point now) const {
-  if (busy_) return false;
+  if (busy_ || IsGiven(robot)) return false;
   const auto frame = frames_.find(robot);
   const bool placed = frame != frames_.end() && frame->second.placed();
   const auto attempt = attempts_.find({robot, target});
@@ -212,6 +212,7 @@ std::vector<RobotPlacer::Decision> RobotPlacer::Decide(const PlacementOf& placem
 std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResult& result,
                                                             const PlacementOf& placement_of) {
   const PlacementJob& job = result.job;
+  if (IsGiven(job.robot)) return std::nullopt;  // given meanwhile: a given frame is never moved
   const std::string against =
       job.target_robot.value.empty() ? "the fleet map" : "robot " + job.target_robot.value;
   if (!result.registration.ok()) {
@@ -333,6 +334,12 @@ std::vector<RobotId> RobotPlacer::UnplacedOthers(const RobotId& robot) const {
     if (other != robot && !frame.placed()) out.push_back(other);
   }
   return out;
+}
+
+bool RobotPlacer::IsGiven(const RobotId& robot) const {
+  const auto frame = frames_.find(robot);
+  return frame != frames_.end() &&
+         frame->second.state == transport::RobotFrameMessage::State::kGiven;
 }
 
 bool RobotPlacer::AnyPlaced() const {

@@ -117,6 +117,9 @@ class RobotPlacer {
   const std::map<RobotId, transport::RobotFrameMessage>& frames() const { return frames_; }
   // Robots other than `robot` whose maps are not placed (candidates to register against).
   std::vector<RobotId> UnplacedOthers(const RobotId& robot) const;
+  // The robot's frame was given (--fleet-from-map, a transforms file): never registered, moved
+  // or revised.
+  bool IsGiven(const RobotId& robot) const;
   // Some robot's frame is known (given, anchored or placed): the fleet frame exists.
   bool AnyPlaced() const;
 

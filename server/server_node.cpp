@@ -192,7 +192,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
     }
   }
   const auto configured = options_.transforms.find(status.robot);
-  if (!grid_wire && configured != options_.transforms.end() &&
+  if (!grid_wire && status.fleet_from_map_given && configured != options_.transforms.end() &&
       !(configured->second == status.fleet_from_map) && !record.transform_mismatch_reported) {
     record.transform_mismatch_reported = true;
     spdlog::warn(
@@ -219,8 +219,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   fusion_worker_->RecordRobot(RobotRecordFor(status.robot, "active"));
   // A robot that does not know its frame is placed by the fusion worker, which may have done so
   // already (its tiles can come first): never note its placement back as given.
-  const std::optional<Pose2> fleet_from_map =
-      status.tiles_in_map_frame ? std::nullopt : FleetFromMap(record);
+  const std::optional<Pose2> fleet_from_map = GivenFrame(record);
   fusion_worker_->NoteRobotFrame(status.robot, fleet_from_map);
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
                status.robot.value, grid_wire ? RobotMapFeed::WireName(*grid_wire) : "tiles",
@@ -257,14 +256,23 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
   }
 }
 
+std::optional<Pose2> ServerNode::GivenFrame(const RobotRecord& record) const {
+  const RobotStatus& status = record.last_status;
+  if (const auto configured = options_.transforms.find(status.robot);
+      configured != options_.transforms.end()) {
+    return configured->second;
+  }
+  // An agent cutting tiles in its own map frame says whether its frame is given (a rotation) or
+  // must be placed (--unplaced); an older agent's fleet-frame tiles mean a given frame.
+  if (status.fleet_from_map_given || !status.tiles_in_map_frame) return status.fleet_from_map;
+  return std::nullopt;
+}
+
 std::optional<Pose2> ServerNode::FleetFromMap(const RobotRecord& record) const {
-  const auto configured = options_.transforms.find(record.last_status.robot);
-  // An agent that does not know its frame tiles its own map frame, whatever the file says.
   if (record.last_status.tiles_in_map_frame) {
     return fusion_worker_->PlacementOf(record.last_status.robot);
   }
-  return configured != options_.transforms.end() ? configured->second
-                                                 : record.last_status.fleet_from_map;
+  return GivenFrame(record);
 }
 
 void ServerNode::HandleMaps() {
@@ -289,9 +297,7 @@ void ServerNode::HandleMaps() {
         received.grid->grid.resolution(), received.maps, received.updates, received.bytes,
         record.bytes_received);
     // A robot that does not know its frame is placed from its own frame, like tiles.
-    const std::optional<Pose2> fleet_from_map =
-        record.last_status.tiles_in_map_frame ? std::nullopt : FleetFromMap(record);
-    fusion_worker_->SubmitGrid(robot, std::move(*received.grid), fleet_from_map);
+    fusion_worker_->SubmitGrid(robot, std::move(*received.grid), GivenFrame(record));
   }
 }
 

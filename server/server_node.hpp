@@ -85,6 +85,9 @@ class ServerNode {
   // Where the robot's map frame sits in the fleet: the configured transform, else its own word;
   // for a robot that does not know it, where the server placed it (nullopt: not yet).
   std::optional<Pose2> FleetFromMap(const RobotRecord& record) const;
+  // The frame given for the robot (the server's transforms file, else its agent's
+  // --fleet-from-map); nullopt when the server places it.
+  std::optional<Pose2> GivenFrame(const RobotRecord& record) const;
   // Entities of robots that were not placed when they came, once their robot is.
   void SubmitEntitiesOfPlacedRobots();
   void HandleMaps();

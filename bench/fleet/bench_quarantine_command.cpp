@@ -1,6 +1,7 @@
 #include "bench/fleet/bench_quarantine_command.hpp"
 
 #include <fmt/format.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -227,7 +228,7 @@ StatusOr<Outcome> RunScenario(const Scenario& scenario, const std::string& bin,
   argv.insert(argv.end(), scenario.offender_args.begin(), scenario.offender_args.end());
   process::Subprocess offender(std::move(argv), env);
   watcher->Follow(
-      std::chrono::seconds(6), [&] { return watcher->QuarantinedAt("offender"); }, on_map);
+      std::chrono::seconds(6), [&] { return watcher->QuarantinedAt("offender").has_value(); }, on_map);
   watcher->Follow(std::chrono::seconds(2), nullptr, on_map);
   if (const auto at = watcher->QuarantinedAt("offender")) {
     outcome.quarantined = true;

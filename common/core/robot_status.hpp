@@ -42,6 +42,9 @@ struct RobotStatus {
   // frame, the server places them, and fleet_from_map is the placement learned from
   // rt/fleetmap/robot_frames (identity until then).
   bool tiles_in_map_frame = false;
+  // fleet_from_map was given to the agent and is the robot's frame (with tiles_in_map_frame: the
+  // server carries the map-frame tiles into the fleet frame at it, any rotation included).
+  bool fleet_from_map_given = false;
 };
 
 }  // namespace fleetmap

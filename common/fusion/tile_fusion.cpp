@@ -238,28 +238,64 @@ void TileFusion::SetRobotSource(const RobotId& robot, std::string source) {
   sources_[robot] = std::move(source);
 }
 
+TileFusion::TileReview TileFusion::MakeTileReview(const TileId& tile,
+                                                  const TileState& state) const {
+  TileReview review;
+  review.trusted = FuseCells(tile, state, nullptr, &review.trusted_dates);
+  const size_t cells = review.trusted_dates.size();
+  for (const auto& [other, contribution] : state.robots) {
+    if (Fused(other)) continue;
+    if (review.free_first.empty()) {
+      review.free_first.assign(cells, 0);
+      review.free_second.assign(cells, 0);
+      review.free_first_source.assign(cells, nullptr);
+    }
+    const std::string* source = &SourceOf(other);
+    for (size_t i = 0; i < cells; ++i) {
+      if (contribution.cells.data()[i] != grid::kFreeValue) continue;
+      const uint32_t date = contribution.changed_at[i];
+      const std::string*& first_source = review.free_first_source[i];
+      if (date > review.free_first[i]) {
+        if (first_source != nullptr && *first_source != *source) {
+          review.free_second[i] = review.free_first[i];
+        }
+        review.free_first[i] = date;
+        first_source = source;
+      } else if (date > review.free_second[i] && first_source != nullptr &&
+                 *first_source != *source) {
+        review.free_second[i] = date;
+      }
+    }
+  }
+  return review;
+}
+
 TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state,
-                                      const RobotId& robot) const {
+                                      const RobotId& robot, const TileReview& review) const {
   const Contribution& mine = state.robots.at(robot);
-  // The others' cells; robots of the robot's own participant add their walls, never their free
-  // space (they cannot confirm its changes).
-  std::vector<uint32_t> dates;
-  const grid::OccupancyGrid others = FuseCells(tile, state, &robot, &dates, &SourceOf(robot));
+  const std::string& source = SourceOf(robot);
+  // The others' cells. For a robot being fused, robots of its own participant add their walls,
+  // never their free space (they cannot confirm its changes). A quarantined robot is not in the
+  // trusted cells already, and they serve all the quarantined robots of the tile at once.
+  std::vector<uint32_t> own_dates;
+  std::optional<grid::OccupancyGrid> others;
+  if (Fused(robot)) others = FuseCells(tile, state, &robot, &own_dates, &source);
   // What quarantined robots of other participants saw free: not fused, but it confirms a change.
   std::vector<uint32_t> confirmed;
-  for (const auto& [other, contribution] : state.robots) {
-    if (other == robot || Fused(other) || SourceOf(other) == SourceOf(robot)) continue;
-    if (confirmed.empty()) confirmed.assign(dates.size(), 0);
+  if (!review.free_first.empty()) {
+    confirmed.resize(review.free_first.size());
     for (size_t i = 0; i < confirmed.size(); ++i) {
-      if (contribution.cells.data()[i] == grid::kFreeValue) {
-        confirmed[i] = std::max(confirmed[i], contribution.changed_at[i]);
-      }
+      const std::string* first_source = review.free_first_source[i];
+      confirmed[i] = first_source != nullptr && *first_source != source ? review.free_first[i]
+                                                                        : review.free_second[i];
     }
   }
   const int tolerance =
       static_cast<int>(std::lround(options_.quarantine.tolerance_m / options_.FusedResolution()));
-  return CountContradiction(mine.cells, mine.changed_at,
-                            EstablishedCells{&others, &dates, &confirmed}, tolerance);
+  const EstablishedCells established =
+      others ? EstablishedCells{&*others, &own_dates, &confirmed}
+             : EstablishedCells{&review.trusted, &review.trusted_dates, &confirmed};
+  return CountContradiction(mine.cells, mine.changed_at, established, tolerance);
 }
 
 void TileFusion::StandingChanged(const RobotId& robot) {
@@ -294,12 +330,19 @@ void TileFusion::ReviewTrust() {
     to_decide_.clear();
     const auto reviews = std::move(to_review_);
     to_review_.clear();
+    // One review of each tile per pass, however many robots are weighed on it (a peer's many
+    // quarantined ids on one tile cost their number, not its square).
+    std::map<TileId, TileReview> tile_reviews;
     for (const auto& [tile, robot] : reviews) {
       const auto state = tiles_.find(tile);
       if (state == tiles_.end() || state->second.robots.count(robot) == 0) {
         trust_.ForgetTile(robot, tile);
       } else {
-        trust_.Record(robot, tile, CountOn(tile, state->second, robot));
+        auto review = tile_reviews.find(tile);
+        if (review == tile_reviews.end()) {
+          review = tile_reviews.emplace(tile, MakeTileReview(tile, state->second)).first;
+        }
+        trust_.Record(robot, tile, CountOn(tile, state->second, robot, review->second));
       }
       decide.insert(robot);
     }

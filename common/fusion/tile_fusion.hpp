@@ -126,8 +126,19 @@ class TileFusion {
                                 const std::string* walls_only_source = nullptr) const;
   bool Fused(const RobotId& robot) const { return !trust_.quarantined(robot); }
   const std::string& SourceOf(const RobotId& robot) const;
+  // What every review of a tile in one pass shares: the trusted robots' cells, and per cell the
+  // newest dates quarantined robots saw it free, from two different participants.
+  struct TileReview {
+    grid::OccupancyGrid trusted;
+    std::vector<uint32_t> trusted_dates;
+    std::vector<uint32_t> free_first;  // empty: no quarantined robot on the tile
+    std::vector<uint32_t> free_second;
+    std::vector<const std::string*> free_first_source;
+  };
+  TileReview MakeTileReview(const TileId& tile, const TileState& state) const;
   // Counts `robot`'s contradiction of the rest of the fleet on `tile` (it contributes there).
-  TileContradiction CountOn(const TileId& tile, const TileState& state, const RobotId& robot) const;
+  TileContradiction CountOn(const TileId& tile, const TileState& state, const RobotId& robot,
+                            const TileReview& review) const;
   // Weighs the robots queued in to_review_ and applies what RobotTrust decides: a robot whose
   // standing changed has all its tiles fused again (and the quarantined robots there weighed
   // again: a robot released may confirm another's change).

@@ -206,6 +206,7 @@ fleetmap_msgs::msg::dds_::RobotStatus_ ToIdl(const RobotStatus& status) {
   out.baseline_lz4_bytes(status.baselines.lz4_bytes);
   out.baseline_patches_pending(status.baselines.patches_pending);
   out.tiles_in_map_frame(status.tiles_in_map_frame);
+  out.fleet_from_map_given(status.fleet_from_map_given);
   return out;
 }
 
@@ -239,6 +240,7 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.baselines.lz4_bytes = status.baseline_lz4_bytes();
   out.baselines.patches_pending = status.baseline_patches_pending();
   out.tiles_in_map_frame = status.tiles_in_map_frame();
+  out.fleet_from_map_given = status.fleet_from_map_given();
   return out;
 }
 

@@ -92,7 +92,8 @@ const CdrShape& RobotStatusShape() {
                                  Primitive("baseline_zstd19_bytes", 8),
                                  Primitive("baseline_lz4_bytes", 8),
                                  Primitive("baseline_patches_pending", 4),
-                                 Primitive("tiles_in_map_frame", 1)};
+                                 Primitive("tiles_in_map_frame", 1),
+                                 Primitive("fleet_from_map_given", 1)};
   return shape;
 }
 
