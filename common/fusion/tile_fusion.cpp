@@ -219,6 +219,13 @@ StatusOr<vector_map::VectorMap> TileFusion::VectorizeWithContext(const TileId& t
   return vectorizer_.VectorizeTile(window, grid::CellRect{margin, margin, cells, cells});
 }
 
+void TileFusion::ContinueRevisionsFrom(const std::map<TileId, uint32_t>& revisions) {
+  for (const auto& [tile, revision] : revisions) {
+    uint32_t& before = revisions_before_[tile];
+    before = std::max(before, revision);
+  }
+}
+
 StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
   to_refuse_.clear();
@@ -228,6 +235,10 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
     FusedTile& fused = vector_tiles_[tile];
     if (fused.revision > 0 && SameGeometry(fused.map, map)) continue;
     fused.tile = tile;
+    if (fused.revision == 0) {
+      const auto before = revisions_before_.find(tile);
+      if (before != revisions_before_.end()) fused.revision = before->second;
+    }
     ++fused.revision;
     fused.map = std::move(map);
     fused.source_stamp = trigger;

@@ -63,6 +63,12 @@ class TileFusion {
   Status ImportContribution(const RobotId& robot, const TileId& tile,
                             ContributionEvidence evidence);
 
+  // Makes each tile's fused revisions continue after `revisions` (per tile, the newest revision
+  // published before, e.g. by the process whose store this fusion was restored from): the tile's
+  // next revision is higher, so a reader keeping the highest revision takes the new ones. Call
+  // before the first FuseChanged(); tiles already fused keep their numbers.
+  void ContinueRevisionsFrom(const std::map<TileId, uint32_t>& revisions);
+
   // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
   // changed.
   StatusOr<std::vector<FusedTile>> FuseChanged();
@@ -119,6 +125,8 @@ class TileFusion {
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;
+  // Per tile, the revision its first fused revision follows (ContinueRevisionsFrom).
+  std::map<TileId, uint32_t> revisions_before_;
 };
 
 }  // namespace fleetmap::fusion
