@@ -351,7 +351,7 @@ TEST_F(StoreRestartTest, SecondServerOnAHeldStoreExitsTwoAndAWaitingOneTakesOver
             std::string::npos)
       << refused.Output();
   EXPECT_EQ(refused.Output().find("listening"), std::string::npos) << refused.Output();
-  EXPECT_TRUE(first.Running());
+  EXPECT_FALSE(first.Wait(std::chrono::milliseconds(0)).has_value());  // undisturbed
 
   std::vector<std::string> waiting_args = server_args;
   waiting_args.insert(waiting_args.end(), {"--store-lock-timeout", "120"});

@@ -313,8 +313,10 @@ TEST(StoreSyncTest, FusedRevisionsGoOnFromTheStoredOnesAfterARestart) {
   {
     auto store = OpenStore(path);
     ASSERT_NE(store, nullptr);
-    const auto fused = transport::EncodeTilePayload(
-        {RobotId{"fleet"}, {0, 0}, 7, kT0, kTileSize, vector_map::VectorMap{}});
+    vector_map::VectorMap map;
+    map.epsilon = 0.0707;
+    const auto fused =
+        transport::EncodeTilePayload({RobotId{"fleet"}, {0, 0}, 7, kT0, kTileSize, map});
     ASSERT_TRUE(fused.ok()) << fused.status();
     ASSERT_TRUE(store->PutTiles({{"fleet", {0, 0}, 7, 1, *fused}}).ok());
   }
