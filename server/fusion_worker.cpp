@@ -53,6 +53,22 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   FLEETMAP_ASSIGN_OR_RETURN(fusion::TileFusion fusion, fusion::TileFusion::Create(options.fusion));
   std::unique_ptr<FusionWorker> worker(
       new FusionWorker(options, std::move(fusion), std::move(registry)));
+  // The store first: a server refused its store (another holds it) never joins the topics.
+  if (!options.store_path.empty()) {
+    store::StoreOptions store_options;
+    store_options.max_history_rows = options.history_rows;
+    store_options.lock_timeout_ms = options.store_lock_timeout.count();
+    FLEETMAP_ASSIGN_OR_RETURN(
+        worker->store_,
+        store::MapStore::Open(options.store_path, store_options, [](const std::string& notice) {
+          spdlog::warn("server: map store {}", notice);
+        }));
+    const store::StoreOpenReport& report = worker->store_->open_report();
+    spdlog::info("server: map store {}: {}", options.store_path, report.Summary());
+    for (const std::string& warning : report.warnings) {
+      spdlog::warn("server: map store: {}", warning);
+    }
+  }
   FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_, transport::VectorTileReader::Create(
                                                       participant, transport::kRobotTilesTopic,
                                                       worker->thread_.wake_up()));
@@ -63,17 +79,6 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   FLEETMAP_ASSIGN_OR_RETURN(worker->admission_reader_, transport::RobotAdmissionReader::Create(
                                                            participant, worker->thread_.wake_up()));
   FLEETMAP_ASSIGN_OR_RETURN(worker->placer_, RobotPlacer::Create(participant, options.placement));
-  if (!options.store_path.empty()) {
-    store::StoreOptions store_options;
-    store_options.max_history_rows = options.history_rows;
-    FLEETMAP_ASSIGN_OR_RETURN(worker->store_,
-                              store::MapStore::Open(options.store_path, store_options));
-    const store::StoreOpenReport& report = worker->store_->open_report();
-    spdlog::info("server: map store {}: {}", options.store_path, report.Summary());
-    for (const std::string& warning : report.warnings) {
-      spdlog::warn("server: map store: {}", warning);
-    }
-  }
   worker->sync_ = std::make_unique<StoreSync>(worker->store_.get(), StoreSync::Options{});
   if (worker->store_ != nullptr) FLEETMAP_RETURN_IF_ERROR(worker->Restore());
   worker->sessions_ =
@@ -101,6 +106,10 @@ Status FusionWorker::Restore() {
   for (const std::string& skipped : restored.skipped) {
     spdlog::warn("server: skipping a stored tile: {}", skipped);
   }
+  spdlog::info("server: map store check: {} tile payloads decoded, {}", restored.tile_rows_checked,
+               restored.corrupt_rows == 0
+                   ? std::string("none corrupt")
+                   : fmt::format("{} corrupt (skipped, named above)", restored.corrupt_rows));
   // Restored tiles count towards their robots' quotas, as if they had just been admitted.
   for (const auto& [robot, tile] : fusion_.contributions()) admission_.Adopt(robot, tile);
   RestoreMapFrameTiles(restored.map_frame_tiles);
@@ -546,6 +555,10 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
 }
 
 Status FusionWorkerOptions::Validate() const {
+  if (store_lock_timeout.count() < 0) {
+    return InvalidArgumentError("fusion worker options: store_lock_timeout " +
+                                std::to_string(store_lock_timeout.count()) + " ms is negative");
+  }
   FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
   FLEETMAP_RETURN_IF_ERROR(placement.Validate());
   return admission.Validate();
@@ -555,6 +568,7 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
   out.Nested("fusion", fusion);
   out.Add("store_path", store_path);
   out.Add("history_rows", history_rows);
+  out.Add("store_lock_timeout", store_lock_timeout);
   out.Add("map_period", map_period);
   out.Nested("admission", admission);
   out.Add("unclaimed_wait", unclaimed_wait);

@@ -40,6 +40,9 @@ struct FusionWorkerOptions {
   // Tile revisions the store's history keeps, oldest dropped first (0: all). A fleet of 16
   // robots writes a few hundred revisions a minute; the default keeps days of them.
   int64_t history_rows = 2'000'000;
+  // A store another server holds is waited for this long (the restart pattern: a new server
+  // started while the old one closes), then refused.
+  std::chrono::milliseconds store_lock_timeout{std::chrono::seconds(10)};
   // The fused grid goes out on rt/fleetmap/map at most this often (when it changed).
   std::chrono::milliseconds map_period{1000};
   // What a robot's tiles must satisfy, and its quotas.

@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
   app.add_option("--history-rows", options.fusion.history_rows,
                  "tile revisions kept in the store's history (0: all)")
       ->check(CLI::NonNegativeNumber);
+  double store_lock_timeout_s = 10.0;
+  app.add_option("--store-lock-timeout", store_lock_timeout_s,
+                 "seconds to wait for a store another server holds (a restart while the old "
+                 "server closes) before exiting with code 2")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   std::string transforms_path;
   app.add_option("--transforms", transforms_path,
                  "YAML of known fleet_from_map transforms (robots: {name: [x, y, yaw]})");
@@ -97,6 +103,8 @@ int main(int argc, char** argv) {
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   options.fusion.admission.max_clock_ahead =
       std::chrono::milliseconds(static_cast<int64_t>(max_clock_ahead_s * 1000.0));
+  options.fusion.store_lock_timeout =
+      std::chrono::milliseconds(static_cast<int64_t>(store_lock_timeout_s * 1000.0));
   options.fusion.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;

@@ -1,6 +1,7 @@
 #include "server/store_sync.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -22,6 +23,20 @@ int64_t ToNanoseconds(Timestamp stamp) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch()).count();
 }
 
+// Why a stored tile payload cannot be used, or nullopt: it does not decode, or it describes
+// another owner or tile than its row's key (map-frame rows hold their robot's tiles).
+std::optional<std::string> PayloadProblem(const store::TileRecord& row, const std::string& name) {
+  StatusOr<transport::VectorTileMessage> tile = transport::DecodeTilePayload(row.payload, name);
+  if (!tile.ok()) return std::string(tile.status().message());
+  const std::optional<RobotId> map_frame_robot = store::MapFrameRobot(row.owner);
+  const std::string robot = map_frame_robot ? map_frame_robot->value : row.owner;
+  if (tile->tile != row.tile || tile->robot_id.value != robot) {
+    return name + ": its payload is " + Describe(tile->robot_id.value, tile->tile) +
+           ", not the row's key";
+  }
+  return std::nullopt;
+}
+
 bool Newer(const store::TileRecord& a, const store::TileRecord& b) {
   return std::tie(a.revision, a.stamp_ns) > std::tie(b.revision, b.stamp_ns);
 }
@@ -34,6 +49,8 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
   Restored restored;
   if (store_ == nullptr) return restored;
   const int cells_per_tile = fusion->options().CellsPerTile();
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> latest, store_->LatestTiles());
+  FLEETMAP_ASSIGN_OR_RETURN(const auto corrupt, CheckTilePayloads(latest, &restored));
   std::set<store::TileKey> done;
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::EvidenceRecord> evidence, store_->Evidence());
   for (const store::EvidenceRecord& record : evidence) {
@@ -61,23 +78,28 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
 
   // Robot tiles without evidence: a store from before schema version 3. Their revisions, fused
   // again in order, date each cell's evidence as the live fusion did (as far as the history goes).
-  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> latest, store_->LatestTiles());
+  std::map<TileId, uint32_t> fused_revisions;
   for (const store::TileRecord& row : latest) {
     if (row.owner == store::kFleetOwner) {
-      // Fused tiles are rebuilt, not trusted; their revisions go on from the stored ones.
-      fused_revision_base_[row.tile] = row.revision;
+      // Fused tiles are rebuilt, not trusted; their revisions go on from the stored ones (the
+      // revision is a column of its own: it holds even when the payload is corrupt).
+      fused_revisions[row.tile] = row.revision;
       continue;
     }
+    const bool row_corrupt = corrupt.count({row.owner, row.tile, row.revision, row.stamp_ns}) > 0;
     if (store::MapFrameRobot(row.owner)) {
-      restored.map_frame_tiles.push_back(row);
+      if (!row_corrupt) restored.map_frame_tiles.push_back(row);
       continue;
     }
     if (done.count({row.owner, row.tile}) > 0) continue;
     FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> revisions,
                               store_->TileHistory(row.owner, row.tile));
-    if (revisions.empty()) revisions.push_back(row);  // a store kept without history
+    if (revisions.empty() && !row_corrupt) revisions.push_back(row);  // kept without history
     size_t fused = 0;
     for (const store::TileRecord& record : revisions) {
+      if (corrupt.count({record.owner, record.tile, record.revision, record.stamp_ns}) > 0) {
+        continue;  // named by CheckTilePayloads
+      }
       const std::string name = store_->path() + ": " + Describe(record.owner, record.tile) +
                                " revision " + std::to_string(record.revision);
       StatusOr<transport::VectorTileMessage> tile =
@@ -106,18 +128,46 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
     ++restored.from_history;
     changed_.insert({row.owner, row.tile});  // the store gets its evidence at the next Flush
   }
+  fusion->ContinueRevisionsFrom(fused_revisions);
   return restored;
+}
+
+StatusOr<std::set<std::tuple<std::string, TileId, uint32_t, int64_t>>> StoreSync::CheckTilePayloads(
+    const std::vector<store::TileRecord>& latest, Restored* restored) const {
+  std::set<std::tuple<std::string, TileId, uint32_t, int64_t>> corrupt;
+  const auto check = [&](const store::TileRecord& row, const std::string& table, size_t* named) {
+    ++restored->tile_rows_checked;
+    const std::string name = store_->path() + ": " + table + " row of " +
+                             Describe(row.owner, row.tile) + " revision " +
+                             std::to_string(row.revision);
+    const std::optional<std::string> problem = PayloadProblem(row, name);
+    if (!problem) return;
+    corrupt.insert({row.owner, row.tile, row.revision, row.stamp_ns});
+    ++restored->corrupt_rows;
+    if (++*named <= kMaxNamedCorrupt) restored->skipped.push_back(*problem);
+  };
+  size_t named = 0;
+  for (const store::TileRecord& row : latest) check(row, "tile_latest", &named);
+  if (named > kMaxNamedCorrupt) {
+    restored->skipped.push_back(store_->path() + ": and " +
+                                std::to_string(named - kMaxNamedCorrupt) +
+                                " more corrupt tile_latest rows");
+  }
+  named = 0;
+  FLEETMAP_RETURN_IF_ERROR(store_->ForEachHistoryRow(
+      [&](const store::TileRecord& row) { check(row, "tile_history", &named); }));
+  if (named > kMaxNamedCorrupt) {
+    restored->skipped.push_back(store_->path() + ": and " +
+                                std::to_string(named - kMaxNamedCorrupt) +
+                                " more corrupt tile_history rows");
+  }
+  return corrupt;
 }
 
 Status StoreSync::AddTile(store::TileRecord record) {
   if (store_ == nullptr) return Status::Ok();
   // One bad record must not make every later batch fail: refuse it here, alone.
   FLEETMAP_RETURN_IF_ERROR(store::ValidateTileRecord(record));
-  if (record.owner == store::kFleetOwner) {
-    // The fusion numbers its revisions from 1 again after a restart.
-    const auto base = fused_revision_base_.find(record.tile);
-    if (base != fused_revision_base_.end()) record.revision += base->second;
-  }
   if (!behind_) {
     tiles_.push_back(std::move(record));
     return Status::Ok();

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/core/ids.hpp"
@@ -35,11 +36,18 @@ class StoreSync {
   struct Restored {
     size_t from_evidence = 0;  // contributions read back exactly
     size_t from_history = 0;   // tiles of an older store, their revisions fused again in order
-    std::vector<std::string> skipped;  // rows that could not be used, each with its reason
+    // Rows that could not be used, each with its reason. Among them, tile payloads that do not
+    // decode or describe another key: the first kMaxNamedCorrupt of each table by name (owner,
+    // tile, revision), then one line with how many more.
+    std::vector<std::string> skipped;
+    size_t tile_rows_checked = 0;  // tile_latest and tile_history rows decoded
+    size_t corrupt_rows = 0;       // among them, every corrupt one
     // The latest tiles of robots placed by registration, in their own map frames (owners
     // store::MapFrameOwner): not fused here; the fusion worker places them again.
     std::vector<store::TileRecord> map_frame_tiles;
   };
+  // Corrupt rows named one by one per table; past this, counted in one line.
+  static constexpr size_t kMaxNamedCorrupt = 20;
   enum class FlushResult {
     kIdle,     // nothing to write
     kWritten,  // everything queued is in the store
@@ -53,12 +61,14 @@ class StoreSync {
   // Rebuilds `fusion` (empty) from the store: each robot contribution from its stored evidence;
   // a robot tile with no evidence (a store written before schema version 3) by fusing its stored
   // revisions again, oldest first, and queueing its evidence for the next Flush. Rows whose key
-  // disagrees with their payload, or that do not decode, are skipped with a reason. Fails only
-  // when the store cannot be read.
+  // disagrees with their payload, or that do not decode, are skipped with a reason. Every tile
+  // payload (each latest row and the whole history) is decoded once, so that a corrupt one is
+  // named at start-up even where the restore does not need it. The fused tiles' revisions go on
+  // from the stored ones (TileFusion::ContinueRevisionsFrom). Fails only when the store cannot be
+  // read.
   StatusOr<Restored> Restore(fusion::TileFusion* fusion);
 
-  // A tile revision to store (robot or fused; a fused tile's revision is counted on from the
-  // newest one stored before Restore()).
+  // A tile revision to store (robot or fused).
   // Each of these refuses a record the store would refuse (kInvalidArgument), so that one bad
   // record cannot hold back every later write.
   Status AddTile(store::TileRecord record);
@@ -81,6 +91,10 @@ class StoreSync {
   // Keeps only the newest revision of each (owner, tile) in tiles_, and indexes them.
   void Coalesce();
   StatusOr<store::StoreBatch> MakeBatch(const fusion::TileFusion& fusion) const;
+  // Decodes every history and latest tile payload; names the corrupt ones in `restored` and
+  // returns their rows' keys, so that the restore skips them without naming them twice.
+  StatusOr<std::set<std::tuple<std::string, TileId, uint32_t, int64_t>>> CheckTilePayloads(
+      const std::vector<store::TileRecord>& latest, Restored* restored) const;
 
   store::MapStore* store_;
   Options options_;
@@ -88,9 +102,6 @@ class StoreSync {
   std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
   std::set<store::TileKey> changed_;
   std::map<RobotId, store::RobotRecord> robots_;
-  // Per fused tile, the newest revision stored before this process: added to the fusion's
-  // revisions, so that the store's latest fused rows stay the newest.
-  std::map<TileId, uint32_t> fused_revision_base_;
   bool behind_ = false;
   uint64_t failed_attempts_ = 0;
   Status last_error_;

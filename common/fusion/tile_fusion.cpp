@@ -372,6 +372,13 @@ std::vector<TrustReport> TileFusion::TakeTrustChanges() {
   return out;
 }
 
+void TileFusion::ContinueRevisionsFrom(const std::map<TileId, uint32_t>& revisions) {
+  for (const auto& [tile, revision] : revisions) {
+    uint32_t& before = revisions_before_[tile];
+    before = std::max(before, revision);
+  }
+}
+
 StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   ReviewTrust();
   for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
@@ -382,6 +389,10 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
     FusedTile& fused = vector_tiles_[tile];
     if (fused.revision > 0 && SameGeometry(fused.map, map)) continue;
     fused.tile = tile;
+    if (fused.revision == 0) {
+      const auto before = revisions_before_.find(tile);
+      if (before != revisions_before_.end()) fused.revision = before->second;
+    }
     ++fused.revision;
     fused.map = std::move(map);
     fused.source_stamp = trigger;

@@ -67,6 +67,12 @@ class TileFusion {
   Status ImportContribution(const RobotId& robot, const TileId& tile,
                             ContributionEvidence evidence);
 
+  // Makes each tile's fused revisions continue after `revisions` (per tile, the newest revision
+  // published before, e.g. by the process whose store this fusion was restored from): the tile's
+  // next revision is higher, so a reader keeping the highest revision takes the new ones. Call
+  // before the first FuseChanged(); tiles already fused keep their numbers.
+  void ContinueRevisionsFrom(const std::map<TileId, uint32_t>& revisions);
+
   // Fuses and vectorizes every tile marked since the last call; returns those whose vector map
   // changed. Robots whose tiles changed are weighed against the fleet first, so a tile that
   // puts its robot in quarantine is never fused.
@@ -163,6 +169,8 @@ class TileFusion {
   std::set<std::pair<TileId, RobotId>> to_review_;  // contributions to weigh again
   std::set<RobotId> to_decide_;                     // robots whose counts changed otherwise
   std::set<RobotId> trust_changed_;                 // since TakeTrustChanges()
+  // Per tile, the revision its first fused revision follows (ContinueRevisionsFrom).
+  std::map<TileId, uint32_t> revisions_before_;
 };
 
 }  // namespace fleetmap::fusion

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <utility>
 
+#include "common/store/internal/wal_scan.hpp"
 #include "common/store/sqlite_transaction.hpp"
 
 namespace fleetmap::store {
@@ -160,53 +162,19 @@ constexpr char kCountTileHistory[] = R"sql(
 SELECT count(*) FROM tile_history WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3
 )sql";
 
+constexpr char kSelectHistoryAll[] = R"sql(
+SELECT owner, tile_x, tile_y, revision, stamp_ns, payload FROM tile_history ORDER BY id
+)sql";
+
+// The newest revision the store holds, to say from when on a damaged WAL lost what it held.
+constexpr char kSelectNewestLatest[] = R"sql(
+SELECT owner, tile_x, tile_y, revision, stamp_ns FROM tile_latest ORDER BY stamp_ns DESC LIMIT 1
+)sql";
+
 constexpr char kDeleteLatest[] =
     "DELETE FROM tile_latest WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3";
 constexpr char kDeleteEvidence[] =
     "DELETE FROM tile_evidence WHERE owner = ?1 AND tile_x = ?2 AND tile_y = ?3";
-
-// What the WAL file beside a database holds, read before SQLite opens (and may reset) it. Format:
-// https://www.sqlite.org/fileformat2.html#walformat (big-endian header and frame headers).
-struct WalScan {
-  bool found = false;
-  int64_t bytes = 0;
-  bool header_valid = false;
-  // 1-based numbers of the frames that end a transaction and carry the header's salts: frames of
-  // commits since the WAL was last reset (older frames carry older salts).
-  std::vector<int64_t> commit_frames;
-};
-
-uint32_t BigEndian32(const char* bytes) {
-  uint32_t value = 0;
-  for (int i = 0; i < 4; ++i) value = (value << 8) | static_cast<uint8_t>(bytes[i]);
-  return value;
-}
-
-WalScan ScanWal(const std::string& wal_path) {
-  WalScan scan;
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(wal_path, error)) return scan;
-  scan.found = true;
-  scan.bytes = static_cast<int64_t>(std::filesystem::file_size(wal_path, error));
-  std::ifstream wal(wal_path, std::ios::binary);
-  std::array<char, 32> header{};
-  if (!wal.read(header.data(), header.size())) return scan;
-  const uint32_t magic = BigEndian32(&header[0]);
-  const uint32_t page_size = BigEndian32(&header[8]);
-  const bool power_of_two =
-      page_size >= 512 && page_size <= 65536 && (page_size & (page_size - 1)) == 0;
-  if ((magic != 0x377f0682 && magic != 0x377f0683) || !power_of_two) return scan;
-  scan.header_valid = true;
-  const int64_t frame_size = 24 + static_cast<int64_t>(page_size);
-  std::array<char, 24> frame{};
-  for (int64_t n = 1; 32 + n * frame_size <= scan.bytes; ++n) {
-    wal.seekg(32 + (n - 1) * frame_size);
-    if (!wal.read(frame.data(), frame.size())) break;
-    const bool salts_match = std::equal(&frame[8], &frame[16], &header[16]);
-    if (salts_match && BigEndian32(&frame[4]) != 0) scan.commit_frames.push_back(n);
-  }
-  return scan;
-}
 
 // At most this many problems from a failed check are quoted in the error message.
 constexpr int kMaxCheckMessages = 3;
@@ -234,8 +202,9 @@ Status BindTile(SqliteStatement& statement, const TileRecord& tile) {
 
 }  // namespace
 
-MapStore::MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options)
-    : db_(std::move(db)), options_(options) {}
+MapStore::MapStore(std::unique_ptr<StoreLock> lock, std::unique_ptr<SqliteConnection> db,
+                   const StoreOptions& options)
+    : lock_(std::move(lock)), db_(std::move(db)), options_(options) {}
 
 // Statements are members declared after db_, so they are finalized before the connection closes.
 MapStore::~MapStore() {
@@ -268,12 +237,20 @@ std::string StoreOpenReport::Summary() const {
 }
 
 StatusOr<std::unique_ptr<MapStore>> MapStore::Open(const std::string& path,
-                                                   const StoreOptions& options) {
+                                                   const StoreOptions& options,
+                                                   const StoreLock::WaitNotice& on_lock_wait) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext(path));
+  // One writer: nothing is read (the WAL scan included) while another may be writing.
+  std::unique_ptr<StoreLock> lock;
+  if (!path.empty() && path != ":memory:") {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        lock,
+        StoreLock::Acquire(path, std::chrono::milliseconds(options.lock_timeout_ms), on_lock_wait));
+  }
   // What lies on disk before SQLite touches it: opening replays, and writing resets, the WAL.
   std::error_code error;
   const bool exists = !path.empty() && std::filesystem::exists(path, error);
-  const WalScan wal = path.empty() ? WalScan{} : ScanWal(path + "-wal");
+  const internal::WalScan wal = path.empty() ? internal::WalScan{} : internal::ScanWal(path);
   if (exists && std::filesystem::is_regular_file(path, error) &&
       std::filesystem::file_size(path, error) == 0) {
     std::string message = path +
@@ -288,28 +265,90 @@ StatusOr<std::unique_ptr<MapStore>> MapStore::Open(const std::string& path,
                          "from a backup");
   }
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SqliteConnection> db, SqliteConnection::Open(path));
-  std::unique_ptr<MapStore> store(new MapStore(std::move(db), options));
-  store->report_.created = !exists;
-  store->report_.wal_found = wal.found;
-  store->report_.wal_bytes = wal.bytes;
-  store->report_.shm_found = std::filesystem::exists(path + "-shm", error);
+  std::unique_ptr<MapStore> store(new MapStore(std::move(lock), std::move(db), options));
+  StoreOpenReport& report = store->report_;
+  report.created = !exists;
+  report.wal_found = wal.found;
+  report.wal_bytes = wal.bytes;
+  report.shm_found = std::filesystem::exists(path + "-shm", error);
   FLEETMAP_RETURN_IF_ERROR(store->Initialize());
-  // Which committed frames SQLite could not replay (it stops at the first bad frame).
   if (wal.found && wal.bytes > 32 && !wal.header_valid) {
-    store->report_.warnings.push_back(
+    report.warnings.push_back(
         path + "-wal (" + std::to_string(wal.bytes) +
         " bytes) has no valid header: SQLite ignored it, and what it held is lost");
   }
-  int64_t lost = 0;
-  for (const int64_t frame : wal.commit_frames) {
-    if (frame > store->report_.wal_frames_recovered) ++lost;
-  }
-  if (lost > 0) {
-    store->report_.warnings.push_back(
-        path + "-wal is damaged: " + std::to_string(lost) + " committed transactions after frame " +
-        std::to_string(store->report_.wal_frames_recovered) + " could not be read and are lost");
+  if (wal.DropsData()) {
+    report.wal_ends_mid_frame = wal.EndsMidFrame();
+    report.wal_frames_dropped = wal.dropped_frames + (wal.EndsMidFrame() ? 1 : 0);
+    report.wal_bytes_dropped = wal.DroppedBytes();
+    report.wal_committed_frames_lost = wal.CommittedFramesLost();
+    // A cut that leaves no commit frame behind still lost the one its -shm counts.
+    report.wal_commits_dropped =
+        std::max<int64_t>(wal.dropped_commits, wal.CommittedFramesLost() > 0 ? 1 : 0);
+    report.warnings.push_back(store->DescribeWalLoss(wal));
   }
   return store;
+}
+
+std::string MapStore::DescribeWalLoss(const internal::WalScan& wal) const {
+  const auto frames = [](int64_t first, int64_t last) {
+    return first == last ? "frame " + std::to_string(first)
+                         : "frames " + std::to_string(first) + "-" + std::to_string(last);
+  };
+  const std::string frames_kept =
+      wal.kept_frames > 0 ? " (" + frames(1, wal.kept_frames) + ")" : "";
+  std::string out = path() + "-wal is damaged: recovery replayed " +
+                    std::to_string(wal.kept_commits) + " transactions" + frames_kept +
+                    " and dropped " + std::to_string(report_.wal_frames_dropped) + " frames (" +
+                    std::to_string(report_.wal_bytes_dropped) + " bytes) after them: ";
+  std::vector<std::string> causes;
+  const int64_t read_on = wal.stop_frame > 0 ? wal.stop_frame - 1 : wal.whole_frames;
+  if (read_on > wal.kept_frames) {
+    causes.push_back(frames(wal.kept_frames + 1, read_on) +
+                     " belong to a transaction without its commit frame");
+  }
+  if (wal.stop == internal::WalScan::Stop::kDamagedFrame) {
+    causes.push_back("frame " + std::to_string(wal.stop_frame) +
+                     " fails its checksum, so nothing after it is read");
+  }
+  if (wal.EndsMidFrame()) {
+    causes.push_back("the file ends mid-frame (frame " + std::to_string(wal.whole_frames + 1) +
+                     " has " + std::to_string(wal.partial_bytes) + " of " +
+                     std::to_string(wal.frame_bytes) +
+                     " bytes: the file was cut, or its writer was killed while writing it)");
+  }
+  if (wal.dropped_commits > 0) {
+    causes.push_back(std::to_string(wal.dropped_commits) +
+                     " committed transactions among the dropped frames are lost");
+  }
+  if (wal.CommittedFramesLost() > 0) {
+    causes.push_back("its last writer's -shm counts " +
+                     std::to_string(wal.writer_committed_frames) + " committed frames, so " +
+                     std::to_string(wal.CommittedFramesLost()) +
+                     " committed frames (at least one transaction) are lost");
+  }
+  for (size_t i = 0; i < causes.size(); ++i) out += (i > 0 ? "; " : "") + causes[i];
+  // From when on the map is missing: later revisions come back only if their robots re-send them.
+  if (select_newest_latest_ == nullptr) return out;
+  select_newest_latest_->Reset();
+  const StatusOr<bool> row = select_newest_latest_->Step();
+  if (row.ok() && *row) {
+    const int64_t stamp_ns = select_newest_latest_->ColumnInt64(4);
+    const std::time_t seconds = static_cast<std::time_t>(stamp_ns / 1'000'000'000);
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    std::array<char, 32> date{};
+    std::strftime(date.data(), date.size(), "%Y-%m-%dT%H:%M:%SZ", &utc);
+    out += ". The newest revision kept is " + select_newest_latest_->ColumnText(0) + "'s tile (" +
+           std::to_string(select_newest_latest_->ColumnInt64(1)) + ", " +
+           std::to_string(select_newest_latest_->ColumnInt64(2)) + ") revision " +
+           std::to_string(select_newest_latest_->ColumnInt64(3)) + " of " + date.data() +
+           ": what was stored after it is lost unless robots send it again";
+  } else {
+    out += ". The store holds no tile: everything the WAL held is lost";
+  }
+  select_newest_latest_->Reset();
+  return out;
 }
 
 Status MapStore::Initialize() {
@@ -491,6 +530,10 @@ Status MapStore::PrepareStatements() {
   FLEETMAP_RETURN_IF_ERROR(
       prepare(&count_tile_history_, kCountTileHistory, "counting a tile's history"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&delete_latest_, kDeleteLatest, "deleting a tile"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&select_history_all_, kSelectHistoryAll, "reading the whole tile history"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&select_newest_latest_, kSelectNewestLatest, "reading the newest tile"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&delete_evidence_, kDeleteEvidence, "deleting tile evidence"));
   return prepare(&delete_owner_, kDeleteOwner, "deleting an owner's tiles");
 }
@@ -697,6 +740,28 @@ StatusOr<std::vector<SessionRecord>> MapStore::Sessions() const {
     session.payload = select_sessions_->ColumnBlob(4);
   }
   return sessions;
+}
+
+Status MapStore::ForEachHistoryRow(const std::function<void(const TileRecord&)>& visit) const {
+  select_history_all_->Reset();
+  TileRecord tile;
+  while (true) {
+    const StatusOr<bool> row = select_history_all_->Step();
+    if (!row.ok()) {
+      select_history_all_->Reset();
+      return row.status();
+    }
+    if (!*row) break;
+    tile.owner = select_history_all_->ColumnText(0);
+    tile.tile.x = static_cast<int32_t>(select_history_all_->ColumnInt64(1));
+    tile.tile.y = static_cast<int32_t>(select_history_all_->ColumnInt64(2));
+    tile.revision = static_cast<uint32_t>(select_history_all_->ColumnInt64(3));
+    tile.stamp_ns = select_history_all_->ColumnInt64(4);
+    tile.payload = select_history_all_->ColumnBlob(5);
+    visit(tile);
+  }
+  select_history_all_->Reset();
+  return Status::Ok();
 }
 
 StatusOr<int64_t> MapStore::HistoryRowCount() const { return CountHistoryRows(); }

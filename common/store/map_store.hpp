@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,10 +10,14 @@
 #include "common/core/status.hpp"
 #include "common/store/sqlite_connection.hpp"
 #include "common/store/sqlite_statement.hpp"
+#include "common/store/store_lock.hpp"
 #include "common/store/store_options.hpp"
 #include "common/store/store_records.hpp"
 
 namespace fleetmap::store {
+namespace internal {
+struct WalScan;
+}  // namespace internal
 
 // What MapStore::Open found in and beside the file, for the server to say at start.
 struct StoreOpenReport {
@@ -23,7 +28,17 @@ struct StoreOpenReport {
   int64_t wal_bytes = 0;       // or is still running
   bool shm_found = false;
   int64_t wal_frames_recovered = 0;  // committed WAL frames SQLite replayed
-  bool unclean_close = false;        // the last writer did not close the store (killed, crashed)
+  // What SQLite's recovery dropped from the WAL (a warning says it): frames written since the WAL
+  // was last reset that follow the last transaction it could replay, their bytes (a frame cut
+  // short included), and the committed transactions known among them. Those are a lower bound:
+  // what a cut-off WAL held past its end cannot be counted, though its -shm, when kept, still
+  // counts the frames (wal_committed_frames_lost).
+  bool wal_ends_mid_frame = false;
+  int64_t wal_frames_dropped = 0;
+  int64_t wal_bytes_dropped = 0;
+  int64_t wal_commits_dropped = 0;
+  int64_t wal_committed_frames_lost = 0;
+  bool unclean_close = false;  // the last writer did not close the store (killed, crashed)
   // Data that may have been lost (a missing or damaged WAL), each in one sentence.
   std::vector<std::string> warnings;
 
@@ -37,7 +52,8 @@ struct StoreOpenReport {
 // that returned OK (see StoreOptions for power loss). Schema: docs/file-formats.md, "Map store".
 //
 // One connection, not thread-safe: create and call from one thread (the server's fusion worker).
-// One process at a time should write a file; other processes may read it (WAL mode).
+// One MapStore at a time may hold a file: it holds the file's StoreLock while open. Other
+// processes may read the file with plain SQLite connections (WAL mode); the lock never blocks them.
 class MapStore {
  public:
   // The schema version this code writes, kept in PRAGMA user_version.
@@ -47,8 +63,12 @@ class MapStore {
   // file when it is empty (0 bytes: truncated, never a store), is not an SQLite database, is
   // corrupt (quick check), holds another application's tables, or has a schema version newer than
   // kSchemaVersion. An older version is migrated. What it found is in open_report().
-  static StatusOr<std::unique_ptr<MapStore>> Open(const std::string& path,
-                                                  const StoreOptions& options = {});
+  // First it takes the file's StoreLock, waiting up to options.lock_timeout_ms for another writer
+  // (`on_lock_wait` is told once when it starts waiting); still held, it fails with
+  // kInvalidArgument naming the file and the holder's pid, having read nothing.
+  static StatusOr<std::unique_ptr<MapStore>> Open(
+      const std::string& path, const StoreOptions& options = {},
+      const StoreLock::WaitNotice& on_lock_wait = nullptr);
   ~MapStore();
   MapStore(const MapStore&) = delete;
   MapStore& operator=(const MapStore&) = delete;
@@ -85,6 +105,9 @@ class MapStore {
   Status DeleteOwner(const std::string& owner);
 
   StatusOr<int64_t> HistoryRowCount() const;
+  // Calls `visit` with every history row, oldest first, one at a time (the history may be larger
+  // than memory). Fails only when the store cannot be read.
+  Status ForEachHistoryRow(const std::function<void(const TileRecord&)>& visit) const;
 
   // Appends a finished mapping session; returns its id (ids increase). kInvalidArgument for a
   // record that fails ValidateSessionRecord.
@@ -99,7 +122,8 @@ class MapStore {
   const StoreOpenReport& open_report() const { return report_; }
 
  private:
-  MapStore(std::unique_ptr<SqliteConnection> db, const StoreOptions& options);
+  MapStore(std::unique_ptr<StoreLock> lock, std::unique_ptr<SqliteConnection> db,
+           const StoreOptions& options);
   Status Initialize();
   // Marks the store open in the main file (not only the WAL), so that the next Open can tell
   // whether this one was closed; says what the last writer left.
@@ -109,12 +133,16 @@ class MapStore {
   // Creates the schema in a new file (version 0) or migrates an older one, in one transaction.
   Status CreateOrMigrateSchema(int64_t version);
   Status PrepareStatements();
+  // The warning for a WAL whose recovery dropped data: what, why, and the newest revision kept.
+  std::string DescribeWalLoss(const internal::WalScan& wal) const;
   Status RunCheck(const char* pragma) const;
   Status RunPutRobot(const RobotRecord& robot);
   StatusOr<int64_t> CountHistoryRows() const;
   StatusOr<std::vector<TileRecord>> ReadTiles(SqliteStatement& query) const;
 
-  // Declared first so that it is destroyed last, after the statements.
+  // Declared first so that it is released last, after the connection has closed.
+  std::unique_ptr<StoreLock> lock_;
+  // Declared before the statements so that it is destroyed after them.
   std::unique_ptr<SqliteConnection> db_;
   StoreOptions options_;
   // Rows in tile_history, known at open and kept up to date by every committed write, so that
@@ -140,6 +168,8 @@ class MapStore {
   std::unique_ptr<SqliteStatement> count_tile_history_;
   std::unique_ptr<SqliteStatement> delete_latest_;
   std::unique_ptr<SqliteStatement> delete_evidence_;
+  std::unique_ptr<SqliteStatement> select_history_all_;
+  std::unique_ptr<SqliteStatement> select_newest_latest_;
 };
 
 }  // namespace fleetmap::store

@@ -18,6 +18,10 @@ Status StoreOptions::Validate() const {
     return InvalidArgumentError("store options: max_page_count " + std::to_string(max_page_count) +
                                 " is negative (0 means no cap)");
   }
+  if (lock_timeout_ms < 0) {
+    return InvalidArgumentError("store options: lock_timeout_ms " +
+                                std::to_string(lock_timeout_ms) + " is negative");
+  }
   return Status::Ok();
 }
 
@@ -28,6 +32,7 @@ void StoreOptions::Describe(OptionsPrinter& out) const {
   out.Add("synchronous_full", synchronous_full);
   out.Add("verify_on_open", verify_on_open);
   out.Add("max_page_count", max_page_count);
+  out.Add("lock_timeout_ms", lock_timeout_ms);
 }
 
 }  // namespace fleetmap::store

@@ -30,6 +30,9 @@ struct StoreOptions {
   // practical cap). A write that needs more fails like a full disk (kResourceExhausted) until
   // rows are deleted. Tests use it to simulate a full disk.
   int64_t max_page_count = 0;
+  // How long Open waits for another writer to release the store's lock (StoreLock) before it
+  // fails; 0: fail at once.
+  int64_t lock_timeout_ms = 0;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;

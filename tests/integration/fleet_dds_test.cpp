@@ -573,7 +573,8 @@ TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored)
   }
   Subprocess server({kServer, "--duration", "30", "--store", path}, env_);
   EXPECT_TRUE(server.WaitForOutput("restored 1 robot tiles", kDeadline)) << server.Output();
-  EXPECT_NE(server.Output().find("skipping a stored tile: " + path + ": beta's tile (1, 0)"),
+  EXPECT_NE(server.Output().find("skipping a stored tile: " + path +
+                                 ": tile_latest row of beta's tile (1, 0)"),
             std::string::npos)
       << server.Output();
   // Layout 4's frame_id length lands where layout 5 has layout_version: refused by name.

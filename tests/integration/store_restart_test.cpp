@@ -21,6 +21,7 @@
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/topics.hpp"
+#include "common/transport/vector_tile_reader.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -137,6 +138,34 @@ class StoreRestartTest : public ::testing::Test {
     }
     if (!satisfied && newest) last_unsatisfied_ = newest;
     return satisfied ? newest : std::nullopt;
+  }
+
+  // Reads rt/fleetmap/fused_tiles until it has `tiles` tiles, then for `settle` longer; returns
+  // the highest revision received of each tile.
+  std::map<TileId, uint32_t> FusedRevisions(size_t tiles, milliseconds settle) {
+    std::map<TileId, uint32_t> revisions;
+    auto participant = MakeParticipant();
+    if (participant == nullptr) return revisions;
+    auto wake_up = std::make_shared<WakeUp>();
+    auto reader =
+        transport::VectorTileReader::Create(*participant, transport::kFusedTilesTopic, wake_up);
+    EXPECT_TRUE(reader.ok()) << reader.status();
+    if (!reader.ok()) return revisions;
+    auto deadline = std::chrono::steady_clock::now() + kDeadline;
+    bool satisfied = false;
+    while (std::chrono::steady_clock::now() < deadline) {
+      wake_up->WaitFor(milliseconds(100));
+      for (const transport::TileEvent& event : (*reader)->Drain()) {
+        if (event.kind != transport::TileEvent::Kind::kTile) continue;
+        uint32_t& revision = revisions[event.tile.tile];
+        revision = std::max(revision, event.tile.revision);
+      }
+      if (!satisfied && revisions.size() >= tiles) {
+        satisfied = true;
+        deadline = std::chrono::steady_clock::now() + settle;
+      }
+    }
+    return revisions;
   }
 
   // The newest grid of a FleetMap() call that timed out, for the failure message.
@@ -301,6 +330,96 @@ TEST_F(StoreRestartTest, EmptyStoreFileIsRefusedWithHowToStartFresh) {
   EXPECT_NE(server.Output().find("To start a new map, delete it"), std::string::npos)
       << server.Output();
   EXPECT_EQ(std::filesystem::file_size(store), 0u);
+}
+
+// One writer per store: a second server on a store a running server holds exits 2 naming the
+// holder's pid; one started while the holder closes (the restart pattern) waits and takes over.
+TEST_F(StoreRestartTest, SecondServerOnAHeldStoreExitsTwoAndAWaitingOneTakesOver) {
+  ::fleetmap::testing::ScratchDir dir("store_restart");
+  const std::string store = dir.Path("fleet.db");
+  const std::vector<std::string> server_args = {kServer, "--store", store, "--no-object-learning",
+                                                "--no-extrapolation"};
+  Subprocess first(server_args, env_);
+  ASSERT_TRUE(first.WaitForOutput("listening", kDeadline)) << first.Output();
+
+  std::vector<std::string> refused_args = server_args;
+  refused_args.insert(refused_args.end(), {"--store-lock-timeout", "0"});
+  Subprocess refused(refused_args, env_);
+  EXPECT_EQ(refused.Wait(kDeadline), 2) << refused.Output();
+  EXPECT_NE(refused.Output().find(store + ": the map store is in use by another writer (process " +
+                                  std::to_string(first.pid()) + " holds " + store + ".lock)"),
+            std::string::npos)
+      << refused.Output();
+  EXPECT_EQ(refused.Output().find("listening"), std::string::npos) << refused.Output();
+  EXPECT_FALSE(first.Wait(std::chrono::milliseconds(0)).has_value());  // undisturbed
+
+  std::vector<std::string> waiting_args = server_args;
+  waiting_args.insert(waiting_args.end(), {"--store-lock-timeout", "120"});
+  Subprocess waiting(waiting_args, env_);
+  ASSERT_TRUE(waiting.WaitForOutput(
+      store + " is in use by process " + std::to_string(first.pid()) + ": waiting up to 120 s",
+      kDeadline))
+      << waiting.Output();
+  EXPECT_EQ(waiting.Output().find("listening"), std::string::npos) << waiting.Output();
+  first.Signal(SIGINT);
+  EXPECT_EQ(first.Wait(kDeadline), 0) << first.Output();
+  ASSERT_TRUE(waiting.WaitForOutput("listening", kDeadline)) << waiting.Output();
+  EXPECT_NE(waiting.Output().find("closed cleanly"), std::string::npos) << waiting.Output();
+  waiting.Signal(SIGINT);
+  EXPECT_EQ(waiting.Wait(kDeadline), 0) << waiting.Output();
+}
+
+// After a restart, fused tiles go on from the revisions the killed server published (a reader
+// keeping the highest revision takes the restarted server's tiles); and a corrupt history BLOB
+// is named at start-up while the rest restores.
+TEST_F(StoreRestartTest, RestartedServerContinuesRevisionsAndNamesACorruptHistoryBlob) {
+  ::fleetmap::testing::ScratchDir dir("store_restart");
+  const std::string store = dir.Path("fleet.db");
+  const std::string alpha_path = dir.Path("alpha.yaml");
+  ASSERT_TRUE(grid::SaveMap(AlphaMap(), alpha_path).ok());
+  const std::vector<std::string> server_args = {kServer, "--store", store, "--no-object-learning",
+                                                "--no-extrapolation"};
+  auto server = std::make_unique<Subprocess>(server_args, env_);
+  ASSERT_TRUE(server->WaitForOutput("listening", kDeadline)) << server->Output();
+  auto alpha = StartAgent("alpha", alpha_path);
+  ASSERT_TRUE(alpha->WaitForOutput("map revision 1", kDeadline)) << alpha->Output();
+  ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+  const std::map<TileId, uint32_t> before = FusedRevisions(2, seconds(2));
+  ASSERT_GE(before.size(), 2u) << server->Output();
+  alpha->Signal(SIGTERM);
+  EXPECT_EQ(alpha->Wait(kDeadline), 0) << alpha->Output();
+  std::this_thread::sleep_for(seconds(1));
+  server->Signal(SIGKILL);
+  ASSERT_EQ(server->Wait(kDeadline), 128 + SIGKILL);
+  server.reset();
+
+  // One of alpha's stored revisions goes bad on disk.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(store.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "UPDATE tile_history SET payload = X'00010203deadbeef' WHERE owner = "
+                         "'alpha' AND tile_x = 0 AND tile_y = 0",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  EXPECT_EQ(sqlite3_changes(db), 1);
+  sqlite3_close(db);
+
+  Subprocess restarted(server_args, env_);
+  ASSERT_TRUE(restarted.WaitForOutput("restored", kDeadline)) << restarted.Output();
+  EXPECT_NE(restarted.Output().find("skipping a stored tile: " + store +
+                                    ": tile_history row of alpha's tile (0, 0) revision 1"),
+            std::string::npos)
+      << restarted.Output();
+  EXPECT_NE(restarted.Output().find("1 corrupt (skipped, named above)"), std::string::npos)
+      << restarted.Output();
+  const std::map<TileId, uint32_t> after = FusedRevisions(before.size(), seconds(2));
+  for (const auto& [tile, revision] : before) {
+    ASSERT_EQ(after.count(tile), 1u) << "tile " << tile << " not republished\n"
+                                     << restarted.Output();
+    EXPECT_GT(after.at(tile), revision) << "tile " << tile;
+  }
+  restarted.Signal(SIGINT);
+  EXPECT_EQ(restarted.Wait(kDeadline), 0) << restarted.Output();
 }
 
 }  // namespace

@@ -200,11 +200,17 @@ TEST(StoreSyncTest, RowWhoseKeyDisagreesWithItsPayloadIsSkipped) {
   const auto result = sync.Restore(&restored);
   ASSERT_TRUE(result.ok()) << result.status();
   EXPECT_EQ(result->from_history, 1u);
-  ASSERT_EQ(result->skipped.size(), 2u);
-  EXPECT_THAT(
-      result->skipped[0],
-      HasSubstr("alpha's tile (1073741824, 0) revision 1: its payload is alpha's tile (0, 0)"));
+  // Each bad row is named once per table that holds it: its latest row and its history row.
+  ASSERT_EQ(result->skipped.size(), 4u);
+  EXPECT_EQ(result->corrupt_rows, 4u);
+  EXPECT_EQ(result->tile_rows_checked, 6u);
+  EXPECT_THAT(result->skipped[0],
+              HasSubstr("tile_latest row of alpha's tile (1073741824, 0) revision 1: its payload "
+                        "is alpha's tile (0, 0)"));
   EXPECT_THAT(result->skipped[1], HasSubstr("its payload is alpha's tile (0, 0), not the row's"));
+  EXPECT_THAT(result->skipped[2],
+              HasSubstr("tile_history row of alpha's tile (1073741824, 0) revision 1"));
+  EXPECT_THAT(result->skipped[3], HasSubstr("tile_history row of beta's tile (0, 0) revision 1"));
   EXPECT_EQ(restored.contribution_count(), 1u);
 }
 
@@ -307,22 +313,67 @@ TEST(StoreSyncTest, FusedRevisionsGoOnFromTheStoredOnesAfterARestart) {
   {
     auto store = OpenStore(path);
     ASSERT_NE(store, nullptr);
-    ASSERT_TRUE(store->PutTiles({{"fleet", {0, 0}, 7, 1, "seven"}}).ok());
+    vector_map::VectorMap map;
+    map.epsilon = 0.0707;
+    const auto fused =
+        transport::EncodeTilePayload({RobotId{"fleet"}, {0, 0}, 7, kT0, kTileSize, map});
+    ASSERT_TRUE(fused.ok()) << fused.status();
+    ASSERT_TRUE(store->PutTiles({{"fleet", {0, 0}, 7, 1, *fused}}).ok());
   }
   auto store = OpenStore(path);
   ASSERT_NE(store, nullptr);
   StoreSync sync(store.get(), {});
   fusion::TileFusion fusion = MakeFusion();
-  ASSERT_TRUE(sync.Restore(&fusion).ok());
-  // The restarted fusion's first revisions of (0, 0) and of a new tile.
-  ASSERT_TRUE(sync.AddTile({"fleet", {0, 0}, 1, 2, "again"}).ok());
-  ASSERT_TRUE(sync.AddTile({"fleet", {1, 0}, 1, 2, "new"}).ok());
+  const auto result = sync.Restore(&fusion);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_TRUE(result->skipped.empty());
+  // A robot maps tile (0, 0), which the last process had fused up to revision 7, and a new one.
+  Publish(&fusion, &sync, "alpha", Grid(80, 40, kFreeValue), kT0, 1);
+  const auto changed = fusion.FuseChanged();
+  ASSERT_TRUE(changed.ok()) << changed.status();
+  ASSERT_NE(fusion.FindFusedTile({0, 0}), nullptr);
+  ASSERT_NE(fusion.FindFusedTile({1, 0}), nullptr);
+  EXPECT_EQ(fusion.FindFusedTile({0, 0})->revision, 8u);
+  EXPECT_EQ(fusion.FindFusedTile({1, 0})->revision, 1u);
+  // Stored as published: the store's latest fused row is the new one.
+  ASSERT_TRUE(sync.AddTile({"fleet", {0, 0}, 8, 2, "eight"}).ok());
   ASSERT_EQ(sync.Flush(fusion, kNow), FlushResult::kWritten);
   const auto latest = store->LatestTiles("fleet");
   ASSERT_TRUE(latest.ok());
-  ASSERT_EQ(latest->size(), 2u);
-  EXPECT_EQ((*latest)[0], (store::TileRecord{"fleet", {0, 0}, 8, 2, "again"}));
-  EXPECT_EQ((*latest)[1], (store::TileRecord{"fleet", {1, 0}, 1, 2, "new"}));
+  ASSERT_EQ(latest->size(), 1u);
+  EXPECT_EQ((*latest)[0], (store::TileRecord{"fleet", {0, 0}, 8, 2, "eight"}));
+}
+
+// A corrupt history BLOB (the restore from evidence never reads it) is named at start-up by its
+// owner, tile and revision; everything else restores.
+TEST(StoreSyncTest, CorruptHistoryBlobIsNamedAndTheRestRestores) {
+  testing::ScratchDir dir("store_sync");
+  const std::string path = dir.Path("store.db");
+  fusion::TileFusion live = MakeFusion();
+  {
+    auto store = OpenStore(path);
+    ASSERT_NE(store, nullptr);
+    StoreSync sync(store.get(), {});
+    PlayOverlappingFleet(&live, &sync);
+    ASSERT_EQ(sync.Flush(live, kNow), FlushResult::kWritten) << sync.last_error();
+  }
+  ASSERT_TRUE(live.FuseChanged().ok());
+  ExecRaw(path,
+          "UPDATE tile_history SET payload = X'00010203deadbeef' WHERE owner = 'alpha' AND "
+          "tile_x = 0 AND tile_y = 0 AND revision = 1");
+  auto store = OpenStore(path);
+  ASSERT_NE(store, nullptr);
+  StoreSync sync(store.get(), {});
+  fusion::TileFusion restored = MakeFusion();
+  const auto result = sync.Restore(&restored);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_EQ(result->corrupt_rows, 1u);
+  ASSERT_EQ(result->skipped.size(), 1u);
+  EXPECT_THAT(result->skipped[0],
+              HasSubstr(path + ": tile_history row of alpha's tile (0, 0) revision 1"));
+  EXPECT_EQ(result->from_evidence, 2u);
+  ASSERT_TRUE(restored.FuseChanged().ok());
+  EXPECT_EQ(FirstTileCells(restored), FirstTileCells(live));
 }
 
 TEST(StoreSyncTest, RobotRecordsAreMergedWhileWaiting) {

@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <sqlite3.h>
 #include <stdlib.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -621,8 +622,157 @@ TEST_F(MapStoreTest, WarnsWhenAKilledWritersWalIsDamaged) {
   const StoreOpenReport& report = store->open_report();
   EXPECT_TRUE(report.unclean_close);
   ASSERT_EQ(report.warnings.size(), 1u) << report.Summary();
-  EXPECT_THAT(report.warnings[0], HasSubstr(path_ + "-wal is damaged: "));
-  EXPECT_THAT(report.warnings[0], HasSubstr(" committed transactions after frame "));
+  EXPECT_THAT(report.warnings[0], HasSubstr(path_ + "-wal is damaged: recovery replayed "));
+  EXPECT_THAT(report.warnings[0], HasSubstr("frame 2 fails its checksum"));
+  EXPECT_THAT(report.warnings[0], HasSubstr(" committed transactions among the dropped frames"));
+  EXPECT_FALSE(report.wal_ends_mid_frame);
+  EXPECT_GE(report.wal_commits_dropped, 5);  // batches 1..5 at least, after the damaged frame
+  EXPECT_GT(report.wal_frames_dropped, 0);
+  EXPECT_EQ(report.wal_bytes_dropped, report.wal_frames_dropped * (24 + 4096));
+}
+
+// The probe's case: a killed writer's WAL cut in the middle of a frame. SQLite keeps the
+// transactions before the cut without a word; the store says what it dropped.
+TEST_F(MapStoreTest, ReportsAWalCutMidFrameWithWhatRecoveryDropped) {
+  KillWriterAfter(path_, 5);
+  const std::string wal = ReadBytes(path_ + "-wal");
+  const size_t frame = 24 + 4096;
+  const size_t frames = (wal.size() - 32) / frame;
+  ASSERT_GT(frames, 8u);
+  const size_t cut = 32 + frames / 2 * frame + 100;  // half way, 100 bytes into a frame
+  std::ofstream(path_ + "-wal", std::ios::binary | std::ios::trunc) << wal.substr(0, cut);
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  ASSERT_EQ(report.warnings.size(), 1u) << report.Summary();
+  const std::string& warning = report.warnings[0];
+  EXPECT_THAT(warning, HasSubstr(path_ + "-wal is damaged: recovery replayed "));
+  EXPECT_THAT(warning, HasSubstr("the file ends mid-frame (frame " +
+                                 std::to_string(frames / 2 + 1) + " has 100 of 4120 bytes"));
+  EXPECT_TRUE(report.wal_ends_mid_frame);
+  // The killed writer's -shm still counts every frame it committed: the cut lost at least one
+  // committed transaction, and as many frames as the cut took.
+  EXPECT_EQ(report.wal_committed_frames_lost,
+            static_cast<int64_t>(frames) - report.wal_frames_recovered);
+  EXPECT_GE(report.wal_commits_dropped, 1);
+  EXPECT_THAT(warning, HasSubstr("its last writer's -shm counts " + std::to_string(frames) +
+                                 " committed frames"));
+  // What the warning says was kept is what the store holds: whole batches, fewer than 6.
+  const auto latest = store->LatestTiles(testing::kWriterRobot);
+  ASSERT_TRUE(latest.ok());
+  EXPECT_LT(latest->size(), 6u * testing::kWriterTilesPerBatch);
+  EXPECT_EQ(latest->size() % testing::kWriterTilesPerBatch, 0u);
+  const size_t batches = latest->size() / testing::kWriterTilesPerBatch;
+  EXPECT_THAT(warning, HasSubstr("recovery replayed " + std::to_string(batches) + " transactions"));
+  EXPECT_THAT(warning, HasSubstr("The newest revision kept is "));
+  EXPECT_THAT(warning, HasSubstr(") revision " + std::to_string(batches) + " of 1970-01-01T"));
+  EXPECT_TRUE(store->CheckIntegrity().ok());
+}
+
+// Without the -shm, the frames past the cut cannot be counted; the cut itself is still reported.
+TEST_F(MapStoreTest, ReportsAWalCutMidFrameWithoutItsShm) {
+  KillWriterAfter(path_, 5);
+  const std::string wal = ReadBytes(path_ + "-wal");
+  const size_t frame = 24 + 4096;
+  const size_t frames = (wal.size() - 32) / frame;
+  ASSERT_GT(frames, 8u);
+  std::ofstream(path_ + "-wal", std::ios::binary | std::ios::trunc)
+      << wal.substr(0, 32 + frames / 2 * frame + 24);
+  ASSERT_TRUE(std::filesystem::remove(path_ + "-shm"));
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  ASSERT_EQ(report.warnings.size(), 1u) << report.Summary();
+  EXPECT_THAT(report.warnings[0], HasSubstr("the file ends mid-frame"));
+  EXPECT_TRUE(report.wal_ends_mid_frame);
+  EXPECT_EQ(report.wal_committed_frames_lost, 0);
+  EXPECT_GE(report.wal_frames_dropped, 1);
+}
+
+// A WAL SQLite replays whole (a killed writer's, left alone) is no loss: no warning.
+TEST_F(MapStoreTest, AWholeWalOfAKilledWriterDropsNothing) {
+  KillWriterAfter(path_, 5);
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  const StoreOpenReport& report = store->open_report();
+  EXPECT_TRUE(report.warnings.empty()) << report.Summary();
+  EXPECT_EQ(report.wal_frames_dropped, 0);
+  EXPECT_EQ(report.wal_commits_dropped, 0);
+  EXPECT_FALSE(report.wal_ends_mid_frame);
+}
+
+TEST_F(MapStoreTest, ASecondWriterIsRefusedNamingTheHoldersPid) {
+  // A writer process holds the store (it committed one batch and waits).
+  fleetmap::process::Subprocess writer({FLEETMAP_STORE_WRITER_HELPER, path_, "1"});
+  ASSERT_TRUE(writer.started());
+  ASSERT_TRUE(writer.WaitForOutput("committed 0\n", std::chrono::seconds(20))) << writer.Output();
+  EXPECT_EQ(StoreLock::RecordedHolder(path_), writer.pid());
+  const auto refused = MapStore::Open(path_);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_THAT(refused.status().message(),
+              StartsWith(path_ + ": the map store is in use by another writer (process " +
+                         std::to_string(writer.pid()) + " holds " + path_ + ".lock)"));
+  // Plain SQLite readers are not blocked by the lock.
+  sqlite3* reader = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path_.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  EXPECT_EQ(sqlite3_exec(reader, "SELECT count(*) FROM tile_latest", nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(reader);
+  writer.Signal(SIGKILL);
+  ASSERT_EQ(writer.Wait(std::chrono::seconds(10)), 128 + SIGKILL);
+  // The kernel released the killed holder's lock; its pid left in the file blocks nothing.
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  EXPECT_EQ(StoreLock::RecordedHolder(path_), getpid());
+}
+
+TEST_F(MapStoreTest, AWaitingWriterGetsTheStoreOnceItsHolderExits) {
+  auto writer = std::make_unique<fleetmap::process::Subprocess>(
+      std::vector<std::string>{FLEETMAP_STORE_WRITER_HELPER, path_, "1"});
+  ASSERT_TRUE(writer->started());
+  ASSERT_TRUE(writer->WaitForOutput("committed 0\n", std::chrono::seconds(20))) << writer->Output();
+  const pid_t holder = writer->pid();
+  StoreOptions options;
+  options.lock_timeout_ms = 60'000;  // a bound for a loaded machine; the holder goes at once
+  std::vector<std::string> notices;
+  // Told once that it waits, and for whom; then the holder exits.
+  const auto store = MapStore::Open(path_, options, [&](const std::string& notice) {
+    notices.push_back(notice);
+    writer->Signal(SIGKILL);
+  });
+  ASSERT_TRUE(store.ok()) << store.status();
+  ASSERT_EQ(notices.size(), 1u);
+  EXPECT_EQ(notices[0], path_ + " is in use by process " + std::to_string(holder) +
+                            ": waiting up to 60 s for it to close the store");
+  EXPECT_EQ((*store)->LatestTiles(testing::kWriterRobot)->size(),
+            static_cast<size_t>(testing::kWriterTilesPerBatch));
+  EXPECT_EQ(writer->Wait(std::chrono::seconds(10)), 128 + SIGKILL);
+}
+
+TEST_F(MapStoreTest, OneProcessCannotOpenAStoreTwice) {
+  auto first = OpenOrDie();
+  ASSERT_NE(first, nullptr);
+  const auto second = MapStore::Open(path_);
+  ASSERT_FALSE(second.ok());
+  EXPECT_THAT(second.status().message(),
+              HasSubstr("in use by another writer (process " + std::to_string(getpid())));
+  first.reset();
+  EXPECT_NE(OpenOrDie(), nullptr);
+}
+
+TEST_F(MapStoreTest, HistoryRowsAreVisitedOneByOneOldestFirst) {
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  ASSERT_TRUE(store->PutTiles({Tile("alpha", 0, 0, 1, 10), Tile("beta", 1, 0, 1, 10)}).ok());
+  ASSERT_TRUE(store->PutTiles({Tile("alpha", 0, 0, 2, 20)}).ok());
+  std::vector<std::string> visited;
+  ASSERT_TRUE(store
+                  ->ForEachHistoryRow([&](const TileRecord& row) {
+                    visited.push_back(row.owner + "@" + std::to_string(row.revision));
+                  })
+                  .ok());
+  EXPECT_THAT(visited, ElementsAre("alpha@1", "beta@1", "alpha@2"));
 }
 
 TEST_F(MapStoreTest, FullFileFailsAsDiskFullAndKeepsEarlierCommits) {
