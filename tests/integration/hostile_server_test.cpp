@@ -222,8 +222,9 @@ TEST_F(HostileServerTest, SigtermUnderAHeavyTileFloodExitsCleanlyWithinThreeSeco
   auto server = StartServer();
   auto alpha = StartAlpha();
   ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
-  // Tiles just within the per-tile limits: admitted and fused, each costly.
-  auto peer = StartPeer({"--flood", "--flood-vertices", "30000", "--flood-tiles", "40",
+  // Tiles within the per-tile limits (their long walls paint about 3 tiles' worth of cells):
+  // admitted and fused, each costly, until the participant's painting burst is spent.
+  auto peer = StartPeer({"--flood", "--flood-vertices", "1000", "--flood-tiles", "40",
                          "--flood-rate", "5", "--flood-origin", "50,50"});
   ASSERT_TRUE(peer->WaitForOutput("flood:", kDeadline)) << peer->Output();
   std::this_thread::sleep_for(seconds(4));  // a backlog of heavy tiles
