@@ -31,7 +31,7 @@ struct BudgetOptions {
   // One robot id, all its tiles.
   uint64_t max_vertices_per_robot = 4'000'000;
   double max_painted_tiles_per_robot = 2'048.0;
-  uint64_t max_bytes_per_robot = uint64_t{288} << 20;
+  uint64_t max_bytes_per_robot = uint64_t{496} << 20;
   // Cells painted per second, sustained and in a burst, per participant (its ids share it): the
   // fusion work one participant may ask for. A joining robot's whole map fits in the burst.
   double max_painted_tiles_per_second = 40.0;
@@ -42,7 +42,7 @@ struct BudgetOptions {
   // The memory all robots' tiles may hold together. When a tile would exceed it, the robots
   // that were claimed last give way first: their data are dropped (newest first) if that makes
   // room for an older robot's tile, and a newer robot's tile is refused.
-  uint64_t max_memory_bytes = uint64_t{576} << 20;
+  uint64_t max_memory_bytes = uint64_t{768} << 20;
 
   size_t MaxGeometryBytes() const;  // the decompressed geometry of a tile at most
   Status Validate() const;

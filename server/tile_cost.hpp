@@ -23,9 +23,11 @@ struct TileCost {
 };
 
 // Bytes the server holds per tile a robot contributes, per cell of the fused tile grid: the
-// rasterized cells (1 byte) and their evidence dates (4), about 250 KB for a 10 m tile of 5 cm
-// cells with the vertices of an ordinary tile (docs/fleet.md, "Memory bound").
-inline constexpr uint64_t kBytesPerContributedCell = 5;
+// rasterized cells (1 byte) and their evidence dates (4), the fused tile's own state where the
+// robot is alone there, the session archive and the store's queue. Calibrated on the server's
+// RSS: 4 peers' 2,209 fused tiles of walls held about 1 GB over a 34 MB server, about 470 KB a
+// 10 m tile (docs/results.md).
+inline constexpr uint64_t kBytesPerContributedCell = 12;
 // Bytes per vertex held: the queued tile, the session archive's copy and the stored payload.
 inline constexpr uint64_t kBytesPerVertex = 48;
 inline constexpr uint64_t kBytesPerRing = 32;
