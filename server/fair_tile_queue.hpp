@@ -11,20 +11,22 @@
 
 namespace fleetmap::server {
 
-// Robot tiles waiting for fusion, served fairly: each robot's queue keeps only the newest
-// revision of each tile (a robot that sends the same tiles faster than they are fused costs no
-// memory beyond its tiles), and the robot served next is the one that has used the least fusion
-// time (start-time fair queueing), so one robot's flood cannot delay another's updates by more
-// than one turn. A turn is sized by what the robot's tiles have cost so far: as many as fit in a
-// target time, at least one, so a robot whose tiles are expensive (hostile or not) takes short
-// turns. Not thread-safe: the fusion worker owns it.
-template <typename Item>
+// Robot tiles waiting for fusion, served fairly between payers: each payer's queue keeps only the
+// newest revision of each key (a robot that sends the same tiles faster than they are fused costs
+// no memory beyond its tiles), and the payer served next is the one that has used the least
+// fusion time (start-time fair queueing), so one payer's flood cannot delay another's updates by
+// more than one turn. The payer is a robot id, or (in the server) the DDS participant that sent
+// the tiles, so that many ids of one participant share one place in the queue. A turn is sized by
+// what the payer's tiles have cost so far: as many as fit in a target time, at least one, so a
+// payer whose tiles are expensive (hostile or not) takes short turns. Not thread-safe: the fusion
+// worker owns it.
+template <typename Item, typename Payer = RobotId, typename Key = TileId>
 class FairTileQueue {
  public:
   using Duration = std::chrono::nanoseconds;
 
   // Queues `item` for `robot`'s `tile`, replacing an older one of the same tile.
-  void Push(const RobotId& robot, const TileId& tile, Item item) {
+  void Push(const Payer& robot, const Key& tile, Item item) {
     Robot& queue = robots_[robot];
     if (queue.pending.empty()) {
       // A robot that was idle starts level with the others: idle time is not credit.
@@ -40,7 +42,7 @@ class FairTileQueue {
   // The next turn: of the robot that used the least fusion time, oldest first, as many items as
   // its average cost per item fits in `target` (at least one, at most `max_items`; a few while
   // its cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
-  std::vector<Item> NextTurn(size_t max_items, Duration target, RobotId* robot) {
+  std::vector<Item> NextTurn(size_t max_items, Duration target, Payer* robot) {
     std::vector<Item> turn;
     auto chosen = robots_.end();
     for (auto it = robots_.begin(); it != robots_.end(); ++it) {
@@ -61,7 +63,7 @@ class FairTileQueue {
     }
     size_t taken = 0;
     while (taken < queue.order.size() && turn.size() < max_items) {
-      const TileId tile = queue.order[taken++];
+      const Key tile = queue.order[taken++];
       const auto it = queue.pending.find(tile);
       turn.push_back(std::move(it->second));
       queue.pending.erase(it);
@@ -72,7 +74,7 @@ class FairTileQueue {
   }
 
   // Fusion time spent on `robot`'s turn of `items` items.
-  void Charge(const RobotId& robot, Duration used, size_t items) {
+  void Charge(const Payer& robot, Duration used, size_t items) {
     const auto it = robots_.find(robot);
     if (it == robots_.end()) return;
     Robot& queue = it->second;
@@ -85,11 +87,24 @@ class FairTileQueue {
   }
 
   // Drops what waits for `robot`'s `tile` (its robot removed it).
-  void Erase(const RobotId& robot, const TileId& tile) {
+  void Erase(const Payer& robot, const Key& tile) {
     const auto it = robots_.find(robot);
     if (it == robots_.end() || it->second.pending.erase(tile) == 0) return;
     std::erase(it->second.order, tile);
     --size_;
+  }
+
+  // Drops every waiting item whose key satisfies `drop` (a robot refused or over its budget:
+  // its queued work must not delay the others); returns how many.
+  template <typename Predicate>
+  size_t EraseIf(Predicate drop) {
+    size_t erased = 0;
+    for (auto& [payer, queue] : robots_) {
+      erased += std::erase_if(queue.pending, [&](const auto& entry) { return drop(entry.first); });
+      std::erase_if(queue.order, [&](const Key& key) { return queue.pending.count(key) == 0; });
+    }
+    size_ -= erased;
+    return erased;
   }
 
   size_t size() const { return size_; }
@@ -99,13 +114,13 @@ class FairTileQueue {
   static constexpr size_t kItemsWhileCostUnknown = 4;
 
   struct Robot {
-    std::map<TileId, Item> pending;
-    std::vector<TileId> order;  // arrival order of the pending tiles
+    std::map<Key, Item> pending;
+    std::vector<Key> order;     // arrival order of the pending tiles
     Duration virtual_time{0};   // fusion time used, as seen by the scheduler
     Duration cost_per_item{0};  // moving average of what one item has cost; 0: unknown
   };
 
-  std::map<RobotId, Robot> robots_;
+  std::map<Payer, Robot> robots_;
   Duration virtual_now_{0};
   size_t size_ = 0;
 };

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 
 #include "common/transport/tile_payload.hpp"
@@ -11,6 +13,10 @@
 
 namespace fleetmap::server {
 namespace {
+
+// Hands memory freed in large amounts (a robot's dropped tiles) back to the system: glibc keeps
+// freed heap below its top and in its arenas otherwise, and the server's RSS would not go down.
+void ReturnFreedMemory() { malloc_trim(0); }
 
 bool HasOccupiedCell(const grid::OccupancyGrid& grid) {
   return std::find(grid.data().begin(), grid.data().end(), grid::kOccupiedValue) !=
@@ -69,9 +75,10 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
       spdlog::warn("server: map store: {}", warning);
     }
   }
-  FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_, transport::VectorTileReader::Create(
-                                                      participant, transport::kRobotTilesTopic,
-                                                      worker->thread_.wake_up()));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->tile_reader_,
+                            transport::VectorTileReader::Create(
+                                participant, transport::kRobotTilesTopic, worker->thread_.wake_up(),
+                                options.admission.DecodeLimits()));
   FLEETMAP_ASSIGN_OR_RETURN(worker->fused_writer_, transport::VectorTileWriter::Create(
                                                        participant, transport::kFusedTilesTopic));
   FLEETMAP_ASSIGN_OR_RETURN(worker->map_writer_, transport::OccupancyGridWriter::Create(
@@ -248,10 +255,11 @@ void FusionWorker::HandleTileEvents() {
   ReleaseHeldTiles(steady);
 }
 
-void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::string& detail) {
+void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::string& detail,
+                          const std::string& participant) {
   // A name that is not a robot name (empty, too long) is not used as a key anywhere.
   const bool named = IsValidRobotName(robot.value);
-  refusals_.Refuse(named ? robot.value : std::string(), reason, detail);
+  refusals_.RefuseFrom(participant, named ? robot.value : std::string(), reason, detail);
   std::lock_guard lock(stats_mutex_);
   ++stats_.refusals_by_reason[RefusalName(reason)];
   if (!named) {
@@ -264,40 +272,47 @@ void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::strin
 void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
                          std::chrono::steady_clock::time_point steady) {
   const RobotId robot = event.tile.robot_id;
+  const std::string participant =
+      event.writer.empty() ? std::string() : RobotRegistry::ParticipantOf(event.writer);
   if (event.kind == transport::TileEvent::Kind::kRejected) {
-    Refuse(robot, Refusal::kMalformed, event.error.message());
+    // Past the decode limits (a zstd bomb, a million vertices): refused before it was inflated.
+    const bool too_large = event.error.code() == StatusCode::kResourceExhausted;
+    Refuse(robot, too_large ? Refusal::kDecodedSize : Refusal::kMalformed, event.error.message(),
+           participant);
     return;
   }
   if (auto refused = TileAdmission::CheckRobotId(event.tile)) {
-    Refuse(robot, refused->reason, refused->detail);
+    Refuse(robot, refused->reason, refused->detail, participant);
     return;
   }
   switch (registry_->WhoSpeaks(robot, event.writer)) {
     case RobotRegistry::Speaker::kOther:
       Refuse(robot, Refusal::kNotOwner,
              fmt::format("tile ({}, {}) for robot {} from participant {}, which does not own it",
-                         event.tile.tile.x, event.tile.tile.y, robot.value,
-                         RobotRegistry::ParticipantOf(event.writer)));
+                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
+             participant);
       return;
     case RobotRegistry::Speaker::kNotItself:
       Refuse(robot, Refusal::kNotItself,
              fmt::format("tile ({}, {}) for robot {} from participant {}, which authenticated "
                          "as another identity",
-                         event.tile.tile.x, event.tile.tile.y, robot.value,
-                         RobotRegistry::ParticipantOf(event.writer)));
+                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
+             participant);
       return;
     case RobotRegistry::Speaker::kUnclaimed: {
       // Its status (and with it, who owns the id) may still be on its way: hold the newest
       // revision of each tile for a while, for a bounded number of ids.
       const bool known = held_.count(robot) > 0;
       if (!known && held_.size() >= kMaxHeldRobots) {
-        Refuse(robot, Refusal::kUnclaimed, "a tile for a robot id no status claims (too many)");
+        Refuse(robot, Refusal::kUnclaimed, "a tile for a robot id no status claims (too many)",
+               participant);
         return;
       }
       auto& tiles = held_[robot];
       if (tiles.size() >= options_.admission.max_tiles_per_robot &&
           tiles.count(event.tile.tile) == 0) {
-        Refuse(robot, Refusal::kTileQuota, "too many tiles held for an unclaimed robot id");
+        Refuse(robot, Refusal::kTileQuota, "too many tiles held for an unclaimed robot id",
+               participant);
         return;
       }
       const TileId key = event.tile.tile;
@@ -311,15 +326,32 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
     RemoveTile(robot, event.tile.tile);
     return;
   }
-  TileAdmission::Verdict verdict =
-      admission_.Admit(event.tile, event.serialized_bytes, now, steady);
+  TileAdmission::Verdict verdict = admission_.Admit(
+      event.tile, event.serialized_bytes, TileBudget::Source{robot, participant, {}}, now, steady);
   if (const auto* refused = std::get_if<TileAdmission::Refused>(&verdict)) {
-    Refuse(robot, refused->reason, refused->detail);
+    Refuse(robot, refused->reason, refused->detail, participant);
     return;
   }
-  const Timestamp evidence = std::get<TileAdmission::Admitted>(verdict).evidence_stamp;
+  auto& admitted = std::get<TileAdmission::Admitted>(verdict);
+  for (const RobotId& newer : admitted.evict) EvictRobot(newer);
   const TileId key = event.tile.tile;
-  queue_.Push(robot, key, PendingTile{std::move(event.tile), evidence, event.serialized_bytes});
+  // Ids of one participant share its place in the queue; a tile without a writer pays as its id.
+  const std::string payer = participant.empty() ? "robot " + robot.value : participant;
+  queue_.Push(payer, {robot, key},
+              PendingTile{std::move(event.tile), admitted.evidence_stamp, event.serialized_bytes});
+}
+
+void FusionWorker::EvictRobot(const RobotId& robot) {
+  const size_t queued = queue_.EraseIf([&](const auto& key) { return key.first == robot; });
+  const std::vector<TileId> tiles = admission_.DropRobot(robot);
+  for (const TileId& tile : tiles) DropTileData(robot, tile);
+  Refuse(robot, Refusal::kMemoryBudget,
+         fmt::format("the server's memory budget for all robots' tiles is spent: robot {}, "
+                     "claimed after the robots that need it, gives way ({} tiles and {} queued "
+                     "dropped)",
+                     robot.value, tiles.size(), queued));
+  // Large frees go back to the system, not only to the allocator's free lists.
+  ReturnFreedMemory();
 }
 
 void FusionWorker::HandleAdmissions() {
@@ -370,8 +402,12 @@ void FusionWorker::NoteSource(const RobotId& robot) {
 }
 
 void FusionWorker::RemoveTile(const RobotId& robot, const TileId& tile) {
-  queue_.Erase(robot, tile);
+  queue_.EraseIf([&](const auto& key) { return key.first == robot && key.second == tile; });
   admission_.Forget(robot, tile);
+  DropTileData(robot, tile);
+}
+
+void FusionWorker::DropTileData(const RobotId& robot, const TileId& tile) {
   if (registry_->TilesInMapFrame(robot)) {
     RefuseMapFrameRobot(robot, map_frames_.RemoveTile(robot, tile));
     return;
@@ -410,18 +446,23 @@ void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady
 
 void FusionWorker::FuseQueuedTiles(std::chrono::steady_clock::duration budget) {
   const auto start = std::chrono::steady_clock::now();
-  while (!queue_.empty() && std::chrono::steady_clock::now() - start < budget) {
+  // Stop() does not wait for a backlog: the round ends after the turn in progress.
+  while (!queue_.empty() && std::chrono::steady_clock::now() - start < budget &&
+         !thread_.stopping()) {
     // What arrived during the last turn joins the queue now, not after the slice: an honest
     // update waits for at most the turn in progress.
     HandleTileEvents();
-    RobotId robot;
+    std::string payer;
     const auto turn_start = std::chrono::steady_clock::now();
-    std::vector<PendingTile> turn = queue_.NextTurn(kMaxTilesPerTurn, kTurnTarget, &robot);
+    std::vector<PendingTile> turn = queue_.NextTurn(kMaxTilesPerTurn, kTurnTarget, &payer);
     const size_t tiles = turn.size();
-    for (PendingTile& pending : turn) ApplyTile(robot, std::move(pending));
+    for (PendingTile& pending : turn) {
+      const RobotId robot = pending.tile.robot_id;
+      ApplyTile(robot, std::move(pending));
+    }
     // The turn's cost includes vectorizing what it changed: that is what delays the others.
     PublishFused(std::chrono::steady_clock::now());
-    queue_.Charge(robot, std::chrono::steady_clock::now() - turn_start, tiles);
+    queue_.Charge(payer, std::chrono::steady_clock::now() - turn_start, tiles);
   }
 }
 

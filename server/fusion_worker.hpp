@@ -171,8 +171,14 @@ class FusionWorker {
   void ReportStandings();
   // Robots of one participant never confirm each other's changes (quarantine).
   void NoteSource(const RobotId& robot);
-  void Refuse(const RobotId& robot, Refusal reason, const std::string& detail);
+  // `participant`: who sent it, when known (the log is rate-limited per participant).
+  void Refuse(const RobotId& robot, Refusal reason, const std::string& detail,
+              const std::string& participant = {});
   void RemoveTile(const RobotId& robot, const TileId& tile);
+  // The robot's tile leaves fusion, its session and (as a removal) the store.
+  void DropTileData(const RobotId& robot, const TileId& tile);
+  // Every tile of `robot`, queued or fused, to make room for an older robot's (global budget).
+  void EvictRobot(const RobotId& robot);
   // Tiles held for robot ids that a status has claimed since, or that waited too long.
   void ReleaseHeldTiles(std::chrono::steady_clock::time_point steady);
   // Fuses queued tiles turn by turn, fairly between robots, for at most `budget`.
@@ -221,8 +227,10 @@ class FusionWorker {
   std::unique_ptr<SessionArchive> sessions_;  // worker thread only (after Create)
   FusedMapListener on_fused_map_;
   SessionsListener on_sessions_;
-  TileAdmission admission_;                             // worker thread only
-  FairTileQueue<PendingTile> queue_;                    // worker thread only
+  TileAdmission admission_;  // worker thread only
+  // Served fairly by participant (its robot ids share one place), keyed by robot and tile.
+  FairTileQueue<PendingTile, std::string, std::pair<RobotId, TileId>> queue_;  // worker thread
+
   std::map<RobotId, std::map<TileId, HeldTile>> held_;  // worker thread only
   RefusalLog refusals_{"server"};                       // worker thread only
   std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)

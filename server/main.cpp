@@ -73,6 +73,26 @@ int main(int argc, char** argv) {
   app.add_option("--max-bytes-per-second", options.fusion.admission.max_bytes_per_second,
                  "sustained tile bytes per second one robot may send")
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-vertices-per-tile", options.fusion.admission.budget.max_vertices_per_tile,
+                 "vertices one robot tile may decode to (refused before it is inflated)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-vertices-per-robot", options.fusion.admission.budget.max_vertices_per_robot,
+                 "vertices all of one robot id's tiles may hold")
+      ->check(CLI::PositiveNumber);
+  double max_memory_mb =
+      static_cast<double>(options.fusion.admission.budget.max_memory_bytes >> 20);
+  app.add_option("--max-tile-memory", max_memory_mb,
+                 "MB all robots' tiles may hold, decoded; past it the robots claimed last give way")
+      ->check(CLI::PositiveNumber);
+  double max_robot_mb =
+      static_cast<double>(options.fusion.admission.budget.max_bytes_per_robot >> 20);
+  app.add_option("--max-robot-memory", max_robot_mb,
+                 "MB one robot id's tiles may hold, decoded (a participant's ids: 2 robots' worth)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-painted-tiles-per-second",
+                 options.fusion.admission.budget.max_painted_tiles_per_second,
+                 "tiles' worth of cells one participant's tiles may paint a second, sustained")
+      ->check(CLI::PositiveNumber);
   app.add_option("--max-robots-per-participant", options.max_robots_per_participant,
                  "robot ids one DDS participant may speak for")
       ->check(CLI::PositiveNumber);
@@ -105,6 +125,10 @@ int main(int argc, char** argv) {
       std::chrono::milliseconds(static_cast<int64_t>(max_clock_ahead_s * 1000.0));
   options.fusion.store_lock_timeout =
       std::chrono::milliseconds(static_cast<int64_t>(store_lock_timeout_s * 1000.0));
+  options.fusion.admission.budget.max_memory_bytes =
+      static_cast<uint64_t>(max_memory_mb * (1 << 20));
+  options.fusion.admission.budget.max_bytes_per_robot =
+      static_cast<uint64_t>(max_robot_mb * (1 << 20));
   options.fusion.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;

@@ -26,23 +26,38 @@ const char* RefusalName(Refusal refusal) {
       return "unclaimed robot id";
     case Refusal::kNotItself:
       return "not its identity";
+    case Refusal::kDecodedSize:
+      return "decoded size";
+    case Refusal::kMemoryBudget:
+      return "memory budget";
+    case Refusal::kPaintRate:
+      return "paint rate";
   }
   return "unknown";
 }
 
 void RefusalLog::Refuse(const std::string& robot, Refusal reason, const std::string& detail,
                         std::chrono::steady_clock::time_point now) {
+  RefuseFrom(std::string(), robot, reason, detail, now);
+}
+
+void RefusalLog::RefuseFrom(const std::string& participant, const std::string& robot,
+                            Refusal reason, const std::string& detail,
+                            std::chrono::steady_clock::time_point now) {
   ++total_;
   std::string key = robot.empty() ? "(unnamed)" : robot;
-  // A peer inventing robot ids must not grow this map without bound either.
+  // A peer inventing robot ids must not grow these maps without bound either.
   if (robots_.size() >= kMaxRobotsTracked && robots_.count(key) == 0) key = "(others)";
-  RobotLog& log = robots_[key];
-  ++log.counts[reason];
+  ++robots_[key][reason];
+  std::string source = participant.empty() ? key : "participant " + participant;
+  if (sources_.size() >= kMaxSourcesTracked && sources_.count(source) == 0) source = "(others)";
+  SourceLog& log = sources_[source];
   if (now - log.period_start >= period_) {
     if (log.left_out > 0) {
+      ++lines_logged_;
       spdlog::warn(
           "{}: refused {} more samples from {} in the last {} s without logging each", who_,
-          log.left_out, key,
+          log.left_out, source,
           std::chrono::duration_cast<std::chrono::seconds>(now - log.period_start).count());
     }
     log.period_start = now;
@@ -54,20 +69,22 @@ void RefusalLog::Refuse(const std::string& robot, Refusal reason, const std::str
     return;
   }
   log.logged.insert(detail);
-  spdlog::warn("{}: refused from {} ({}): {}", who_, key, RefusalName(reason), detail);
+  ++lines_logged_;
+  if (participant.empty()) {
+    spdlog::warn("{}: refused from {} ({}): {}", who_, key, RefusalName(reason), detail);
+  } else {
+    spdlog::warn("{}: refused from {} of participant {} ({}): {}", who_, key, participant,
+                 RefusalName(reason), detail);
+  }
 }
 
 uint64_t RefusalLog::count(const std::string& robot, Refusal reason) const {
   const auto it = robots_.find(robot.empty() ? "(unnamed)" : robot);
   if (it == robots_.end()) return 0;
-  const auto count = it->second.counts.find(reason);
-  return count == it->second.counts.end() ? 0 : count->second;
+  const auto count = it->second.find(reason);
+  return count == it->second.end() ? 0 : count->second;
 }
 
-std::map<std::string, std::map<Refusal, uint64_t>> RefusalLog::counts() const {
-  std::map<std::string, std::map<Refusal, uint64_t>> out;
-  for (const auto& [robot, log] : robots_) out[robot] = log.counts;
-  return out;
-}
+std::map<std::string, std::map<Refusal, uint64_t>> RefusalLog::counts() const { return robots_; }
 
 }  // namespace fleetmap::server

@@ -27,7 +27,15 @@ Status AdmissionOptions::Validate() const {
   if (!(max_bytes_per_second > 0.0) || !(burst_bytes > 0.0)) {
     return InvalidArgumentError("the byte quota and its burst must be positive");
   }
-  return Status::Ok();
+  return budget.Validate();
+}
+
+transport::TileDecodeLimits AdmissionOptions::DecodeLimits() const {
+  transport::TileDecodeLimits limits;
+  limits.max_geometry_bytes = budget.MaxGeometryBytes();
+  limits.max_vertices = budget.max_vertices_per_tile;
+  limits.max_rings = budget.max_rings_per_tile;
+  return limits;
 }
 
 std::optional<TileAdmission::Refused> TileAdmission::CheckSettings(
@@ -90,6 +98,12 @@ std::optional<TileAdmission::Refused> TileAdmission::CheckRobotId(
 TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
                                             Timestamp now,
                                             std::chrono::steady_clock::time_point steady_now) {
+  return Admit(tile, bytes, TileBudget::Source{tile.robot_id, {}, {}}, now, steady_now);
+}
+
+TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
+                                            const TileBudget::Source& source, Timestamp now,
+                                            std::chrono::steady_clock::time_point steady_now) {
   if (auto refused = CheckRobotId(tile)) return *refused;
   if (auto refused = CheckSettings(tile)) return *refused;
   if (auto refused = CheckStamp(tile, now)) return *refused;
@@ -119,18 +133,40 @@ TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& 
                                TileName(tile), bytes, tile.robot_id.value,
                                options_.max_bytes_per_second, options_.burst_bytes)};
   }
+  // What the tile costs decoded, against the robot's, its participant's, its host's and the
+  // global budget: checked last, so that a refused tile is not charged.
+  auto charged = budget_.Charge(source, tile.tile, CostOf(tile.map, fusion_), steady_now);
+  if (auto* refused = std::get_if<TileBudget::Refused>(&charged)) {
+    return Refused{refused->reason, std::move(refused->detail)};
+  }
   quota.byte_tokens -= static_cast<double>(bytes);
   quota.tiles.insert(tile.tile);
-  return Admitted{std::min(tile.stamp, now)};
+  return Admitted{std::min(tile.stamp, now),
+                  std::move(std::get<TileBudget::Charged>(charged).evict)};
+}
+
+std::vector<TileId> TileAdmission::DropRobot(const RobotId& robot) {
+  std::vector<TileId> tiles = budget_.TilesOf(robot);
+  budget_.ReleaseRobot(robot);
+  const auto it = robots_.find(robot);
+  if (it != robots_.end()) {
+    for (const TileId& tile : it->second.tiles) {
+      if (std::find(tiles.begin(), tiles.end(), tile) == tiles.end()) tiles.push_back(tile);
+    }
+    it->second.tiles.clear();
+  }
+  return tiles;
 }
 
 void TileAdmission::Adopt(const RobotId& robot, const TileId& tile) {
   robots_[robot].tiles.insert(tile);
+  budget_.Adopt(robot, tile, CostOfUnknownTile(fusion_));
 }
 
 void TileAdmission::Forget(const RobotId& robot, const TileId& tile) {
   const auto it = robots_.find(robot);
   if (it != robots_.end()) it->second.tiles.erase(tile);
+  budget_.Release(robot, tile);
 }
 
 size_t TileAdmission::tiles_held(const RobotId& robot) const {
@@ -144,6 +180,7 @@ void AdmissionOptions::Describe(OptionsPrinter& out) const {
   out.Add("max_tiles_per_robot", max_tiles_per_robot);
   out.Add("max_bytes_per_second", max_bytes_per_second);
   out.Add("burst_bytes", burst_bytes);
+  out.Nested("budget", budget);
 }
 
 }  // namespace fleetmap::server

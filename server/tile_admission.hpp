@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "common/core/ids.hpp"
 #include "common/core/options_printer.hpp"
@@ -14,6 +15,7 @@
 #include "common/fusion/fusion_options.hpp"
 #include "common/transport/vector_tile_message.hpp"
 #include "server/refusal_log.hpp"
+#include "server/tile_budget.hpp"
 
 namespace fleetmap::server {
 
@@ -32,7 +34,11 @@ struct AdmissionOptions {
   // its whole map at once).
   double max_bytes_per_second = 4e6;
   double burst_bytes = 64e6;
+  // What tiles may cost decoded: per tile, per robot, per participant and host, and in all.
+  BudgetOptions budget;
 
+  // What the tile reader may decode a robot tile to (the per-tile budget).
+  transport::TileDecodeLimits DecodeLimits() const;
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
 };
@@ -46,6 +52,9 @@ class TileAdmission {
     // The stamp fusion dates the tile's evidence with: the sample's own, but never later than
     // its arrival (evidence cannot be newer than the moment it was received).
     Timestamp evidence_stamp;
+    // Robots claimed after this one whose data the caller must drop (DropRobot) to make room in
+    // the global memory budget, newest first.
+    std::vector<RobotId> evict;
   };
   struct Refused {
     Refusal reason;
@@ -54,7 +63,7 @@ class TileAdmission {
   using Verdict = std::variant<Admitted, Refused>;
 
   TileAdmission(const AdmissionOptions& options, const fusion::FusionOptions& fusion)
-      : options_(options), fusion_(fusion) {}
+      : options_(options), fusion_(fusion), budget_(options.budget, fusion) {}
 
   // Whether `robot` may name a robot tile's owner: a ROS 2 name token, not the fused map's.
   static std::optional<Refused> CheckRobotId(const transport::VectorTileMessage& tile);
@@ -63,14 +72,21 @@ class TileAdmission {
   // stamps, steady clock for rates). An admitted tile counts towards its robot's quotas.
   Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes, Timestamp now,
                 std::chrono::steady_clock::time_point steady_now);
+  // The same, paid for by `source` (the robot id, the participant and host that sent it).
+  Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes,
+                const TileBudget::Source& source, Timestamp now,
+                std::chrono::steady_clock::time_point steady_now);
 
   // A robot's tile that exists without passing Admit (restored from the store): it counts
   // towards the robot's tile quota.
   void Adopt(const RobotId& robot, const TileId& tile);
   // The robot removed the tile: it no longer counts.
   void Forget(const RobotId& robot, const TileId& tile);
+  // Every tile of `robot` no longer counts; returns them (the caller drops their data).
+  std::vector<TileId> DropRobot(const RobotId& robot);
 
   size_t tiles_held(const RobotId& robot) const;
+  const TileBudget& budget() const { return budget_; }
 
  private:
   struct RobotQuota {
@@ -85,6 +101,7 @@ class TileAdmission {
 
   AdmissionOptions options_;
   fusion::FusionOptions fusion_;
+  TileBudget budget_;
   std::map<RobotId, RobotQuota> robots_;
 };
 

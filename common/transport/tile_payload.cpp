@@ -13,11 +13,12 @@ StatusOr<std::string> EncodeTilePayload(const VectorTileMessage& tile) {
   return SerializeCdr(sample);
 }
 
-StatusOr<VectorTileMessage> DecodeTilePayload(std::string_view bytes, const std::string& name) {
+StatusOr<VectorTileMessage> DecodeTilePayload(std::string_view bytes, const std::string& name,
+                                              const TileDecodeLimits& limits) {
   VectorTile_ sample;
   FLEETMAP_RETURN_IF_ERROR(
       DeserializeCdr(bytes, VectorTileShape(), name + ": not a vector tile", &sample));
-  StatusOr<VectorTileMessage> tile = FromIdl(sample);
+  StatusOr<VectorTileMessage> tile = FromIdl(sample, limits);
   if (!tile.ok()) return tile.status().WithContext(name);
   return tile;
 }

@@ -14,6 +14,7 @@ namespace fleetmap::transport {
 
 StatusOr<std::string> EncodeTilePayload(const VectorTileMessage& tile);
 // Checks lengths before decoding and every count after; `name` prefixes errors.
-StatusOr<VectorTileMessage> DecodeTilePayload(std::string_view bytes, const std::string& name);
+StatusOr<VectorTileMessage> DecodeTilePayload(std::string_view bytes, const std::string& name,
+                                              const TileDecodeLimits& limits = {});
 
 }  // namespace fleetmap::transport

@@ -21,8 +21,11 @@ using fleetmap_msgs::msg::dds_::VectorTile_;
 // Runs on DDS threads: decodes and queues, nothing more.
 class VectorTileReader::Listener : public dds::DataReaderListener, public MalformedSink {
  public:
-  Listener(std::string topic_name, std::shared_ptr<WakeUp> wake_up)
-      : topic_name_(std::move(topic_name)), wake_up_(std::move(wake_up)), events_(1 << 16) {}
+  Listener(std::string topic_name, std::shared_ptr<WakeUp> wake_up, const TileDecodeLimits& limits)
+      : topic_name_(std::move(topic_name)),
+        wake_up_(std::move(wake_up)),
+        limits_(limits),
+        events_(1 << 16) {}
 
   void on_data_available(dds::DataReader* reader) override {
     TakeAll<VectorTile_>(reader, this,
@@ -52,7 +55,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
 
  private:
   void OnSample(const VectorTile_& sample, const dds::SampleInfo& info, TileEvent event) {
-    StatusOr<VectorTileMessage> tile = FromIdl(sample);
+    StatusOr<VectorTileMessage> tile = FromIdl(sample, limits_);
     if (!tile.ok()) {
       event.kind = TileEvent::Kind::kRejected;
       // Name the robot when the name itself is sound, so the server can count per robot.
@@ -93,6 +96,7 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
 
   const std::string topic_name_;
   std::shared_ptr<WakeUp> wake_up_;
+  const TileDecodeLimits limits_;
   SampleQueue<TileEvent> events_;
   std::mutex mutex_;
   // get_key_value is not supported by Fast DDS 2.9: remember each instance's key.
@@ -100,9 +104,10 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
 };
 
 StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
-    Participant& participant, const std::string& topic_name, std::shared_ptr<WakeUp> wake_up) {
+    Participant& participant, const std::string& topic_name, std::shared_ptr<WakeUp> wake_up,
+    const TileDecodeLimits& limits) {
   std::unique_ptr<VectorTileReader> self(new VectorTileReader());
-  self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up));
+  self->listener_ = std::make_unique<Listener>(topic_name, std::move(wake_up), limits);
   FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
                             ReaderEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
                                                    VectorTileQos().reader, self->listener_.get()));

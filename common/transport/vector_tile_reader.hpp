@@ -31,9 +31,10 @@ struct TileEvent {
 // checks, decodes and queues; Drain() hands events over. Drain() may be called from one thread.
 class VectorTileReader {
  public:
+  // Samples that would decode past `limits` are refused (kRejected) before they are decoded.
   static StatusOr<std::unique_ptr<VectorTileReader>> Create(
       Participant& participant, const std::string& topic_name,
-      std::shared_ptr<WakeUp> wake_up = nullptr);
+      std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {});
   ~VectorTileReader();
 
   std::vector<TileEvent> Drain();

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <random>
 
+#include <zstd.h>
+
 namespace fleetmap::hostile {
 namespace {
 
@@ -84,9 +86,9 @@ TileSample WallTile(const std::string& robot, TileKey key, double tile_size) {
   constexpr int64_t kLow = kSide / 8;
   constexpr int64_t kHigh = kSide - kSide / 8;
   GeometryWriter out(key, tile_size);
-  out.Unsigned(1);                // one polyline:
+  out.Unsigned(1);                 // one polyline:
   out.Unsigned((4 - 2) << 1 | 1);  // 4 vertices, closed
-  out.Byte(0);                    // half width 0
+  out.Byte(0);                     // half width 0
   out.Vertex(kLow, kLow);
   out.Vertex(kHigh, kLow);
   out.Vertex(kHigh, kHigh);
@@ -128,6 +130,31 @@ TileSample HeavyTile(const std::string& robot, TileKey key, double tile_size, in
   out.Unsigned(0);  // no point
   out.FreeRectangle(0, 0, kSide, kSide);
   tile.geometry = out.Take();
+  return tile;
+}
+
+TileSample ZstdBombTile(const std::string& robot, TileKey key, double tile_size, int vertices) {
+  TileSample tile = Blank(robot, key, tile_size);
+  std::vector<int> sizes;
+  for (int left = std::max(vertices, 2); left >= 2; left -= sizes.back()) {
+    sizes.push_back(std::min(left, kMaxPolyline));
+  }
+  GeometryWriter out(key, tile_size);
+  out.Unsigned(sizes.size());
+  for (const int n : sizes) {
+    out.Unsigned(static_cast<uint64_t>(n - 2) << 1);  // open
+    out.Byte(0);
+    for (int i = 0; i < n; ++i) out.Vertex(10 + i % 2, 10);
+  }
+  out.Unsigned(0);  // no point
+  out.FreeRectangle(0, 0, kSide, kSide);
+  const std::vector<uint8_t> plain = out.Take();
+  // One frame that states its content size, as the layout requires.
+  std::vector<uint8_t> frame(ZSTD_compressBound(plain.size()));
+  const size_t size = ZSTD_compress(frame.data(), frame.size(), plain.data(), plain.size(), 19);
+  frame.resize(ZSTD_isError(size) ? 0 : size);
+  tile.compression = 1;
+  tile.geometry = std::move(frame);
   return tile;
 }
 

@@ -81,4 +81,8 @@ TileSample AllFreeTile(const std::string& robot, TileKey key, double tile_size);
 TileSample HeavyTile(const std::string& robot, TileKey key, double tile_size, int vertices,
                      uint32_t seed);
 
+// A zstd bomb: `vertices` obstacle vertices stepping back and forth between two lattice points,
+// zstd-compressed (compression 1): a few KB on the wire that decode to megabytes of vertices.
+TileSample ZstdBombTile(const std::string& robot, TileKey key, double tile_size, int vertices);
+
 }  // namespace fleetmap::hostile

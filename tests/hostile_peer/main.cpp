@@ -84,6 +84,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--flood-vertices", options.flood_vertices, "obstacle vertices per tile (4000)")
       ->check(CLI::Range(2, 1000000));
+  app.add_flag("--flood-zstd-bomb", options.flood_zstd_bomb,
+               "flood tiles are zstd frames of --flood-vertices repeated vertices (a few KB each)");
   app.add_option("--flood-keys", options.flood_keys,
                  "N distinct light tiles of --robot-id, once (e.g. 3000)")
       ->check(CLI::NonNegativeNumber);

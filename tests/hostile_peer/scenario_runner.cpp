@@ -188,17 +188,20 @@ bool ScenarioRunner::StepHijack(Clock::duration elapsed) {
 
 bool ScenarioRunner::SendFloodRound(uint32_t round) {
   for (int i = 0; i < options_.flood_tiles; ++i) {
+    const TileKey key = BlockKey(options_.flood_origin, i, options_.flood_tiles);
     TileSample tile =
-        HeavyTile(options_.robot_id, BlockKey(options_.flood_origin, i, options_.flood_tiles),
-                  options_.tile_size, options_.flood_vertices,
-                  round * static_cast<uint32_t>(options_.flood_tiles) + i);
+        options_.flood_zstd_bomb
+            ? ZstdBombTile(options_.robot_id, key, options_.tile_size, options_.flood_vertices)
+            : HeavyTile(options_.robot_id, key, options_.tile_size, options_.flood_vertices,
+                        round * static_cast<uint32_t>(options_.flood_tiles) + i);
     tile.revision = round + 1;
     if (!Sent(peer_.WriteRobotTile(tile, &error_), &tiles_sent_)) return false;
   }
   if (round == 0) {
     char rate[32];
     std::snprintf(rate, sizeof(rate), "%g", options_.flood_rate);
-    Say("flood: " + std::to_string(options_.flood_tiles) + " tiles of " +
+    Say(std::string(options_.flood_zstd_bomb ? "flood (zstd bombs): " : "flood: ") +
+        std::to_string(options_.flood_tiles) + " tiles of " +
         std::to_string(options_.flood_vertices) + " vertices, " + rate + " rounds per second");
   }
   return true;

@@ -36,10 +36,11 @@ struct ScenarioOptions {
   std::string squat;             // claim this robot id and keep it
   bool flood = false;            // heavy tiles at a rate
   int flood_tiles = 40;
-  double flood_rate = 5.0;     // rounds per second
-  int flood_vertices = 4000;   // per tile
-  int flood_keys = 0;          // this many distinct light tiles, once
-  TileKey flood_origin{0, 0};  // corner of the square block of flooded keys
+  double flood_rate = 5.0;       // rounds per second
+  int flood_vertices = 4000;     // per tile
+  bool flood_zstd_bomb = false;  // flood tiles are zstd bombs of flood_vertices vertices
+  int flood_keys = 0;            // this many distinct light tiles, once
+  TileKey flood_origin{0, 0};    // corner of the square block of flooded keys
 };
 
 class ScenarioRunner {

@@ -166,5 +166,90 @@ TEST_F(HostileServerTest, ThousandsOfKeysStayWithinTheRobotsQuotaAndTheMemoryBou
   EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
 }
 
+// Issue 30: ten zstd tiles of a few KB that inflate to a million vertices each took the server
+// from 408 MB to 1,029 MB. They are refused by the size their frames state, before inflating.
+TEST_F(HostileServerTest, ZstdBombsAreRefusedByTheirDecodedSizeBeforeTheyAreInflated) {
+  auto server = StartServer();
+  auto alpha = StartAlpha();
+  ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+  auto peer = StartPeer({"--flood", "--flood-zstd-bomb", "--flood-vertices", "1000000",
+                         "--flood-tiles", "10", "--flood-rate", "2", "--flood-origin", "50,50"});
+  ASSERT_TRUE(peer->WaitForOutput("flood (zstd bombs)", kDeadline)) << peer->Output();
+  EXPECT_TRUE(server->WaitForOutput("would decompress to", kDeadline)) << server->Output();
+  std::this_thread::sleep_for(seconds(3));
+  const auto usage = process::ReadUsage(server->pid());
+  ASSERT_TRUE(usage.has_value());
+  EXPECT_LT(usage->peak_rss_bytes, int64_t{400} << 20);
+  peer->Signal(SIGINT);
+  peer->Wait(kDeadline);
+  const std::string output = Stop(*server);
+  EXPECT_NE(output.find("decoded size"), std::string::npos) << output;
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
+}
+
+// Several participants, each with its own robot id and thousands of keys: each robot stays
+// within its memory, and all of them within the global budget, the robots claimed last refused
+// while the established robot keeps its map.
+TEST_F(HostileServerTest, SeveralParticipantsStayWithinOneGlobalBudgetTheNewestRefused) {
+  auto server = StartServer({"--max-tile-memory", "40", "--max-robot-memory", "12"});
+  auto alpha = StartAlpha();
+  ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+  std::vector<std::unique_ptr<Subprocess>> peers;
+  for (int p = 0; p < 4; ++p) {
+    const std::string origin = std::to_string(100 + 100 * p) + ",100";
+    peers.push_back(StartPeer({"--robot-id", "intruder" + std::to_string(p), "--flood-keys", "400",
+                               "--flood-origin", origin}));
+  }
+  for (auto& peer : peers) {
+    ASSERT_TRUE(peer->WaitForOutput("flood-keys: sent 400", kDeadline)) << peer->Output();
+  }
+  EXPECT_TRUE(server->WaitForOutput("a robot may hold 12 MB", kDeadline)) << server->Output();
+  // The global budget is reached: a newer robot's tile is refused, or a newer robot gives way
+  // to an older one's tile (which comes first depends on arrival order).
+  const auto global_reached = [&] {
+    const std::string output = server->Output();
+    return output.find("the server's 40 MB") != std::string::npos ||
+           output.find("memory budget for all robots' tiles is spent") != std::string::npos;
+  };
+  const auto until = std::chrono::steady_clock::now() + kDeadline;
+  while (!global_reached() && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(global_reached()) << server->Output();
+  std::this_thread::sleep_for(seconds(2));
+  const auto usage = process::ReadUsage(server->pid());
+  ASSERT_TRUE(usage.has_value());
+  EXPECT_LT(usage->peak_rss_bytes, int64_t{400} << 20);
+  for (auto& peer : peers) peer->Signal(SIGINT);
+  for (auto& peer : peers) peer->Wait(kDeadline);
+  const std::string output = Stop(*server);
+  EXPECT_NE(output.find("memory budget"), std::string::npos) << output;
+  EXPECT_NE(output.find("alpha            active"), std::string::npos) << output;
+}
+
+// Issue 30: a server busy with heavy tiles once took more than 3 s to exit on SIGTERM. The
+// contract is the exit itself, clean, before the deadline; no latency is asserted.
+TEST_F(HostileServerTest, SigtermUnderAHeavyTileFloodExitsCleanlyWithinThreeSeconds) {
+  auto server = StartServer();
+  auto alpha = StartAlpha();
+  ASSERT_TRUE(server->WaitForOutput("robot alpha joined", kDeadline)) << server->Output();
+  // Tiles within the per-tile limits (their long walls paint about 3 tiles' worth of cells):
+  // admitted and fused, each costly, until the participant's painting burst is spent.
+  auto peer = StartPeer({"--flood", "--flood-vertices", "1000", "--flood-tiles", "40",
+                         "--flood-rate", "5", "--flood-origin", "50,50"});
+  ASSERT_TRUE(peer->WaitForOutput("flood:", kDeadline)) << peer->Output();
+  std::this_thread::sleep_for(seconds(4));  // a backlog of heavy tiles
+  server->Signal(SIGTERM);
+  const std::optional<int> exit_code = server->Wait(std::chrono::milliseconds(3000));
+  EXPECT_TRUE(exit_code.has_value()) << "still running 3 s after SIGTERM";
+  EXPECT_EQ(exit_code.value_or(-1), 0) << server->Output();
+  if (!exit_code) {
+    server->Signal(SIGKILL);
+    server->Wait(kDeadline);
+  }
+  peer->Signal(SIGINT);
+  peer->Wait(kDeadline);
+}
+
 }  // namespace
 }  // namespace fleetmap

@@ -1,5 +1,6 @@
 #include "common/transport/internal/vector_tile_codec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -29,7 +30,7 @@ enum Compression : uint8_t { kPlain = 0, kZstd = 1 };
 constexpr int kZstdLevel = 3;
 // No tile's geometry comes near this (a 10 m tile of 5 cm cells holds 40 000 cells); a larger
 // decompressed size is a hostile or broken sample, refused before anything is allocated.
-constexpr size_t kMaxGeometryBytes = size_t{4} << 20;
+constexpr size_t kMaxGeometryBytes = TileDecodeLimits{}.max_geometry_bytes;
 
 // The fewest bytes each element takes in the geometry, to bound counts by the bytes left before
 // anything is reserved: a vertex is two varints, a polyline its header, half width and two
@@ -74,8 +75,10 @@ class TileLattice {
     const double i = (point.x() - origin_.x()) / quantum_;
     const double j = (point.y() - origin_.y()) / quantum_;
     // Range first (NaN fails it too), then round half away from zero as std::round does.
-    if (!(i >= static_cast<double>(min_.first) - 0.5 && i <= static_cast<double>(max_.first) + 0.5 &&
-          j >= static_cast<double>(min_.second) - 0.5 && j <= static_cast<double>(max_.second) + 0.5)) {
+    if (!(i >= static_cast<double>(min_.first) - 0.5 &&
+          i <= static_cast<double>(max_.first) + 0.5 &&
+          j >= static_cast<double>(min_.second) - 0.5 &&
+          j <= static_cast<double>(max_.second) + 0.5)) {
       return InvalidArgumentError("a vertex at (" + std::to_string(point.x()) + ", " +
                                   std::to_string(point.y()) + ") lies outside its tile");
     }
@@ -131,8 +134,8 @@ Status CheckQuantum(double quantum, double tile_size) {
   const double steps = tile_size / quantum;
   if (!std::isfinite(quantum) || !(steps >= kMinStepsPerSide && steps <= kMaxStepsPerSide)) {
     return InvalidArgumentError("quantum " + std::to_string(quantum) + " m makes " +
-                                std::to_string(steps) + " steps of a " +
-                                std::to_string(tile_size) + " m tile side, not 1 to " +
+                                std::to_string(steps) + " steps of a " + std::to_string(tile_size) +
+                                " m tile side, not 1 to " +
                                 std::to_string(static_cast<int>(kMaxStepsPerSide)));
   }
   return Status::Ok();
@@ -242,9 +245,8 @@ class VertexReader {
     const auto y = static_cast<int64_t>(static_cast<uint64_t>(last_.second) + dy);
     if (!lattice_.Near(x, y)) {
       return InvalidArgumentError("the vertex ending at geometry byte " +
-                                  std::to_string(in_->offset()) + " lies at (" +
-                                  std::to_string(x) + ", " + std::to_string(y) +
-                                  ") lattice steps, outside its tile");
+                                  std::to_string(in_->offset()) + " lies at (" + std::to_string(x) +
+                                  ", " + std::to_string(y) + ") lattice steps, outside its tile");
     }
     last_ = {x, y};
     return lattice_.Decode(x, y);
@@ -254,6 +256,36 @@ class VertexReader {
   const TileLattice& lattice_;
   VarintReader* in_;
   std::pair<int64_t, int64_t> last_{0, 0};
+};
+
+// What the tile may still decode to: each count is taken from it before anything is reserved.
+class DecodeAllowance {
+ public:
+  explicit DecodeAllowance(const TileDecodeLimits& limits)
+      : vertices_(limits.max_vertices), rings_(limits.max_rings), limits_(limits) {}
+
+  Status TakeVertices(uint64_t n) {
+    if (n > vertices_) {
+      return ResourceExhaustedError("the tile has more than " +
+                                    std::to_string(limits_.max_vertices) +
+                                    " vertices, the most a tile may have");
+    }
+    vertices_ -= static_cast<size_t>(n);
+    return Status::Ok();
+  }
+  Status TakeRings(uint64_t n) {
+    if (n > rings_) {
+      return ResourceExhaustedError("the tile has more than " + std::to_string(limits_.max_rings) +
+                                    " free rings, the most a tile may have");
+    }
+    rings_ -= static_cast<size_t>(n);
+    return Status::Ok();
+  }
+
+ private:
+  size_t vertices_;
+  size_t rings_;
+  TileDecodeLimits limits_;
 };
 
 // A count read from the bytes, refused if the bytes left cannot hold that many elements.
@@ -268,7 +300,7 @@ StatusOr<uint32_t> ReadCount(VarintReader& in, size_t min_bytes_each, const char
 }
 
 Status DecodeObstacles(VarintReader& in, VertexReader& vertices, double half_width_step,
-                       vector_map::VectorMap* map) {
+                       DecodeAllowance& allowance, vector_map::VectorMap* map) {
   FLEETMAP_ASSIGN_OR_RETURN(const uint32_t polylines,
                             ReadCount(in, kMinPolylineBytes, "the polyline count"));
   map->obstacles.reserve(polylines);
@@ -288,6 +320,7 @@ Status DecodeObstacles(VarintReader& in, VertexReader& vertices, double half_wid
                                   " vertices, more than the " + std::to_string(in.remaining()) +
                                   " bytes left can hold");
     }
+    FLEETMAP_RETURN_IF_ERROR(allowance.TakeVertices(n));
     polyline.points.reserve(static_cast<size_t>(n));
     for (uint64_t i = 0; i < n; ++i) {
       FLEETMAP_ASSIGN_OR_RETURN(Point2 point, vertices.Read());
@@ -297,6 +330,7 @@ Status DecodeObstacles(VarintReader& in, VertexReader& vertices, double half_wid
   }
   FLEETMAP_ASSIGN_OR_RETURN(const uint32_t points,
                             ReadCount(in, kMinPointBytes, "the point obstacle count"));
+  FLEETMAP_RETURN_IF_ERROR(allowance.TakeVertices(points));
   map->obstacles.reserve(polylines + points);
   for (uint32_t k = 0; k < points; ++k) {
     Polyline point;
@@ -309,7 +343,8 @@ Status DecodeObstacles(VarintReader& in, VertexReader& vertices, double half_wid
   return Status::Ok();
 }
 
-Status DecodeFreeSpace(VarintReader& in, VertexReader& vertices, vector_map::VectorMap* map) {
+Status DecodeFreeSpace(VarintReader& in, VertexReader& vertices, DecodeAllowance& allowance,
+                       vector_map::VectorMap* map) {
   FLEETMAP_ASSIGN_OR_RETURN(const uint32_t polygons,
                             ReadCount(in, kMinPolygonBytes, "the free polygon count"));
   map->free_space.reserve(polygons);
@@ -317,6 +352,7 @@ Status DecodeFreeSpace(VarintReader& in, VertexReader& vertices, vector_map::Vec
     FLEETMAP_ASSIGN_OR_RETURN(const uint32_t size,
                               ReadCount(in, kMinVertexBytes, "a free ring's vertex count"));
     if (size == 0) return InvalidArgumentError("a free ring has no vertex");
+    FLEETMAP_RETURN_IF_ERROR(allowance.TakeVertices(size));
     ring->reserve(size);
     for (uint32_t i = 0; i < size; ++i) {
       FLEETMAP_ASSIGN_OR_RETURN(Point2 point, vertices.Read());
@@ -328,6 +364,7 @@ Status DecodeFreeSpace(VarintReader& in, VertexReader& vertices, vector_map::Vec
     FLEETMAP_ASSIGN_OR_RETURN(const uint32_t rings,
                               ReadCount(in, kMinRingBytes, "a free polygon's ring count"));
     if (rings == 0) return InvalidArgumentError("a free polygon has no outer ring");
+    FLEETMAP_RETURN_IF_ERROR(allowance.TakeRings(rings));
     FreePolygon polygon;
     FLEETMAP_RETURN_IF_ERROR(read_ring(&polygon.outer));
     polygon.holes.resize(rings - 1);
@@ -418,7 +455,7 @@ StatusOr<VectorTile_> ToIdl(const VectorTileMessage& message) {
   return out;
 }
 
-StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
+StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile, const TileDecodeLimits& limits) {
   FLEETMAP_RETURN_IF_ERROR(CheckHeader(tile));
   VectorTileMessage out;
   out.robot_id = RobotId{tile.robot_id()};
@@ -429,10 +466,16 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   out.map.frame_id = "fleet";
   out.map.epsilon = tile.epsilon();
   out.map.resolution = tile.resolution();
+  const size_t max_bytes = std::min(limits.max_geometry_bytes, kMaxGeometryBytes);
   std::vector<uint8_t> decompressed;
   if (tile.compression() == kZstd) {
+    // The frame states its size, checked against the limit before a byte is allocated.
     FLEETMAP_ASSIGN_OR_RETURN(decompressed,
-                              ZstdDecompress(tile.geometry(), kMaxGeometryBytes, "the geometry"));
+                              ZstdDecompress(tile.geometry(), max_bytes, "the geometry"));
+  } else if (tile.geometry().size() > max_bytes) {
+    return ResourceExhaustedError("the geometry takes " + std::to_string(tile.geometry().size()) +
+                                  " bytes, more than the " + std::to_string(max_bytes) +
+                                  " allowed");
   }
   const std::vector<uint8_t>& geometry =
       tile.compression() == kZstd ? decompressed : tile.geometry();
@@ -441,9 +484,10 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile) {
   FLEETMAP_ASSIGN_OR_RETURN(const TileLattice lattice, ReadLattice(in, out.tile, out.tile_size));
   out.map.lattice = {lattice.quantum(), lattice.origin()};
   VertexReader vertices(lattice, &in);
-  FLEETMAP_RETURN_IF_ERROR(
-      DecodeObstacles(in, vertices, vector_map::HalfWidthStep(out.map.epsilon), &out.map));
-  FLEETMAP_RETURN_IF_ERROR(DecodeFreeSpace(in, vertices, &out.map));
+  DecodeAllowance allowance(limits);
+  FLEETMAP_RETURN_IF_ERROR(DecodeObstacles(in, vertices, vector_map::HalfWidthStep(out.map.epsilon),
+                                           allowance, &out.map));
+  FLEETMAP_RETURN_IF_ERROR(DecodeFreeSpace(in, vertices, allowance, &out.map));
   if (in.remaining() != 0) {
     return InvalidArgumentError("the geometry has " + std::to_string(in.remaining()) +
                                 " bytes after its last polygon");

@@ -23,7 +23,9 @@ StatusOr<fleetmap_msgs::msg::dds_::VectorTile_> ToIdl(const VectorTileMessage& m
 // error naming what is wrong, never a crash or an allocation the bytes cannot pay for. The map
 // comes back as it was given to ToIdl (on the lattice it was sent on), except that obstacles come
 // in the order polylines, then point obstacles, and a closed polyline of fewer than 3 vertices
-// comes back open (the same segments).
-StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile);
+// comes back open (the same segments). `limits` bound what the tile may decode to; they are
+// checked before the memory is allocated; a tile past them is kResourceExhausted.
+StatusOr<VectorTileMessage> FromIdl(const fleetmap_msgs::msg::dds_::VectorTile_& tile,
+                                    const TileDecodeLimits& limits = {});
 
 }  // namespace fleetmap::transport

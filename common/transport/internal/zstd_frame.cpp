@@ -44,8 +44,9 @@ StatusOr<std::vector<uint8_t>> ZstdDecompress(std::span<const uint8_t> frame, si
     return InvalidArgumentError(what + " is a zstd frame that does not record its content size");
   }
   if (declared > max_bytes) {
-    return InvalidArgumentError(what + " would decompress to " + std::to_string(declared) +
-                                " bytes, more than the " + std::to_string(max_bytes) + " allowed");
+    return ResourceExhaustedError(what + " would decompress to " + std::to_string(declared) +
+                                  " bytes, more than the " + std::to_string(max_bytes) +
+                                  " allowed");
   }
   std::vector<uint8_t> bytes(static_cast<size_t>(declared));
   const size_t size = ZSTD_decompressDCtx(DecompressionContext(), bytes.data(), bytes.size(),

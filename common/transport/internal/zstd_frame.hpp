@@ -2,7 +2,8 @@
 
 // One zstd frame, both ways, for byte strings inside DDS samples. Decompression trusts nothing:
 // the frame must state its content size, which must be within the caller's limit, and must
-// decompress to exactly that many bytes; anything else is an error naming `what`.
+// decompress to exactly that many bytes; anything else is an error naming `what`
+// (kResourceExhausted when only the limit is exceeded).
 
 #include <cstddef>
 #include <cstdint>

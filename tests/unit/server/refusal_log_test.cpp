@@ -38,5 +38,31 @@ TEST(RefusalLogTest, ReasonsHaveNames) {
   EXPECT_STREQ(RefusalName(Refusal::kNotOwner), "not the owner");
 }
 
+TEST(RefusalLogTest, TwoThousandIdsOfOneParticipantLogNoMoreThanOneId) {
+  RefusalLog log("test");
+  const auto t0 = std::chrono::steady_clock::time_point(seconds(100));
+  for (int i = 0; i < 2000; ++i) {
+    std::string robot = "r";
+    robot += std::to_string(i);
+    // Each id's message differs (it names the id), as the server's do.
+    log.RefuseFrom("0102030405060708090a0b0c", robot, Refusal::kMemoryBudget, robot + " refused",
+                   t0);
+  }
+  EXPECT_EQ(log.lines_logged(), RefusalLog::kLinesPerPeriod);
+  EXPECT_EQ(log.count("r1999", Refusal::kMemoryBudget), 1u);  // still counted per robot
+  // The next period sums up what was left out in one line.
+  log.RefuseFrom("0102030405060708090a0b0c", "r0", Refusal::kMemoryBudget, "again",
+                 t0 + seconds(11));
+  EXPECT_EQ(log.lines_logged(), RefusalLog::kLinesPerPeriod + 2);
+  // Per robot (no participant known), each id has its own lines.
+  RefusalLog per_robot("test");
+  for (int i = 0; i < 100; ++i) {
+    std::string robot = "r";
+    robot += std::to_string(i);
+    per_robot.Refuse(robot, Refusal::kMemoryBudget, "refused", t0);
+  }
+  EXPECT_EQ(per_robot.lines_logged(), 100u);
+}
+
 }  // namespace
 }  // namespace fleetmap::server

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
-#include <cstring>
 #include <optional>
 #include <random>
 
@@ -311,8 +311,8 @@ TEST(VectorTileCodecTest, RealMapTilesRoundTrip) {
       VectorTileMessage message;
       message.tile = id;
       message.map = map;
-      const std::string where = name + " tile (" + std::to_string(id.x) + ", " +
-                                std::to_string(id.y) + ")";
+      const std::string where =
+          name + " tile (" + std::to_string(id.x) + ", " + std::to_string(id.y) + ")";
       const StatusOr<VectorTileIdl> idl = ToIdl(message);
       ASSERT_TRUE(idl.ok()) << where << ": " << idl.status();
       const StatusOr<VectorTileMessage> back = FromIdl(*idl);
@@ -324,8 +324,7 @@ TEST(VectorTileCodecTest, RealMapTilesRoundTrip) {
 }
 
 TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
-  const VectorTileIdl good =
-      Encoded(TileWith({Polyline{{At(0, 0), At(10, 0)}, false, 0.0}}));
+  const VectorTileIdl good = Encoded(TileWith({Polyline{{At(0, 0), At(10, 0)}, false, 0.0}}));
   const std::vector<std::pair<std::string, std::function<void(VectorTileIdl&)>>> cases = {
       {"layout_version is 6 (layouts 3 and 4 read so), this fleetmap reads 5",
        [](auto& t) { t.layout_version(6); }},
@@ -334,8 +333,7 @@ TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
       {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
       {"epsilon nan", [](auto& t) { t.epsilon(std::nanf("")); }},
       {"resolution -0.05", [](auto& t) { t.resolution(-0.05f); }},
-      {"the geometry is not a zstd frame",
-       [](auto& t) { t.compression(1); }},
+      {"the geometry is not a zstd frame", [](auto& t) { t.compression(1); }},
   };
   for (const auto& [message, breaker] : cases) {
     VectorTileIdl broken = good;
@@ -353,7 +351,8 @@ TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaim
       {"quantum nan", LatticeBytes(std::nan(""))},
       {"quantum -0.025", LatticeBytes(-0.025)},
       {"quantum 20.000000 m", LatticeBytes(20.0)},
-      {"the lattice origin flag is 2, neither 0 nor 1", [] {
+      {"the lattice origin flag is 2, neither 0 nor 1",
+       [] {
          std::vector<uint8_t> bytes = LatticeBytes(kQuantum);
          bytes.back() = 2;
          return bytes;
@@ -392,8 +391,8 @@ TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaim
 TEST(VectorTileCodecTest, EveryTruncationAndByteFlipIsAnErrorOrAValidTileNeverACrash) {
   std::vector<Polyline> walls;
   for (int i = 0; i < 30; ++i) {
-    walls.push_back(Polyline{{At(10 + i, 20), At(40, 20 + 3 * i), At(45 + i, 90)}, i % 2 == 0,
-                             Steps(i)});
+    walls.push_back(
+        Polyline{{At(10 + i, 20), At(40, 20 + 3 * i), At(45 + i, 90)}, i % 2 == 0, Steps(i)});
   }
   walls.push_back(Polyline{{At(3, 3)}, false, Steps(9)});
   const FreePolygon free{{At(0, 0), At(400, 0), At(400, 400)}, {{At(50, 50), At(60, 55)}}};
@@ -421,6 +420,55 @@ TEST(VectorTileCodecTest, EveryTruncationAndByteFlipIsAnErrorOrAValidTileNeverAC
     cut.geometry().resize(length);
     EXPECT_FALSE(FromIdl(cut).ok()) << "compressed, cut at " << length;
   }
+}
+
+}  // namespace
+}  // namespace fleetmap::transport
+
+namespace fleetmap::transport {
+namespace {
+
+// A zstd bomb as the probe sent it: a few KB on the wire, a million vertices decoded.
+VectorTileIdl ZstdBomb(size_t vertices) {
+  std::vector<Point2> ring;
+  ring.reserve(vertices);
+  for (size_t i = 0; i < vertices; ++i) ring.push_back(At(i % 2 == 0 ? 10 : 11, 10));
+  VectorTileIdl idl = Encoded(TileWith({}, {FreePolygon{std::move(ring), {}}}));
+  EXPECT_EQ(idl.compression(), 1);
+  return idl;
+}
+
+TEST(VectorTileCodecTest, AZstdBombIsRefusedByItsStatedSizeBeforeItIsInflated) {
+  const VectorTileIdl bomb = ZstdBomb(1'000'000);
+  EXPECT_LT(bomb.geometry().size(), 64u << 10);  // a few KB that inflate to megabytes
+  TileDecodeLimits limits;
+  limits.max_geometry_bytes = 256 << 10;
+  const StatusOr<VectorTileMessage> back = FromIdl(bomb, limits);
+  ASSERT_FALSE(back.ok());
+  // The frame's stated size is refused: nothing of that size was allocated.
+  EXPECT_THAT(back.status().message(), HasSubstr("would decompress to"));
+  EXPECT_THAT(back.status().message(), HasSubstr("more than the 262144 allowed"));
+  // Without the server's limits the same tile decodes (files and stores hold such tiles).
+  EXPECT_TRUE(FromIdl(bomb).ok());
+}
+
+TEST(VectorTileCodecTest, VerticesAndRingsPastTheLimitsAreRefusedBeforeTheyAreReserved) {
+  const VectorTileIdl many = ZstdBomb(40'000);
+  TileDecodeLimits limits;
+  limits.max_vertices = 32'768;
+  const StatusOr<VectorTileMessage> back = FromIdl(many, limits);
+  ASSERT_FALSE(back.ok());
+  EXPECT_THAT(back.status().message(), HasSubstr("more than 32768 vertices"));
+  limits.max_vertices = 40'000;
+  EXPECT_TRUE(FromIdl(many, limits).ok());  // exactly at the limit
+
+  std::vector<FreePolygon> rooms;
+  for (int i = 0; i < 5; ++i) rooms.push_back(FreePolygon{{At(i, 0), At(i, 5), At(i + 1, 5)}, {}});
+  TileDecodeLimits rings;
+  rings.max_rings = 4;
+  const StatusOr<VectorTileMessage> five = FromIdl(Encoded(TileWith({}, rooms)), rings);
+  ASSERT_FALSE(five.ok());
+  EXPECT_THAT(five.status().message(), HasSubstr("more than 4 free rings"));
 }
 
 }  // namespace
