@@ -74,8 +74,10 @@ class TileLattice {
     const double i = (point.x() - origin_.x()) / quantum_;
     const double j = (point.y() - origin_.y()) / quantum_;
     // Range first (NaN fails it too), then round half away from zero as std::round does.
-    if (!(i >= static_cast<double>(min_.first) - 0.5 && i <= static_cast<double>(max_.first) + 0.5 &&
-          j >= static_cast<double>(min_.second) - 0.5 && j <= static_cast<double>(max_.second) + 0.5)) {
+    if (!(i >= static_cast<double>(min_.first) - 0.5 &&
+          i <= static_cast<double>(max_.first) + 0.5 &&
+          j >= static_cast<double>(min_.second) - 0.5 &&
+          j <= static_cast<double>(max_.second) + 0.5)) {
       return InvalidArgumentError("a vertex at (" + std::to_string(point.x()) + ", " +
                                   std::to_string(point.y()) + ") lies outside its tile");
     }
@@ -131,8 +133,8 @@ Status CheckQuantum(double quantum, double tile_size) {
   const double steps = tile_size / quantum;
   if (!std::isfinite(quantum) || !(steps >= kMinStepsPerSide && steps <= kMaxStepsPerSide)) {
     return InvalidArgumentError("quantum " + std::to_string(quantum) + " m makes " +
-                                std::to_string(steps) + " steps of a " +
-                                std::to_string(tile_size) + " m tile side, not 1 to " +
+                                std::to_string(steps) + " steps of a " + std::to_string(tile_size) +
+                                " m tile side, not 1 to " +
                                 std::to_string(static_cast<int>(kMaxStepsPerSide)));
   }
   return Status::Ok();
@@ -242,9 +244,8 @@ class VertexReader {
     const auto y = static_cast<int64_t>(static_cast<uint64_t>(last_.second) + dy);
     if (!lattice_.Near(x, y)) {
       return InvalidArgumentError("the vertex ending at geometry byte " +
-                                  std::to_string(in_->offset()) + " lies at (" +
-                                  std::to_string(x) + ", " + std::to_string(y) +
-                                  ") lattice steps, outside its tile");
+                                  std::to_string(in_->offset()) + " lies at (" + std::to_string(x) +
+                                  ", " + std::to_string(y) + ") lattice steps, outside its tile");
     }
     last_ = {x, y};
     return lattice_.Decode(x, y);
@@ -352,6 +353,11 @@ Status CheckHeader(const VectorTile_& tile) {
                                 " is neither 0 (plain) nor 1 (zstd)");
   }
   if (tile.tile_size_mm() == 0) return InvalidArgumentError("tile_size_mm is 0");
+  // fastcdr writes a string up to its first NUL, so an id holding one would be another id (and
+  // another instance key) once written again: found by fuzz/tile_payload_fuzzer.cpp.
+  if (tile.robot_id().find('\0') != std::string::npos) {
+    return InvalidArgumentError("robot_id holds a NUL byte");
+  }
   if (!std::isfinite(tile.epsilon()) || tile.epsilon() <= 0.0f) {
     return InvalidArgumentError("epsilon " + std::to_string(tile.epsilon()) +
                                 " is not a positive distance");

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
-#include <cstring>
 #include <optional>
 #include <random>
 
@@ -282,6 +282,14 @@ TEST(VectorTileCodecTest, HalfWidthsTravelAsStepsOfEpsilonAndEpsilonAlwaysFits) 
   }
 }
 
+// Found by fuzz/tile_payload_fuzzer.cpp: fastcdr writes a string up to its first NUL, so such an
+// id would come back as another one.
+TEST(VectorTileCodecTest, RefusesARobotIdHoldingANul) {
+  VectorTileIdl idl = Encoded(TileWith({}));
+  idl.robot_id(std::string("al\0pha", 6));
+  EXPECT_THAT(FromIdl(idl).status().message(), HasSubstr("NUL"));
+}
+
 TEST(VectorTileCodecTest, WhatCannotTravelIsRefusedByTheWriter) {
   VectorTileMessage far = TileWith({Polyline{{At(0, 0), At(2000, 0)}, false, 0.0}});
   EXPECT_THAT(ToIdl(far).status().message(), HasSubstr("lies outside its tile"));
@@ -311,8 +319,8 @@ TEST(VectorTileCodecTest, RealMapTilesRoundTrip) {
       VectorTileMessage message;
       message.tile = id;
       message.map = map;
-      const std::string where = name + " tile (" + std::to_string(id.x) + ", " +
-                                std::to_string(id.y) + ")";
+      const std::string where =
+          name + " tile (" + std::to_string(id.x) + ", " + std::to_string(id.y) + ")";
       const StatusOr<VectorTileIdl> idl = ToIdl(message);
       ASSERT_TRUE(idl.ok()) << where << ": " << idl.status();
       const StatusOr<VectorTileMessage> back = FromIdl(*idl);
@@ -324,8 +332,7 @@ TEST(VectorTileCodecTest, RealMapTilesRoundTrip) {
 }
 
 TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
-  const VectorTileIdl good =
-      Encoded(TileWith({Polyline{{At(0, 0), At(10, 0)}, false, 0.0}}));
+  const VectorTileIdl good = Encoded(TileWith({Polyline{{At(0, 0), At(10, 0)}, false, 0.0}}));
   const std::vector<std::pair<std::string, std::function<void(VectorTileIdl&)>>> cases = {
       {"layout_version is 6 (layouts 3 and 4 read so), this fleetmap reads 5",
        [](auto& t) { t.layout_version(6); }},
@@ -334,8 +341,7 @@ TEST(VectorTileCodecTest, MalformedHeadersAreRefusedByName) {
       {"tile_size_mm is 0", [](auto& t) { t.tile_size_mm(0); }},
       {"epsilon nan", [](auto& t) { t.epsilon(std::nanf("")); }},
       {"resolution -0.05", [](auto& t) { t.resolution(-0.05f); }},
-      {"the geometry is not a zstd frame",
-       [](auto& t) { t.compression(1); }},
+      {"the geometry is not a zstd frame", [](auto& t) { t.compression(1); }},
   };
   for (const auto& [message, breaker] : cases) {
     VectorTileIdl broken = good;
@@ -353,7 +359,8 @@ TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaim
       {"quantum nan", LatticeBytes(std::nan(""))},
       {"quantum -0.025", LatticeBytes(-0.025)},
       {"quantum 20.000000 m", LatticeBytes(20.0)},
-      {"the lattice origin flag is 2, neither 0 nor 1", [] {
+      {"the lattice origin flag is 2, neither 0 nor 1",
+       [] {
          std::vector<uint8_t> bytes = LatticeBytes(kQuantum);
          bytes.back() = 2;
          return bytes;
@@ -392,8 +399,8 @@ TEST(VectorTileCodecTest, MalformedGeometryIsRefusedWithoutAllocatingWhatItClaim
 TEST(VectorTileCodecTest, EveryTruncationAndByteFlipIsAnErrorOrAValidTileNeverACrash) {
   std::vector<Polyline> walls;
   for (int i = 0; i < 30; ++i) {
-    walls.push_back(Polyline{{At(10 + i, 20), At(40, 20 + 3 * i), At(45 + i, 90)}, i % 2 == 0,
-                             Steps(i)});
+    walls.push_back(
+        Polyline{{At(10 + i, 20), At(40, 20 + 3 * i), At(45 + i, 90)}, i % 2 == 0, Steps(i)});
   }
   walls.push_back(Polyline{{At(3, 3)}, false, Steps(9)});
   const FreePolygon free{{At(0, 0), At(400, 0), At(400, 400)}, {{At(50, 50), At(60, 55)}}};
