@@ -1,6 +1,7 @@
 # The whole set-up on a fresh Debian bookworm machine:
 #   make run    installs what is missing, builds (Release), runs the simulated-fleet demo
 #   make test   the same set-up, then the whole test suite
+#   make fuzz   every fuzz target for FUZZ_SECONDS each (clang, libFuzzer; in $(FUZZ_DIR))
 # Everything else is plain CMake in $(BUILD_DIR).
 
 BUILD_DIR ?= build
@@ -9,7 +10,7 @@ JOBS ?= $(shell nproc)
 # CI turns warnings into errors.
 WERROR := $(if $(CI),ON,OFF)
 
-.PHONY: all deps configure build run view-demo demo-maps test clean format
+.PHONY: all deps configure build run view-demo demo-maps test fuzz-build fuzz clean format
 
 all: build
 
@@ -41,6 +42,19 @@ demo-maps: build
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+# The fuzz targets of fuzz/ (docs/testing.md, "Fuzzing"): a clang build of their own with ASan and
+# UBSan, then each target for FUZZ_SECONDS (one job each), one line per target; fails on a crash and
+# keeps the input in $(FUZZ_DIR)/fuzz/crashes/<target>/.
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 600
+fuzz-build: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_CXX_COMPILER=clang++ -DFLEETMAP_FUZZ=ON
+	cmake --build $(FUZZ_DIR) -j $(JOBS)
+
+fuzz: fuzz-build
+	bash scripts/run-fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD_DIR)

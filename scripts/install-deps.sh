@@ -19,6 +19,9 @@ packages=(
   # The web view (`fleetmap view`): its HTTP server and the page's map library; the view's tests
   # load the page in a real browser.
   libcpp-httplib-dev libjs-leaflet chromium
+  # The fuzz targets (`make fuzz`): clang and its libFuzzer, ASan and UBSan runtimes
+  # (libclang-rt-14-dev holds libclang_rt.fuzzer and the sanitizers for Debian's clang 14).
+  clang libclang-rt-14-dev
   # Tests and benchmarks.
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).

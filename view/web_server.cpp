@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 
 #include "view/gzip_stream.hpp"
+#include "view/request_path.hpp"
 
 namespace fleetmap::view {
 namespace {
@@ -127,11 +128,10 @@ void WebServer::AddRoutes() {
     response.set_header("Cache-Control", "no-store");
     response.set_content(*png, "image/png");
   });
-  // A path that tries to leave the static folder is answered like any other missing file (the
-  // library would refuse it too, with a 400).
+  // A path that could leave the static folder is answered like any other missing file (the
+  // library would refuse most of them too, with a 400).
   server.set_pre_routing_handler([](const httplib::Request& request, httplib::Response& response) {
-    if (request.path.find("..") == std::string::npos &&
-        request.path.find('\\') == std::string::npos) {
+    if (RoutePath(request.path) != PathRoute::kNotFound) {
       return httplib::Server::HandlerResponse::Unhandled;
     }
     response.status = 404;

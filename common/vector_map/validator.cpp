@@ -39,7 +39,8 @@ StatusOr<ValidationReport> Validator::Validate(const VectorMap& map,
   const double search2 = search * search;
   std::vector<double> nearest(static_cast<size_t>(rect.cell_count()), search2);
   for (const auto& [a, b] : segments) {
-    ForEachCellNearSegment(a, b, search, [&](int x, int y) {
+    // Captured by name: clang before 16 cannot capture a structured binding (C++20 allows it).
+    ForEachCellNearSegment(a, b, search, [&, &a = a, &b = b](int x, int y) {
       if (!rect.Contains(x, y)) return;
       double& best = nearest[static_cast<size_t>(y - rect.y0) * rect.width + (x - rect.x0)];
       best = std::min(best, PointSegmentDistanceSquared(Point2(x, y), a, b));

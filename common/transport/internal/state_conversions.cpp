@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "common/transport/internal/conversions.hpp"
@@ -45,6 +46,12 @@ double Angle(const Vector2& direction) { return std::atan2(direction.y(), direct
 Status CheckGrid(float resolution, uint32_t width, uint32_t height, size_t data_size) {
   if (!std::isfinite(resolution) || resolution <= 0.0F) {
     return InvalidArgumentError("resolution " + std::to_string(resolution) + " is not positive");
+  }
+  // A side of 0 makes any other side hold no cells: each side must also fit the grid's int.
+  if (width > static_cast<uint32_t>(std::numeric_limits<int32_t>::max()) ||
+      height > static_cast<uint32_t>(std::numeric_limits<int32_t>::max())) {
+    return InvalidArgumentError(std::to_string(width) + " x " + std::to_string(height) +
+                                " cells: a side is larger than a grid can be");
   }
   const uint64_t cells = static_cast<uint64_t>(width) * height;
   if (cells > kMaxCells) {

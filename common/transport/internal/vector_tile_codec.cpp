@@ -389,6 +389,11 @@ Status CheckHeader(const VectorTile_& tile) {
                                 " is neither 0 (plain) nor 1 (zstd)");
   }
   if (tile.tile_size_mm() == 0) return InvalidArgumentError("tile_size_mm is 0");
+  // fastcdr writes a string up to its first NUL, so an id holding one would be another id (and
+  // another instance key) once written again: found by fuzz/tile_payload_fuzzer.cpp.
+  if (tile.robot_id().find('\0') != std::string::npos) {
+    return InvalidArgumentError("robot_id holds a NUL byte");
+  }
   if (!std::isfinite(tile.epsilon()) || tile.epsilon() <= 0.0f) {
     return InvalidArgumentError("epsilon " + std::to_string(tile.epsilon()) +
                                 " is not a positive distance");

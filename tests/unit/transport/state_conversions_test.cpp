@@ -169,6 +169,19 @@ TEST(StateConversionsTest, RefusesSubmapsWhoseCountsDisagree) {
   EXPECT_FALSE(FromIdl(sample).ok());
 }
 
+// Found by fuzz/cdr_samples_fuzzer.cpp: a side above INT32_MAX with the other side 0 holds no
+// cells, so the counts agreed, and the grid's constructor stopped the process on a negative width.
+TEST(StateConversionsTest, RefusesASubmapSideLargerThanAGrid) {
+  SubmapMessage message;
+  message.submap.navigable = grid::OccupancyGrid(0, 0, 0.05);
+  auto sample = *ToIdl(message);
+  sample.width(0xa8000000u);
+  sample.height(0);
+  StatusOr<SubmapMessage> refused = FromIdl(sample);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("larger than a grid"), std::string::npos);
+}
+
 TEST(StateConversionsTest, ObjectModelRoundTripsAsPercent) {
   ObjectModelMessage message;
   message.object_id = 2;

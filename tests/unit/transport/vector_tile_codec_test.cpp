@@ -282,6 +282,14 @@ TEST(VectorTileCodecTest, HalfWidthsTravelAsStepsOfEpsilonAndEpsilonAlwaysFits) 
   }
 }
 
+// Found by fuzz/tile_payload_fuzzer.cpp: fastcdr writes a string up to its first NUL, so such an
+// id would come back as another one.
+TEST(VectorTileCodecTest, RefusesARobotIdHoldingANul) {
+  VectorTileIdl idl = Encoded(TileWith({}));
+  idl.robot_id(std::string("al\0pha", 6));
+  EXPECT_THAT(FromIdl(idl).status().message(), HasSubstr("NUL"));
+}
+
 TEST(VectorTileCodecTest, WhatCannotTravelIsRefusedByTheWriter) {
   VectorTileMessage far = TileWith({Polyline{{At(0, 0), At(2000, 0)}, false, 0.0}});
   EXPECT_THAT(ToIdl(far).status().message(), HasSubstr("lies outside its tile"));
