@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
   app.add_option("--learn-memory-budget", options.learning.memory_budget_mb,
                  "memory one object-learning run may use, MB (past it, it degrades and warns)")
       ->check(CLI::PositiveNumber);
+  bool no_quarantine = false;
+  app.add_flag("--no-quarantine", no_quarantine,
+               "fuse every robot's tiles, newer evidence winning, even where they contradict what "
+               "other robots established (docs/fleet.md, Quarantine)");
   bool no_prediction = false;
   app.add_flag("--no-extrapolation", no_prediction,
                "do not predict sub-maps from the entities robots publish");
@@ -149,6 +153,7 @@ int main(int argc, char** argv) {
   }
   options.learning.enabled = !no_learning;
   options.prediction.enabled = !no_prediction;
+  options.fusion.fusion.quarantine.enabled = !no_quarantine;
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

@@ -228,7 +228,8 @@ StatusOr<Outcome> RunScenario(const Scenario& scenario, const std::string& bin,
   argv.insert(argv.end(), scenario.offender_args.begin(), scenario.offender_args.end());
   process::Subprocess offender(std::move(argv), env);
   watcher->Follow(
-      std::chrono::seconds(6), [&] { return watcher->QuarantinedAt("offender").has_value(); }, on_map);
+      std::chrono::seconds(6), [&] { return watcher->QuarantinedAt("offender").has_value(); },
+      on_map);
   watcher->Follow(std::chrono::seconds(2), nullptr, on_map);
   if (const auto at = watcher->QuarantinedAt("offender")) {
     outcome.quarantined = true;

@@ -24,8 +24,8 @@ TEST(CliSimUnknownPosesTest, EveryRobotIsPlacedNearItsTruePose) {
   // A small office mapped quickly: both robots know most of it within seconds, which leaves a
   // loaded machine many registration retries before the run ends.
   const auto result =
-      RunFleetmap({"sim", "--unknown-poses", "--robots", "2", "--terrain", "office", "--size",
-                   "10", "--seed", "3", "--duration", "20", "--rate", "40", "--out", out});
+      RunFleetmap({"sim", "--unknown-poses", "--robots", "2", "--terrain", "office", "--size", "10",
+                   "--seed", "3", "--duration", "20", "--rate", "40", "--out", out});
   ASSERT_EQ(result.exit_code, 0) << result.output();
   EXPECT_THAT(result.out, HasSubstr("Unknown poses: 2 of 2 robots placed"));
   EXPECT_TRUE(std::filesystem::exists(out + "/placement.csv"));

@@ -61,26 +61,23 @@ class GivenFrameTest : public ::testing::Test {
 
 TEST_F(GivenFrameTest, RobotsGivenRotatedFramesAreFusedWhereTheirTransformsPutThemOnEveryWire) {
   // 40 m apart along x: no two overlap, all fit one fused grid.
-  std::vector<GivenRobot> robots = {{"turned30", 30.0, "tiles", {}},
-                                    {"turned90", 90.0, "tiles", {}},
-                                    {"turned180", 180.0, "tiles", {}},
-                                    {"turnedm135", -135.0, "tiles", {}},
-                                    {"gridwire", 30.0, "grid", {}},
-                                    {"patchwire", -135.0, "grid-updates-zstd", {}}};
+  std::vector<GivenRobot> robots = {
+      {"turned30", 30.0, "tiles", {}},   {"turned90", 90.0, "tiles", {}},
+      {"turned180", 180.0, "tiles", {}}, {"turnedm135", -135.0, "tiles", {}},
+      {"gridwire", 30.0, "grid", {}},    {"patchwire", -135.0, "grid-updates-zstd", {}}};
   Subprocess server({testing::kServerBinary, "--duration", "120", "--no-object-learning",
                      "--no-extrapolation", "--map-period", "0.5"},
                     env_);
   std::vector<std::unique_ptr<Subprocess>> agents;
   for (size_t i = 0; i < robots.size(); ++i) {
     GivenRobot& robot = robots[i];
-    robot.fleet_from_map = Pose2{40.0 * static_cast<double>(i) + 20.0, 20.0,
-                                 robot.yaw_deg * M_PI / 180.0};
+    robot.fleet_from_map =
+        Pose2{40.0 * static_cast<double>(i) + 20.0, 20.0, robot.yaw_deg * M_PI / 180.0};
     agents.push_back(std::make_unique<Subprocess>(
-        std::vector<std::string>{testing::kAgentBinary, "--robot-id", robot.id, "--map",
-                                 house_path_, "--wire", robot.wire, "--fleet-from-map",
-                                 std::to_string(robot.fleet_from_map.x),
-                                 std::to_string(robot.fleet_from_map.y),
-                                 std::to_string(robot.fleet_from_map.yaw)},
+        std::vector<std::string>{
+            testing::kAgentBinary, "--robot-id", robot.id, "--map", house_path_, "--wire",
+            robot.wire, "--fleet-from-map", std::to_string(robot.fleet_from_map.x),
+            std::to_string(robot.fleet_from_map.y), std::to_string(robot.fleet_from_map.yaw)},
         env_));
   }
 

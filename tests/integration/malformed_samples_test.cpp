@@ -277,8 +277,8 @@ TEST(MalformedSamplesTest, ServerRefusesBadPatchesAndKeepsServing) {
 
   transport::CompressedMapUpdate corrupt = *good;
   corrupt.data = {0x28, 0xb5, 0x2f, 0xfd, 0x20, 0x0c, 0xff, 0xff, 0xff, 0xff};
-  EXPECT_TRUE(RepeatUntilServerSays(send(corrupt), server, "4 x 3: data: zstd: Data corruption detected",
-                                    gamma_alive))
+  EXPECT_TRUE(RepeatUntilServerSays(send(corrupt), server,
+                                    "4 x 3: data: zstd: Data corruption detected", gamma_alive))
       << server.Output();
   transport::CompressedMapUpdate lying = *good;
   lying.raw_size = 4'000'000'000u;

@@ -191,8 +191,10 @@ TEST_F(StoreRestartTest, KilledServerRestartsToTheSameMapCellForCell) {
   ASSERT_TRUE(grid::SaveMap(BetaMap(), beta_path).ok());
 
   auto server = std::make_unique<Subprocess>(
+      // Newer evidence winning over a large contradiction is what this test checks survives a
+      // restart; quarantine would keep beta's view out (QuarantineTest covers that).
       std::vector<std::string>{kServer, "--store", store, "--no-object-learning",
-                               "--no-extrapolation"},
+                               "--no-extrapolation", "--no-quarantine"},
       env_);
   ASSERT_TRUE(server->WaitForOutput("listening", kDeadline)) << server->Output();
   auto alpha = StartAgent("alpha", alpha_path);
@@ -244,8 +246,9 @@ TEST_F(StoreRestartTest, KilledServerRestartsToTheSameMapCellForCell) {
   ASSERT_EQ(server->Wait(kDeadline), 128 + SIGKILL);
   server.reset();
 
-  Subprocess restarted({kServer, "--store", store, "--no-object-learning", "--no-extrapolation"},
-                       env_);
+  Subprocess restarted(
+      {kServer, "--store", store, "--no-object-learning", "--no-extrapolation", "--no-quarantine"},
+      env_);
   ASSERT_TRUE(restarted.WaitForOutput("restored", kDeadline)) << restarted.Output();
   EXPECT_TRUE(restarted.WaitForOutput("not closed by its last writer", kDeadline))
       << restarted.Output();
