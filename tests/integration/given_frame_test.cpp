@@ -21,6 +21,7 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/topics.hpp"
 #include "tests/integration/fleet_binaries.hpp"
+#include "tests/integration/loopback_participant.hpp"
 #include "tests/integration/map_agreement.hpp"
 
 namespace fleetmap {
@@ -81,11 +82,7 @@ TEST_F(GivenFrameTest, RobotsGivenRotatedFramesAreFusedWhereTheirTransformsPutTh
         env_));
   }
 
-  transport::ParticipantOptions options;
-  options.domain_id = domain_;
-  options.localhost_only = true;
-  options.intraprocess_delivery = false;
-  auto participant = transport::Participant::Create(options);
+  auto participant = testing::LoopbackParticipant(domain_);
   ASSERT_TRUE(participant.ok()) << participant.status();
   auto wake_up = std::make_shared<WakeUp>();
   auto maps =

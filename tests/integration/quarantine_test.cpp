@@ -23,6 +23,7 @@
 #include "common/transport/topics.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
+#include "tests/integration/loopback_participant.hpp"
 
 namespace fleetmap {
 namespace {
@@ -68,11 +69,7 @@ class QuarantineTest : public ::testing::Test {
   void SetUp() override {
     domain_ = RandomDomainId();
     env_ = {{"FLEETMAP_DOMAIN", std::to_string(domain_)}, {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-    transport::ParticipantOptions options;
-    options.domain_id = domain_;
-    options.localhost_only = true;
-    options.intraprocess_delivery = false;
-    auto participant = transport::Participant::Create(options);
+    auto participant = testing::LoopbackParticipant(domain_);
     ASSERT_TRUE(participant.ok()) << participant.status();
     participant_ = std::move(participant).value();
     auto maps =

@@ -15,21 +15,12 @@
 #include "common/process/subprocess.hpp"
 #include "common/transport/participant.hpp"
 #include "tests/integration/fleet_binaries.hpp"
+#include "tests/integration/loopback_participant.hpp"
 
 namespace fleetmap::testing {
 
 inline const std::string kViewTestMap =
     std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml";
-
-// The test's own participant on `domain`: loopback only, and never delivering to itself inside
-// the process, so that what it reads came over the wire from the fleet's processes.
-inline StatusOr<std::unique_ptr<transport::Participant>> LoopbackParticipant(int domain) {
-  transport::ParticipantOptions options;
-  options.domain_id = domain;
-  options.localhost_only = true;
-  options.intraprocess_delivery = false;
-  return transport::Participant::Create(options);
-}
 
 // `fleetmap view --port 0` on `domain`; port() is read from the URL it prints.
 class ViewProcess {
