@@ -89,12 +89,13 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   worker->sync_ = std::make_unique<StoreSync>(worker->store_.get(), StoreSync::Options{});
   if (worker->store_ != nullptr) FLEETMAP_RETURN_IF_ERROR(worker->Restore());
   worker->sessions_ =
-      std::make_unique<SessionArchive>(options.fusion.tile_size, worker->store_.get());
+      std::make_unique<SessionArchive>(options.fusion.tile_size, worker->store_.get(),
+                                       options.sessions_in_memory);
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<std::string> skipped, worker->sessions_->Restore());
   for (const std::string& warning : skipped) {
     spdlog::warn("server: skipping a stored mapping session: {}", warning);
   }
-  worker->stats_.sessions_finished = worker->sessions_->finished().size();
+  worker->stats_.sessions_finished = worker->sessions_->finished_count();
   return worker;
 }
 
@@ -109,6 +110,19 @@ FusionWorker::~FusionWorker() {
 }
 
 Status FusionWorker::Restore() {
+  // An operator's admission outlives a restart: admitted before their evidence comes back, the
+  // robots are never weighed into quarantine again.
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::AdmissionRecord> admissions,
+                            store_->Admissions());
+  std::vector<std::string> admitted;
+  for (const store::AdmissionRecord& admission : admissions) {
+    fusion_.AdmitRobot(admission.robot);
+    admitted.push_back(admission.robot.value);
+  }
+  if (!admitted.empty()) {
+    spdlog::info("server: {} robot(s) admitted by an operator before: {}", admitted.size(),
+                 fmt::join(admitted, ", "));
+  }
   FLEETMAP_ASSIGN_OR_RETURN(const StoreSync::Restored restored, sync_->Restore(&fusion_));
   for (const std::string& skipped : restored.skipped) {
     spdlog::warn("server: skipping a stored tile: {}", skipped);
@@ -193,9 +207,16 @@ void FusionWorker::AtStop() {
 
 void FusionWorker::HandleRobotRecords() {
   std::vector<store::RobotRecord> records = robot_records_.Drain();
+  std::vector<std::string> discarded;
   for (const store::RobotRecord& robot : records) {
     if (robot.state == "active") {
       sessions_->Rejoin(robot.robot);
+      continue;
+    }
+    if (const std::string why = WhySessionIsNotKept(robot.robot); !why.empty()) {
+      cut_sessions_.erase(robot.robot);
+      const size_t tiles = sessions_->DiscardSession(robot.robot);
+      if (tiles > 0) discarded.push_back(fmt::format("{} ({} tiles: {})", robot.robot.value, tiles, why));
       continue;
     }
     const Timestamp ended{
@@ -213,9 +234,19 @@ void FusionWorker::HandleRobotRecords() {
     }
     {
       std::lock_guard lock(stats_mutex_);
-      stats_.sessions_finished = sessions_->finished().size();
+      stats_.sessions_finished = sessions_->finished_count();
     }
     if (on_sessions_) on_sessions_(sessions_->finished());
+  }
+  if (!discarded.empty()) {
+    // One line a round however many ids end: a flood of ids must not flood the log.
+    constexpr size_t kNamed = 3;
+    const size_t named = std::min(discarded.size(), kNamed);
+    spdlog::info("server: {} mapping session(s) not kept for object learning: {}{}",
+                 discarded.size(),
+                 fmt::join(discarded.begin(), discarded.begin() + static_cast<std::ptrdiff_t>(named), "; "),
+                 discarded.size() > named ? fmt::format(" and {} more", discarded.size() - named)
+                                          : std::string());
   }
   if (store_ == nullptr) return;
   for (store::RobotRecord& robot : records) {
@@ -260,6 +291,7 @@ void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::strin
   // A name that is not a robot name (empty, too long) is not used as a key anywhere.
   const bool named = IsValidRobotName(robot.value);
   refusals_.RefuseFrom(participant, named ? robot.value : std::string(), reason, detail);
+  if (CutsTheMap(reason) && sessions_->has_open_session(robot)) cut_sessions_.insert(robot);
   std::lock_guard lock(stats_mutex_);
   ++stats_.refusals_by_reason[RefusalName(reason)];
   if (!named) {
@@ -267,6 +299,16 @@ void FusionWorker::Refuse(const RobotId& robot, Refusal reason, const std::strin
     return;
   }
   ++stats_.robots[robot].rejected;
+}
+
+std::string FusionWorker::WhySessionIsNotKept(const RobotId& robot) const {
+  if (cut_sessions_.count(robot) > 0) {
+    return "a budget refused some of its tiles, so the server does not hold its map whole";
+  }
+  if (fusion_.TrustOf(robot).standing == fusion::Standing::kQuarantined) {
+    return "it is quarantined, its map contradicts the fleet's";
+  }
+  return {};
 }
 
 void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
@@ -365,10 +407,28 @@ void FusionWorker::HandleAdmissions() {
     const bool quarantined =
         fusion_.TrustOf(admission.robot).standing == fusion::Standing::kQuarantined;
     if (!fusion_.AdmitRobot(admission.robot)) continue;  // admitted before: nothing changes
+    StoreAdmission(admission);
     spdlog::warn("server: robot {} admitted by {}{}; its tiles are fused from now on",
                  admission.robot.value,
                  admission.operator_name.empty() ? "an operator" : admission.operator_name,
                  quarantined ? " out of quarantine" : " (it was not quarantined)");
+  }
+}
+
+void FusionWorker::StoreAdmission(const transport::RobotAdmissionMessage& admission) {
+  if (store_ == nullptr) return;
+  const int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             Clock::now().time_since_epoch())
+                             .count();
+  const Status stored =
+      store_->PutAdmission({admission.robot, admission.operator_name, now_ns});
+  if (!stored.ok()) {
+    // It holds until this server stops; the operator is told it will not outlive a restart.
+    spdlog::error("server: map store: the admission of {} is not stored (it holds until the "
+                  "server stops): {}",
+                  admission.robot.value, stored.message());
+    std::lock_guard lock(stats_mutex_);
+    ++stats_.store_errors;
   }
 }
 
@@ -718,6 +778,16 @@ PlacementJob FusionWorker::MakePlacementJob(const RobotId& robot) const {
   return job;
 }
 
+vector_map::VectorMap FusionWorker::GroupMap(const PlacementGroup& group) const {
+  vector_map::VectorMap map = map_frames_.MapOf(group.root);
+  for (const auto& [member, root_from_member] : group.root_from_member) {
+    if (member == group.root) continue;
+    map.Append(vector_map::Transformed(map_frames_.MapOf(member), root_from_member.ToTransform(),
+                                       map.frame_id));
+  }
+  return map;
+}
+
 void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point now) {
   if (placer_->Busy()) return;
   const std::vector<RobotId> robots = map_frames_.robots();
@@ -738,19 +808,32 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
               turn.end());
   for (const RobotId& robot : turn) {
     if (map_frames_.tile_count(robot) == 0) continue;
-    // Against the fleet map without the robot (unplaced: to place it; placed: to check it).
+    // Against the fleet map without the robot (unplaced: to place it; placed: to check it). An
+    // unplaced robot registered to other unplaced ones goes as its group: their maps merged in
+    // the root's frame, so that what they mapped together meets the fleet map. Only the root
+    // registers the group; placing it places the others (RobotPlacer::PlaceFollowers).
     PlacementJob job = MakePlacementJob(robot);
     job.current = map_frames_.placement(robot);
     job.target_changes = fused_revisions_;
-    if (placer_->Due(robot, RobotId{}, job.map_changes, job.target_changes, now)) {
+    const PlacementGroup group = placer_->GroupOf(robot);
+    for (const auto& [member, unused] : group.root_from_member) {
+      if (member != robot) {
+        job.group.push_back(member);
+        job.map_changes += map_frames_.changes(member);
+      }
+    }
+    if (group.root == robot &&
+        placer_->Due(robot, RobotId{}, job.map_changes, job.target_changes, now)) {
       job.target = fusion_.FusedGrid(nullptr, &robot);
       if (!HasOccupiedCell(job.target)) continue;  // the robot alone: nothing to register on
-      job.map = map_frames_.MapOf(robot);
+      job.map = GroupMap(group);
       last_registered_ = robot;
       placer_->Submit(std::move(job), now);
       return;
     }
     if (job.current) continue;
+    job.group.clear();
+    job.map_changes = map_frames_.changes(robot);
     // Not on the fleet map (yet): perhaps on another unplaced robot's.
     for (const RobotId& other : placer_->UnplacedOthers(robot)) {
       job.target_robot = other;

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 
 #include "common/core/ids.hpp"
@@ -51,6 +52,9 @@ struct FusionWorkerOptions {
   std::chrono::milliseconds unclaimed_wait{std::chrono::seconds(10)};
   // How robots whose tiles come in their own map frame are placed.
   PlacementOptions placement;
+  // Finished mapping sessions kept in memory for the object learner (the newest; the store keeps
+  // them all).
+  size_t sessions_in_memory = 12;
 
   // The fusion and admission options' own checks.
   Status Validate() const;
@@ -174,6 +178,11 @@ class FusionWorker {
   // `participant`: who sent it, when known (the log is rate-limited per participant).
   void Refuse(const RobotId& robot, Refusal reason, const std::string& detail,
               const std::string& participant = {});
+  // Why the robot's mapping session, ending now, is not a map of the place to learn objects
+  // from (empty: it is kept).
+  std::string WhySessionIsNotKept(const RobotId& robot) const;
+  // Keeps an operator's admission in the store, so that it outlives a restart.
+  void StoreAdmission(const transport::RobotAdmissionMessage& admission);
   void RemoveTile(const RobotId& robot, const TileId& tile);
   // The robot's tile leaves fusion, its session and (as a removal) the store.
   void DropTileData(const RobotId& robot, const TileId& tile);
@@ -204,6 +213,8 @@ class FusionWorker {
   void HandlePlacements(std::chrono::steady_clock::time_point now);
   // The robot's frame is given: published as such, and its map-frame tiles (if any) placed there.
   void GiveFrame(const RobotId& robot, const Pose2& fleet_from_map);
+  // The maps of a group's members merged in its root's map frame.
+  vector_map::VectorMap GroupMap(const PlacementGroup& group) const;
   void ScheduleRegistration(std::chrono::steady_clock::time_point now);
   // A job for `robot` without its maps (they are copied only once it is due).
   PlacementJob MakePlacementJob(const RobotId& robot) const;
@@ -232,6 +243,8 @@ class FusionWorker {
   FairTileQueue<PendingTile, std::string, std::pair<RobotId, TileId>> queue_;  // worker thread
 
   std::map<RobotId, std::map<TileId, HeldTile>> held_;  // worker thread only
+  // Robots whose open session lost tiles to a budget (CutsTheMap): not kept when it ends.
+  std::set<RobotId> cut_sessions_;
   RefusalLog refusals_{"server"};                       // worker thread only
   std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)
   bool map_dirty_ = false;                              // worker thread only

@@ -36,6 +36,11 @@ const char* RefusalName(Refusal refusal) {
   return "unknown";
 }
 
+bool CutsTheMap(Refusal refusal) {
+  return refusal == Refusal::kTileQuota || refusal == Refusal::kDecodedSize ||
+         refusal == Refusal::kMemoryBudget;
+}
+
 void RefusalLog::Refuse(const std::string& robot, Refusal reason, const std::string& detail,
                         std::chrono::steady_clock::time_point now) {
   RefuseFrom(std::string(), robot, reason, detail, now);

@@ -27,6 +27,9 @@ enum class Refusal {
 };
 
 const char* RefusalName(Refusal refusal);
+// Whether refusing a tile for this reason leaves the server without the robot's whole map (it can
+// never hold it), rather than delaying or dropping one revision.
+bool CutsTheMap(Refusal refusal);
 
 // Counts every refusal per robot and reason, and logs them without letting a flood fill the log:
 // per source and `period`, each distinct message is logged once and at most kLinesPerPeriod

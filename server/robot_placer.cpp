@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "common/vector_map/rasterizer.hpp"
 
@@ -134,6 +135,7 @@ void RobotPlacer::Forget(const RobotId& robot) {
   }
   frames_.erase(it);
   followers_.erase(robot);
+  evidence_.Forget(robot);
   last_refusal_log_.erase(robot);
   std::erase_if(attempts_, [&](const auto& entry) { return entry.first.first == robot; });
 }
@@ -148,7 +150,10 @@ bool RobotPlacer::Due(const RobotId& robot, const RobotId& target, uint64_t map_
   const bool map_changed = attempt->second.map_changes != map_changes;
   if (placed) return map_changed && now - attempt->second.at >= options_.check_period;
   const bool target_changed = attempt->second.target_changes != target_changes;
-  return (map_changed || target_changed) && now - attempt->second.at >= options_.retry_period;
+  // A placement found once is registered again to confirm it, grown map or not.
+  const bool confirming = evidence_.Pending(robot, target);
+  return (map_changed || target_changed || confirming) &&
+         now - attempt->second.at >= options_.retry_period;
 }
 
 void RobotPlacer::Submit(PlacementJob job, std::chrono::steady_clock::time_point now) {
@@ -221,26 +226,41 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
     return std::nullopt;
   }
   const registration::Registration& found = *result.registration;
-  if (!found.found || found.confidence < options_.min_confidence) {
+  const auto frame = frames_.find(job.robot);
+  if (frame == frames_.end()) return std::nullopt;  // forgotten meanwhile
+  const bool at_bar = found.found && found.confidence >= options_.min_confidence;
+  const std::string why_not = found.found ? fmt::format("confidence {:.2f} is below {:.2f}",
+                                                        found.confidence, options_.min_confidence)
+                                          : found.why_not;
+  if (!frame->second.placed()) {
+    // The sequential test: placed only when the same placement keeps winning.
+    const PlacementEvidence::Verdict verdict = evidence_.Observe(
+        job.robot, job.target_robot,
+        {found.a_from_b, result.map_centre, at_bar, found.confidence, why_not});
+    if (!verdict.place) {
+      Waiting(job.robot, (job.target_robot.value.empty() ? "on the fleet map: " : "on robot " +
+                                                               job.target_robot.value + ": ") +
+                             verdict.why);
+      if (at_bar) {
+        spdlog::debug("server: robot {} on {}: {}", job.robot.value, against, verdict.why);
+        return std::nullopt;
+      }
+    }
+  }
+  if (!at_bar) {
     // Every try at debug level; at info, what keeps a robot unplaced, every 10 s at most.
-    const std::string why = found.found ? fmt::format("confidence {:.2f} is below {:.2f}",
-                                                      found.confidence, options_.min_confidence)
-                                        : found.why_not;
     const auto now = std::chrono::steady_clock::now();
     auto& last = last_refusal_log_[job.robot];
-    const bool placed = frames_.count(job.robot) > 0 && frames_.at(job.robot).placed();
-    if (!placed && now - last >= kRefusalLogPeriod) {
+    if (!frame->second.placed() && now - last >= kRefusalLogPeriod) {
       last = now;
       spdlog::info("server: robot {} not placed on {} yet ({} ms): {}", job.robot.value, against,
-                   result.took.count(), why);
+                   result.took.count(), why_not);
     } else {
       spdlog::debug("server: robot {} not placed on {} ({} ms): {}", job.robot.value, against,
-                    result.took.count(), why);
+                    result.took.count(), why_not);
     }
     return std::nullopt;
   }
-  const auto frame = frames_.find(job.robot);
-  if (frame == frames_.end()) return std::nullopt;  // forgotten meanwhile
   const std::optional<Pose2> now_placed = placement_of(job.robot);
 
   Pose2 fleet_from_map = found.a_from_b;
@@ -264,6 +284,7 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   }
 
   transport::RobotFrameMessage placed = frame->second;
+  placed.waiting_reason.clear();
   placed.fleet_from_map = fleet_from_map;
   placed.confidence = found.confidence;
   placed.overlap = found.overlap;
@@ -283,15 +304,31 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
         job.robot.value, (was - is).norm(), Degrees(yaw), found.confidence);
   } else {
     placed.state = transport::RobotFrameMessage::State::kPlaced;
+    std::string with_group;
+    for (const RobotId& member : job.group) {
+      with_group += with_group.empty() ? " with the map of its group (" : ", ";
+      with_group += member.value;
+    }
+    if (!with_group.empty()) with_group += ")";
     spdlog::info(
-        "server: robot {} placed on {} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}, "
+        "server: robot {} placed on {}{} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}, "
         "overlap {:.2f} ({} ms)",
-        job.robot.value, against, fleet_from_map.x, fleet_from_map.y, Degrees(fleet_from_map.yaw),
-        found.confidence, found.overlap, result.took.count());
+        job.robot.value, against, with_group, fleet_from_map.x, fleet_from_map.y,
+        Degrees(fleet_from_map.yaw), found.confidence, found.overlap, result.took.count());
   }
   ++placed.placements;
   Publish(std::move(placed));
   return Decision{job.robot, fleet_from_map};
+}
+
+void RobotPlacer::Waiting(const RobotId& robot, const std::string& why) {
+  const auto frame = frames_.find(robot);
+  if (frame == frames_.end() || frame->second.placed() || frame->second.waiting_reason == why) {
+    return;
+  }
+  transport::RobotFrameMessage waiting = frame->second;
+  waiting.waiting_reason = why;
+  Publish(std::move(waiting));
 }
 
 void RobotPlacer::PlaceFollowers(const RobotId& placed_robot, const Pose2& placement,
@@ -314,6 +351,7 @@ void RobotPlacer::PlaceFollowers(const RobotId& placed_robot, const Pose2& place
     const Pose2 fleet_from_map = Pose2::FromTransform(placement.ToTransform() * placed_from_other);
     transport::RobotFrameMessage placed = frame->second;
     placed.state = transport::RobotFrameMessage::State::kPlaced;
+    placed.waiting_reason.clear();
     placed.fleet_from_map = fleet_from_map;
     placed.confidence = link.confidence;
     placed.overlap = link.overlap;
@@ -329,11 +367,25 @@ void RobotPlacer::PlaceFollowers(const RobotId& placed_robot, const Pose2& place
 }
 
 std::vector<RobotId> RobotPlacer::UnplacedOthers(const RobotId& robot) const {
+  const PlacementGroup group = GroupOf(robot);
   std::vector<RobotId> out;
   for (const auto& [other, frame] : frames_) {
-    if (other != robot && !frame.placed()) out.push_back(other);
+    if (!frame.placed() && group.root_from_member.count(other) == 0) out.push_back(other);
   }
   return out;
+}
+
+PlacementGroup RobotPlacer::GroupOf(const RobotId& robot) const {
+  std::set<RobotId> placed;
+  for (const auto& [other, frame] : frames_) {
+    if (frame.placed()) placed.insert(other);
+  }
+  if (placed.count(robot) > 0) return PlacementGroup{robot, {{robot, Pose2{}}}};
+  std::vector<RobotLink> links;
+  for (const auto& [follower, link] : followers_) {
+    links.push_back(RobotLink{follower, link.leader, link.leader_from_map});
+  }
+  return server::GroupOf(robot, links, placed);
 }
 
 bool RobotPlacer::IsGiven(const RobotId& robot) const {
@@ -371,6 +423,7 @@ Status PlacementOptions::Validate() const {
   if (retry_period.count() < 0 || check_period.count() < 0 || tf_period.count() <= 0) {
     return InvalidArgumentError("placement periods must not be negative (tf_period > 0)");
   }
+  if (confirmations < 1) return InvalidArgumentError("placement confirmations must be >= 1");
   if (!(revise_distance > 0.0) || !(revise_yaw_deg > 0.0)) {
     return InvalidArgumentError("placement revise_distance and revise_yaw_deg must be > 0");
   }
@@ -384,6 +437,7 @@ void PlacementOptions::Describe(OptionsPrinter& out) const {
   out.Add("check_period", check_period);
   out.Add("revise_distance", revise_distance);
   out.Add("revise_yaw_deg", revise_yaw_deg);
+  out.Add("confirmations", confirmations);
   out.Add("tf_period", tf_period);
 }
 

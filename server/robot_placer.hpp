@@ -21,6 +21,8 @@
 #include "common/transport/participant.hpp"
 #include "common/transport/tf_topic.hpp"
 #include "common/vector_map/vector_map.hpp"
+#include "server/placement_evidence.hpp"
+#include "server/placement_groups.hpp"
 
 namespace fleetmap::server {
 
@@ -40,6 +42,10 @@ struct PlacementOptions {
   // the robot map's centre and degrees.
   double revise_distance = 0.15;
   double revise_yaw_deg = 1.5;
+  // An unplaced robot is placed when this many registrations in a row (of its growing map, on the
+  // same target) found the same placement at the bar: the sequential test of PlacementEvidence.
+  // A robot whose map stopped growing is registered again after retry_period to confirm.
+  int confirmations = 2;
   // rt/tf is published this often (tf2 listeners forget a transform after about 10 s).
   std::chrono::milliseconds tf_period{500};
 
@@ -57,6 +63,9 @@ struct PlacementJob {
   vector_map::VectorMap target_map;
   double resolution = 0.05;
   RobotId target_robot;          // empty: the fleet map
+  // When `robot` registers for its group (PlacementGroup, the root): the other members, whose
+  // maps `map` holds too, in the robot's frame.
+  std::vector<RobotId> group;
   std::optional<Pose2> current;  // the robot's placement when checking it
   uint64_t map_changes = 0;      // MapFrameRobots::changes() when the job was made
   uint64_t target_changes = 0;   // the target's, likewise (fused tile revisions for the fleet)
@@ -115,8 +124,12 @@ class RobotPlacer {
 
   // Every robot's frame as last published.
   const std::map<RobotId, transport::RobotFrameMessage>& frames() const { return frames_; }
-  // Robots other than `robot` whose maps are not placed (candidates to register against).
+  // Robots other than `robot` whose maps are not placed (candidates to register against), and
+  // not in its group.
   std::vector<RobotId> UnplacedOthers(const RobotId& robot) const;
+  // The unplaced robots registered to `robot` and to each other, as one group (itself alone
+  // when it has no links, or is placed).
+  PlacementGroup GroupOf(const RobotId& robot) const;
   // The robot's frame was given (--fleet-from-map, a transforms file): never registered, moved
   // or revised.
   bool IsGiven(const RobotId& robot) const;
@@ -124,12 +137,16 @@ class RobotPlacer {
   bool AnyPlaced() const;
 
  private:
-  explicit RobotPlacer(const PlacementOptions& options) : options_(options) {}
+  explicit RobotPlacer(const PlacementOptions& options)
+      : options_(options),
+        evidence_({options.confirmations, options.revise_distance, options.revise_yaw_deg}) {}
 
   // Runs on the registration thread.
   void Work();
   void Publish(transport::RobotFrameMessage frame);
   std::optional<Decision> DecideOne(const PlacementResult& result, const PlacementOf& placement_of);
+  // Says on robot_frames why an unplaced robot waits (published when it changed).
+  void Waiting(const RobotId& robot, const std::string& why);
   // Robots registered to `placed_robot` (or it to them) while unplaced are placed with it.
   void PlaceFollowers(const RobotId& placed_robot, const Pose2& placement,
                       std::vector<Decision>* decisions);
@@ -155,6 +172,7 @@ class RobotPlacer {
   std::map<RobotId, fusion::TrustReport> standings_;         // robots not trusted, or no longer
   std::map<std::pair<RobotId, RobotId>, Attempt> attempts_;  // by (robot, target)
   std::map<RobotId, Follower> followers_;
+  PlacementEvidence evidence_;
   std::chrono::steady_clock::time_point last_tf_{};
   static constexpr std::chrono::seconds kRefusalLogPeriod{10};
   std::map<RobotId, std::chrono::steady_clock::time_point> last_refusal_log_;

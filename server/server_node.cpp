@@ -62,6 +62,8 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   }
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
                                                       *node->participant_, node->wake_up_));
+  // The sessions in memory are the learner's input: as many as it reads.
+  node->options_.fusion.sessions_in_memory = node->options_.learning.max_sessions;
   FLEETMAP_ASSIGN_OR_RETURN(
       node->fusion_worker_,
       FusionWorker::Create(*node->participant_, node->options_.fusion, node->registry_));

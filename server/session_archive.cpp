@@ -26,8 +26,8 @@ StatusOr<std::vector<std::string>> SessionArchive::Restore() {
       warnings.push_back(map.status().message());
       continue;
     }
-    finished_.push_back({record.id, record.robot, FromNanoseconds(record.started_ns),
-                         FromNanoseconds(record.ended_ns), *std::move(map)});
+    Keep({record.id, record.robot, FromNanoseconds(record.started_ns),
+          FromNanoseconds(record.ended_ns), *std::move(map)});
     next_memory_id_ = std::max(next_memory_id_, record.id + 1);
   }
   return warnings;
@@ -86,9 +86,28 @@ StatusOr<std::optional<MappingSession>> SessionArchive::EndSession(const RobotId
     }
   }
   next_memory_id_ = session.id + 1;
-  finished_.push_back(session);
+  Keep(session);
   if (!stored.ok()) return stored;
   return std::optional<MappingSession>(std::move(session));
+}
+
+size_t SessionArchive::DiscardSession(const RobotId& robot) {
+  held_.erase(robot);
+  closed_.insert(robot);
+  const auto it = open_.find(robot);
+  if (it == open_.end()) return 0;
+  const size_t tiles = it->second.map.tiles.size();
+  open_.erase(it);
+  return tiles;
+}
+
+void SessionArchive::Keep(MappingSession session) {
+  finished_.push_back(std::move(session));
+  ++finished_count_;
+  if (finished_.size() > keep_in_memory_) {
+    finished_.erase(finished_.begin(),
+                    finished_.end() - static_cast<std::ptrdiff_t>(keep_in_memory_));
+  }
 }
 
 }  // namespace fleetmap::server

@@ -209,6 +209,9 @@ json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timest
     placement = "unplaced";
   }
   out["placement"] = placement;
+  if (robot.frame && !robot.frame->placed() && !robot.frame->waiting_reason.empty()) {
+    out["waiting_reason"] = robot.frame->waiting_reason;
+  }
   // Whether the server fuses its tiles (docs/fleet.md, "Quarantine"), why not, and where.
   out["standing"] = robot.frame ? transport::RobotStandingName(robot.frame->standing) : "trusted";
   if (robot.frame && robot.frame->standing != transport::RobotFrameMessage::Standing::kTrusted) {

@@ -32,6 +32,8 @@ struct BenchFleetArgs {
   // Also run each fleet with a hostile peer flooding the server, and report what the honest
   // robots see: latency, server memory, what the flood got in.
   bool hostile = false;
+  int hostile_participants = 1;
+  int hostile_ids = 1;
   // The grid wire run for real beside the tile wire, to measure its bytes side by side ("none":
   // only the baselines the tile run's agents measure).
   std::string compare_wire = "grid-updates-zstd";
@@ -52,50 +54,97 @@ std::string Fmt(const std::optional<double>& value, const char* unit) {
   return value ? fmt::format("{:.1f}{}", *value, unit) : std::string("n/a");
 }
 
-// The server's summary line for `robot`: its tiles fused and samples rejected.
-std::pair<uint64_t, uint64_t> SummaryCounts(const std::string& output, const std::string& robot) {
+// The server's summary lines of the robots whose names start with `prefix`: their tiles fused and
+// samples rejected, summed.
+std::pair<uint64_t, uint64_t> SummaryCounts(const std::string& output, const std::string& prefix) {
   std::istringstream lines(output);
+  uint64_t fused = 0, refused = 0;
   for (std::string line; std::getline(lines, line);) {
     std::istringstream fields(line);
     std::string name, state;
     uint64_t tiles = 0, maps = 0, bytes = 0, rejected = 0;
-    if (fields >> name >> state >> tiles >> maps >> bytes >> rejected && name == robot) {
-      return {tiles, rejected};
+    if (fields >> name >> state >> tiles >> maps >> bytes >> rejected &&
+        name.rfind(prefix, 0) == 0) {
+      fused += tiles;
+      refused += rejected;
     }
   }
-  return {0, 0};
+  return {fused, refused};
 }
 
-void PrintHostileTable(const std::vector<Row>& rows, const HostileFloodOptions& flood,
+// The latencies received from `from_s` (inclusive) to `to_s` (exclusive) into the run.
+std::vector<double> LatenciesBetween(const FleetRunResult& run, double from_s, double to_s) {
+  std::vector<double> window;
+  for (size_t i = 0; i < run.latencies_ms.size(); ++i) {
+    if (run.latency_at_s[i] >= from_s && run.latency_at_s[i] < to_s) {
+      window.push_back(run.latencies_ms[i]);
+    }
+  }
+  return window;
+}
+
+// Honest robots' latency is "recovered" this long after a flood ends (issue 30's target).
+constexpr double kRecoverySeconds = 5.0;
+
+void PrintHostileTable(const std::vector<Row>& rows, const HostileAttack& attack,
                        nlohmann::json* json) {
+  const HostileFloodOptions& flood = attack.flood;
   std::cout << fmt::format(
-      "\nUnder a hostile flood (one peer as robot \"{}\": {} heavy tiles rewritten {:.0f} times a "
-      "second, and {} distinct keys), honest robots' fused-tile latency and the server:\n\n",
-      flood.robot, flood.heavy_tiles, flood.rate_hz, flood.distinct_keys);
-  std::cout << "| robots | latency p50 / p95 / p99, quiet | latency p50 / p95 / p99, flooded | "
-               "server MB quiet / flooded | flood tiles sent | fused | refused |\n"
-               "|---|---|---|---|---|---|---|\n";
+      "\nUnder a hostile flood ({} participant(s), each claiming {} robot id(s) \"{}\"...: {} "
+      "heavy tiles rewritten {:.0f} times a second, and {} distinct keys spread over the ids), "
+      "from {:.0f} s to {:.0f} s into the run; honest robots' fused-tile latency and the server "
+      "(\"after\": from {:.0f} s after the flood ended):\n\n",
+      attack.participants, flood.ids, flood.robot, flood.heavy_tiles, flood.rate_hz,
+      flood.distinct_keys, std::chrono::duration<double>(attack.start).count(),
+      std::chrono::duration<double>(attack.stop).count(), kRecoverySeconds);
+  std::cout << "| robots | latency p50 / p99, quiet run | p50 / p99, during the flood | "
+               "p50 / p99, after | server MB: quiet run peak / flooded run peak / at the end | "
+               "flood tiles sent | fused | refused |\n"
+               "|---|---|---|---|---|---|---|---|\n";
   for (size_t i = 0; i < rows.size(); ++i) {
     const Row& row = rows[i];
-    if (!row.attacked) continue;
+    if (!row.attacked || !row.attacked->flood_started_s) continue;
     const FleetRunResult& attacked = *row.attacked;
+    const double started = *attacked.flood_started_s;
+    const double stopped = attacked.flood_stopped_s.value_or(attacked.seconds);
+    const std::vector<double> during = LatenciesBetween(attacked, started, stopped);
+    const std::vector<double> after =
+        LatenciesBetween(attacked, stopped + kRecoverySeconds, attacked.seconds);
     const auto [fused, refused] = SummaryCounts(attacked.server_output, flood.robot);
-    const auto quiet = [&](double p) { return Percentile(row.tiles.latencies_ms, p); };
-    const auto loud = [&](double p) { return Percentile(attacked.latencies_ms, p); };
+    const int64_t end_rss = attacked.server_rss.empty() ? 0 : attacked.server_rss.back().second;
+    const auto p = [](const std::vector<double>& values, double q) { return Percentile(values, q); };
     std::cout << fmt::format(
-        "| {} | {} / {} / {} | {} / {} / {} | {:.0f} / {:.0f} | {} | {} | {} |\n", row.robots,
-        Fmt(quiet(50), " ms"), Fmt(quiet(95), ""), Fmt(quiet(99), ""), Fmt(loud(50), " ms"),
-        Fmt(loud(95), ""), Fmt(loud(99), ""), row.tiles.server_peak_rss_bytes / 1e6,
-        attacked.server_peak_rss_bytes / 1e6, attacked.hostile_tiles_written, fused, refused);
-    (*json)[i]["hostile"] = {{"latency_ms",
-                              {{"p50", loud(50).value_or(-1)},
-                               {"p95", loud(95).value_or(-1)},
-                               {"p99", loud(99).value_or(-1)}}},
-                             {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
-                             {"flood_tiles_sent", attacked.hostile_tiles_written},
-                             {"flood_tiles_fused", fused},
-                             {"flood_samples_refused", refused}};
+        "| {} | {} / {} | {} / {} | {} / {} | {:.0f} / {:.0f} / {:.0f} | {} | {} | {} |\n",
+        row.robots, Fmt(p(row.tiles.latencies_ms, 50), " ms"), Fmt(p(row.tiles.latencies_ms, 99), ""),
+        Fmt(p(during, 50), " ms"), Fmt(p(during, 99), ""), Fmt(p(after, 50), " ms"),
+        Fmt(p(after, 99), ""), row.tiles.server_peak_rss_bytes / 1e6,
+        attacked.server_peak_rss_bytes / 1e6, end_rss / 1e6, attacked.hostile_tiles_written, fused,
+        refused);
+    (*json)[i]["hostile"] = {
+        {"participants", attack.participants},
+        {"ids_per_participant", flood.ids},
+        {"flood_s", {started, stopped}},
+        {"latency_ms_during", {{"p50", p(during, 50).value_or(-1)}, {"p99", p(during, 99).value_or(-1)}}},
+        {"latency_ms_after", {{"p50", p(after, 50).value_or(-1)}, {"p99", p(after, 99).value_or(-1)}}},
+        {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
+        {"server_rss_bytes_at_end", end_rss},
+        {"flood_tiles_sent", attacked.hostile_tiles_written},
+        {"flood_tiles_fused", fused},
+        {"flood_samples_refused", refused}};
   }
+}
+
+// The attack of --hostile: the flood runs through the middle third of the run, so that the run
+// shows the honest robots before, during and after it.
+HostileAttack Attack(const BenchFleetArgs& args) {
+  HostileAttack attack;
+  attack.participants = args.hostile_participants;
+  attack.flood.ids = args.hostile_ids;
+  const auto duration = std::chrono::milliseconds(
+      static_cast<int64_t>(std::llround(args.scenario.duration_s * 1000.0)));
+  attack.start = duration / 3;
+  attack.stop = 2 * duration / 3;
+  return attack;
 }
 
 uint64_t Updates(const FleetRunResult& run) {
@@ -164,7 +213,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
     if (args.hostile) {
       FleetSimOptions options = base;
       options.robots = robots;
-      options.hostile = HostileFloodOptions{};
+      options.hostile = Attack(args);
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
         std::cerr << fmt::format("\r{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s   ",
                                  robots, seconds, scenario.duration_s)
@@ -259,7 +308,7 @@ int RunBenchFleet(const BenchFleetArgs& args) {
     json[i]["opdf"] = row.quality.occupied_picture_distance.value_or(-1);
     json[i]["updf"] = row.quality.unoccupied_picture_distance.value_or(-1);
   }
-  if (args.hostile) PrintHostileTable(rows, HostileFloodOptions{}, &json);
+  if (args.hostile) PrintHostileTable(rows, Attack(args), &json);
   if (args.single_robot && !rows.empty()) {
     const Row& fleet = rows.back();
     FleetSimOptions options = base;
@@ -318,7 +367,18 @@ void AddBenchFleetCommand(CLI::App& app, int* exit_code) {
   command->add_flag("--single-robot", args->single_robot,
                     "also one robot for (largest fleet x duration), to compare map quality");
   command->add_flag("--hostile", args->hostile,
-                    "also run each fleet while a hostile peer floods the server, and compare");
+                    "also run each fleet while hostile peers flood the server through the middle "
+                    "third of the run, and compare");
+  command
+      ->add_option("--hostile-participants", args->hostile_participants,
+                   "hostile DDS participants (--hostile)")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  command
+      ->add_option("--hostile-ids", args->hostile_ids,
+                   "robot ids each hostile participant claims (--hostile)")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   command->add_option("--security", args->security_dir,
                       "run every fleet with DDS Security from this folder (fleetmap security: "
                       "identities server, robot0.. robot<N-1> and the viewer observer)");

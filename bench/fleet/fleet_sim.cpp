@@ -180,6 +180,7 @@ class Observer {
       if (event.tile.tile.x >= hostile_first_tile_x_) continue;  // the hostile peer's
       result->latencies_ms.push_back(
           std::chrono::duration<double, std::milli>(event.received - event.tile.stamp).count());
+      result->latency_at_s.push_back(now_s);
     }
     for (StatusOr<transport::MapMessage>& map : fused_grid_->Drain()) {
       if (map.ok()) result->fused = std::move(map->grid);
@@ -214,6 +215,17 @@ Status FleetSimOptions::Validate() const {
   if (robots < 1 || robots > 64) return InvalidArgumentError("--robots must be in 1..64");
   if (duration.count() <= 0) return InvalidArgumentError("--duration must be > 0 seconds");
   if (!(scans_per_second > 0.0)) return InvalidArgumentError("--rate must be > 0 scans/s");
+  if (hostile) {
+    if (hostile->participants < 1 || hostile->participants > 16) {
+      return InvalidArgumentError("--hostile-participants must be in 1..16");
+    }
+    if (hostile->flood.ids < 1 || hostile->flood.ids > 10000) {
+      return InvalidArgumentError("--hostile-ids must be in 1..10000");
+    }
+    if (hostile->stop.count() > 0 && hostile->stop <= hostile->start) {
+      return InvalidArgumentError("the hostile flood must stop after it starts");
+    }
+  }
   if (wire != "tiles" && wire != "grid" && wire != "grid-updates" && wire != "grid-updates-zstd") {
     return InvalidArgumentError(
         std::string("the wire must be tiles, grid, grid-updates or grid-updates-zstd, not \"")
@@ -334,20 +346,53 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     agents.push_back(std::make_unique<process::Subprocess>(std::move(argv), env));
   }
 
-  std::unique_ptr<HostileFlood> flood;
+  std::vector<std::unique_ptr<HostileFlood>> floods;
   if (options.hostile) {
-    FLEETMAP_ASSIGN_OR_RETURN(flood, HostileFlood::Create(domain, *options.hostile));
-    observer->IgnoreTilesFrom(options.hostile->first_tile_x);
-    flood->Start();
+    observer->IgnoreTilesFrom(options.hostile->flood.first_tile_x);
+    for (int p = 0; p < options.hostile->participants; ++p) {
+      HostileFloodOptions flood = options.hostile->flood;
+      if (options.hostile->participants > 1) {
+        flood.robot += std::to_string(p);
+        flood.first_tile_x += 200 * p;  // each participant's keys apart from the others'
+      }
+      FLEETMAP_ASSIGN_OR_RETURN(floods.emplace_back(), HostileFlood::Create(domain, flood));
+    }
   }
   const auto seconds_since_start = [&] {
     return std::chrono::duration<double>(steady_clock::now() - start).count();
   };
+  const auto start_floods = [&] {
+    for (auto& flood : floods) flood->Start();
+    result.flood_started_s = seconds_since_start();
+  };
+  const auto stop_floods = [&] {
+    for (auto& flood : floods) {
+      flood->Stop();
+      result.hostile_tiles_written += flood->tiles_written();
+    }
+    result.flood_stopped_s = seconds_since_start();
+    floods.clear();  // their participants leave
+  };
   auto next_progress = start;
+  auto next_rss = start;
   while (steady_clock::now() - start < options.duration) {
+    const auto now = steady_clock::now();
+    if (!floods.empty() && !result.flood_started_s && now - start >= options.hostile->start) {
+      start_floods();
+    }
+    if (!floods.empty() && result.flood_started_s && options.hostile->stop.count() > 0 &&
+        now - start >= options.hostile->stop) {
+      stop_floods();
+    }
     observer->Poll(seconds_since_start(), &result);
-    if (progress && steady_clock::now() >= next_progress) {
-      progress(std::chrono::duration<double>(steady_clock::now() - start).count());
+    if (now >= next_rss) {
+      if (const auto usage = process::ReadUsage(server.pid())) {
+        result.server_rss.emplace_back(seconds_since_start(), usage->rss_bytes);
+      }
+      next_rss += std::chrono::seconds(1);
+    }
+    if (progress && now >= next_progress) {
+      progress(std::chrono::duration<double>(now - start).count());
       next_progress += std::chrono::seconds(1);
     }
   }
@@ -365,10 +410,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     result.server_cpu_seconds = usage->cpu_seconds;
     result.server_peak_rss_bytes = usage->peak_rss_bytes;
   }
-  if (flood != nullptr) {
-    flood->Stop();
-    result.hostile_tiles_written = flood->tiles_written();
-  }
+  if (!floods.empty() && result.flood_started_s) stop_floods();
   for (auto& agent : agents) agent->Signal(SIGTERM);
   // Agents that measure the grid wires finish compressing first, still reporting (their
   // accounting ran at idle priority and may lag far behind a busy run).

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/fleet/hostile_flood.hpp"
@@ -20,6 +21,17 @@
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::bench {
+
+// Hostile peers in a fleet run: `participants` DDS participants, each a HostileFlood (the flood's
+// options, its ids named per participant, its tiles further east), flooding from `start` to
+// `stop` after the fleet started (stop 0: until the run ends), so that the run shows honest robots
+// before, during and after the flood.
+struct HostileAttack {
+  HostileFloodOptions flood;
+  int participants = 1;
+  std::chrono::milliseconds start{0};
+  std::chrono::milliseconds stop{0};
+};
 
 struct FleetSimOptions {
   int robots = 4;
@@ -34,8 +46,8 @@ struct FleetSimOptions {
   // (fleetmap-agent --measure-baselines). The run then waits for their accounting to finish.
   bool measure_baselines = false;
   std::string bin_dir;  // where fleetmap-server and fleetmap-agent are
-  // A hostile peer flooding the server while the fleet runs (bench fleet --hostile).
-  std::optional<HostileFloodOptions> hostile;
+  // Hostile peers flooding the server while the fleet runs (bench fleet --hostile).
+  std::optional<HostileAttack> hostile;
   // `fleetmap sim --unknown-poses`: robot i's SLAM map frame is the terrain's frame moved by
   // sim_frames[i] (world_from_map, UnknownPoseFrames); its agent runs --unplaced with --sim-frame
   // and the server has to place it. Empty: every robot maps in the terrain's frame.
@@ -100,6 +112,7 @@ struct FleetRunResult {
   WireBaselines baselines;           // summed over the robots (measure_baselines)
   std::vector<double> latencies_ms;  // fused tile received - the robot update that caused it
                                      // (the honest robots' tiles only)
+  std::vector<double> latency_at_s;  // when each of latencies_ms was received (run seconds)
   grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map (fleet frame)
   // Takes terrain-frame points into the fleet frame: identity, or with sim_frames the inverse of
   // the anchor's true world_from_map (nullopt while no robot anchored the fleet).
@@ -109,6 +122,11 @@ struct FleetRunResult {
   int64_t server_peak_rss_bytes = 0;
   double seconds = 0.0;  // wall time of the run
   uint64_t hostile_tiles_written = 0;
+  // With a hostile attack: when its flood started and stopped (run seconds; unset: it did not).
+  std::optional<double> flood_started_s;
+  std::optional<double> flood_stopped_s;
+  // The server's resident memory, sampled about once a second: (run seconds, bytes).
+  std::vector<std::pair<double, int64_t>> server_rss;
   std::string server_output;  // what the server printed, its summary table last
   // Robots the server reported lost while every robot ran (none died: each report is false).
   int robots_reported_lost = 0;

@@ -75,15 +75,30 @@ void HostileFlood::Stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+std::vector<RobotId> HostileFlood::robot_ids() const {
+  if (options_.ids <= 1) return {RobotId{options_.robot}};
+  std::vector<RobotId> ids;
+  for (int i = 0; i < options_.ids; ++i) {
+    std::string name = options_.robot;
+    name += "-";
+    name += std::to_string(i);
+    ids.push_back(RobotId{std::move(name)});
+  }
+  return ids;
+}
+
 void HostileFlood::Run() {
   std::mt19937 random(7);
-  RobotStatus status;
-  status.robot = RobotId{options_.robot};
-  status.map_topic = transport::kRobotTilesTopic;
+  const std::vector<RobotId> ids = robot_ids();
+  std::vector<RobotStatus> statuses(ids.size());
+  for (size_t i = 0; i < ids.size(); ++i) {
+    statuses[i].robot = ids[i];
+    statuses[i].map_topic = transport::kRobotTilesTopic;
+  }
   uint32_t revision = 0;
-  const auto write = [&](const TileId& tile, int walls) {
+  const auto write = [&](const RobotId& robot, const TileId& tile, int walls) {
     transport::VectorTileMessage message;
-    message.robot_id = RobotId{options_.robot};
+    message.robot_id = robot;
     message.tile = tile;
     message.revision = ++revision;
     message.stamp = Clock::now();
@@ -91,26 +106,34 @@ void HostileFlood::Run() {
     message.map = HeavyTile(tile, walls, &random);
     if (tiles_->Write(message).ok()) ++tiles_written_;
   };
+  // Every id's claim, renewed about once a second (a status per id is part of the load).
+  auto next_claim = std::chrono::steady_clock::time_point{};
   const auto keep_alive = [&] {
-    status.stamp = Clock::now();
-    ++status.sequence_number;
-    (void)status_->Write(status);
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_claim) return;
+    next_claim = now + std::chrono::seconds(1);
+    for (RobotStatus& status : statuses) {
+      status.stamp = Clock::now();
+      ++status.sequence_number;
+      (void)status_->Write(status);
+    }
   };
   keep_alive();
-  // Give the server time to see the claim, as a peer that knows the protocol would.
+  // Give the server time to see the claims, as a peer that knows the protocol would.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   const auto heavy_round = [&] {
     keep_alive();
     for (int i = 0; i < options_.heavy_tiles; ++i) {
-      write(TileId{options_.first_tile_x + i % 8, i / 8}, 300);
+      write(ids.front(), TileId{options_.first_tile_x + i % 8, i / 8}, 300);
     }
   };
-  // The heavy tiles first, so that they hold places in the robot's tile quota and are fused
-  // for the whole run; then the distinct keys, which run into the quota.
+  // The heavy tiles first, so that they hold places in the first id's tile quota and are fused
+  // for the whole run; then the distinct keys, spread over the ids, which run into the quotas
+  // and budgets.
   heavy_round();
   const int side = 64;
   for (int k = 0; k < options_.distinct_keys && !stop_.load(); ++k) {
-    write(TileId{options_.first_tile_x + 100 + k % side, k / side}, 4);
+    write(ids[k % ids.size()], TileId{options_.first_tile_x + 100 + k % side, k / side}, 4);
     if (k % 100 == 0) keep_alive();
   }
   const auto period = std::chrono::duration<double>(1.0 / options_.rate_hz);
@@ -120,7 +143,7 @@ void HostileFlood::Run() {
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
     std::this_thread::sleep_until(next);
   }
-  (void)status_->Leave(status.robot);
+  for (const RobotId& id : ids) (void)status_->Leave(id);
 }
 
 }  // namespace fleetmap::bench

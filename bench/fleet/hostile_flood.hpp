@@ -9,7 +9,9 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
@@ -18,7 +20,10 @@
 namespace fleetmap::bench {
 
 struct HostileFloodOptions {
+  // The ids it claims: `robot` alone, or with ids > 1 `robot`-0 .. `robot`-(ids-1) (ids are free
+  // to invent; the distinct keys are spread over them).
   std::string robot = "intruder";
+  int ids = 1;
   // Heavy tiles (hundreds of short random walls) rewritten `rate_hz` times a second, each time
   // with new geometry, so the server must fuse them again.
   int heavy_tiles = 40;
@@ -39,6 +44,8 @@ class HostileFlood {
   void Start();
   void Stop();
   uint64_t tiles_written() const { return tiles_written_.load(); }
+  // The robot ids it claims.
+  std::vector<RobotId> robot_ids() const;
 
  private:
   explicit HostileFlood(const HostileFloodOptions& options) : options_(options) {}

@@ -177,6 +177,7 @@ std::optional<ProcessUsage> ReadUsage(pid_t pid) {
   std::ifstream status(proc + "/status");
   while (std::getline(status, line)) {
     if (line.rfind("VmHWM:", 0) == 0) usage.peak_rss_bytes = std::stoll(line.substr(6)) * 1024;
+    if (line.rfind("VmRSS:", 0) == 0) usage.rss_bytes = std::stoll(line.substr(6)) * 1024;
   }
   return usage;
 }

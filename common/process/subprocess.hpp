@@ -65,10 +65,11 @@ int RandomDomainId();
 // it. For a test that needs a second, chosen domain, such as the neighbour of a random one.
 bool ClaimDomainId(int domain);
 
-// Resource use of a running process, from /proc: CPU seconds (user + system) and peak resident
-// memory (VmHWM), or nullopt once it is gone.
+// Resource use of a running process, from /proc: CPU seconds (user + system), resident memory now
+// (VmRSS) and its peak (VmHWM), or nullopt once it is gone.
 struct ProcessUsage {
   double cpu_seconds = 0.0;
+  int64_t rss_bytes = 0;
   int64_t peak_rss_bytes = 0;
 };
 std::optional<ProcessUsage> ReadUsage(pid_t pid);

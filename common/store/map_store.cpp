@@ -82,6 +82,16 @@ INSERT INTO store_state (name, value) VALUES ('open', 0), ('opened_ns', 0);
 PRAGMA user_version = 3;
 )sql";
 
+// Version 4: the robots an operator admitted, so that an admission outlives a restart.
+constexpr char kMigrateToV4[] = R"sql(
+CREATE TABLE admissions (
+  robot       TEXT    NOT NULL PRIMARY KEY,
+  operator    TEXT    NOT NULL,
+  admitted_ns INTEGER NOT NULL
+);
+PRAGMA user_version = 4;
+)sql";
+
 // Upsert, never INSERT OR REPLACE: REPLACE deletes the old row, and the delete would cascade to
 // the tile's history.
 constexpr char kUpsertLatest[] = R"sql(
@@ -141,6 +151,15 @@ INSERT INTO sessions (robot, started_ns, ended_ns, payload) VALUES (?1, ?2, ?3, 
 
 constexpr char kSelectSessions[] = R"sql(
 SELECT id, robot, started_ns, ended_ns, payload FROM sessions ORDER BY id
+)sql";
+
+constexpr char kUpsertAdmission[] = R"sql(
+INSERT INTO admissions (robot, operator, admitted_ns) VALUES (?1, ?2, ?3)
+ON CONFLICT (robot) DO UPDATE SET operator = excluded.operator, admitted_ns = excluded.admitted_ns
+)sql";
+
+constexpr char kSelectAdmissions[] = R"sql(
+SELECT robot, operator, admitted_ns FROM admissions ORDER BY robot
 )sql";
 
 // The tile's history goes with it (ON DELETE CASCADE).
@@ -439,6 +458,9 @@ Status MapStore::CreateOrMigrateSchema(int64_t version) {
   if (version < 3) {
     FLEETMAP_RETURN_IF_ERROR(db_->Exec(kMigrateToV3, "migrating the schema to version 3"));
   }
+  if (version < 4) {
+    FLEETMAP_RETURN_IF_ERROR(db_->Exec(kMigrateToV4, "migrating the schema to version 4"));
+  }
   return transaction.Commit();
 }
 
@@ -525,6 +547,10 @@ Status MapStore::PrepareStatements() {
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_robots_, kSelectRobots, "reading the robots"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&insert_session_, kInsertSession, "writing a session"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_sessions_, kSelectSessions, "reading the sessions"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&upsert_admission_, kUpsertAdmission, "writing an admission"));
+  FLEETMAP_RETURN_IF_ERROR(
+      prepare(&select_admissions_, kSelectAdmissions, "reading the admissions"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_evidence_, kUpsertEvidence, "writing tile evidence"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_evidence_, kSelectEvidence, "reading tile evidence"));
   FLEETMAP_RETURN_IF_ERROR(
@@ -740,6 +766,32 @@ StatusOr<std::vector<SessionRecord>> MapStore::Sessions() const {
     session.payload = select_sessions_->ColumnBlob(4);
   }
   return sessions;
+}
+
+Status MapStore::PutAdmission(const AdmissionRecord& admission) {
+  if (!IsValidRobotName(admission.robot.value) || admission.admitted_ns < 0) {
+    return InvalidArgumentError(path() + ": admission of '" + admission.robot.value +
+                                "': not a valid robot name, or a negative time");
+  }
+  upsert_admission_->Reset();
+  FLEETMAP_RETURN_IF_ERROR(upsert_admission_->BindText(1, admission.robot.value));
+  FLEETMAP_RETURN_IF_ERROR(upsert_admission_->BindText(2, admission.operator_name));
+  FLEETMAP_RETURN_IF_ERROR(upsert_admission_->Bind(3, admission.admitted_ns));
+  return upsert_admission_->Run();
+}
+
+StatusOr<std::vector<AdmissionRecord>> MapStore::Admissions() const {
+  select_admissions_->Reset();
+  std::vector<AdmissionRecord> admissions;
+  while (true) {
+    FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_admissions_->Step());
+    if (!row) break;
+    AdmissionRecord& admission = admissions.emplace_back();
+    admission.robot = RobotId{select_admissions_->ColumnText(0)};
+    admission.operator_name = select_admissions_->ColumnText(1);
+    admission.admitted_ns = select_admissions_->ColumnInt64(2);
+  }
+  return admissions;
 }
 
 Status MapStore::ForEachHistoryRow(const std::function<void(const TileRecord&)>& visit) const {

@@ -57,7 +57,7 @@ struct StoreOpenReport {
 class MapStore {
  public:
   // The schema version this code writes, kept in PRAGMA user_version.
-  static constexpr int kSchemaVersion = 3;
+  static constexpr int kSchemaVersion = 4;
 
   // Opens `path`, creating the file and its schema if missing. Fails with a message naming the
   // file when it is empty (0 bytes: truncated, never a store), is not an SQLite database, is
@@ -115,6 +115,12 @@ class MapStore {
   // Every stored session, oldest first.
   StatusOr<std::vector<SessionRecord>> Sessions() const;
 
+  // Records an operator's admission (the latest per robot). kInvalidArgument for a robot name
+  // that is not valid or a negative time.
+  Status PutAdmission(const AdmissionRecord& admission);
+  // Every admission, ordered by robot.
+  StatusOr<std::vector<AdmissionRecord>> Admissions() const;
+
   // PRAGMA integrity_check over the whole file: OK, or kDataLoss naming the file.
   Status CheckIntegrity() const;
 
@@ -162,6 +168,8 @@ class MapStore {
   std::unique_ptr<SqliteStatement> select_robots_;
   std::unique_ptr<SqliteStatement> insert_session_;
   std::unique_ptr<SqliteStatement> select_sessions_;
+  std::unique_ptr<SqliteStatement> upsert_admission_;
+  std::unique_ptr<SqliteStatement> select_admissions_;
   std::unique_ptr<SqliteStatement> delete_owner_;
   std::unique_ptr<SqliteStatement> upsert_evidence_;
   std::unique_ptr<SqliteStatement> select_evidence_;

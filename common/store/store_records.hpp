@@ -95,6 +95,16 @@ struct SessionRecord {
   friend bool operator==(const SessionRecord&, const SessionRecord&) = default;
 };
 
+// An operator's admission of a robot (`fleetmap admit`): its tiles are fused and it is never
+// quarantined, also after the server restarts.
+struct AdmissionRecord {
+  RobotId robot;
+  std::string operator_name;  // who admitted it, as the admission said ("" when it did not)
+  int64_t admitted_ns = 0;    // when the server received it
+
+  friend bool operator==(const AdmissionRecord&, const AdmissionRecord&) = default;
+};
+
 // OK when `record` may be stored: owner is a valid robot name (kFleetOwner is one) or a
 // MapFrameOwner, stamp_ns >= 0.
 Status ValidateTileRecord(const TileRecord& record);

@@ -84,6 +84,8 @@ struct RobotFrameMessage {
   // The contradicting area in the fleet frame; min > max when there is none.
   Point2 area_min = Point2::Zero();
   Point2 area_max = Point2(-1.0, -1.0);
+  // While unplaced: why the server has not placed it yet (the last registration's verdict).
+  std::string waiting_reason;
 
   // The robot's frame is known: every state but kUnplaced.
   bool placed() const { return state != State::kUnplaced; }

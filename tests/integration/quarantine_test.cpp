@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <set>
@@ -176,6 +177,47 @@ TEST_F(QuarantineTest, AFreshIdPaintingFreeSpaceErasesNoWallAndAnOperatorCanAdmi
   EXPECT_EQ(server->Wait(kDeadline), 0);
   EXPECT_NE(server->StdOut().find("quarantine: 1 robots entered it"), std::string::npos)
       << server->StdOut();
+}
+
+TEST_F(QuarantineTest, AnAdmissionOutlivesARestartOfTheServer) {
+  const std::string walls = WriteMap("walls", true);
+  const std::string free_space = WriteMap("free", false);
+  const std::string store =
+      ::testing::TempDir() + "/quarantine_admitted_" + std::to_string(getpid()) + ".db";
+  std::filesystem::remove(store);
+  auto server = Start({testing::kServerBinary, "--duration", "90", "--store", store});
+  auto alpha = Start({testing::kAgentBinary, "--robot-id", "alpha", "--map", walls});
+  Follow(kDeadline, [&] { return map_ && OccupiedCells(map_->grid).size() > 3000; });
+  ASSERT_TRUE(map_.has_value()) << server->Output();
+  Follow(seconds(2));
+  const size_t established = OccupiedCells(map_->grid).size();
+  auto mallory = Start({testing::kAgentBinary, "--robot-id", "mallory", "--map", free_space});
+  ASSERT_TRUE(server->WaitForOutput("robot mallory quarantined", kDeadline)) << server->Output();
+  const process::CommandResult admitted =
+      testing::RunFleetmap({"admit", "mallory", "--domain", std::to_string(domain_),
+                            "--localhost-only", "--operator", "test"},
+                           seconds(60));
+  ASSERT_EQ(admitted.exit_code, 0) << admitted.output();
+  ASSERT_TRUE(server->WaitForOutput("robot mallory admitted by test", kDeadline))
+      << server->Output();
+  server->Signal(SIGINT);
+  ASSERT_EQ(server->Wait(kDeadline), 0) << server->Output();
+
+  // The restarted server weighs mallory's stored evidence again: admitted, it is fused at once.
+  frames_seen_.clear();
+  map_.reset();
+  auto restarted = Start({testing::kServerBinary, "--duration", "60", "--store", store});
+  ASSERT_TRUE(restarted->WaitForOutput("admitted by an operator before: mallory", kDeadline))
+      << restarted->Output();
+  Follow(kDeadline, [&] {
+    return map_ && OccupiedCells(map_->grid).size() < established / 2 &&
+           StandingOf("mallory") == Standing::kAdmitted;
+  });
+  ASSERT_TRUE(map_.has_value()) << restarted->Output();
+  EXPECT_LT(OccupiedCells(map_->grid).size(), established / 2);
+  EXPECT_EQ(StandingOf("mallory"), Standing::kAdmitted);
+  EXPECT_EQ(restarted->Output().find("robot mallory quarantined"), std::string::npos)
+      << restarted->Output();
 }
 
 TEST_F(QuarantineTest, AnHonestRobotGivenATransformTwoMetresOffIsQuarantined) {

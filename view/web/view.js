@@ -287,7 +287,7 @@ function renderTables() {
       r.rev ?? '-', rate(r.bps), r.ups.toFixed(1),
       r.latency_ms === null ? '-' : `${r.latency_ms.toFixed(1)} ms`],
     { 'data-robot': id, 'data-state': r.state, 'data-standing': r.standing,
-      title: r.standing_reason || '' });
+      title: r.standing_reason || r.waiting_reason || '' });
   }));
   const predictions = document.querySelector('#predictions tbody');
   predictions.replaceChildren(...Object.keys(state.submaps)

@@ -182,7 +182,8 @@ const CdrShape& RobotFrameShape() {
                                  Primitive("area_min_x", 8),
                                  Primitive("area_min_y", 8),
                                  Primitive("area_max_x", 8),
-                                 Primitive("area_max_y", 8)};
+                                 Primitive("area_max_y", 8),
+                                 String("waiting_reason")};
   return shape;
 }
 

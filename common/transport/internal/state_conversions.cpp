@@ -251,9 +251,10 @@ Status CheckRobotFrame(const RobotFrameMessage& message) {
                                 " has a placed_against longer than " +
                                 std::to_string(kMaxIdLength) + " characters");
   }
-  if (message.standing_reason.size() > kMaxReasonLength) {
+  if (message.standing_reason.size() > kMaxReasonLength ||
+      message.waiting_reason.size() > kMaxReasonLength) {
     return InvalidArgumentError("RobotFrame of " + message.robot.value +
-                                " has a standing_reason longer than " +
+                                " has a standing_reason or waiting_reason longer than " +
                                 std::to_string(kMaxReasonLength) + " characters");
   }
   if (!(message.contradicted_share >= 0.0 && message.contradicted_share <= 1.0) ||
@@ -493,6 +494,7 @@ StatusOr<RobotFrame_> ToIdl(const RobotFrameMessage& message) {
   sample.area_min_y(message.area_min.y());
   sample.area_max_x(message.area_max.x());
   sample.area_max_y(message.area_max.y());
+  sample.waiting_reason(message.waiting_reason);
   return sample;
 }
 
@@ -522,6 +524,7 @@ StatusOr<RobotFrameMessage> FromIdl(const RobotFrame_& sample) {
   message.contradicted_m = sample.contradicted_m();
   message.area_min = Point2(sample.area_min_x(), sample.area_min_y());
   message.area_max = Point2(sample.area_max_x(), sample.area_max_y());
+  message.waiting_reason = sample.waiting_reason();
   FLEETMAP_RETURN_IF_ERROR(CheckRobotFrame(message));
   return message;
 }

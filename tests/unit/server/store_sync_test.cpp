@@ -159,7 +159,9 @@ TEST(StoreSyncTest, OlderStoreIsRebuiltFromItsHistoryInOrderAndUpgraded) {
   }
   ASSERT_TRUE(live.FuseChanged().ok());
   // A version 2 store: revisions and history, no evidence.
-  ExecRaw(path, "DROP TABLE tile_evidence; DROP TABLE store_state; PRAGMA user_version = 2");
+  ExecRaw(path,
+          "DROP TABLE tile_evidence; DROP TABLE store_state; DROP TABLE admissions; "
+          "PRAGMA user_version = 2");
   auto store = OpenStore(path);
   ASSERT_NE(store, nullptr);
   StoreSync sync(store.get(), {});

@@ -297,7 +297,7 @@ TEST_F(MapStoreTest, RefusesASchemaVersionFromTheFuture) {
   EXPECT_EQ(store.status().code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(store.status().message(),
             path_ +
-                ": schema version 7 is newer than this fleetmap supports (3); open it with a "
+                ": schema version 7 is newer than this fleetmap supports (4); open it with a "
                 "newer fleetmap");
   // Refused, never written: not even the open mark.
   sqlite3* db = nullptr;
@@ -437,7 +437,7 @@ TEST_F(MapStoreTest, MigratesAVersionOneFileAndKeepsItsTiles) {
   // What a version 1 fleetmap left: no sessions table.
   ExecRaw(path_,
           "DROP TABLE sessions; DROP TABLE tile_evidence; DROP TABLE store_state; "
-          "PRAGMA user_version = 1");
+          "DROP TABLE admissions; PRAGMA user_version = 1");
   auto store = OpenOrDie();
   ASSERT_NE(store, nullptr);
   EXPECT_FALSE(store->LatestTiles()->empty());
@@ -453,7 +453,9 @@ TEST_F(MapStoreTest, MigratesAVersionTwoFileAndKeepsItsTilesAndSessions) {
     ASSERT_TRUE(store->PutSession({0, "alpha", 1, 2, "x"}).ok());
   }
   // What a version 2 fleetmap left: no evidence, no store state.
-  ExecRaw(path_, "DROP TABLE tile_evidence; DROP TABLE store_state; PRAGMA user_version = 2");
+  ExecRaw(path_,
+          "DROP TABLE tile_evidence; DROP TABLE store_state; DROP TABLE admissions; "
+          "PRAGMA user_version = 2");
   auto store = OpenOrDie();
   ASSERT_NE(store, nullptr);
   EXPECT_EQ(store->open_report().found_version, 2);
@@ -472,6 +474,36 @@ TEST_F(MapStoreTest, MigratesAVersionTwoFileAndKeepsItsTilesAndSessions) {
   EXPECT_EQ(sqlite3_column_int(version, 0), MapStore::kSchemaVersion);
   sqlite3_finalize(version);
   sqlite3_close(db);
+}
+
+TEST_F(MapStoreTest, AdmissionsRoundTripTheLatestPerRobotAndRefuseBadNames) {
+  {
+    auto store = OpenOrDie();
+    ASSERT_NE(store, nullptr);
+    ASSERT_TRUE(store->PutAdmission({RobotId{"beta"}, "night shift", 10}).ok());
+    ASSERT_TRUE(store->PutAdmission({RobotId{"alpha"}, "", 20}).ok());
+    ASSERT_TRUE(store->PutAdmission({RobotId{"beta"}, "day shift", 30}).ok());
+    EXPECT_FALSE(store->PutAdmission({RobotId{"not a name"}, "", 1}).ok());
+    EXPECT_FALSE(store->PutAdmission({RobotId{"gamma"}, "", -1}).ok());
+  }
+  auto store = OpenOrDie();  // they outlive the process that wrote them
+  ASSERT_NE(store, nullptr);
+  const auto admissions = store->Admissions();
+  ASSERT_TRUE(admissions.ok());
+  EXPECT_EQ(*admissions, (std::vector<AdmissionRecord>{{RobotId{"alpha"}, "", 20},
+                                                       {RobotId{"beta"}, "day shift", 30}}));
+}
+
+TEST_F(MapStoreTest, MigratesAVersionThreeFileToOneThatKeepsAdmissions) {
+  WriteSampleStore();
+  ExecRaw(path_, "DROP TABLE admissions; PRAGMA user_version = 3");
+  auto store = OpenOrDie();
+  ASSERT_NE(store, nullptr);
+  EXPECT_EQ(store->open_report().found_version, 3);
+  EXPECT_FALSE(store->LatestTiles()->empty());
+  EXPECT_TRUE(store->Admissions()->empty());
+  EXPECT_TRUE(store->PutAdmission({RobotId{"alpha"}, "op", 1}).ok());
+  EXPECT_EQ(store->Admissions()->size(), 1u);
 }
 
 TEST_F(MapStoreTest, EvidenceRowsAreReplacedAndRoundTrip) {
@@ -563,7 +595,7 @@ TEST_F(MapStoreTest, ReportsANewStoreAndACleanClose) {
   EXPECT_FALSE(report.unclean_close);
   EXPECT_FALSE(report.wal_found);
   EXPECT_TRUE(report.warnings.empty());
-  EXPECT_EQ(report.Summary(), "schema version 3, quick check ok, closed cleanly");
+  EXPECT_EQ(report.Summary(), "schema version 4, quick check ok, closed cleanly");
 }
 
 // Runs store_writer_helper for `batches` commits, then SIGKILLs it with the store open.

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+
+#include "common/core/ids.hpp"
+#include "common/core/types.hpp"
+
+namespace fleetmap::server {
+
+// The sequential test that places an unplaced robot (docs/registration.md, "Evidence over time").
+// Each registration of the robot's map on one target (the fleet map, or another robot's) votes
+// for where the map sits. The robot is placed when the same placement has won `confirmations`
+// registrations in a row, each at the placement bar: on repeated structure (rooms of one plan,
+// shelf rows) an early map fits several places, and only the right one keeps winning as the map
+// grows. A registration at the bar that finds another placement starts the count again at 1; one
+// below the bar resets it to 0 and says why. Not thread-safe: the placer owns it.
+class PlacementEvidence {
+ public:
+  struct Options {
+    int confirmations = 2;
+    // Two placements are the same when they put the robot's map centre this close (metres) and
+    // differ by at most this many degrees (PlacementOptions' revise_distance and revise_yaw_deg).
+    double same_distance = 0.15;
+    double same_yaw_deg = 1.5;
+  };
+
+  // What one registration says about the robot, on one target.
+  struct Vote {
+    Pose2 target_from_map;  // the best placement, also when refused
+    Point2 map_centre = Point2::Zero();
+    bool at_bar = false;  // found, at the placement bar's confidence
+    double confidence = 0.0;
+    std::string why_not;  // when not at the bar
+  };
+
+  struct Verdict {
+    bool place = false;
+    int streak = 0;   // registrations in a row that found this placement at the bar
+    std::string why;  // while not placed: why it waits, for people (robot_frames, the log)
+  };
+
+  explicit PlacementEvidence(const Options& options) : options_(options) {}
+
+  Verdict Observe(const RobotId& robot, const RobotId& target, const Vote& vote);
+  // Whether the robot waits for a confirmation on `target`: a registration found a placement at
+  // the bar that has not won often enough yet.
+  bool Pending(const RobotId& robot, const RobotId& target) const;
+  // The robot was placed, or left: its count starts again.
+  void Forget(const RobotId& robot);
+
+ private:
+  struct Leader {
+    Pose2 target_from_map;
+    int streak = 0;
+  };
+
+  bool Same(const Pose2& a, const Pose2& b, const Point2& centre) const;
+
+  Options options_;
+  std::map<std::pair<RobotId, RobotId>, Leader> leaders_;  // by (robot, target)
+};
+
+}  // namespace fleetmap::server
