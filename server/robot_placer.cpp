@@ -221,11 +221,9 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
     return std::nullopt;
   }
   const registration::Registration& found = *result.registration;
-  if (!found.found || found.confidence < options_.min_confidence) {
+  if (!found.found) {
     // Every try at debug level; at info, what keeps a robot unplaced, every 10 s at most.
-    const std::string why = found.found ? fmt::format("confidence {:.2f} is below {:.2f}",
-                                                      found.confidence, options_.min_confidence)
-                                        : found.why_not;
+    const std::string& why = found.why_not;
     const auto now = std::chrono::steady_clock::now();
     auto& last = last_refusal_log_[job.robot];
     const bool placed = frames_.count(job.robot) > 0 && frames_.at(job.robot).placed();
@@ -365,9 +363,6 @@ void RobotPlacer::PublishTf(std::chrono::steady_clock::time_point now) {
 
 Status PlacementOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(registration.Validate());
-  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
-    return InvalidArgumentError("placement min_confidence must be in [0, 1]");
-  }
   if (retry_period.count() < 0 || check_period.count() < 0 || tf_period.count() <= 0) {
     return InvalidArgumentError("placement periods must not be negative (tf_period > 0)");
   }
@@ -379,7 +374,6 @@ Status PlacementOptions::Validate() const {
 
 void PlacementOptions::Describe(OptionsPrinter& out) const {
   out.Nested("registration", registration);
-  out.Add("min_confidence", min_confidence);
   out.Add("retry_period", retry_period);
   out.Add("check_period", check_period);
   out.Add("revise_distance", revise_distance);
