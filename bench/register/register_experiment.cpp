@@ -224,10 +224,7 @@ std::vector<SummaryRow> Summarize(const std::vector<PairOutcome>& pairs) {
   };
   std::vector<SummaryRow> rows;
   for (const std::string& group : groups) {
-    for (const double target : targets) {
-      SummaryRow r = row(&group, target);
-      if (r.fleetmap.pairs > 0) rows.push_back(r);
-    }
+    for (const double target : targets) rows.push_back(row(&group, target));
   }
   if (groups.size() > 1) rows.push_back(row(nullptr, -1.0));
   return rows;
