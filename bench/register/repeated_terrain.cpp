@@ -6,6 +6,7 @@
 
 #include "common/core/check.hpp"
 #include "common/sim/random.hpp"
+#include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::bench {
 namespace {
@@ -15,17 +16,6 @@ using sim::Terrain;
 
 constexpr double kBoundary = 0.2;  // metres, the outer wall
 constexpr double kWall = 0.15;     // metres, interior walls
-
-void AddBoundary(double size, Terrain* terrain) {
-  const double b = kBoundary / 2.0;
-  const Point2 ends[4][2] = {{{0.0, b}, {size, b}},
-                             {{size - b, 0.0}, {size - b, size}},
-                             {{size, size - b}, {0.0, size - b}},
-                             {{b, size}, {b, 0.0}}};
-  for (const auto& [a, c] : ends) {
-    terrain->walls.push_back({a, c, kBoundary, ObstacleKind::kBoundary});
-  }
-}
 
 void AddBox(double x0, double y0, double x1, double y1, ObstacleKind kind, Terrain* terrain) {
   terrain->polygons.push_back({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, kind});
@@ -162,7 +152,7 @@ sim::Terrain RepeatedTerrain(RepeatedKind kind, double size, uint32_t seed) {
   Terrain terrain;
   terrain.size = size;
   terrain.seed = seed;
-  AddBoundary(size, &terrain);
+  sim::AddBoundary(size, kBoundary, &terrain);
   switch (kind) {
     case RepeatedKind::kWarehouse:
       Warehouse(size, &random, &terrain);
