@@ -2,8 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <numbers>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "cli/inputs/command_inputs.hpp"
@@ -17,19 +20,26 @@ constexpr const char* kDescription =
     "Estimate the rigid transform a_from_b (x, y in metres, yaw in radians) that takes map B's "
     "frame into map A's frame (p_a = a_from_b * p_b; frames as ROS map_server defines them), "
     "from the two occupancy grids. Both maps must have the same resolution.\n"
-    "found: whether the match is trusted. It is refused when too few of B's occupied cells "
-    "agree with A (too little shared structure), when the placement puts many occupied cells on "
-    "the other map's free space, or when a clearly different placement scores nearly as well "
-    "(a symmetric corridor, repeated rooms).\n"
+    "found: the server's placement decision for the pair: yes when the placement passes the "
+    "verification and its confidence reaches the placement bar (--min-confidence, by default "
+    "the server's, 0.95; fleetmap-server --placement-confidence sets the same bar). It is "
+    "refused when too few of B's occupied cells agree with A (too little shared structure), "
+    "when the placement puts many occupied cells on the other map's free space, when a clearly "
+    "different placement scores nearly as well (a symmetric corridor, repeated rooms), or when "
+    "the confidence is below the bar; \"why not\" says which.\n"
+    "best guess: the best placement found, printed whether found or not (when not found, a "
+    "hint only).\n"
     "confidence (0..1): the estimated probability that the placement is right (within 3 cells "
-    "and 2 degrees), calibrated on synthetic map pairs (docs/registration.md).\n"
+    "and 2 degrees), calibrated on synthetic map pairs with repeated structure and drift "
+    "(docs/registration.md).\n"
     "score (0..1): the evidence confidence is computed from: consistency times distinctness. "
     "Consistency is the share of occupied cells in the overlap (both ways) that land on or next "
     "to an occupied cell of the other map rather than on its free space; distinctness is how far "
     "the best clearly different placement falls below the best (1 when it scores 70 % of the "
     "best or less, 0 at a tie).\n"
     "overlap (0..1): the share of B's known cells that land on A's known cells.\n"
-    "Exit status 0 whether found or not, 2 on bad input.";
+    "Exit status 0 whether found or not, 2 on bad input (a map that cannot be read, "
+    "--min-confidence outside 0..1).";
 
 std::string Num(double value) {
   char buffer[32];
@@ -57,6 +67,11 @@ grid::OccupancyGrid Trinary(const grid::LoadedMap& map) {
 }  // namespace
 
 int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
+  if (!(options.min_confidence >= 0.0 && options.min_confidence <= 1.0)) {
+    err << "fleetmap register: --min-confidence " << Num(options.min_confidence)
+        << " must be in [0, 1] (the least confidence at which a placement is found)\n";
+    return kExitBadInput;
+  }
   const StatusOr<grid::LoadedMap> a = LoadGridInput(options.map_a_yaml, options.max_cells);
   if (!a.ok()) {
     err << "fleetmap register: " << a.status().message() << "\n";
@@ -71,7 +86,8 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
   // then sees trinary grids.
   const grid::OccupancyGrid grid_a = Trinary(*a);
   const grid::OccupancyGrid grid_b = Trinary(*b);
-  const registration::RegistrationOptions registration_options;
+  registration::RegistrationOptions registration_options;
+  registration_options.min_confidence = options.min_confidence;
   const auto start = std::chrono::steady_clock::now();
   const StatusOr<registration::Registration> result =
       registration::Register(grid_a, grid_b, registration_options);
@@ -83,10 +99,23 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     return kExitBadInput;
   }
   const registration::Registration& r = *result;
+  std::string best_guess = "x ";
+  best_guess.append(Num(r.a_from_b.x))
+      .append(" m, y ")
+      .append(Num(r.a_from_b.y))
+      .append(" m, yaw ")
+      .append(Num(r.a_from_b.yaw))
+      .append(" rad (")
+      .append(Num(r.a_from_b.yaw * 180.0 / std::numbers::pi))
+      .append(" deg)");
   if (options.json) {
+    const nlohmann::ordered_json pose = {
+        {"x", r.a_from_b.x}, {"y", r.a_from_b.y}, {"yaw", r.a_from_b.yaw}};
     nlohmann::ordered_json json;
     json["found"] = r.found;
-    json["a_from_b"] = {{"x", r.a_from_b.x}, {"y", r.a_from_b.y}, {"yaw", r.a_from_b.yaw}};
+    json["min_confidence"] = options.min_confidence;
+    json["best_guess"] = pose;
+    if (r.found) json["a_from_b"] = pose;
     json["confidence"] = r.confidence;
     json["score"] = r.score;
     json["overlap"] = r.overlap;
@@ -96,11 +125,11 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
   } else {
     out << "a:          " << options.map_a_yaml << "\n"
         << "b:          " << options.map_b_yaml << "\n"
-        << "found:      " << (r.found ? "yes" : "no") << "\n";
+        << "found:      " << (r.found ? "yes" : "no") << " (placement bar: confidence "
+        << Num(options.min_confidence) << ")\n";
     if (!r.found) out << "why not:    " << r.why_not << "\n";
-    out << (r.found ? "a_from_b:   " : "best guess: ") << "x " << Num(r.a_from_b.x) << " m, y "
-        << Num(r.a_from_b.y) << " m, yaw " << Num(r.a_from_b.yaw) << " rad ("
-        << Num(r.a_from_b.yaw * 180.0 / 3.14159265358979323846) << " deg)\n"
+    if (r.found) out << "a_from_b:   " << best_guess << "\n";
+    out << "best guess: " << best_guess << "\n"
         << "confidence: " << Num(r.confidence) << " (probability the placement is right)\n"
         << "score:      " << Num(r.score) << " (consistency x distinctness)\n"
         << "overlap:    " << Num(r.overlap) << " of B's known cells on A's\n"
@@ -123,8 +152,28 @@ void AddRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_flag("--json", options->json, "Print one JSON line instead of text");
   command->add_option("--max-cells", options->max_cells, "Refuse images with more cells than this")
       ->check(CLI::PositiveNumber);
-  command->callback(
-      [options, exit_code]() { *exit_code = RunRegister(*options, std::cout, std::cerr); });
+  // Read as text and checked here and in RunRegister, so that any bad value exits 2 with the
+  // option named (a CLI11 conversion error would exit with CLI11's own code).
+  auto min_confidence = std::make_shared<std::string>();
+  std::string help =
+      "Least confidence (0..1) at which the placement is found: the placement bar, by default "
+      "the server's (";
+  help.append(Num(registration::kPlacementConfidence)).append(")");
+  CLI::Option* min_confidence_option =
+      command->add_option("--min-confidence", *min_confidence, help);
+  command->callback([options, min_confidence, min_confidence_option, exit_code]() {
+    if (min_confidence_option->count() > 0) {
+      char* end = nullptr;
+      options->min_confidence = std::strtod(min_confidence->c_str(), &end);
+      if (end == min_confidence->c_str() || *end != '\0') {
+        std::cerr << "fleetmap register: --min-confidence '" << *min_confidence
+                  << "' is not a number in [0, 1]\n";
+        *exit_code = kExitBadInput;
+        return;
+      }
+    }
+    *exit_code = RunRegister(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace fleetmap::cli

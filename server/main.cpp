@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-map-cells", options.fusion.fusion.max_grid_cells,
                  "cells of the one grid on rt/fleetmap/map (the fused tiles carry everything)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--placement-confidence", options.fusion.placement.min_confidence,
+  app.add_option("--placement-confidence", options.fusion.placement.registration.min_confidence,
                  "least registration confidence that places a robot started with --unplaced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();

@@ -228,10 +228,9 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   const registration::Registration& found = *result.registration;
   const auto frame = frames_.find(job.robot);
   if (frame == frames_.end()) return std::nullopt;  // forgotten meanwhile
-  const bool at_bar = found.found && found.confidence >= options_.min_confidence;
-  const std::string why_not = found.found ? fmt::format("confidence {:.2f} is below {:.2f}",
-                                                        found.confidence, options_.min_confidence)
-                                          : found.why_not;
+  // found: verified and at the placement bar (RegistrationOptions::min_confidence).
+  const bool at_bar = found.found;
+  const std::string& why_not = found.why_not;
   if (!frame->second.placed()) {
     // The sequential test: placed only when the same placement keeps winning.
     const PlacementEvidence::Verdict verdict = evidence_.Observe(
@@ -417,9 +416,6 @@ void RobotPlacer::PublishTf(std::chrono::steady_clock::time_point now) {
 
 Status PlacementOptions::Validate() const {
   FLEETMAP_RETURN_IF_ERROR(registration.Validate());
-  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
-    return InvalidArgumentError("placement min_confidence must be in [0, 1]");
-  }
   if (retry_period.count() < 0 || check_period.count() < 0 || tf_period.count() <= 0) {
     return InvalidArgumentError("placement periods must not be negative (tf_period > 0)");
   }
@@ -432,7 +428,6 @@ Status PlacementOptions::Validate() const {
 
 void PlacementOptions::Describe(OptionsPrinter& out) const {
   out.Nested("registration", registration);
-  out.Add("min_confidence", min_confidence);
   out.Add("retry_period", retry_period);
   out.Add("check_period", check_period);
   out.Add("revise_distance", revise_distance);

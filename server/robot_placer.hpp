@@ -27,12 +27,10 @@
 namespace fleetmap::server {
 
 struct PlacementOptions {
+  // A robot is placed (or its placement revised) exactly when Register finds the match:
+  // registration.min_confidence is the placement bar (registration::kPlacementConfidence by
+  // default, the same bar `fleetmap register` and the pair benchmark use).
   registration::RegistrationOptions registration;
-  // Least registration confidence that places a robot (or revises a placement). Confidence is
-  // the calibrated probability that a placement is right, and a wrong placement is worse than
-  // none (it spoils the fused map until it is revised): high by default. On the pair benchmark
-  // (docs/results.md) found pairs at 0.90-0.95 were right 2 times in 9, at >= 0.95 234 in 236.
-  double min_confidence = 0.95;
   // An unplaced robot's map is registered again at most this often, and only once it changed.
   std::chrono::milliseconds retry_period{1000};
   // A placed robot's placement is checked against the rest of the fleet at most this often, once

@@ -84,6 +84,11 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
         << " must be in [0, 200]\n";
     return cli::kExitBadInput;
   }
+  if (options.repeated_maps < 0 || options.repeated_maps > 60) {
+    err << "fleetmap bench register: --repeated " << options.repeated_maps
+        << " must be in [0, 60]\n";
+    return cli::kExitBadInput;
+  }
   if ((options.synthetic_maps > 0) == !options.maps_dir.empty()) {
     err << "fleetmap bench register: give either --maps DIR or --synthetic K\n";
     return cli::kExitBadInput;
@@ -91,6 +96,15 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   StatusOr<std::vector<SourceMap>> maps =
       options.synthetic_maps > 0 ? SyntheticSourceMaps(options.synthetic_maps, options.seed)
                                  : LoadMapsDir(options.maps_dir);
+  if (maps.ok() && options.synthetic_maps == 0 && options.repeated_maps > 0) {
+    StatusOr<std::vector<SourceMap>> repeated =
+        RepeatedSourceMaps(options.repeated_maps, options.seed);
+    if (repeated.ok()) {
+      for (SourceMap& map : *repeated) maps->push_back(std::move(map));
+    } else {
+      maps = repeated.status();
+    }
+  }
   if (!maps.ok()) {
     err << "fleetmap bench register: " << maps.status().message() << "\n";
     return cli::kExitBadInput;
@@ -101,27 +115,47 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   bench_options.pairs_per_overlap = options.pairs_per_overlap;
   bench_options.seed = options.seed;
   bench_options.run_mexplore = !options.skip_mexplore;
+  bench_options.drift = !options.no_drift;
   const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &err);
   const std::vector<SummaryRow> rows = Summarize(run.pairs);
   const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
 
-  const std::string source = options.synthetic_maps > 0
-                                 ? std::to_string(options.synthetic_maps) + " synthetic terrains"
-                                 : std::to_string(maps->size()) + " maps in " + options.maps_dir;
+  std::string source = std::to_string(options.synthetic_maps);
+  if (options.synthetic_maps > 0) {
+    source += " synthetic terrains (office, maze, unstructured, warehouse, office rows, corridors)";
+  } else {
+    source = std::to_string(maps->size() - static_cast<size_t>(options.repeated_maps));
+    source.append(" maps in ").append(options.maps_dir);
+    if (options.repeated_maps > 0) {
+      source.append(" and ")
+          .append(std::to_string(options.repeated_maps))
+          .append(" repeated-structure terrains");
+    }
+  }
+  if (bench_options.drift) {
+    source.append(", each pair also with B drifted (scale up to ")
+        .append(Fixed(100.0 * bench_options.drift_options.max_scale, 0))
+        .append(" %, bend up to ")
+        .append(Fixed(bench_options.drift_options.max_bend_deg_per_m, 2))
+        .append(" deg/m)");
+  }
   out << "Map registration, " << source << ", " << options.pairs_per_overlap
       << " pairs per map and overlap (seed " << options.seed << "): " << run.pairs.size()
       << " pairs";
   if (run.not_generated > 0) out << " (" << run.not_generated << " could not be generated)";
   out << ". Success: within " << Fixed(bench_options.max_translation_cells, 0)
       << " cells at B's known centroid and " << Fixed(bench_options.max_yaw_deg, 0)
-      << " deg; false accept: found but not a success (% of pairs). " << MachineDescription()
-      << ".\n\n";
-  out << "| overlap | pairs | achieved | fleetmap success % | fleetmap false accepts % | "
+      << " deg; found: confidence at least the placement bar "
+      << Fixed(bench_options.registration.min_confidence, 2)
+      << " (the server's) and verified; false accept: found but not a success (% of pairs). "
+      << MachineDescription() << ".\n\n";
+  out << "| pairs from | overlap | pairs | achieved | fleetmap success % | fleetmap false accepts % | "
          "fleetmap median s | fleetmap worst s | m-explore success % | m-explore false accepts % | "
          "m-explore median s | m-explore worst s |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& row : rows) {
-    out << "| " << OverlapLabel(row.target_overlap) << " | " << row.fleetmap.pairs << " | "
+    out << "| " << (row.group.empty() ? "every pair" : row.group) << " | "
+        << OverlapLabel(row.target_overlap) << " | " << row.fleetmap.pairs << " | "
         << FormatDouble("%.0f %%", 100.0 * row.mean_overlap);
     for (const MethodSummary* s : {&row.fleetmap, &row.mexplore}) {
       if (options.skip_mexplore && s == &row.mexplore) {
@@ -166,11 +200,13 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
     nlohmann::json json = {{"source", source},
                            {"pairs_per_overlap", options.pairs_per_overlap},
                            {"seed", options.seed},
+                           {"min_confidence", bench_options.registration.min_confidence},
                            {"machine", MachineDescription()},
                            {"not_generated", run.not_generated}};
     nlohmann::json summary = nlohmann::json::array();
     for (const SummaryRow& row : rows) {
-      summary.push_back({{"overlap", OverlapLabel(row.target_overlap)},
+      summary.push_back({{"group", row.group},
+                         {"overlap", OverlapLabel(row.target_overlap)},
                          {"target_overlap", row.target_overlap},
                          {"mean_overlap", row.mean_overlap},
                          {"fleetmap", ToJson(row.fleetmap)},
@@ -190,6 +226,7 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
     nlohmann::json pairs = nlohmann::json::array();
     for (const PairOutcome& p : run.pairs) {
       pairs.push_back({{"map", p.map},
+                       {"group", p.group},
                        {"target_overlap", p.target_overlap},
                        {"overlap", p.overlap},
                        {"fleetmap", ToJson(p.fleetmap)},
@@ -204,14 +241,14 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   }
   if (!options.csv_path.empty()) {
     std::ostringstream csv;
-    csv << "map,target_overlap,overlap,method,found,success,translation_error_cells,"
+    csv << "map,group,target_overlap,overlap,method,found,success,translation_error_cells,"
            "yaw_error_deg,seconds,confidence\n";
     for (const PairOutcome& p : run.pairs) {
       for (const auto& [method, o] : {std::pair<std::string, const MethodOutcome*>{"fleetmap",
                                                                                     &p.fleetmap},
                                       {"mexplore", &p.mexplore}}) {
         if (options.skip_mexplore && method == "mexplore") continue;
-        csv << p.map << "," << Fixed(p.target_overlap, 2) << "," << Fixed(p.overlap, 4) << ","
+        csv << p.map << "," << p.group << "," << Fixed(p.target_overlap, 2) << "," << Fixed(p.overlap, 4) << ","
             << method << "," << o->found << "," << o->success << ","
             << Fixed(o->translation_error_cells, 3) << "," << Fixed(o->yaw_error_deg, 3) << ","
             << Fixed(o->seconds, 4) << "," << Fixed(o->confidence, 4) << "\n";
@@ -229,11 +266,19 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<BenchRegisterOptions>();
   CLI::App* command = BenchCommand(app)->add_subcommand(
       "register",
-      "Map registration on map pairs at 20-70 % overlap: fleetmap against m-explore's pipeline");
+      "Map registration on map pairs at 20-70 % overlap, plain and drifted: fleetmap against "
+      "m-explore's pipeline");
   command->add_option("--maps", options->maps_dir, "directory of map_server maps (*.yaml)");
+  command->add_option("--repeated", options->repeated_maps,
+                      "with --maps, also this many repeated-structure terrains (warehouse, "
+                      "office rows, corridors), reported as their own rows")
+      ->capture_default_str();
+  command->add_flag("--no-drift", options->no_drift,
+                    "skip the drifted pairs (each pair again with B warped smoothly)");
   command->add_option("--synthetic", options->synthetic_maps,
-                      "use this many synthetic terrains (office, maze, unstructured) instead of "
-                      "--maps, and print the confidence calibration fit");
+                      "use this many synthetic terrains (office, maze, unstructured, warehouse, "
+                      "office rows, corridors) instead of --maps, and print the confidence "
+                      "calibration fit");
   command->add_option("--pairs-per-overlap", options->pairs_per_overlap,
                       "pairs per map and overlap")
       ->capture_default_str();

@@ -1,13 +1,16 @@
 #pragma once
 
-// `fleetmap bench register --maps DIR [--pairs-per-overlap N] [--seed S] [--csv F] [--json F]`:
-// issue 18's registration benchmark. Cuts pairs of robot maps from every map_server map in DIR
-// at 20 / 35 / 50 / 70 % overlap (bench/register/map_pair_generator.hpp), registers each with
-// fleetmap and with m-explore's pipeline in the same run (one core), and prints per overlap and
-// in total: success %, false accepts %, median and worst time per pair; then the reliability of
-// fleetmap's confidence. `--synthetic K` uses K terrains of common/sim instead of DIR and
-// prints the isotonic fit of the confidence calibration (how its default knots were made).
-// Progress goes to stderr.
+// `fleetmap bench register --maps DIR [--repeated K] [--no-drift] [--pairs-per-overlap N]
+// [--seed S] [--csv F] [--json F]`: issue 18's registration benchmark with issue 31's additions.
+// Cuts pairs of robot maps from every map_server map in DIR and from K repeated-structure
+// terrains (warehouse, office rows, corridors) at 20 / 35 / 50 / 70 % overlap
+// (bench/register/map_pair_generator.hpp), registers each, and again with B drifted (a smooth
+// warp), with fleetmap (found: at the server's placement bar) and with m-explore's pipeline in
+// the same run (one core), and prints per group of pairs and overlap: success %, false accepts
+// %, median and worst time per pair; then the reliability of fleetmap's confidence.
+// `--synthetic K` uses K synthetic terrains (common/sim's kinds and the repeated ones) instead
+// of DIR and prints the isotonic fit of the confidence calibration (how its default knots were
+// made). Progress goes to stderr.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -18,7 +21,9 @@ namespace fleetmap::bench {
 
 struct BenchRegisterOptions {
   std::string maps_dir;
-  int synthetic_maps = 0;  // > 0: office terrains instead of maps_dir, and fit the calibration
+  int synthetic_maps = 0;  // > 0: synthetic terrains instead of maps_dir, and fit the calibration
+  int repeated_maps = 3;   // with maps_dir: repeated-structure terrains, a group of their own
+  bool no_drift = false;   // skip the drifted pairs
   int pairs_per_overlap = 4;
   uint32_t seed = 1;
   std::string csv_path;   // empty: none

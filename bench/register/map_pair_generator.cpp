@@ -206,6 +206,35 @@ grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw,
   return out;
 }
 
+grid::OccupancyGrid Warp(const grid::OccupancyGrid& map, const Point2& pivot, double scale,
+                         double bend_per_metre) {
+  const double res = map.resolution();
+  const Transform2 map_from_grid = map.origin().ToTransform();
+  const Point2 pivot_grid = map_from_grid.inverse() * pivot;
+  // Margin enough for the scale and the bend at the grid's far corner.
+  const double reach = std::hypot(map.width(), map.height());
+  const double turn = std::abs(bend_per_metre) * reach * res;
+  const int margin = static_cast<int>(std::ceil(reach * (std::abs(scale) + turn))) + 2;
+  Transform2 corner = Transform2::Identity();
+  corner.translate(Point2(-margin * res, -margin * res));
+  grid::OccupancyGrid out(map.width() + 2 * margin, map.height() + 2 * margin, res,
+                          Pose2::FromTransform(map_from_grid * corner));
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      // Invert w = pivot + (1 + scale) R(bend * d.x) d by a fixed point on d (the turn is small).
+      const Point2 e =
+          (Point2((x - margin + 0.5) * res, (y - margin + 0.5) * res) - pivot_grid) / (1.0 + scale);
+      Point2 d = e;
+      for (int k = 0; k < 4; ++k) d = Eigen::Rotation2Dd(-bend_per_metre * d.x()) * e;
+      const Point2 p = pivot_grid + d;
+      const int cx = static_cast<int>(std::floor(p.x() / res));
+      const int cy = static_cast<int>(std::floor(p.y() / res));
+      if (map.Contains(cx, cy)) out.at(x, y) = map.at(cx, cy);
+    }
+  }
+  return out;
+}
+
 Point2 KnownCentroid(const grid::OccupancyGrid& map) {
   Point2 sum(0, 0);
   int n = 0;

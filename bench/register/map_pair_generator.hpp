@@ -58,6 +58,23 @@ StatusOr<MapPair> MakeMapPair(const grid::OccupancyGrid& source, double target_o
 grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw, const Pose2& origin,
                                      Transform2* map_from_turned);
 
+// How B drifts against A (issue 31): a smooth warp of B's cells about a pivot, as a second SLAM
+// run's scale error and slow heading drift would bend the same walls. Each drifted pair draws
+// its scale uniformly in [-max_scale, max_scale] and its bend in
+// [-max_bend_deg_per_m, max_bend_deg_per_m].
+struct DriftOptions {
+  double max_scale = 0.02;           // 2 cm per metre from the pivot
+  double max_bend_deg_per_m = 0.1;   // heading turns this much per metre along B's x axis
+};
+
+// `map` warped about `pivot` (map frame): a point at d = p - pivot moves to
+// pivot + (1 + scale) R(bend_per_metre * d.x) d, d.x along the grid's x axis; nearest-neighbour
+// resampling onto a grid grown by a margin that holds the warped cells, in the same map frame.
+// The pivot and the direction of the map frame at the pivot do not move, so a truth a_from_b
+// still holds there.
+grid::OccupancyGrid Warp(const grid::OccupancyGrid& map, const Point2& pivot, double scale,
+                         double bend_per_metre);
+
 // The cells [x0, x0 + w) x [y0, y0 + h) of `map` in `map`'s frame (origin at the crop's corner);
 // cells outside `map` are unknown.
 grid::OccupancyGrid CropCells(const grid::OccupancyGrid& map, int x0, int y0, int w, int h);

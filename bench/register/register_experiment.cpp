@@ -7,6 +7,7 @@
 #include <random>
 
 #include "bench/register/mexplore_registration.hpp"
+#include "bench/register/repeated_terrain.hpp"
 #include "bench/report/report_format.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
@@ -47,26 +48,86 @@ MethodSummary SummarizeMethod(const std::vector<const MethodOutcome*>& outcomes)
   return s;
 }
 
+// A 30 m terrain at 5 cm cells: common/sim's kinds for k % 6 < 3 (unless repeated_only), the
+// repeated ones otherwise.
+StatusOr<SourceMap> TerrainMap(int k, uint32_t terrain_seed, bool repeated_only,
+                               const std::string& group) {
+  constexpr double kSize = 30.0;
+  constexpr double kResolution = 0.05;
+  const int kind = repeated_only ? 3 + k % kRepeatedKinds : k % 6;
+  sim::Terrain terrain;
+  std::string name;
+  if (kind < 3) {
+    constexpr sim::TerrainKind kKinds[] = {sim::TerrainKind::kOffice, sim::TerrainKind::kMaze,
+                                           sim::TerrainKind::kUnstructured};
+    sim::TerrainOptions terrain_options;
+    terrain_options.kind = kKinds[kind];
+    terrain_options.size = kSize;
+    terrain_options.seed = terrain_seed;
+    FLEETMAP_ASSIGN_OR_RETURN(const sim::TerrainGenerator generator,
+                              sim::TerrainGenerator::Create(terrain_options));
+    terrain = generator.Generate();
+    name = sim::TerrainKindName(terrain_options.kind);
+  } else {
+    const auto repeated = static_cast<RepeatedKind>(kind - 3);
+    terrain = RepeatedTerrain(repeated, kSize, terrain_seed);
+    name = RepeatedKindName(repeated);
+  }
+  FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid grid, sim::RasterizeTerrain(terrain, kResolution));
+  name += "_";
+  name += std::to_string(terrain_seed);
+  return SourceMap{std::move(name), std::move(grid), group};
+}
+
+StatusOr<std::vector<SourceMap>> TerrainMaps(int count, uint32_t first_seed, bool repeated_only,
+                                             const std::string& group) {
+  std::vector<SourceMap> maps;
+  for (int k = 0; k < count; ++k) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        SourceMap map,
+        TerrainMap(k, first_seed + static_cast<uint32_t>(k), repeated_only, group));
+    maps.push_back(std::move(map));
+  }
+  return maps;
+}
+
+// Registers one pair with both methods and judges them against the truth at `centroid_b`.
+PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b,
+                         const MapPair& truth, const Point2& centroid_b,
+                         const RegisterBenchOptions& options) {
+  PairOutcome outcome;
+  outcome.overlap = truth.overlap;
+  outcome.a_cells = a.width() * a.height();
+  outcome.b_cells = b.width() * b.height();
+  auto t0 = std::chrono::steady_clock::now();
+  const StatusOr<registration::Registration> r = registration::Register(a, b, options.registration);
+  outcome.fleetmap.seconds = SecondsSince(t0);
+  if (r.ok()) {
+    outcome.fleetmap.found = r->found;
+    outcome.fleetmap.confidence = r->confidence;
+    outcome.fleetmap.score = r->score;
+    outcome.fleetmap.why_not = r->why_not;
+    Judge(truth, centroid_b, r->a_from_b, options, &outcome.fleetmap);
+  }
+  if (options.run_mexplore) {
+    t0 = std::chrono::steady_clock::now();
+    const MexploreRegistration mx = RegisterLikeMexplore(a, b);
+    outcome.mexplore.seconds = SecondsSince(t0);
+    outcome.mexplore.found = mx.found;
+    outcome.mexplore.confidence = mx.match_confidence;
+    Judge(truth, centroid_b, mx.a_from_b, options, &outcome.mexplore);
+  }
+  return outcome;
+}
+
 }  // namespace
 
 StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed) {
-  std::vector<SourceMap> maps;
-  for (int k = 0; k < count; ++k) {
-    sim::TerrainOptions terrain_options;
-    constexpr sim::TerrainKind kKinds[] = {sim::TerrainKind::kOffice, sim::TerrainKind::kMaze,
-                                           sim::TerrainKind::kUnstructured};
-    terrain_options.kind = kKinds[k % 3];
-    terrain_options.size = 30.0;
-    terrain_options.seed = seed * 7919u + static_cast<uint32_t>(k);
-    FLEETMAP_ASSIGN_OR_RETURN(const sim::TerrainGenerator generator,
-                              sim::TerrainGenerator::Create(terrain_options));
-    FLEETMAP_ASSIGN_OR_RETURN(grid::OccupancyGrid grid,
-                              sim::RasterizeTerrain(generator.Generate(), 0.05));
-    maps.push_back({std::string(sim::TerrainKindName(terrain_options.kind)) + "_" +
-                        std::to_string(terrain_options.seed),
-                    std::move(grid)});
-  }
-  return maps;
+  return TerrainMaps(count, seed * 7919u, false, "synthetic");
+}
+
+StatusOr<std::vector<SourceMap>> RepeatedSourceMaps(int count, uint32_t seed) {
+  return TerrainMaps(count, 1'000'000u + seed * 7919u, true, "repeated");
 }
 
 RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
@@ -97,34 +158,28 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
           }
           continue;
         }
-        PairOutcome outcome;
-        outcome.map = maps[m].name;
-        outcome.target_overlap = options.overlaps[o];
-        outcome.overlap = pair->overlap;
-        outcome.a_cells = pair->a.width() * pair->a.height();
-        outcome.b_cells = pair->b.width() * pair->b.height();
         const Point2 centroid_b = KnownCentroid(pair->b);
-
-        auto t0 = std::chrono::steady_clock::now();
-        const StatusOr<registration::Registration> r =
-            registration::Register(pair->a, pair->b, options.registration);
-        outcome.fleetmap.seconds = SecondsSince(t0);
-        if (r.ok()) {
-          outcome.fleetmap.found = r->found;
-          outcome.fleetmap.confidence = r->confidence;
-          outcome.fleetmap.score = r->score;
-          outcome.fleetmap.why_not = r->why_not;
-          Judge(*pair, centroid_b, r->a_from_b, options, &outcome.fleetmap);
-        }
-        if (options.run_mexplore) {
-          t0 = std::chrono::steady_clock::now();
-          const MexploreRegistration mx = RegisterLikeMexplore(pair->a, pair->b);
-          outcome.mexplore.seconds = SecondsSince(t0);
-          outcome.mexplore.found = mx.found;
-          outcome.mexplore.confidence = mx.match_confidence;
-          Judge(*pair, centroid_b, mx.a_from_b, options, &outcome.mexplore);
-        }
+        PairOutcome outcome = RegisterPair(pair->a, pair->b, *pair, centroid_b, options);
+        outcome.map = maps[m].name;
+        outcome.group = maps[m].group;
+        outcome.target_overlap = options.overlaps[o];
         run.pairs.push_back(outcome);
+        if (options.drift) {
+          // The same pair with B warped about its known centroid, where it is judged (drawn
+          // after the pair, so the plain pairs do not depend on whether drift is on).
+          std::uniform_real_distribution<double> scale(-options.drift_options.max_scale,
+                                                       options.drift_options.max_scale);
+          std::uniform_real_distribution<double> bend(
+              -options.drift_options.max_bend_deg_per_m * kDegree,
+              options.drift_options.max_bend_deg_per_m * kDegree);
+          const double s = scale(rng);
+          const grid::OccupancyGrid drifted = Warp(pair->b, centroid_b, s, bend(rng));
+          PairOutcome warped = RegisterPair(pair->a, drifted, *pair, centroid_b, options);
+          warped.map = maps[m].name;
+          warped.group = maps[m].group + " drifted";
+          warped.target_overlap = options.overlaps[o];
+          run.pairs.push_back(warped);
+        }
         if (progress != nullptr) {
           *progress << "bench register: " << done << "/" << total << " pairs, "
                     << static_cast<int>(SecondsSince(start)) << " s elapsed\r" << std::flush;
@@ -137,31 +192,41 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
 }
 
 std::vector<SummaryRow> Summarize(const std::vector<PairOutcome>& pairs) {
+  std::vector<std::string> groups;
   std::vector<double> targets;
   for (const PairOutcome& p : pairs) {
+    if (std::find(groups.begin(), groups.end(), p.group) == groups.end()) {
+      groups.push_back(p.group);
+    }
     if (std::find(targets.begin(), targets.end(), p.target_overlap) == targets.end()) {
       targets.push_back(p.target_overlap);
     }
   }
   std::sort(targets.begin(), targets.end());
-  targets.push_back(-1.0);  // all pairs
-  std::vector<SummaryRow> rows;
-  for (const double target : targets) {
-    SummaryRow row;
-    row.target_overlap = target;
+  targets.push_back(-1.0);  // all of the group's pairs
+  const auto row = [&pairs](const std::string* group, double target) {
+    SummaryRow out;
+    out.group = group != nullptr ? *group : std::string();
+    out.target_overlap = target;
     std::vector<const MethodOutcome*> fleetmap, mexplore;
     double overlap_sum = 0.0;
     for (const PairOutcome& p : pairs) {
+      if (group != nullptr && p.group != *group) continue;
       if (target >= 0.0 && p.target_overlap != target) continue;
       fleetmap.push_back(&p.fleetmap);
       mexplore.push_back(&p.mexplore);
       overlap_sum += p.overlap;
     }
-    row.mean_overlap = fleetmap.empty() ? 0.0 : overlap_sum / fleetmap.size();
-    row.fleetmap = SummarizeMethod(fleetmap);
-    row.mexplore = SummarizeMethod(mexplore);
-    rows.push_back(row);
+    out.mean_overlap = fleetmap.empty() ? 0.0 : overlap_sum / fleetmap.size();
+    out.fleetmap = SummarizeMethod(fleetmap);
+    out.mexplore = SummarizeMethod(mexplore);
+    return out;
+  };
+  std::vector<SummaryRow> rows;
+  for (const std::string& group : groups) {
+    for (const double target : targets) rows.push_back(row(&group, target));
   }
+  if (groups.size() > 1) rows.push_back(row(nullptr, -1.0));
   return rows;
 }
 

@@ -1,10 +1,11 @@
 #pragma once
 
-// The registration benchmark (issue 18, deliverable 5): pairs of robot maps cut from complete maps
-// at several overlaps (map_pair_generator.hpp), each registered by fleetmap's
+// The registration benchmark (issue 18, deliverable 5; issue 31): pairs of robot maps cut from
+// complete maps at several overlaps (map_pair_generator.hpp), each registered by fleetmap's
 // registration::Register and by the m-explore baseline (mexplore_registration.hpp) in the same
-// run, judged against the truth; plus the reliability of fleetmap's confidence. Used by
-// `fleetmap bench register` and its tests.
+// run, judged against the truth; the same pairs again with B drifted (a smooth warp); terrains
+// whose structure repeats (repeated_terrain.hpp) as a group of their own; plus the reliability
+// of fleetmap's confidence. Used by `fleetmap bench register` and its tests.
 
 #include <cstdint>
 #include <ostream>
@@ -21,18 +22,27 @@ namespace fleetmap::bench {
 struct SourceMap {
   std::string name;
   grid::OccupancyGrid grid;
+  std::string group = "maps";  // the summary's rows are per group (and overlap)
 };
 
-// `count` terrains of common/sim (office, maze and unstructured in turn; 30 m, 5 cm cells), seeds
-// derived from `seed`: source maps that are not the evaluation maps, for fitting the confidence
-// calibration.
+// `count` synthetic terrains (30 m, 5 cm cells), group "synthetic", seeds seed * 7919 + k: the
+// kinds of common/sim (office, maze, unstructured) and the repeated ones (warehouse, office
+// rows, corridors) in turn. The calibration set: source maps that are not the evaluation maps.
 StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed);
+
+// `count` repeated-structure terrains (warehouse, office rows, corridors in turn; 30 m, 5 cm
+// cells), group "repeated", seeds 1000000 + seed * 7919 + k: never the calibration set's.
+StatusOr<std::vector<SourceMap>> RepeatedSourceMaps(int count, uint32_t seed);
 
 struct RegisterBenchOptions {
   std::vector<double> overlaps = {0.20, 0.35, 0.50, 0.70};
   int pairs_per_overlap = 10;  // per source map and overlap
   uint32_t seed = 1;
   MapPairOptions pairs;
+  // Every pair is registered a second time with B warped (group "<group> drifted").
+  bool drift = true;
+  DriftOptions drift_options;
+  // registration.min_confidence is the placement bar: "found" means placed by the server.
   registration::RegistrationOptions registration;
   bool run_mexplore = true;
   // Success: translation error at B's known centroid within this many cells, yaw within this.
@@ -54,6 +64,7 @@ struct MethodOutcome {
 
 struct PairOutcome {
   std::string map;
+  std::string group;  // the source map's, with " drifted" for the warped pairs
   double target_overlap = 0.0;
   double overlap = 0.0;  // achieved
   int a_cells = 0;       // grid sizes (width x height)
@@ -82,8 +93,10 @@ struct MethodSummary {
   double false_accept_percent() const { return pairs > 0 ? 100.0 * false_accepts / pairs : 0.0; }
 };
 
-// One row per target overlap and a last one for all pairs (target_overlap < 0).
+// Per group (in order of first appearance), one row per target overlap and one for the group's
+// pairs (target_overlap < 0); with more than one group, a last row for every pair (group empty).
 struct SummaryRow {
+  std::string group;
   double target_overlap = -1.0;
   double mean_overlap = 0.0;
   MethodSummary fleetmap;

@@ -5,8 +5,10 @@
 // placement is right (within 3 cells at B's known centroid and 2 degrees). A monotone,
 // piecewise-linear map through knots fitted by isotonic regression (pool adjacent violators) on
 // labelled pairs; the default knots were fitted on synthetic pairs (office, maze and unstructured
-// terrains of common/sim, every pair labelled by whether its placement, found or refused, is
-// right), never on the real evaluation maps: docs/registration.md says how to refit them.
+// terrains of common/sim and the repeated-structure terrains of bench/register: warehouse shelf
+// rows, office rows, corridors; every pair plain and with B drifted, labelled by whether its
+// placement, found or refused, is right), never on the real evaluation maps:
+// docs/registration.md says how to refit them.
 //
 // Immutable after construction: any thread may call its const methods.
 

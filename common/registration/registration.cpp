@@ -32,6 +32,12 @@ std::string Num(double value) {
   return buffer;
 }
 
+std::string Fixed(double value, int digits) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
 // A grid reduced by an integer factor: a coarse cell is occupied when any of its cells is.
 struct CoarseOccupancy {
   int width = 0;
@@ -585,6 +591,9 @@ Status RegistrationOptions::Validate() const {
   if (!(min_score >= 0.0 && min_score <= 1.0)) {
     return InvalidArgumentError("registration min_score must be in [0, 1]");
   }
+  if (!(min_confidence >= 0.0 && min_confidence <= 1.0)) {
+    return InvalidArgumentError("registration min_confidence must be in [0, 1]");
+  }
   if (!(thresholds.free >= 0.0 && thresholds.free <= thresholds.occupied &&
         thresholds.occupied <= 1.0)) {
     return InvalidArgumentError("registration thresholds need 0 <= free <= occupied <= 1");
@@ -615,6 +624,7 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("min_overlap", min_overlap);
   out.Add("max_contradiction", max_contradiction);
   out.Add("min_score", min_score);
+  out.Add("min_confidence", min_confidence);
   out.Nested("thresholds", thresholds);
 }
 
@@ -886,6 +896,13 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(Num(result.score))
                          .append(" is below ")
                          .append(Num(options.min_score));
+  } else if (result.confidence < options.min_confidence) {
+    // Two decimals, as confidences are quoted, unless that would print the bar twice.
+    const int digits = Fixed(result.confidence, 2) == Fixed(options.min_confidence, 2) ? 4 : 2;
+    result.why_not = std::string("confidence ")
+                         .append(Fixed(result.confidence, digits))
+                         .append(" below the placement bar ")
+                         .append(Fixed(options.min_confidence, digits));
   } else {
     result.found = true;
   }

@@ -15,6 +15,14 @@
 
 namespace fleetmap::registration {
 
+// The placement bar: the least confidence at which a registration is found. One bar for every
+// user of Register: the server places a robot exactly when Registration::found is true (its
+// --placement-confidence sets RegistrationOptions::min_confidence), `fleetmap register` says
+// "found: yes" at the same bar by default, and the pair benchmark counts found pairs with it.
+// Confidence is the calibrated probability that a placement is right and a wrong placement is
+// worse than none (it spoils the fused map until it is revised), so the bar is high.
+inline constexpr double kPlacementConfidence = 0.95;
+
 struct RegistrationOptions {
   // The coarse search works on grids of at most this many cells squared (each coarse cell is
   // the max of f x f map cells, f an integer >= 1).
@@ -67,6 +75,9 @@ struct RegistrationOptions {
   double max_contradiction = 0.25;
   // Least score (consistency x distinctness, Registration::score) a match must have to be found.
   double min_score = 0.15;
+  // Least confidence (Registration::confidence) a match that passed every check above must have
+  // to be found: the placement bar.
+  double min_confidence = kPlacementConfidence;
   // How a cell value reads as occupied / free.
   grid::StateThresholds thresholds;
 
@@ -75,6 +86,9 @@ struct RegistrationOptions {
 };
 
 struct Registration {
+  // The decision: the placement passed the verification (shared structure, contradiction,
+  // ambiguity, score) and its confidence reaches RegistrationOptions::min_confidence. The server
+  // places a robot exactly when this is true.
   bool found = false;
   // Takes a point in B's map frame to A's map frame: p_a = a_from_b * p_b. The best hypothesis,
   // also when it is refused (then a hint only).
@@ -88,7 +102,8 @@ struct Registration {
   double score = 0.0;
   // Fraction of B's known cells that land on A's known cells under a_from_b.
   double overlap = 0.0;
-  // Why found is false, for people; empty when found.
+  // Why found is false, for people (the verification's reason, or "confidence 0.72 below the
+  // placement bar 0.95"); empty when found.
   std::string why_not;
   // The figures behind the decision.
   int agreeing_cells = 0;

@@ -44,6 +44,8 @@ void AddAxisWall(bool horizontal, double fixed, double lo, double hi, std::vecto
   }
 }
 
+}  // namespace
+
 void AddBoundary(double size, double thickness, Terrain* terrain) {
   // Each side runs the full edge, so the corner cells are covered too.
   const double b = thickness / 2.0;
@@ -55,6 +57,8 @@ void AddBoundary(double size, double thickness, Terrain* terrain) {
     terrain->walls.push_back({a, c, thickness, ObstacleKind::kBoundary});
   }
 }
+
+namespace {
 
 // ---- maze -------------------------------------------------------------------------------------
 

@@ -31,6 +31,11 @@ struct TerrainOptions {
   double boundary_thickness = 0.20;  // metres, the outer wall, in (0, 1]
 };
 
+// The boundary wall, `thickness` thick, along the inside of the square [0, size]^2's edge (each
+// side runs the full edge, so the corner cells are covered too). For terrains made elsewhere
+// too (bench/register's repeated structures).
+void AddBoundary(double size, double thickness, Terrain* terrain);
+
 class TerrainGenerator {
  public:
   // Errors (kInvalidArgument) name the option: size out of bounds, bad thickness.

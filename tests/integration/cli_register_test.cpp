@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/inputs/command_inputs.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/registration/registration.hpp"
+#include "server/robot_placer.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap::cli {
@@ -48,6 +51,64 @@ TEST(CliRegisterTest, PrintsTextAndExplainsConfidence) {
   EXPECT_THAT(help.out, HasSubstr("confidence (0..1)"));
 }
 
+// "found" is the server's placement decision for the pair: the CLI's default bar is the
+// server's, and at any bar the CLI decides as Register does with the server's placement options.
+TEST(CliRegisterTest, FoundIsTheServersPlacementDecision) {
+  const std::string map = DataPath("real/aws_small_house.yaml");
+  const StatusOr<grid::LoadedMap> loaded = LoadGridInput(map, kDefaultMaxCells);
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+  server::PlacementOptions server;
+
+  // A clear pair (the map on itself): placed by both at the default bar.
+  process::CommandResult run = RunFleetmap({"register", map, map, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["min_confidence"].get<double>(), server.registration.min_confidence);
+  StatusOr<registration::Registration> placed =
+      registration::Register(loaded->grid, loaded->grid, server.registration);
+  ASSERT_TRUE(placed.ok()) << placed.status();
+  EXPECT_TRUE(placed->found) << placed->why_not;
+  EXPECT_EQ(json["found"].get<bool>(), placed->found);
+
+  // The same pair under a bar above its confidence (where the CLI used to say found: the pair
+  // passes every other check): refused by both, for that reason, the best guess still printed.
+  const double confidence = json["confidence"].get<double>();
+  ASSERT_LT(confidence, 1.0);
+  server.registration.min_confidence = (confidence + 1.0) / 2.0;
+  const std::string bar = nlohmann::json(server.registration.min_confidence).dump();
+  run = RunFleetmap({"register", map, map, "--json", "--min-confidence", bar});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  json = nlohmann::json::parse(run.out);
+  placed = registration::Register(loaded->grid, loaded->grid, server.registration);
+  ASSERT_TRUE(placed.ok()) << placed.status();
+  EXPECT_FALSE(placed->found);
+  EXPECT_EQ(json["found"].get<bool>(), placed->found);
+  EXPECT_THAT(placed->why_not, HasSubstr("below the placement bar"));
+  EXPECT_THAT(json["why_not"].get<std::string>(), HasSubstr("below the placement bar"));
+  EXPECT_FALSE(json.contains("a_from_b"));  // a refused placement is a hint only
+  EXPECT_NEAR(json["best_guess"]["x"].get<double>(), 0.0, 0.15);
+  EXPECT_NEAR(json["best_guess"]["y"].get<double>(), 0.0, 0.15);
+  EXPECT_NEAR(json["best_guess"]["yaw"].get<double>(), 0.0, 0.035);
+
+  run = RunFleetmap({"register", map, map, "--min-confidence", bar});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("found:      no"));
+  EXPECT_THAT(run.out, HasSubstr("why not:    confidence "));
+  EXPECT_THAT(run.out, HasSubstr("best guess: x "));
+}
+
+TEST(CliRegisterTest, RefusesABadMinConfidenceWithExitTwo) {
+  const std::string map = DataPath("real/strands_kth.yaml");
+  for (const char* bad : {"1.5", "-0.1", "nan", "high", ""}) {
+    SCOPED_TRACE(bad);
+    const process::CommandResult run =
+        RunFleetmap({"register", map, map, "--min-confidence", bad});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_THAT(run.err, HasSubstr("--min-confidence"));
+    EXPECT_EQ(run.out, "");
+  }
+}
+
 TEST(CliRegisterTest, BadInputExitsTwoNamingTheFile) {
   const std::string map = DataPath("real/strands_kth.yaml");
   process::CommandResult run = RunFleetmap({"register", map, DataPath("missing_image.yaml")});
@@ -59,26 +120,41 @@ TEST(CliRegisterTest, BadInputExitsTwoNamingTheFile) {
   EXPECT_THAT(run.err, HasSubstr("resolution"));
 }
 
-TEST(CliRegisterTest, BenchPrintsARowPerOverlapAndWritesJsonAndCsv) {
+// Rows per group of pairs (the maps, one repeated-structure terrain, each plain and drifted) and
+// overlap, then one for every pair.
+TEST(CliRegisterTest, BenchPrintsARowPerGroupAndOverlapAndWritesJsonAndCsv) {
   const ScratchDir dir("cli_bench_register");
-  const process::CommandResult run =
-      RunFleetmap({"bench", "register", "--maps", DataPath("real"), "--pairs-per-overlap", "1",
-                   "--json", dir.Path("r.json"), "--csv", dir.Path("r.csv")});
+  const process::CommandResult run = RunFleetmap(
+      {"bench", "register", "--maps", DataPath("real"), "--repeated", "1", "--pairs-per-overlap",
+       "1", "--json", dir.Path("r.json"), "--csv", dir.Path("r.csv")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  for (const char* row : {"| 20 % |", "| 35 % |", "| 50 % |", "| 70 % |", "| all |"}) {
+  for (const char* row : {"| maps | 20 % |", "| maps | 70 % |", "| maps drifted | 35 % |",
+                          "| repeated | 50 % |", "| repeated drifted | all |",
+                          "| every pair | all |"}) {
     EXPECT_THAT(run.out, HasSubstr(row));
   }
   EXPECT_THAT(run.out, HasSubstr("m-explore success %"));
+  EXPECT_THAT(run.out, HasSubstr("placement bar 0.95"));
   EXPECT_THAT(run.out, HasSubstr("Reliability of fleetmap's confidence"));
   EXPECT_THAT(run.err, HasSubstr("pairs, "));  // progress
   const nlohmann::json json = nlohmann::json::parse(ReadFile(dir.Path("r.json")));
-  ASSERT_EQ(json["summary"].size(), 5u);
-  EXPECT_EQ(json["summary"][0]["overlap"], "20 %");
-  EXPECT_EQ(json["summary"][4]["overlap"], "all");
-  EXPECT_EQ(json["summary"][4]["fleetmap"]["pairs"].get<int>() + json["not_generated"].get<int>(),
-            12);  // 3 maps x 4 overlaps x 1
+  EXPECT_EQ(json["min_confidence"].get<double>(), 0.95);
+  const nlohmann::json& summary = json["summary"];
+  ASSERT_EQ(summary.size(), 21u);  // 4 groups x (4 overlaps + all) + every pair
+  EXPECT_EQ(summary[0]["group"], "maps");
+  EXPECT_EQ(summary[0]["overlap"], "20 %");
+  EXPECT_EQ(summary[4]["overlap"], "all");
+  EXPECT_EQ(summary[5]["group"], "maps drifted");
+  EXPECT_EQ(summary[10]["group"], "repeated");
+  EXPECT_EQ(summary[20]["group"], "");
+  // Every generated pair is registered plain and drifted.
+  EXPECT_EQ(summary[4]["fleetmap"]["pairs"], summary[9]["fleetmap"]["pairs"]);
+  EXPECT_EQ(summary[14]["fleetmap"]["pairs"], summary[19]["fleetmap"]["pairs"]);
+  EXPECT_EQ(summary[4]["fleetmap"]["pairs"].get<int>() +
+                summary[14]["fleetmap"]["pairs"].get<int>() + json["not_generated"].get<int>(),
+            16);  // (3 maps + 1 terrain) x 4 overlaps x 1
   EXPECT_EQ(json["reliability"].size(), 6u);
-  EXPECT_THAT(ReadFile(dir.Path("r.csv")), HasSubstr("map,target_overlap,overlap,method"));
+  EXPECT_THAT(ReadFile(dir.Path("r.csv")), HasSubstr("map,group,target_overlap,overlap,method"));
 }
 
 TEST(CliRegisterTest, BenchRefusesAMissingMapsDirectory) {

@@ -102,6 +102,40 @@ TEST(MapPairGeneratorTest, TurnsIntoANewFrameByAQuarterExactly) {
   EXPECT_EQ(checked, 2);
 }
 
+// Drift: the pivot stays, a pillar 2.5 m away along x moves by the scale (8 % -> 20 cm), and
+// the bend turns a pillar ahead of the pivot sideways; the map frame is kept.
+TEST(MapPairGeneratorTest, WarpsAboutThePivot) {
+  grid::OccupancyGrid map(200, 200, 0.05, Pose2{3.0, -2.0, 0.0});
+  for (int d = -1; d <= 1; ++d) {  // 3 x 3 pillars: at the pivot's cell and 2.5 m along x
+    for (int e = -1; e <= 1; ++e) {
+      map.at(100 + d, 100 + e) = grid::kOccupiedValue;
+      map.at(150 + d, 100 + e) = grid::kOccupiedValue;
+    }
+  }
+  const Point2 pivot = map.CellCenter(100, 100);
+  const auto occupied_near = [](const grid::OccupancyGrid& g, const Point2& p) {
+    for (int y = 0; y < g.height(); ++y) {
+      for (int x = 0; x < g.width(); ++x) {
+        if (g.StateAt(x, y) == grid::CellState::kOccupied &&
+            (g.CellCenter(x, y) - p).norm() <= 0.051) {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+  const grid::OccupancyGrid scaled = Warp(map, pivot, 0.08, 0.0);
+  EXPECT_TRUE(occupied_near(scaled, pivot));
+  EXPECT_TRUE(occupied_near(scaled, pivot + Point2(2.7, 0.0)));
+  EXPECT_FALSE(occupied_near(scaled, pivot + Point2(2.5, 0.0)));
+  // Bent by 2 degrees per metre: 2.5 m ahead turns by 5 degrees, about 22 cm sideways.
+  const double bend = 2.0 * std::numbers::pi / 180.0;
+  const grid::OccupancyGrid bent = Warp(map, pivot, 0.0, bend);
+  const double turn = bend * 2.5;
+  EXPECT_TRUE(occupied_near(bent, pivot + 2.5 * Point2(std::cos(turn), std::sin(turn))));
+  EXPECT_FALSE(occupied_near(bent, pivot + Point2(2.5, 0.0)));
+}
+
 TEST(MapPairGeneratorTest, RefusesAMapWithoutFreeSpace) {
   std::mt19937 rng(1);
   const grid::OccupancyGrid walls(50, 50, 0.05, Pose2{}, grid::kOccupiedValue);

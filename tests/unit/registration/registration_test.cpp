@@ -192,8 +192,40 @@ TEST(RegistrationTest, RefusesBadInputWithAClearMessage) {
   EXPECT_FALSE(r.ok());
 }
 
+// found is the placement decision: a verified placement below the placement bar is refused,
+// with the confidence and the bar in why_not, and its best guess kept.
+TEST(RegistrationTest, FoundOnlyAtThePlacementBar) {
+  const grid::OccupancyGrid floor = Floor();
+  const grid::OccupancyGrid a = Crop(floor, 0, 0, 150, 160);
+  Transform2 truth;
+  const grid::OccupancyGrid b =
+      Turn(Crop(floor, 70, 0, 150, 160), 12.0 * kDegree, Pose2{-31.5, 148.25, 0.4}, &truth);
+  RegistrationOptions options;
+  EXPECT_EQ(options.min_confidence, kPlacementConfidence);
+  options.min_confidence = 0.0;
+  const StatusOr<Registration> open = Register(a, b, options);
+  ASSERT_TRUE(open.ok()) << open.status();
+  ASSERT_THAT(*open, IsNearTruth(b, truth));
+  ASSERT_LT(open->confidence, 1.0);
+
+  options.min_confidence = std::min(1.0, open->confidence + 0.001);
+  const StatusOr<Registration> barred = Register(a, b, options);
+  ASSERT_TRUE(barred.ok()) << barred.status();
+  EXPECT_FALSE(barred->found);
+  EXPECT_THAT(barred->why_not, ::testing::HasSubstr("below the placement bar"));
+  EXPECT_EQ(barred->confidence, open->confidence);
+  const PoseError guess = ErrorOf(b, barred->a_from_b, truth);  // the best guess is kept
+  EXPECT_LE(guess.translation, 3.0 * b.resolution() + 1e-9);
+  EXPECT_LE(guess.yaw, 2.0 * kDegree);
+
+  options.min_confidence = 1.5;
+  EXPECT_FALSE(options.Validate().ok());
+  EXPECT_FALSE(Register(a, b, options).ok());
+}
+
 TEST(RegistrationTest, DescribesItsOptions) {
   const std::string text = DescribeOptions(RegistrationOptions{});
+  EXPECT_THAT(text, ::testing::HasSubstr("min_confidence: 0.95"));
   EXPECT_THAT(text, ::testing::HasSubstr("max_peak_ratio: 0.85"));
   EXPECT_THAT(text, ::testing::HasSubstr("thresholds:\n  occupied: 0.65"));
 }

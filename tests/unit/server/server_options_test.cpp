@@ -35,6 +35,19 @@ TEST(ServerOptionsTest, ValidateRecursesIntoEveryPartThatRuns) {
   EXPECT_FALSE(bad_tiles.Validate().ok());
 }
 
+// One placement bar: the server places a robot exactly when Register finds the match, at the
+// registration module's bar (the one `fleetmap register` uses by default).
+TEST(ServerOptionsTest, PlacesAtTheRegistrationPlacementBar) {
+  const ServerOptions options;
+  EXPECT_EQ(options.fusion.placement.registration.min_confidence,
+            registration::kPlacementConfidence);
+  EXPECT_TRUE(Contains(DescribeOptions(options), "    min_confidence: 0.95\n"))
+      << DescribeOptions(options);
+  ServerOptions bad;
+  bad.fusion.placement.registration.min_confidence = 1.5;
+  EXPECT_FALSE(bad.Validate().ok());
+}
+
 TEST(ServerOptionsTest, APartSwitchedOffIsNotChecked) {
   ServerOptions options;
   options.prediction.enabled = false;
