@@ -66,7 +66,10 @@ int RunAdmit(const AdmitOptions& options, std::ostream& out, std::ostream& err) 
   while (SteadyClock::now() < deadline) {
     // The admission goes out once a server reads the topic (transient local would keep it for a
     // late server too, but only while this command runs).
-    if (!written && (*writer)->matched_readers() > 0) {
+    // It waits a moment for the robot's current frame (transient local, on its way from the
+    // server), so that it can say what the admission changed.
+    const bool frame_seen_or_late = before || SteadyClock::now() - start > std::chrono::seconds(2);
+    if (!written && (*writer)->matched_readers() > 0 && frame_seen_or_late) {
       admission.stamp = Clock::now();
       if (StatusOr<size_t> sent = (*writer)->Write(admission); !sent.ok()) {
         return fail(sent.status().message(), kExitNoAnswer);
