@@ -1,4 +1,5 @@
 // fleetmap-agent: publishes one robot's map and status to the fleet.
+#include <spdlog/cfg/env.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -22,6 +23,8 @@ fleetmap::Pose2 PoseFrom(const std::vector<double>& values) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // SPDLOG_LEVEL=debug in the environment logs every decision, not only the ones people need.
+  spdlog::cfg::load_env_levels();
   CLI::App app{"fleetmap-agent: publishes one robot's map and status to the fleet over DDS"};
   fleetmap::agent::AgentOptions options;
   std::vector<double> fleet_from_map = {0.0, 0.0, 0.0};

@@ -808,47 +808,65 @@ void FusionWorker::ScheduleRegistration(std::chrono::steady_clock::time_point no
               turn.end());
   for (const RobotId& robot : turn) {
     if (map_frames_.tile_count(robot) == 0) continue;
-    // Against the fleet map without the robot (unplaced: to place it; placed: to check it). An
-    // unplaced robot registered to other unplaced ones goes as its group: their maps merged in
-    // the root's frame, so that what they mapped together meets the fleet map. Only the root
-    // registers the group; placing it places the others (RobotPlacer::PlaceFollowers).
-    PlacementJob job = MakePlacementJob(robot);
-    job.current = map_frames_.placement(robot);
-    job.target_changes = fused_revisions_;
-    const PlacementGroup group = placer_->GroupOf(robot);
-    for (const auto& [member, unused] : group.root_from_member) {
-      if (member != robot) {
-        job.group.push_back(member);
-        job.map_changes += map_frames_.changes(member);
-      }
-    }
-    if (group.root == robot &&
-        placer_->Due(robot, RobotId{}, job.map_changes, job.target_changes, now)) {
-      job.target = fusion_.FusedGrid(nullptr, &robot);
-      if (!HasOccupiedCell(job.target)) continue;  // the robot alone: nothing to register on
-      job.map = GroupMap(group);
+    if (std::optional<PlacementJob> job = NextRegistration(robot, now)) {
       last_registered_ = robot;
-      placer_->Submit(std::move(job), now);
-      return;
-    }
-    if (job.current) continue;
-    job.group.clear();
-    job.map_changes = map_frames_.changes(robot);
-    // Not on the fleet map (yet): perhaps on another unplaced robot's.
-    for (const RobotId& other : placer_->UnplacedOthers(robot)) {
-      job.target_robot = other;
-      job.target_changes = map_frames_.changes(other);
-      if (map_frames_.tile_count(other) == 0 ||
-          !placer_->Due(robot, other, job.map_changes, job.target_changes, now)) {
-        continue;
-      }
-      job.map = map_frames_.MapOf(robot);
-      job.target_map = map_frames_.MapOf(other);
-      last_registered_ = robot;
-      placer_->Submit(std::move(job), now);
+      placer_->Submit(*std::move(job), now);
       return;
     }
   }
+}
+
+std::optional<PlacementJob> FusionWorker::NextRegistration(
+    const RobotId& robot, std::chrono::steady_clock::time_point now) const {
+  // 1. The robot's own map against the fleet map without it: to place it (unplaced) or to check
+  //    its placement (placed).
+  PlacementJob alone = MakePlacementJob(robot);
+  alone.current = map_frames_.placement(robot);
+  alone.target_changes = fused_revisions_;
+  grid::OccupancyGrid fleet_map;  // rasterized once, when a registration on it is due
+  const auto fleet_target = [&]() -> const grid::OccupancyGrid& {
+    if (fleet_map.empty()) fleet_map = fusion_.FusedGrid(nullptr, &robot);
+    return fleet_map;
+  };
+  if (placer_->Due(alone.key(), alone.map_changes, alone.target_changes, now)) {
+    if (!HasOccupiedCell(fleet_target())) return std::nullopt;  // nothing to register on yet
+    alone.target = fleet_target();
+    alone.map = map_frames_.MapOf(robot);
+    return alone;
+  }
+  if (alone.current) return std::nullopt;
+  // 2. An unplaced robot registered to other unplaced ones: their maps merged in the root's frame
+  //    (what they mapped together may meet the fleet map where no member's alone does). Only the
+  //    root registers the group; placing it places the others (RobotPlacer::PlaceFollowers).
+  const PlacementGroup group = placer_->GroupOf(robot);
+  if (group.root == robot && group.root_from_member.size() > 1) {
+    PlacementJob merged = alone;
+    for (const auto& [member, unused] : group.root_from_member) {
+      if (member == robot) continue;
+      merged.group.push_back(member);
+      merged.map_changes += map_frames_.changes(member);
+    }
+    if (placer_->Due(merged.key(), merged.map_changes, merged.target_changes, now) &&
+        HasOccupiedCell(fleet_target())) {
+      merged.target = fleet_target();
+      merged.map = GroupMap(group);
+      return merged;
+    }
+  }
+  // 3. Not on the fleet map (yet): perhaps on another unplaced robot's, outside its group.
+  for (const RobotId& other : placer_->UnplacedOthers(robot)) {
+    PlacementJob pair = MakePlacementJob(robot);
+    pair.target_robot = other;
+    pair.target_changes = map_frames_.changes(other);
+    if (map_frames_.tile_count(other) == 0 ||
+        !placer_->Due(pair.key(), pair.map_changes, pair.target_changes, now)) {
+      continue;
+    }
+    pair.map = map_frames_.MapOf(robot);
+    pair.target_map = map_frames_.MapOf(other);
+    return pair;
+  }
+  return std::nullopt;
 }
 
 }  // namespace fleetmap::server

@@ -215,7 +215,12 @@ class FusionWorker {
   void GiveFrame(const RobotId& robot, const Pose2& fleet_from_map);
   // The maps of a group's members merged in its root's map frame.
   vector_map::VectorMap GroupMap(const PlacementGroup& group) const;
+  // Submits the next due registration, round robin over the robots.
   void ScheduleRegistration(std::chrono::steady_clock::time_point now);
+  // The registration due for `robot`, if any: its own map on the fleet map, its group's merged
+  // map on the fleet map (the group's root only), or its map on another unplaced robot's.
+  std::optional<PlacementJob> NextRegistration(const RobotId& robot,
+                                               std::chrono::steady_clock::time_point now) const;
   // A job for `robot` without its maps (they are copied only once it is due).
   PlacementJob MakePlacementJob(const RobotId& robot) const;
   // Fuses `robot`'s contributions to the fleet tiles `changed` anew from map_frames_.

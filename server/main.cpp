@@ -1,4 +1,5 @@
 // fleetmap-server: follows the fleet and keeps every robot's latest map.
+#include <spdlog/cfg/env.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -17,6 +18,8 @@ void OnSignal(int /*signal*/) { g_stop.store(true); }
 }  // namespace
 
 int main(int argc, char** argv) {
+  // SPDLOG_LEVEL=debug in the environment logs every decision, not only the ones people need.
+  spdlog::cfg::load_env_levels();
   CLI::App app{
       "fleetmap-server: follows the robot fleet over DDS, fuses its maps, learns the objects "
       "that move and predicts the space behind doors and up stairs"};

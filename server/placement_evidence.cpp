@@ -6,15 +6,15 @@
 
 namespace fleetmap::server {
 
-PlacementEvidence::Verdict PlacementEvidence::Observe(const RobotId& robot, const RobotId& target,
+PlacementEvidence::Verdict PlacementEvidence::Observe(const RegistrationKey& key,
                                                       const Vote& vote) {
   Verdict verdict;
   if (!vote.at_bar) {
-    leaders_.erase({robot, target});
+    leaders_.erase(key);
     verdict.why = vote.why_not;
     return verdict;
   }
-  auto [it, inserted] = leaders_.try_emplace({robot, target});
+  auto [it, inserted] = leaders_.try_emplace(key);
   Leader& leader = it->second;
   if (inserted || !Same(leader.target_from_map, vote.target_from_map, vote.map_centre)) {
     if (!inserted) {
@@ -39,12 +39,12 @@ PlacementEvidence::Verdict PlacementEvidence::Observe(const RobotId& robot, cons
   return verdict;
 }
 
-bool PlacementEvidence::Pending(const RobotId& robot, const RobotId& target) const {
-  return leaders_.count({robot, target}) > 0;
+bool PlacementEvidence::Pending(const RegistrationKey& key) const {
+  return leaders_.count(key) > 0;
 }
 
 void PlacementEvidence::Forget(const RobotId& robot) {
-  std::erase_if(leaders_, [&](const auto& entry) { return entry.first.first == robot; });
+  std::erase_if(leaders_, [&](const auto& entry) { return entry.first.robot == robot; });
 }
 
 bool PlacementEvidence::Same(const Pose2& a, const Pose2& b, const Point2& centre) const {

@@ -9,6 +9,17 @@
 
 namespace fleetmap::server {
 
+// One kind of registration the placer runs: `robot`'s map (or, for the root of a group, the
+// merged map of its group: PlacementGroup) on `target` (empty: the fleet map). Each kind has its
+// own retries and its own sequential test.
+struct RegistrationKey {
+  RobotId robot;
+  RobotId target;
+  bool as_group = false;
+
+  friend auto operator<=>(const RegistrationKey&, const RegistrationKey&) = default;
+};
+
 // The sequential test that places an unplaced robot (docs/registration.md, "Evidence over time").
 // Each registration of the robot's map on one target (the fleet map, or another robot's) votes
 // for where the map sits. The robot is placed when the same placement has won `confirmations`
@@ -43,10 +54,10 @@ class PlacementEvidence {
 
   explicit PlacementEvidence(const Options& options) : options_(options) {}
 
-  Verdict Observe(const RobotId& robot, const RobotId& target, const Vote& vote);
-  // Whether the robot waits for a confirmation on `target`: a registration found a placement at
-  // the bar that has not won often enough yet.
-  bool Pending(const RobotId& robot, const RobotId& target) const;
+  Verdict Observe(const RegistrationKey& key, const Vote& vote);
+  // Whether the robot waits for a confirmation of this kind of registration: one found a
+  // placement at the bar that has not won often enough yet.
+  bool Pending(const RegistrationKey& key) const;
   // The robot was placed, or left: its count starts again.
   void Forget(const RobotId& robot);
 
@@ -59,7 +70,7 @@ class PlacementEvidence {
   bool Same(const Pose2& a, const Pose2& b, const Point2& centre) const;
 
   Options options_;
-  std::map<std::pair<RobotId, RobotId>, Leader> leaders_;  // by (robot, target)
+  std::map<RegistrationKey, Leader> leaders_;
 };
 
 }  // namespace fleetmap::server

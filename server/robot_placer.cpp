@@ -137,27 +137,27 @@ void RobotPlacer::Forget(const RobotId& robot) {
   followers_.erase(robot);
   evidence_.Forget(robot);
   last_refusal_log_.erase(robot);
-  std::erase_if(attempts_, [&](const auto& entry) { return entry.first.first == robot; });
+  std::erase_if(attempts_, [&](const auto& entry) { return entry.first.robot == robot; });
 }
 
-bool RobotPlacer::Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
-                      uint64_t target_changes, std::chrono::steady_clock::time_point now) const {
-  if (busy_ || IsGiven(robot)) return false;
-  const auto frame = frames_.find(robot);
+bool RobotPlacer::Due(const RegistrationKey& key, uint64_t map_changes, uint64_t target_changes,
+                      std::chrono::steady_clock::time_point now) const {
+  if (busy_ || IsGiven(key.robot)) return false;
+  const auto frame = frames_.find(key.robot);
   const bool placed = frame != frames_.end() && frame->second.placed();
-  const auto attempt = attempts_.find({robot, target});
+  const auto attempt = attempts_.find(key);
   if (attempt == attempts_.end()) return true;
   const bool map_changed = attempt->second.map_changes != map_changes;
   if (placed) return map_changed && now - attempt->second.at >= options_.check_period;
   const bool target_changed = attempt->second.target_changes != target_changes;
   // A placement found once is registered again to confirm it, grown map or not.
-  const bool confirming = evidence_.Pending(robot, target);
+  const bool confirming = evidence_.Pending(key);
   return (map_changed || target_changed || confirming) &&
          now - attempt->second.at >= options_.retry_period;
 }
 
 void RobotPlacer::Submit(PlacementJob job, std::chrono::steady_clock::time_point now) {
-  attempts_[{job.robot, job.target_robot}] = Attempt{job.map_changes, job.target_changes, now};
+  attempts_[job.key()] = Attempt{job.map_changes, job.target_changes, now};
   busy_ = true;
   {
     std::lock_guard lock(mutex_);
@@ -234,7 +234,7 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   if (!frame->second.placed()) {
     // The sequential test: placed only when the same placement keeps winning.
     const PlacementEvidence::Verdict verdict = evidence_.Observe(
-        job.robot, job.target_robot,
+        job.key(),
         {found.a_from_b, result.map_centre, at_bar, found.confidence, why_not});
     if (!verdict.place) {
       Waiting(job.robot, (job.target_robot.value.empty() ? "on the fleet map: " : "on robot " +

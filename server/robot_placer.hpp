@@ -67,6 +67,8 @@ struct PlacementJob {
   std::optional<Pose2> current;  // the robot's placement when checking it
   uint64_t map_changes = 0;      // MapFrameRobots::changes() when the job was made
   uint64_t target_changes = 0;   // the target's, likewise (fused tile revisions for the fleet)
+
+  RegistrationKey key() const { return {robot, target_robot, !group.empty()}; }
 };
 
 struct PlacementResult {
@@ -101,11 +103,12 @@ class RobotPlacer {
   // The robot left the fleet's map for good (its frame is withdrawn).
   void Forget(const RobotId& robot);
 
-  // Whether registering `robot`'s map on `target` (empty: the fleet map) is due. A placed robot is
+  // Whether this registration (RegistrationKey: whose map, on what) is due. A placed robot is
   // checked when its map changed since the last check and the check period passed; an unplaced
-  // one is tried again when its map or the target changed and the retry period passed.
-  bool Due(const RobotId& robot, const RobotId& target, uint64_t map_changes,
-           uint64_t target_changes, std::chrono::steady_clock::time_point now) const;
+  // one is tried again when its map or the target changed, or a placement found waits for its
+  // confirmation, and the retry period passed.
+  bool Due(const RegistrationKey& key, uint64_t map_changes, uint64_t target_changes,
+           std::chrono::steady_clock::time_point now) const;
   bool Busy() const { return busy_; }
   void Submit(PlacementJob job, std::chrono::steady_clock::time_point now);
 
@@ -168,7 +171,7 @@ class RobotPlacer {
   std::unique_ptr<transport::TfWriter> tf_writer_;
   std::map<RobotId, transport::RobotFrameMessage> frames_;
   std::map<RobotId, fusion::TrustReport> standings_;         // robots not trusted, or no longer
-  std::map<std::pair<RobotId, RobotId>, Attempt> attempts_;  // by (robot, target)
+  std::map<RegistrationKey, Attempt> attempts_;
   std::map<RobotId, Follower> followers_;
   PlacementEvidence evidence_;
   std::chrono::steady_clock::time_point last_tf_{};

@@ -295,7 +295,7 @@ TEST_F(PlacementTest, ARobotMappingAtAnotherResolutionIsPlacedOnTheFleetMap) {
 
 // Disabled: fails since group registration and the sequential test landed (gamma is not linked to
 // beta within the deadline); to be fixed before issue 31 closes (see the stop note).
-TEST_F(PlacementTest, DISABLED_RobotsRegisteredToEachOtherArePlacedTogether) {
+TEST_F(PlacementTest, RobotsRegisteredToEachOtherArePlacedTogether) {
   // gamma shares nothing with alpha (the anchor) but half its map with beta, and beta shares
   // nothing with alpha until its map grows: gamma is registered to beta first, and placed with
   // beta when beta reaches alpha's part of the house.
