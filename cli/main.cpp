@@ -6,6 +6,7 @@
 
 #include "bench/extrapolation/bench_extrapolation_command.hpp"
 #include "bench/fleet/bench_fleet_command.hpp"
+#include "bench/fleet/bench_flood_command.hpp"
 #include "bench/fleet/bench_loss_command.hpp"
 #include "bench/fleet/bench_quarantine_command.hpp"
 #include "bench/fleet/sim_command.hpp"
@@ -28,6 +29,7 @@
 #include "cli/validate_command.hpp"
 #include "cli/vectorize_command.hpp"
 #include "cli/view_command.hpp"
+#include "common/config/command_line.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"fleetmap: the offline map tool of the fleetmap map server"};
@@ -39,6 +41,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchFleetCommand(app, &exit_code);
   fleetmap::bench::AddBenchLossCommand(app, &exit_code);
   fleetmap::bench::AddBenchQuarantineCommand(app, &exit_code);
+  fleetmap::bench::AddBenchFloodCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::bench::AddBenchPaperCommand(app, &exit_code);
   fleetmap::cli::AddVectorizeCommand(app, &exit_code);
@@ -57,6 +60,6 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddSaveMapCommand(app, &exit_code);
   fleetmap::cli::AddViewCommand(app, &exit_code);
   fleetmap::cli::AddAdmitCommand(app, &exit_code);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
   return exit_code;
 }

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <vector>
 
+#include "common/config/command_line.hpp"
 #include "common/config/fleet_transforms.hpp"
 #include "robot_agent/agent_node.hpp"
 
@@ -99,7 +100,7 @@ int main(int argc, char** argv) {
                  "identity named after --robot-id");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
 
   options.wire = *fleetmap::agent::WireFromName(wire);  // CLI11 checked the name
   if (!sim_kind.empty()) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <csignal>
 
+#include "common/config/command_line.hpp"
 #include "common/config/fleet_transforms.hpp"
 #include "server/server_node.hpp"
 
@@ -122,7 +123,7 @@ int main(int argc, char** argv) {
                  "identity \"server\"");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
 
   options.fusion.placement.check_period =
       std::chrono::milliseconds(static_cast<int64_t>(check_period_s * 1000.0));

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <thread>
 
+#include "bench/fleet/bench_flood_command.hpp"
 #include "bench/fleet/placement_observer.hpp"
 #include "common/process/subprocess.hpp"
 #include "common/security/fleet_security.hpp"
@@ -346,43 +347,59 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     agents.push_back(std::make_unique<process::Subprocess>(std::move(argv), env));
   }
 
-  std::vector<std::unique_ptr<HostileFlood>> floods;
+  // The flood is a process of its own (`fleetmap bench flood`): what building and sending its
+  // tiles costs is not charged to this process, whose observer measures the honest latencies.
+  std::vector<std::string> flood_argv;
   if (options.hostile) {
-    observer->IgnoreTilesFrom(options.hostile->flood.first_tile_x);
-    for (int p = 0; p < options.hostile->participants; ++p) {
-      HostileFloodOptions flood = options.hostile->flood;
-      if (options.hostile->participants > 1) {
-        flood.robot += std::to_string(p);
-        flood.first_tile_x += 200 * p;  // each participant's keys apart from the others'
-      }
-      FLEETMAP_ASSIGN_OR_RETURN(floods.emplace_back(), HostileFlood::Create(domain, flood));
-    }
+    const HostileFloodOptions& flood = options.hostile->flood;
+    observer->IgnoreTilesFrom(flood.first_tile_x);
+    flood_argv = {binary("fleetmap", "cli"),
+                  "bench",
+                  "flood",
+                  "--participants",
+                  std::to_string(options.hostile->participants),
+                  "--ids",
+                  std::to_string(flood.ids),
+                  "--robot",
+                  flood.robot,
+                  "--heavy-tiles",
+                  std::to_string(flood.heavy_tiles),
+                  "--rate",
+                  fmt::format("{}", flood.rate_hz),
+                  "--keys",
+                  std::to_string(flood.distinct_keys),
+                  "--first-tile-x",
+                  std::to_string(flood.first_tile_x)};
   }
+  std::unique_ptr<process::Subprocess> flood;
   const auto seconds_since_start = [&] {
     return std::chrono::duration<double>(steady_clock::now() - start).count();
   };
-  const auto start_floods = [&] {
-    for (auto& flood : floods) flood->Start();
+  const auto start_flood = [&]() -> Status {
+    flood = std::make_unique<process::Subprocess>(flood_argv, env);
+    if (!flood->started()) return UnavailableError("could not start " + flood_argv.front());
     result.flood_started_s = seconds_since_start();
+    return Status::Ok();
   };
-  const auto stop_floods = [&] {
-    for (auto& flood : floods) {
-      flood->Stop();
-      result.hostile_tiles_written += flood->tiles_written();
+  const auto stop_flood = [&] {
+    flood->Signal(SIGINT);
+    if (!flood->Wait(std::chrono::seconds(30))) {
+      flood->Signal(SIGKILL);
+      (void)flood->Wait(std::chrono::seconds(5));
     }
+    result.hostile_tiles_written += TilesWrittenByFlood(flood->StdOut());
     result.flood_stopped_s = seconds_since_start();
-    floods.clear();  // their participants leave
+    flood.reset();
   };
   auto next_progress = start;
   auto next_rss = start;
   while (steady_clock::now() - start < options.duration) {
     const auto now = steady_clock::now();
-    if (!floods.empty() && !result.flood_started_s && now - start >= options.hostile->start) {
-      start_floods();
+    if (options.hostile && !result.flood_started_s && now - start >= options.hostile->start) {
+      FLEETMAP_RETURN_IF_ERROR(start_flood());
     }
-    if (!floods.empty() && result.flood_started_s && options.hostile->stop.count() > 0 &&
-        now - start >= options.hostile->stop) {
-      stop_floods();
+    if (flood && options.hostile->stop.count() > 0 && now - start >= options.hostile->stop) {
+      stop_flood();
     }
     observer->Poll(seconds_since_start(), &result);
     if (now >= next_rss) {
@@ -410,7 +427,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     result.server_cpu_seconds = usage->cpu_seconds;
     result.server_peak_rss_bytes = usage->peak_rss_bytes;
   }
-  if (!floods.empty() && result.flood_started_s) stop_floods();
+  if (flood) stop_flood();
   for (auto& agent : agents) agent->Signal(SIGTERM);
   // Agents that measure the grid wires finish compressing first, still reporting (their
   // accounting ran at idle priority and may lag far behind a busy run).

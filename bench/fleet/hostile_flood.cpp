@@ -45,12 +45,9 @@ vector_map::VectorMap HeavyTile(const TileId& tile, int walls, std::mt19937* ran
 
 }  // namespace
 
-StatusOr<std::unique_ptr<HostileFlood>> HostileFlood::Create(int domain,
+StatusOr<std::unique_ptr<HostileFlood>> HostileFlood::Create(transport::ParticipantOptions dds,
                                                              const HostileFloodOptions& options) {
   std::unique_ptr<HostileFlood> flood(new HostileFlood(options));
-  transport::ParticipantOptions dds;
-  dds.domain_id = domain;
-  dds.localhost_only = true;
   dds.name = "fleetmap-bench-hostile";
   FLEETMAP_ASSIGN_OR_RETURN(flood->participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(flood->status_,
@@ -143,7 +140,7 @@ void HostileFlood::Run() {
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
     std::this_thread::sleep_until(next);
   }
-  for (const RobotId& id : ids) (void)status_->Leave(id);
+  (void)status_->Leave(ids);
 }
 
 }  // namespace fleetmap::bench

@@ -37,11 +37,14 @@ struct HostileFloodOptions {
 
 class HostileFlood {
  public:
-  static StatusOr<std::unique_ptr<HostileFlood>> Create(int domain,
+  // `dds`: the fleet's domain (unset: $FLEETMAP_DOMAIN) and transport; its name is set here.
+  static StatusOr<std::unique_ptr<HostileFlood>> Create(transport::ParticipantOptions dds,
                                                         const HostileFloodOptions& options);
   ~HostileFlood();
 
   void Start();
+  // Asks the flood to stop (its ids then leave); Stop() also waits until it has.
+  void RequestStop() { stop_.store(true); }
   void Stop();
   uint64_t tiles_written() const { return tiles_written_.load(); }
   // The robot ids it claims.

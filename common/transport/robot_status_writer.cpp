@@ -32,16 +32,22 @@ Status RobotStatusWriter::Write(const RobotStatus& status) {
   return Status::Ok();
 }
 
-Status RobotStatusWriter::Leave(const RobotId& robot) {
-  if (written_.erase(robot) == 0) return Status::Ok();  // never announced: nothing to dispose
-  fleetmap_msgs::msg::dds_::RobotStatus_ key;
-  key.robot_id(robot.value);
-  // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
-  if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
-    return UnavailableError("could not dispose RobotStatus of " + robot.value);
+Status RobotStatusWriter::Leave(const RobotId& robot) { return Leave(std::vector{robot}); }
+
+Status RobotStatusWriter::Leave(const std::vector<RobotId>& robots) {
+  bool disposed = false;
+  for (const RobotId& robot : robots) {
+    if (written_.erase(robot) == 0) continue;  // never announced: nothing to dispose
+    fleetmap_msgs::msg::dds_::RobotStatus_ key;
+    key.robot_id(robot.value);
+    // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
+    if (endpoint_->writer()->dispose(&key, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
+      return UnavailableError("could not dispose RobotStatus of " + robot.value);
+    }
+    disposed = true;
   }
   // The process usually exits right after leaving: give the readers a moment to hear it.
-  endpoint_->writer()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1.0));
+  if (disposed) endpoint_->writer()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1.0));
   return Status::Ok();
 }
 

@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <set>
+#include <vector>
 
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
@@ -22,6 +23,8 @@ class RobotStatusWriter {
 
   Status Write(const RobotStatus& status);
   Status Leave(const RobotId& robot);
+  // Several robots leave at once: one wait for the readers' acknowledgements, not one per robot.
+  Status Leave(const std::vector<RobotId>& robots);
   int matched_readers() const;
 
  private:
