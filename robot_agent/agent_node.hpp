@@ -20,6 +20,7 @@
 #include "robot_agent/id_claim_watch.hpp"
 #include "robot_agent/map_source.hpp"
 #include "robot_agent/sim_map_source.hpp"
+#include "robot_agent/status_heartbeat.hpp"
 #include "robot_agent/tile_publisher.hpp"
 #include "robot_agent/wire.hpp"
 #include "robot_agent/wire_baseline_meter.hpp"
@@ -82,7 +83,8 @@ class AgentNode {
 
   // A new grid from the source: publish what changed.
   Status OnNewMap(const grid::OccupancyGrid& map);
-  Status PublishStatus();
+  // Hands what the status says now (map, pose, byte accounting) to the heartbeat.
+  void RefreshStatus();
   void DrainFusedTiles();
   // Learns the robot's map frame from rt/fleetmap/robot_frames.
   void DrainRobotFrames();
@@ -100,6 +102,7 @@ class AgentNode {
   std::unique_ptr<MapSource> source_;
   SimMapSource* sim_source_ = nullptr;  // source_, when it is the simulator (for the pose)
   std::unique_ptr<transport::RobotStatusWriter> status_writer_;
+  std::unique_ptr<StatusHeartbeat> heartbeat_;  // publishes status_ from its own thread
   std::unique_ptr<GridWirePublisher> grid_publisher_;  // a grid wire
   std::unique_ptr<TilePublisher> tile_publisher_;      // Wire::kTiles
   std::unique_ptr<WireBaselineMeter> baseline_meter_;  // with measure_baselines

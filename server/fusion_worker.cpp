@@ -194,7 +194,8 @@ bool FusionWorker::Round() {
   PublishFused(std::chrono::steady_clock::now());
   HandleRobotRecords();
   Persist();
-  return !queue_.empty();  // a backlog: the next round starts without waiting
+  // A backlog (fused or still to admit): the next round starts without waiting.
+  return !queue_.empty() || tile_reader_->queued() > 0;
 }
 
 void FusionWorker::AtStop() {
@@ -282,7 +283,11 @@ void FusionWorker::Persist(std::chrono::steady_clock::time_point now) {
 void FusionWorker::HandleTileEvents() {
   const Timestamp now = Clock::now();
   const auto steady = std::chrono::steady_clock::now();
-  for (transport::TileEvent& event : tile_reader_->Drain()) Admit(std::move(event), now, steady);
+  // A bounded share per call, participants in turn: the loop fuses between calls, so a flood's
+  // backlog is admitted (and decoded) a share at a time while honest tiles keep their turn.
+  for (transport::TileEvent& event : tile_reader_->Drain(kTileEventsPerDrain)) {
+    Admit(std::move(event), now, steady);
+  }
   ReleaseHeldTiles(steady);
 }
 
@@ -369,7 +374,7 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
     return;
   }
   TileAdmission::Verdict verdict = admission_.Admit(
-      event.tile, event.serialized_bytes, TileBudget::Source{robot, participant, {}}, now, steady);
+      event.tile, event.serialized_bytes, TileBudget::Source{robot, participant, event.host}, now, steady);
   if (const auto* refused = std::get_if<TileAdmission::Refused>(&verdict)) {
     Refuse(robot, refused->reason, refused->detail, participant);
     return;

@@ -259,6 +259,9 @@ class FusionWorker {
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;
+  // Tile events admitted per drain of the reader (HandleTileEvents): a flood's backlog is decoded
+  // and admitted this much at a time, between fusion turns.
+  static constexpr size_t kTileEventsPerDrain = 512;
   static constexpr std::chrono::milliseconds kTurnTarget{20};
   static constexpr std::chrono::milliseconds kFusionSlice{50};
   static constexpr size_t kMaxHeldRobots = 64;

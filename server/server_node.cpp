@@ -60,8 +60,10 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
       return participant->AuthenticatedName(writer);
     });
   }
+  dds.name = "fleetmap-server-status";
+  FLEETMAP_ASSIGN_OR_RETURN(node->status_participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
-                                                      *node->participant_, node->wake_up_));
+                                                      *node->status_participant_, node->wake_up_));
   // The sessions in memory are the learner's input: as many as it reads.
   node->options_.fusion.sessions_in_memory = node->options_.learning.max_sessions;
   FLEETMAP_ASSIGN_OR_RETURN(

@@ -99,6 +99,10 @@ class ServerNode {
   ServerOptions options_;
   std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
   std::unique_ptr<transport::Participant> participant_;
+  // The robots' statuses and liveliness come in on a participant of their own: its own ports,
+  // receive threads and event thread, so that a flood of tiles (however many writers send them)
+  // cannot delay the liveliness of the robots and get honest robots reported lost.
+  std::unique_ptr<transport::Participant> status_participant_;
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
   std::shared_ptr<RobotRegistry> registry_;
   std::unique_ptr<FusionWorker> fusion_worker_;

@@ -77,7 +77,7 @@ std::vector<RobotId> HostileFlood::robot_ids() const {
   std::vector<RobotId> ids;
   for (int i = 0; i < options_.ids; ++i) {
     std::string name = options_.robot;
-    name += "-";
+    name += "_";
     name += std::to_string(i);
     ids.push_back(RobotId{std::move(name)});
   }

@@ -20,8 +20,8 @@
 namespace fleetmap::bench {
 
 struct HostileFloodOptions {
-  // The ids it claims: `robot` alone, or with ids > 1 `robot`-0 .. `robot`-(ids-1) (ids are free
-  // to invent; the distinct keys are spread over them).
+  // The ids it claims: `robot` alone, or with ids > 1 `robot`_0 .. `robot`_(ids-1), valid robot
+  // names (ids are free to invent; the distinct keys are spread over them).
   std::string robot = "intruder";
   int ids = 1;
   // Heavy tiles (hundreds of short random walls) rewritten `rate_hz` times a second, each time

@@ -82,7 +82,9 @@ GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_t
   if (window.rect.area() > max_tiles) {
     std::map<TileId, const SourcedTile*> source_of;
     for (const SourcedTile& tile : tiles) source_of[tile.tile] = &tile;
-    // Ranked by the robots that mapped it, then by how early it appeared (larger is better).
+    // Ranked by how early it appeared, then by the robots that mapped it (larger is better).
+    // Arrival order first: robot ids cost nothing to invent, and a peer claiming dozens of them
+    // far away must not take the view from a fleet of a few robots that was there before it.
     const auto rank = [&](const std::vector<TileId>& group) {
       std::set<int> robots;
       uint64_t first_seen = UINT64_MAX;
@@ -91,7 +93,7 @@ GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_t
         robots.insert(source.robots.begin(), source.robots.end());
         first_seen = std::min(first_seen, source.first_seen);
       }
-      return std::pair{robots.size(), UINT64_MAX - first_seen};
+      return std::pair{UINT64_MAX - first_seen, robots.size()};
     };
     std::vector<std::vector<TileId>> groups = GroupNearbyTiles(keys, gap);
     size_t best = 0;

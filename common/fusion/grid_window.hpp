@@ -39,10 +39,10 @@ struct SourcedTile {
 // Chooses the rectangle of tiles a dense grid (rt/fleetmap/map) can show with at most
 // `max_tiles` tiles of area. A fleet's tiles usually fit, and then all are shown. When they span
 // more (robots kilometres apart, or a peer's tiles far away) the grid shows one group of nearby
-// tiles (tiles at most `gap` empty tiles apart belong to one group): the one most robots mapped,
-// then the one that appeared first, so that tiles sent from far away later, however many,
-// cannot take the view from the fleet. It is cut around its median tile if even the group is
-// too large. Memory and time follow
+// tiles (tiles at most `gap` empty tiles apart belong to one group): the one that appeared first,
+// then the one most robots mapped, so that tiles sent from far away later, however many and by
+// however many robot ids, cannot take the view from the fleet. It is cut around its median tile
+// if even the group is too large. Memory and time follow
 // the number of tiles, never their bounding box. `tiles` must not be empty; max_tiles >= 1.
 GridWindow ChooseGridWindow(const std::vector<SourcedTile>& tiles, int64_t max_tiles, int gap = 2);
 

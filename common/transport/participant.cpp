@@ -142,9 +142,10 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
   dds::DomainParticipantQos qos = MakeQos(options, self->localhost_only_);
   dds::PublisherQos publisher_qos = dds::PUBLISHER_QOS_DEFAULT;
   dds::SubscriberQos subscriber_qos = dds::SUBSCRIBER_QOS_DEFAULT;
+  self->identities_ = std::make_unique<ParticipantIdentities>();
   if (options.security) {
     AddSecurityProperties(*options.security, &qos);
-    self->identities_ = std::make_unique<ParticipantIdentities>();
+    self->secured_ = true;
     // A robot's permissions let it publish only in the partition named after it, so a robot
     // cannot write as another at the DDS level; "" and "*" together read the default partition
     // (the server's topics) and every named one.
@@ -177,12 +178,16 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
 Participant::Participant() = default;
 
 std::optional<std::string> Participant::AuthenticatedName(const std::string& writer_id) const {
-  if (identities_ == nullptr) return std::nullopt;
+  if (!secured_) return std::nullopt;
   return identities_->NameOf(writer_id);
 }
 
+std::optional<std::string> Participant::HostOf(const std::string& writer_id) const {
+  return identities_->HostOf(writer_id);
+}
+
 std::optional<double> Participant::SecondsToAuthenticate(const std::string& name) const {
-  if (identities_ == nullptr) return std::nullopt;
+  if (!secured_) return std::nullopt;
   return identities_->SecondsUntilAuthenticated(name);
 }
 

@@ -67,13 +67,16 @@ class Participant {
   // writers (see writer_id.hpp), so a node can tell its own samples from another participant's.
   std::string id() const;
 
-  bool secured() const { return identities_ != nullptr; }
+  bool secured() const { return secured_; }
   // On a secured participant: the authenticated name (certificate CN) of the participant that
   // owns `writer_id` (a WriterId), or nullopt if it gave none. Always nullopt when not secured.
   std::optional<std::string> AuthenticatedName(const std::string& writer_id) const;
   // On a secured participant: seconds from its creation until it authenticated a participant
   // named `name` (DDS Security's handshake with it done), or nullopt if not (yet).
   std::optional<double> SecondsToAuthenticate(const std::string& name) const;
+  // The host (IPv4 address) of the participant that owns `writer_id`, as its discovery announced
+  // it, or nullopt if not known (yet) or it announced shared memory only.
+  std::optional<std::string> HostOf(const std::string& writer_id) const;
 
   // For transport's own readers and writers: the topic `name` of `type` (registering the type
   // on first use); each AcquireTopic is paired with one ReleaseTopic.
@@ -94,6 +97,7 @@ class Participant {
 
   int domain_id_ = 0;
   bool localhost_only_ = false;
+  bool secured_ = false;
   // Declared before the participant: Fast DDS calls it until the participant is deleted.
   std::unique_ptr<ParticipantIdentities> identities_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;

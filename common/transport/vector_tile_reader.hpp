@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@ struct TileEvent {
   VectorTileMessage tile;  // kTile: the whole tile; kRemoved: robot_id and tile only
   Status error;            // kRejected
   std::string writer;
+  // The writer's host (IPv4 address) as discovery announced it; empty when not known.
+  std::string host;
   size_t serialized_bytes = 0;
   // When the listener took it: latency measured from here does not depend on when the reader's
   // owner gets round to draining it.
@@ -28,16 +31,26 @@ struct TileEvent {
 };
 
 // Receives vector tiles on rt/fleetmap/robot_tiles or rt/fleetmap/fused_tiles. The DDS listener
-// checks, decodes and queues; Drain() hands events over. Drain() may be called from one thread.
+// takes and queues; Drain() decodes and hands events over, on the caller's thread (a DDS thread
+// never decodes), fair between the participants that wrote them. Drain() may be called from one
+// thread.
 class VectorTileReader {
  public:
   // Samples that would decode past `limits` are refused (kRejected) before they are decoded.
+  // `participant` must outlive the reader.
   static StatusOr<std::unique_ptr<VectorTileReader>> Create(
       Participant& participant, const std::string& topic_name,
       std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {});
   ~VectorTileReader();
 
-  std::vector<TileEvent> Drain();
+  // At most `max_events`, the writers' participants served in turn (FairSampleQueue): what one
+  // participant floods waits behind the others' tiles, not in front of them.
+  std::vector<TileEvent> Drain(size_t max_events = std::numeric_limits<size_t>::max());
+  // Drops everything queued without decoding it, and returns how many tile samples it held: for
+  // a reader that only counts what arrives (decoding a fleet's tiles costs a core under a flood).
+  size_t DrainCount();
+  // Events waiting for Drain().
+  size_t queued() const;
   // Events dropped because the queue was full (the owner drained too slowly), since creation.
   size_t dropped() const;
 

@@ -325,6 +325,8 @@ TEST_F(FleetDdsTest, TilesAreFusedAndRedistributed) {
       ASSERT_NE(event.kind, transport::TileEvent::Kind::kRejected) << event.error;
       if (event.kind == transport::TileEvent::Kind::kTile) {
         EXPECT_EQ(event.tile.robot_id.value, "fleet");
+        // The writer's host, learned from discovery (what the server's per-host budget charges).
+        EXPECT_EQ(event.host, "127.0.0.1");
         tiles.insert(event.tile.tile);
       }
     }

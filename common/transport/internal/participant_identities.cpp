@@ -1,5 +1,8 @@
 #include "common/transport/internal/participant_identities.hpp"
 
+#include <fastdds/rtps/common/Locator.h>
+#include <fastrtps/utils/IPLocator.h>
+
 #include "common/security/security_identity.hpp"
 #include "common/transport/internal/writer_id.hpp"
 
@@ -14,7 +17,28 @@ std::string PrefixOf(const eprosima::fastrtps::rtps::GUID_t& guid) {
   return WriterId(handle).substr(0, 24);
 }
 
+// The first IPv4 unicast locator's address: metatraffic (discovery) first, then user data.
+std::optional<std::string> HostOfParticipant(
+    const eprosima::fastrtps::rtps::ParticipantProxyData& data) {
+  for (const auto* locators :
+       {&data.metatraffic_locators.unicast, &data.default_locators.unicast}) {
+    for (const eprosima::fastrtps::rtps::Locator_t& locator : *locators) {
+      if (locator.kind == LOCATOR_KIND_UDPv4 || locator.kind == LOCATOR_KIND_TCPv4) {
+        return eprosima::fastrtps::rtps::IPLocator::ip_to_string(locator);
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+std::optional<std::string> ParticipantIdentities::HostOf(const std::string& writer_id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = host_by_prefix_.find(writer_id.substr(0, 24));
+  if (it == host_by_prefix_.end()) return std::nullopt;
+  return it->second;
+}
 
 std::optional<std::string> ParticipantIdentities::NameOf(const std::string& writer_id) const {
   std::lock_guard lock(mutex_);
@@ -55,6 +79,9 @@ void ParticipantIdentities::on_participant_discovery(
   switch (info.status) {
     case ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
     case ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT: {
+      if (std::optional<std::string> host = HostOfParticipant(info.info)) {
+        host_by_prefix_[prefix] = *std::move(host);
+      }
       for (const auto& property : info.info.identity_token_.properties()) {
         if (property.name() == "dds.cert.sn") {
           name_by_prefix_[prefix] = security::CommonNameOfSubject(property.value());
@@ -65,6 +92,7 @@ void ParticipantIdentities::on_participant_discovery(
     case ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
     case ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
       name_by_prefix_.erase(prefix);
+      host_by_prefix_.erase(prefix);
       authenticated_after_by_prefix_.erase(prefix);
       break;
   }

@@ -1,7 +1,8 @@
 #pragma once
 
-// Internal to transport: on a secured participant, who each discovered participant says it is.
-// DDS Security authenticates a peer's certificate in its handshake and checks its permissions
+// Internal to transport: who each discovered participant is. Its host: the IPv4 address of its
+// first unicast locator (a budget per host bounds what many participants of one machine can make
+// the server hold). On a secured participant also its name: DDS Security authenticates a peer's certificate in its handshake and checks its permissions
 // against that certificate's subject; the subject's CN also travels in the peer's identity token
 // (dds.cert.sn), which this listener keeps per participant (GUID prefix), so the server can check
 // a sample's robot id against the name of the participant that wrote it. Thread-safe: Fast DDS
@@ -22,6 +23,9 @@ class ParticipantIdentities : public eprosima::fastdds::dds::DomainParticipantLi
   // The name (certificate CN) of the participant whose GUID prefix (24 hex digits) starts
   // `writer_id`, or nullopt when that participant is unknown or gave none.
   std::optional<std::string> NameOf(const std::string& writer_id) const;
+  // The IPv4 address (dotted) of the participant that owns `writer_id`, or nullopt when that
+  // participant is unknown or announced no IPv4 unicast locator (shared memory only).
+  std::optional<std::string> HostOf(const std::string& writer_id) const;
   // Seconds from this listener's creation (its participant's) until the first participant named
   // `name` was authenticated (the DDS Security handshake done), or nullopt if none was yet.
   std::optional<double> SecondsUntilAuthenticated(const std::string& name) const;
@@ -36,6 +40,7 @@ class ParticipantIdentities : public eprosima::fastdds::dds::DomainParticipantLi
   const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   mutable std::mutex mutex_;
   std::map<std::string, std::string> name_by_prefix_;
+  std::map<std::string, std::string> host_by_prefix_;
   std::map<std::string, double> authenticated_after_by_prefix_;  // seconds since created_
 };
 

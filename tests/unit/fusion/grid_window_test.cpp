@@ -85,5 +85,16 @@ TEST(GridWindowTest, ALaterRobotsManyFarTilesCannotTakeTheViewFromTheFirst) {
   EXPECT_EQ(window.tiles_left_out, 1000u);
 }
 
+TEST(GridWindowTest, DozensOfIdsMappingFarAwayLaterCannotTakeTheViewFromTheFleet) {
+  // Four robots map four tiles; later a peer claiming 64 robot ids sends 64 tiles 13 km away.
+  std::vector<SourcedTile> tiles = {
+      {{0, 0}, {0, 1}, 1}, {{1, 0}, {1, 2}, 2}, {{0, 1}, {2, 3}, 3}, {{1, 1}, {3}, 4}};
+  for (int i = 0; i < 64; ++i) tiles.push_back({{1300 + i % 16, i / 16}, {4 + i}, 5u + i});
+  const GridWindow window = ChooseGridWindow(tiles, 400);
+  EXPECT_EQ(window.rect.min, (TileId{0, 0}));
+  EXPECT_EQ(window.rect.max, (TileId{1, 1}));
+  EXPECT_EQ(window.tiles_left_out, 64u);
+}
+
 }  // namespace
 }  // namespace fleetmap::fusion
