@@ -102,7 +102,7 @@ class AgentNode {
   std::unique_ptr<MapSource> source_;
   SimMapSource* sim_source_ = nullptr;  // source_, when it is the simulator (for the pose)
   std::unique_ptr<transport::RobotStatusWriter> status_writer_;
-  std::unique_ptr<StatusHeartbeat> heartbeat_;  // publishes status_ from its own thread
+  std::unique_ptr<StatusHeartbeat> heartbeat_;         // publishes status_ from its own thread
   std::unique_ptr<GridWirePublisher> grid_publisher_;  // a grid wire
   std::unique_ptr<TilePublisher> tile_publisher_;      // Wire::kTiles
   std::unique_ptr<WireBaselineMeter> baseline_meter_;  // with measure_baselines

@@ -10,7 +10,25 @@ Status StatusHeartbeat::Start(const RobotStatus& first) {
   FLEETMAP_RETURN_IF_ERROR(WriteNow());
   thread_.Start([this] {
     std::lock_guard lock(write_mutex_);
-    if (std::chrono::steady_clock::now() - last_write_ < period_) return false;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_write_ < period_) return false;
+    bool hung;
+    {
+      std::lock_guard latest_lock(mutex_);
+      hung = now - last_update_ > hung_after_;
+    }
+    if (hung != hung_) {
+      hung_ = hung;
+      if (hung) {
+        spdlog::error(
+            "{}: the agent's loop has not run for {} ms: no status until it does (the "
+            "server reports the robot lost)",
+            robot_.value, hung_after_.count());
+      } else {
+        spdlog::info("{}: the agent's loop runs again", robot_.value);
+      }
+    }
+    if (hung) return false;
     if (const Status written = Write(); !written.ok()) {
       spdlog::warn("{}: {}", robot_.value, written.message());
     }
@@ -24,6 +42,7 @@ void StatusHeartbeat::Update(const RobotStatus& status) {
   const auto sequence = latest_.sequence_number;
   latest_ = status;
   latest_.sequence_number = sequence;
+  last_update_ = std::chrono::steady_clock::now();
 }
 
 Status StatusHeartbeat::WriteNow() {

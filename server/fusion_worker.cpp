@@ -88,9 +88,8 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
   FLEETMAP_ASSIGN_OR_RETURN(worker->placer_, RobotPlacer::Create(participant, options.placement));
   worker->sync_ = std::make_unique<StoreSync>(worker->store_.get(), StoreSync::Options{});
   if (worker->store_ != nullptr) FLEETMAP_RETURN_IF_ERROR(worker->Restore());
-  worker->sessions_ =
-      std::make_unique<SessionArchive>(options.fusion.tile_size, worker->store_.get(),
-                                       options.sessions_in_memory);
+  worker->sessions_ = std::make_unique<SessionArchive>(
+      options.fusion.tile_size, worker->store_.get(), options.sessions_in_memory);
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<std::string> skipped, worker->sessions_->Restore());
   for (const std::string& warning : skipped) {
     spdlog::warn("server: skipping a stored mapping session: {}", warning);
@@ -217,7 +216,8 @@ void FusionWorker::HandleRobotRecords() {
     if (const std::string why = WhySessionIsNotKept(robot.robot); !why.empty()) {
       cut_sessions_.erase(robot.robot);
       const size_t tiles = sessions_->DiscardSession(robot.robot);
-      if (tiles > 0) discarded.push_back(fmt::format("{} ({} tiles: {})", robot.robot.value, tiles, why));
+      if (tiles > 0)
+        discarded.push_back(fmt::format("{} ({} tiles: {})", robot.robot.value, tiles, why));
       continue;
     }
     const Timestamp ended{
@@ -243,11 +243,11 @@ void FusionWorker::HandleRobotRecords() {
     // One line a round however many ids end: a flood of ids must not flood the log.
     constexpr size_t kNamed = 3;
     const size_t named = std::min(discarded.size(), kNamed);
-    spdlog::info("server: {} mapping session(s) not kept for object learning: {}{}",
-                 discarded.size(),
-                 fmt::join(discarded.begin(), discarded.begin() + static_cast<std::ptrdiff_t>(named), "; "),
-                 discarded.size() > named ? fmt::format(" and {} more", discarded.size() - named)
-                                          : std::string());
+    spdlog::info(
+        "server: {} mapping session(s) not kept for object learning: {}{}", discarded.size(),
+        fmt::join(discarded.begin(), discarded.begin() + static_cast<std::ptrdiff_t>(named), "; "),
+        discarded.size() > named ? fmt::format(" and {} more", discarded.size() - named)
+                                 : std::string());
   }
   if (store_ == nullptr) return;
   for (store::RobotRecord& robot : records) {
@@ -373,8 +373,9 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
     RemoveTile(robot, event.tile.tile);
     return;
   }
-  TileAdmission::Verdict verdict = admission_.Admit(
-      event.tile, event.serialized_bytes, TileBudget::Source{robot, participant, event.host}, now, steady);
+  TileAdmission::Verdict verdict =
+      admission_.Admit(event.tile, event.serialized_bytes,
+                       TileBudget::Source{robot, participant, event.host}, now, steady);
   if (const auto* refused = std::get_if<TileAdmission::Refused>(&verdict)) {
     Refuse(robot, refused->reason, refused->detail, participant);
     return;
@@ -422,16 +423,15 @@ void FusionWorker::HandleAdmissions() {
 
 void FusionWorker::StoreAdmission(const transport::RobotAdmissionMessage& admission) {
   if (store_ == nullptr) return;
-  const int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                             Clock::now().time_since_epoch())
-                             .count();
-  const Status stored =
-      store_->PutAdmission({admission.robot, admission.operator_name, now_ns});
+  const int64_t now_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  const Status stored = store_->PutAdmission({admission.robot, admission.operator_name, now_ns});
   if (!stored.ok()) {
     // It holds until this server stops; the operator is told it will not outlive a restart.
-    spdlog::error("server: map store: the admission of {} is not stored (it holds until the "
-                  "server stops): {}",
-                  admission.robot.value, stored.message());
+    spdlog::error(
+        "server: map store: the admission of {} is not stored (it holds until the "
+        "server stops): {}",
+        admission.robot.value, stored.message());
     std::lock_guard lock(stats_mutex_);
     ++stats_.store_errors;
   }

@@ -250,12 +250,12 @@ class FusionWorker {
   std::map<RobotId, std::map<TileId, HeldTile>> held_;  // worker thread only
   // Robots whose open session lost tiles to a budget (CutsTheMap): not kept when it ends.
   std::set<RobotId> cut_sessions_;
-  RefusalLog refusals_{"server"};                       // worker thread only
-  std::unique_ptr<StoreSync> sync_;                     // worker thread only (after Create)
-  bool map_dirty_ = false;                              // worker thread only
-  uint64_t fused_revisions_ = 0;  // fused tile revisions made: the fleet map changed
-  RobotId last_registered_;       // whose map the placer registered last (round robin)
-  size_t tiles_outside_map_ = 0;  // worker thread only
+  RefusalLog refusals_{"server"};    // worker thread only
+  std::unique_ptr<StoreSync> sync_;  // worker thread only (after Create)
+  bool map_dirty_ = false;           // worker thread only
+  uint64_t fused_revisions_ = 0;     // fused tile revisions made: the fleet map changed
+  RobotId last_registered_;          // whose map the placer registered last (round robin)
+  size_t tiles_outside_map_ = 0;     // worker thread only
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;

@@ -18,8 +18,9 @@ PlacementEvidence::Verdict PlacementEvidence::Observe(const RegistrationKey& key
   Leader& leader = it->second;
   if (inserted || !Same(leader.target_from_map, vote.target_from_map, vote.map_centre)) {
     if (!inserted) {
-      verdict.why = "the best placement moved since the last registration (repeated structure "
-                    "or a map still too small): counting again; ";
+      verdict.why =
+          "the best placement moved since the last registration (repeated structure "
+          "or a map still too small): counting again; ";
     }
     leader.streak = 0;
   }

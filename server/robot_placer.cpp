@@ -234,12 +234,12 @@ std::optional<RobotPlacer::Decision> RobotPlacer::DecideOne(const PlacementResul
   if (!frame->second.placed()) {
     // The sequential test: placed only when the same placement keeps winning.
     const PlacementEvidence::Verdict verdict = evidence_.Observe(
-        job.key(),
-        {found.a_from_b, result.map_centre, at_bar, found.confidence, why_not});
+        job.key(), {found.a_from_b, result.map_centre, at_bar, found.confidence, why_not});
     if (!verdict.place) {
-      Waiting(job.robot, (job.target_robot.value.empty() ? "on the fleet map: " : "on robot " +
-                                                               job.target_robot.value + ": ") +
-                             verdict.why);
+      Waiting(job.robot,
+              (job.target_robot.value.empty() ? "on the fleet map: "
+                                              : "on robot " + job.target_robot.value + ": ") +
+                  verdict.why);
       if (at_bar) {
         spdlog::debug("server: robot {} on {}: {}", job.robot.value, against, verdict.why);
         return std::nullopt;

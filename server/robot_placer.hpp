@@ -60,7 +60,7 @@ struct PlacementJob {
   grid::OccupancyGrid target;
   vector_map::VectorMap target_map;
   double resolution = 0.05;
-  RobotId target_robot;          // empty: the fleet map
+  RobotId target_robot;  // empty: the fleet map
   // When `robot` registers for its group (PlacementGroup, the root): the other members, whose
   // maps `map` holds too, in the robot's frame.
   std::vector<RobotId> group;
@@ -170,7 +170,7 @@ class RobotPlacer {
   std::unique_ptr<transport::RobotFrameWriter> frame_writer_;
   std::unique_ptr<transport::TfWriter> tf_writer_;
   std::map<RobotId, transport::RobotFrameMessage> frames_;
-  std::map<RobotId, fusion::TrustReport> standings_;         // robots not trusted, or no longer
+  std::map<RobotId, fusion::TrustReport> standings_;  // robots not trusted, or no longer
   std::map<RegistrationKey, Attempt> attempts_;
   std::map<RobotId, Follower> followers_;
   PlacementEvidence evidence_;

@@ -107,19 +107,24 @@ void PrintHostileTable(const std::vector<Row>& rows, const HostileAttack& attack
         LatenciesBetween(attacked, stopped + kRecoverySeconds, attacked.seconds);
     const std::string refusals = TileRefusals(attacked.server_output);
     const int64_t end_rss = attacked.server_rss.empty() ? 0 : attacked.server_rss.back().second;
-    const auto p = [](const std::vector<double>& values, double q) { return Percentile(values, q); };
+    const auto p = [](const std::vector<double>& values, double q) {
+      return Percentile(values, q);
+    };
     std::cout << fmt::format(
-        "| {} | {} / {} | {} / {} | {} / {} | {:.0f} / {:.0f} / {:.0f} | {} | {} |\n",
-        row.robots, Fmt(p(row.tiles.latencies_ms, 50), " ms"), Fmt(p(row.tiles.latencies_ms, 99), ""),
+        "| {} | {} / {} | {} / {} | {} / {} | {:.0f} / {:.0f} / {:.0f} | {} | {} |\n", row.robots,
+        Fmt(p(row.tiles.latencies_ms, 50), " ms"), Fmt(p(row.tiles.latencies_ms, 99), ""),
         Fmt(p(during, 50), " ms"), Fmt(p(during, 99), ""), Fmt(p(after, 50), " ms"),
         Fmt(p(after, 99), ""), row.tiles.server_peak_rss_bytes / 1e6,
-        attacked.server_peak_rss_bytes / 1e6, end_rss / 1e6, attacked.hostile_tiles_written, refusals);
+        attacked.server_peak_rss_bytes / 1e6, end_rss / 1e6, attacked.hostile_tiles_written,
+        refusals);
     (*json)[i]["hostile"] = {
         {"participants", attack.participants},
         {"ids_per_participant", flood.ids},
         {"flood_s", {started, stopped}},
-        {"latency_ms_during", {{"p50", p(during, 50).value_or(-1)}, {"p99", p(during, 99).value_or(-1)}}},
-        {"latency_ms_after", {{"p50", p(after, 50).value_or(-1)}, {"p99", p(after, 99).value_or(-1)}}},
+        {"latency_ms_during",
+         {{"p50", p(during, 50).value_or(-1)}, {"p99", p(during, 99).value_or(-1)}}},
+        {"latency_ms_after",
+         {{"p50", p(after, 50).value_or(-1)}, {"p99", p(after, 99).value_or(-1)}}},
         {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},
         {"server_rss_bytes_at_end", end_rss},
         {"flood_tiles_sent", attacked.hostile_tiles_written},

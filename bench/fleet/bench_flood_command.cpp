@@ -6,8 +6,8 @@
 #include <chrono>
 #include <csignal>
 #include <iostream>
-#include <string_view>
 #include <memory>
+#include <string_view>
 #include <thread>
 #include <vector>
 

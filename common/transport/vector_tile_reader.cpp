@@ -24,8 +24,8 @@ using fleetmap_msgs::msg::dds_::VectorTile_;
 // liveliness of every robot), so no writer's tiles, however heavy, may hold it up.
 class VectorTileReader::Listener : public dds::DataReaderListener, public MalformedSink {
  public:
-  Listener(const Participant& participant, std::string topic_name,
-           std::shared_ptr<WakeUp> wake_up, const TileDecodeLimits& limits)
+  Listener(const Participant& participant, std::string topic_name, std::shared_ptr<WakeUp> wake_up,
+           const TileDecodeLimits& limits)
       : participant_(participant),
         topic_name_(std::move(topic_name)),
         wake_up_(std::move(wake_up)),
@@ -33,19 +33,18 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
         received_(kQueueCapacity) {}
 
   void on_data_available(dds::DataReader* reader) override {
-    TakeAll<VectorTile_>(reader, this,
-                         [this](const VectorTile_& sample, const dds::SampleInfo& info) {
-                           Received received;
-                           received.event.writer = WriterId(info.publication_handle);
-                           received.event.host =
-                               participant_.HostOf(received.event.writer).value_or("");
-                           received.event.received = Clock::now();
-                           if (info.valid_data) {
-                             OnSample(sample, info, std::move(received));
-                           } else {
-                             OnInstanceGone(info, std::move(received.event));
-                           }
-                         });
+    TakeAll<VectorTile_>(
+        reader, this, [this](const VectorTile_& sample, const dds::SampleInfo& info) {
+          Received received;
+          received.event.writer = WriterId(info.publication_handle);
+          received.event.host = participant_.HostOf(received.event.writer).value_or("");
+          received.event.received = Clock::now();
+          if (info.valid_data) {
+            OnSample(sample, info, std::move(received));
+          } else {
+            OnInstanceGone(info, std::move(received.event));
+          }
+        });
     Notify();
   }
 

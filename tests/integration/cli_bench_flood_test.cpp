@@ -28,9 +28,9 @@ TEST(CliBenchFloodTest, FloodsARunningServerThatRefusesWhatIsOverItsBudgetsAndKe
   const std::map<std::string, std::string> env = {
       {"FLEETMAP_DOMAIN", std::to_string(process::RandomDomainId())},
       {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  Subprocess server({testing::kServerBinary, "--duration", "60", "--no-object-learning",
-                     "--no-extrapolation"},
-                    env);
+  Subprocess server(
+      {testing::kServerBinary, "--duration", "60", "--no-object-learning", "--no-extrapolation"},
+      env);
   ASSERT_TRUE(server.WaitForOutput("listening on DDS domain", kDeadline)) << server.Output();
   Subprocess alpha({testing::kAgentBinary, "--robot-id", "alpha", "--map",
                     std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/trinary_4x3.yaml"},

@@ -2,11 +2,11 @@
 
 // Internal to transport: who each discovered participant is. Its host: the IPv4 address of its
 // first unicast locator (a budget per host bounds what many participants of one machine can make
-// the server hold). On a secured participant also its name: DDS Security authenticates a peer's certificate in its handshake and checks its permissions
-// against that certificate's subject; the subject's CN also travels in the peer's identity token
-// (dds.cert.sn), which this listener keeps per participant (GUID prefix), so the server can check
-// a sample's robot id against the name of the participant that wrote it. Thread-safe: Fast DDS
-// calls the listener on its discovery thread.
+// the server hold). On a secured participant also its name: DDS Security authenticates a peer's
+// certificate in its handshake and checks its permissions against that certificate's subject; the
+// subject's CN also travels in the peer's identity token (dds.cert.sn), which this listener keeps
+// per participant (GUID prefix), so the server can check a sample's robot id against the name of
+// the participant that wrote it. Thread-safe: Fast DDS calls the listener on its discovery thread.
 
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 

@@ -47,7 +47,7 @@ TEST(GridWindowTest, TilesAFewEmptyTilesApartAreOneGroup) {
 
 TEST(GridWindowTest, AGroupLargerThanTheBudgetIsCutAroundItsMedian) {
   std::vector<TileId> tiles;
-  for (int x = 0; x < 100; ++x) tiles.push_back({x, 7});  // one long corridor
+  for (int x = 0; x < 100; ++x) tiles.push_back({x, 7});              // one long corridor
   const GridWindow window = ChooseGridWindow(ByOneRobot(tiles), 25);  // at most 5 x 5 tiles
   EXPECT_LE(window.rect.area(), 25);
   EXPECT_TRUE(window.rect.Contains({50, 7}));
