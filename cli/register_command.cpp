@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
-#include <nlohmann/json.hpp>
 
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"

@@ -48,7 +48,6 @@ uint64_t TileHash(const grid::OccupancyGrid& grid, const grid::CellRect& rect,
   return hash;
 }
 
-
 }  // namespace
 
 Status TilePublisherOptions::Validate() const {

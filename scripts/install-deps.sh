@@ -22,6 +22,8 @@ packages=(
   # The fuzz targets (`make fuzz`): clang and its libFuzzer, ASan and UBSan runtimes
   # (libclang-rt-14-dev holds libclang_rt.fuzzer and the sanitizers for Debian's clang 14).
   clang libclang-rt-14-dev
+  # `make format-check` (.ci/run): the tree against .clang-format, with Debian's clang-format 14.
+  clang-format
   # Tests and benchmarks.
   libgtest-dev libgmock-dev googletest libbenchmark-dev python3 zstd
   # Spatial indexes (Boost.Geometry R-tree, header-only).

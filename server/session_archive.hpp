@@ -72,7 +72,7 @@ class SessionArchive {
   void Keep(MappingSession session);
 
   size_t keep_in_memory_;
-  std::vector<MappingSession> finished_;    // oldest first, the newest keep_in_memory_
+  std::vector<MappingSession> finished_;  // oldest first, the newest keep_in_memory_
   size_t finished_count_ = 0;
   int64_t next_memory_id_ = 1;
 };

@@ -18,7 +18,8 @@ std::string TilesText(const TileBytesComparison& c) {
 void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold, std::ostream& out) {
   const std::string mark = bold ? "**" : "";
   out << "| " << name << " | " << TilesText(c);
-  for (const NamedBytes& baseline : TileBaselines(c.grid.bytes)) out << " | " << Kilobytes(baseline.bytes);
+  for (const NamedBytes& baseline : TileBaselines(c.grid.bytes))
+    out << " | " << Kilobytes(baseline.bytes);
   out << " | " << Kilobytes(c.vector.payload);
   for (const NamedRatio& ratio : c.Ratios()) out << " | " << Ratio(ratio.ratio);
   const NamedRatio smallest = c.RatioToSmallest();

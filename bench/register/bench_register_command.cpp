@@ -149,7 +149,8 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
       << Fixed(bench_options.registration.min_confidence, 2)
       << " (the server's) and verified; false accept: found but not a success (% of pairs). "
       << MachineDescription() << ".\n\n";
-  out << "| pairs from | overlap | pairs | achieved | fleetmap success % | fleetmap false accepts % | "
+  out << "| pairs from | overlap | pairs | achieved | fleetmap success % | fleetmap false accepts "
+         "% | "
          "fleetmap median s | fleetmap worst s | m-explore success % | m-explore false accepts % | "
          "m-explore median s | m-explore worst s |\n"
          "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -244,12 +245,12 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
     csv << "map,group,target_overlap,overlap,method,found,success,translation_error_cells,"
            "yaw_error_deg,seconds,confidence\n";
     for (const PairOutcome& p : run.pairs) {
-      for (const auto& [method, o] : {std::pair<std::string, const MethodOutcome*>{"fleetmap",
-                                                                                    &p.fleetmap},
-                                      {"mexplore", &p.mexplore}}) {
+      for (const auto& [method, o] :
+           {std::pair<std::string, const MethodOutcome*>{"fleetmap", &p.fleetmap},
+            {"mexplore", &p.mexplore}}) {
         if (options.skip_mexplore && method == "mexplore") continue;
-        csv << p.map << "," << p.group << "," << Fixed(p.target_overlap, 2) << "," << Fixed(p.overlap, 4) << ","
-            << method << "," << o->found << "," << o->success << ","
+        csv << p.map << "," << p.group << "," << Fixed(p.target_overlap, 2) << ","
+            << Fixed(p.overlap, 4) << "," << method << "," << o->found << "," << o->success << ","
             << Fixed(o->translation_error_cells, 3) << "," << Fixed(o->yaw_error_deg, 3) << ","
             << Fixed(o->seconds, 4) << "," << Fixed(o->confidence, 4) << "\n";
       }
@@ -269,9 +270,10 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
       "Map registration on map pairs at 20-70 % overlap, plain and drifted: fleetmap against "
       "m-explore's pipeline");
   command->add_option("--maps", options->maps_dir, "directory of map_server maps (*.yaml)");
-  command->add_option("--repeated", options->repeated_maps,
-                      "with --maps, also this many repeated-structure terrains (warehouse, "
-                      "office rows, corridors), reported as their own rows")
+  command
+      ->add_option("--repeated", options->repeated_maps,
+                   "with --maps, also this many repeated-structure terrains (warehouse, "
+                   "office rows, corridors), reported as their own rows")
       ->capture_default_str();
   command->add_flag("--no-drift", options->no_drift,
                     "skip the drifted pairs (each pair again with B warped smoothly)");
@@ -279,8 +281,8 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
                       "use this many synthetic terrains (office, maze, unstructured, warehouse, "
                       "office rows, corridors) instead of --maps, and print the confidence "
                       "calibration fit");
-  command->add_option("--pairs-per-overlap", options->pairs_per_overlap,
-                      "pairs per map and overlap")
+  command
+      ->add_option("--pairs-per-overlap", options->pairs_per_overlap, "pairs per map and overlap")
       ->capture_default_str();
   command->add_option("--seed", options->seed, "pair generator seed")->capture_default_str();
   command->add_option("--csv", options->csv_path, "write one row per pair and method");

@@ -180,8 +180,8 @@ grid::OccupancyGrid CropCells(const grid::OccupancyGrid& map, int x0, int y0, in
   return out;
 }
 
-grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw, const Pose2& origin,
-                                     Transform2* map_from_turned) {
+grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw,
+                                     const Pose2& origin, Transform2* map_from_turned) {
   const double res = map.resolution();
   const double c = std::cos(yaw), s = std::sin(yaw);
   const double w = map.width() * res, h = map.height() * res;
@@ -285,8 +285,8 @@ StatusOr<MapPair> MakeMapPair(const grid::OccupancyGrid& source, double target_o
     for (int step = 0; step < 10 && attempts < options.max_attempts; ++step, ++attempts) {
       const double q = std::clamp(lo + (hi - lo) * (0.35 + 0.3 * unit(rng)), 0.0, 1.0);
       const int start_b = from_a[static_cast<size_t>(q * (from_a.size() - 1))];
-      const std::vector<int> from_b = GeodesicOrder(
-          source, free, start_b, static_cast<size_t>(share(rng) * from_a.size()));
+      const std::vector<int> from_b =
+          GeodesicOrder(source, free, start_b, static_cast<size_t>(share(rng) * from_a.size()));
       const Mask region_b = ExploredRegion(source, known, from_b, from_b.size(), options, rng);
       const double overlap = Overlap(region_a, region_b);
       if (std::abs(overlap - target_overlap) <= options.overlap_tolerance) {

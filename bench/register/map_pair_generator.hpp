@@ -42,8 +42,8 @@ struct MapPair {
   grid::OccupancyGrid a;  // in the source map's frame (cropped: another origin, same frame)
   grid::OccupancyGrid b;  // in a frame of its own
   Transform2 a_from_b = Transform2::Identity();  // the truth: p_a = a_from_b * p_b
-  double overlap = 0.0;       // achieved: share of B's known cells also known in A
-  double yaw_b = 0.0;         // how far B's cells were turned (radians)
+  double overlap = 0.0;  // achieved: share of B's known cells also known in A
+  double yaw_b = 0.0;    // how far B's cells were turned (radians)
 };
 
 // One pair from `source` at `target_overlap` (in (0, 1)). kNotFound when no crop within the
@@ -55,16 +55,16 @@ StatusOr<MapPair> MakeMapPair(const grid::OccupancyGrid& source, double target_o
 // `map` seen by another robot: its cells turned by `yaw` about the grid's centre
 // (nearest-neighbour resampling, as a second SLAM run would rasterize the same walls), in a frame
 // whose origin is `origin`. `*map_from_turned` takes the new map's frame to `map`'s frame.
-grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw, const Pose2& origin,
-                                     Transform2* map_from_turned);
+grid::OccupancyGrid TurnIntoNewFrame(const grid::OccupancyGrid& map, double yaw,
+                                     const Pose2& origin, Transform2* map_from_turned);
 
 // How B drifts against A (issue 31): a smooth warp of B's cells about a pivot, as a second SLAM
 // run's scale error and slow heading drift would bend the same walls. Each drifted pair draws
 // its scale uniformly in [-max_scale, max_scale] and its bend in
 // [-max_bend_deg_per_m, max_bend_deg_per_m].
 struct DriftOptions {
-  double max_scale = 0.02;           // 2 cm per metre from the pivot
-  double max_bend_deg_per_m = 0.1;   // heading turns this much per metre along B's x axis
+  double max_scale = 0.02;          // 2 cm per metre from the pivot
+  double max_bend_deg_per_m = 0.1;  // heading turns this much per metre along B's x axis
 };
 
 // `map` warped about `pivot` (map frame): a point at d = p - pivot moves to

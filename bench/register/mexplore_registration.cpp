@@ -48,8 +48,8 @@ MexploreRegistration Estimate(const grid::OccupancyGrid& a, const grid::Occupanc
   for (const cv::detail::MatchesInfo& m : pairwise) {
     if (m.src_img_idx == 0 && m.dst_img_idx == 1) result.match_confidence = m.confidence;
   }
-  const std::vector<int> kept = cv::detail::leaveBiggestComponent(
-      features, pairwise, static_cast<float>(options.confidence));
+  const std::vector<int> kept =
+      cv::detail::leaveBiggestComponent(features, pairwise, static_cast<float>(options.confidence));
   if (kept.size() < 2) return result;
 
   std::vector<cv::detail::CameraParams> cameras;
@@ -97,8 +97,7 @@ MexploreRegistration Estimate(const grid::OccupancyGrid& a, const grid::Occupanc
   rigid.translate(target);
   rigid.rotate(yaw);
   rigid.translate(-centroid_grid_b);
-  result.a_from_b =
-      Pose2::FromTransform(map_a_from_grid_a * rigid * map_b_from_grid_b.inverse());
+  result.a_from_b = Pose2::FromTransform(map_a_from_grid_a * rigid * map_b_from_grid_b.inverse());
   result.found = true;
   return result;
 }

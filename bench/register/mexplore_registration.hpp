@@ -21,10 +21,10 @@ struct MexploreOptions {
 };
 
 struct MexploreRegistration {
-  bool found = false;     // both grids stayed in the biggest component and the estimation held
-  Pose2 a_from_b;         // when found: p_a = a_from_b * p_b
+  bool found = false;  // both grids stayed in the biggest component and the estimation held
+  Pose2 a_from_b;      // when found: p_a = a_from_b * p_b
   double match_confidence = 0.0;  // OpenCV's pairwise match confidence (inliers vs matches)
-  double scale = 1.0;     // the scale of the estimated similarity (1 for a perfect estimate)
+  double scale = 1.0;  // the scale of the estimated similarity (1 for a perfect estimate)
 };
 
 MexploreRegistration RegisterLikeMexplore(const grid::OccupancyGrid& a,

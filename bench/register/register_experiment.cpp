@@ -84,8 +84,7 @@ StatusOr<std::vector<SourceMap>> TerrainMaps(int count, uint32_t first_seed, boo
   std::vector<SourceMap> maps;
   for (int k = 0; k < count; ++k) {
     FLEETMAP_ASSIGN_OR_RETURN(
-        SourceMap map,
-        TerrainMap(k, first_seed + static_cast<uint32_t>(k), repeated_only, group));
+        SourceMap map, TerrainMap(k, first_seed + static_cast<uint32_t>(k), repeated_only, group));
     maps.push_back(std::move(map));
   }
   return maps;
@@ -146,8 +145,8 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
                           static_cast<uint32_t>(k)};
         std::mt19937 rng(seq);
         StatusOr<MapPair> pair = MakeMapPair(maps[m].grid, options.overlaps[o], options.pairs, rng);
-        for (int retry = 0; retry < 4 && !pair.ok() && pair.status().code() == StatusCode::kNotFound;
-             ++retry) {
+        for (int retry = 0;
+             retry < 4 && !pair.ok() && pair.status().code() == StatusCode::kNotFound; ++retry) {
           pair = MakeMapPair(maps[m].grid, options.overlaps[o], options.pairs, rng);
         }
         if (!pair.ok()) {

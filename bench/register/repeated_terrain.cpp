@@ -35,10 +35,10 @@ void AddWallWithGaps(double y, double x0, double x1, const std::vector<double>& 
 // Rows of racks along x at one period, split by a cross aisle; pillars on a lattice along the
 // front and back aisles; pallets in the aisles.
 void Warehouse(double size, sim::Random* random, Terrain* terrain) {
-  const double depth = random->Uniform(0.9, 1.2);     // rack depth
-  const double period = random->Uniform(3.0, 3.8);    // rack + aisle
-  const double margin = random->Uniform(2.5, 3.5);    // front / back aisles and the side aisles
-  const double cross = random->Uniform(0.35, 0.65);   // where the cross aisle runs (share of x)
+  const double depth = random->Uniform(0.9, 1.2);    // rack depth
+  const double period = random->Uniform(3.0, 3.8);   // rack + aisle
+  const double margin = random->Uniform(2.5, 3.5);   // front / back aisles and the side aisles
+  const double cross = random->Uniform(0.35, 0.65);  // where the cross aisle runs (share of x)
   const double cross_width = random->Uniform(2.5, 3.5);
   const double x0 = margin, x1 = size - margin;
   const double cross_x = x0 + cross * (x1 - x0 - cross_width);

@@ -151,7 +151,8 @@ void PrintVertexBreakdown(const std::vector<VectorizeBenchRow>& rows, std::ostre
     out << "| " << ComponentClassName(c) << " | " << total.components[c] << " | "
         << total.opencv_vertices[c] << " | " << total.ours_vertices[c] << " | "
         << Ratio(SafeRatio(total.ours_vertices[c], total.opencv_vertices[c])) << " | "
-        << FormatDouble("%.1f %%", 100.0 * SafeRatio(total.opencv_vertices[c], opencv_sum)) << " |\n";
+        << FormatDouble("%.1f %%", 100.0 * SafeRatio(total.opencv_vertices[c], opencv_sum))
+        << " |\n";
   }
   if (total.ours_unattributed > 0) {
     out << "| (no occupied cell within epsilon) | | | " << total.ours_unattributed << " | | |\n";
@@ -289,11 +290,11 @@ void PrintVectorizeBenchTables(const std::vector<VectorizeBenchRow>& rows, std::
          "tiles updated <= 1 ms |\n"
       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
-    out << "| " << r.name << " | " << Kilobytes(r.grid_zstd) << " | " << Kilobytes(r.grid_png) << " | "
-        << Kilobytes(r.vmap_obstacles_raw) << " | " << Kilobytes(r.vmap_raw) << " | " << Kilobytes(r.vmap_zstd) << " | "
-        << Ratio(BytesRatio(r)) << " | " << Percent(r.round_trip_ms) << " | "
-        << Percent(r.round_trip_opdf) << " | " << Percent(r.round_trip_updf) << " | "
-        << Ms(r.revectorize_tile_ms) << " | "
+    out << "| " << r.name << " | " << Kilobytes(r.grid_zstd) << " | " << Kilobytes(r.grid_png)
+        << " | " << Kilobytes(r.vmap_obstacles_raw) << " | " << Kilobytes(r.vmap_raw) << " | "
+        << Kilobytes(r.vmap_zstd) << " | " << Ratio(BytesRatio(r)) << " | "
+        << Percent(r.round_trip_ms) << " | " << Percent(r.round_trip_opdf) << " | "
+        << Percent(r.round_trip_updf) << " | " << Ms(r.revectorize_tile_ms) << " | "
         << TilesWithinText(TilesWithinTarget(r), r.tile_updates.size()) << " |\n";
   }
   const auto kb_sum = [&](const std::function<double(const Row&)>& get) {

@@ -132,17 +132,15 @@ StatusOr<std::map<TileId, CellRect>> TileCellRects(const OccupancyGrid& grid,
   // expression, so both sides agree on it to the last bit.
   const double corner_x = grid.origin().x + fleet_from_map.translation().x();
   const double corner_y = grid.origin().y + fleet_from_map.translation().y();
-  FLEETMAP_ASSIGN_OR_RETURN(
-      const std::vector<Run> columns,
-      AxisRuns(corner_x, grid.width(), grid.resolution(), tile_size, "x"));
-  FLEETMAP_ASSIGN_OR_RETURN(
-      const std::vector<Run> rows,
-      AxisRuns(corner_y, grid.height(), grid.resolution(), tile_size, "y"));
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<Run> columns,
+                            AxisRuns(corner_x, grid.width(), grid.resolution(), tile_size, "x"));
+  FLEETMAP_ASSIGN_OR_RETURN(const std::vector<Run> rows,
+                            AxisRuns(corner_y, grid.height(), grid.resolution(), tile_size, "y"));
   for (const Run& row : rows) {
     for (const Run& column : columns) {
-      rects.emplace(TileId{column.tile, row.tile},
-                    CellRect{column.begin, row.begin, column.end - column.begin,
-                             row.end - row.begin});
+      rects.emplace(
+          TileId{column.tile, row.tile},
+          CellRect{column.begin, row.begin, column.end - column.begin, row.end - row.begin});
     }
   }
   return rects;
@@ -165,8 +163,8 @@ StatusOr<TileGrids> SplitIntoTiles(const OccupancyGrid& grid, const Transform2& 
           grid.data().data() + static_cast<size_t>(rect.y0 + y) * grid.width() + rect.x0;
       int8_t* to = tile.mutable_data().data() + static_cast<size_t>(y) * rect.width;
       std::memcpy(to, from, static_cast<size_t>(rect.width));
-      all_unknown =
-          all_unknown && std::all_of(to, to + rect.width, [](int8_t v) { return v == kUnknownValue; });
+      all_unknown = all_unknown &&
+                    std::all_of(to, to + rect.width, [](int8_t v) { return v == kUnknownValue; });
     }
     if (all_unknown && options.skip_unknown_tiles) continue;
     tiles.emplace(id, std::move(tile));

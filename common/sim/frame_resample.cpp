@@ -44,9 +44,9 @@ grid::OccupancyGrid ResampleIntoFrame(const grid::OccupancyGrid& source,
   const Transform2 to_from_grid = to_from_source * source.origin().ToTransform();
   Point2 low = Point2::Constant(std::numeric_limits<double>::infinity());
   Point2 high = -low;
-  for (const Point2& corner : {Point2(0.0, 0.0), Point2(source.width() * r, 0.0),
-                               Point2(0.0, source.height() * r),
-                               Point2(source.width() * r, source.height() * r)}) {
+  for (const Point2& corner :
+       {Point2(0.0, 0.0), Point2(source.width() * r, 0.0), Point2(0.0, source.height() * r),
+        Point2(source.width() * r, source.height() * r)}) {
     const Point2 p = to_from_grid * corner;
     low = low.cwiseMin(p);
     high = high.cwiseMax(p);

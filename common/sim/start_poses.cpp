@@ -53,8 +53,8 @@ StatusOr<std::vector<Pose2>> SpreadStarts(const grid::OccupancyGrid& truth, cons
   // terrains (about 20 000 cells), fine enough to find room in narrow ones.
   constexpr int64_t kMaxCandidates = 20000;
   const int stride = std::max<int>(
-      1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(truth.cell_count()) /
-                                              kMaxCandidates))));
+      1, static_cast<int>(
+             std::ceil(std::sqrt(static_cast<double>(truth.cell_count()) / kMaxCandidates))));
   std::vector<grid::CellIndex> candidates;
   for (int y = 0; y < truth.height(); y += stride) {
     for (int x = 0; x < truth.width(); x += stride) {

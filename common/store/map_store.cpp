@@ -547,8 +547,7 @@ Status MapStore::PrepareStatements() {
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_robots_, kSelectRobots, "reading the robots"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&insert_session_, kInsertSession, "writing a session"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&select_sessions_, kSelectSessions, "reading the sessions"));
-  FLEETMAP_RETURN_IF_ERROR(
-      prepare(&upsert_admission_, kUpsertAdmission, "writing an admission"));
+  FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_admission_, kUpsertAdmission, "writing an admission"));
   FLEETMAP_RETURN_IF_ERROR(
       prepare(&select_admissions_, kSelectAdmissions, "reading the admissions"));
   FLEETMAP_RETURN_IF_ERROR(prepare(&upsert_evidence_, kUpsertEvidence, "writing tile evidence"));

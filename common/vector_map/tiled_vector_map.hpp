@@ -26,7 +26,8 @@ namespace fleetmap::vector_map {
 // after snapping. The tile codec stores the quantum and the origin, and a vertex on a border shared
 // by two tiles is the same number of steps from either tile.
 inline double TileQuantum(double resolution) { return resolution / 2.0; }
-// The origin, in [0, quantum) per axis, of the lattice that holds `grid_corner` (a fleet-frame point, e.g. the corner of a grid's first cell).
+// The origin, in [0, quantum) per axis, of the lattice that holds `grid_corner` (a fleet-frame
+// point, e.g. the corner of a grid's first cell).
 Point2 TileLatticeOrigin(const Point2& grid_corner, double quantum);
 
 struct TiledVectorMap {

@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 std::string Describe(const std::vector<IncludeViolation>& violations) {
   std::string text;
   for (const IncludeViolation& v : violations) {
-    text += v.file + ":" + std::to_string(v.line) + ": #include \"" + v.include + "\": " + v.why +
-            "\n";
+    text +=
+        v.file + ":" + std::to_string(v.line) + ": #include \"" + v.include + "\": " + v.why + "\n";
   }
   return text;
 }

@@ -101,8 +101,7 @@ TEST(CliRegisterTest, RefusesABadMinConfidenceWithExitTwo) {
   const std::string map = DataPath("real/strands_kth.yaml");
   for (const char* bad : {"1.5", "-0.1", "nan", "high", ""}) {
     SCOPED_TRACE(bad);
-    const process::CommandResult run =
-        RunFleetmap({"register", map, map, "--min-confidence", bad});
+    const process::CommandResult run = RunFleetmap({"register", map, map, "--min-confidence", bad});
     EXPECT_EQ(run.exit_code, 2);
     EXPECT_THAT(run.err, HasSubstr("--min-confidence"));
     EXPECT_EQ(run.out, "");
@@ -128,9 +127,9 @@ TEST(CliRegisterTest, BenchPrintsARowPerGroupAndOverlapAndWritesJsonAndCsv) {
       {"bench", "register", "--maps", DataPath("real"), "--repeated", "1", "--pairs-per-overlap",
        "1", "--json", dir.Path("r.json"), "--csv", dir.Path("r.csv")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  for (const char* row : {"| maps | 20 % |", "| maps | 70 % |", "| maps drifted | 35 % |",
-                          "| repeated | 50 % |", "| repeated drifted | all |",
-                          "| every pair | all |"}) {
+  for (const char* row :
+       {"| maps | 20 % |", "| maps | 70 % |", "| maps drifted | 35 % |", "| repeated | 50 % |",
+        "| repeated drifted | all |", "| every pair | all |"}) {
     EXPECT_THAT(run.out, HasSubstr(row));
   }
   EXPECT_THAT(run.out, HasSubstr("m-explore success %"));

@@ -9,7 +9,6 @@
 namespace fleetmap::agent {
 namespace {
 
-
 // 10 m tiles at 0.5 m cells: a 40 x 30 grid at the fleet origin spans 2 x 2 tiles (20 x 20 cells).
 grid::OccupancyGrid Grid() {
   return grid::OccupancyGrid(40, 30, 0.5, Pose2{}, grid::kUnknownValue);

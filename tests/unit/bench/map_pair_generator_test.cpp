@@ -21,8 +21,8 @@ grid::OccupancyGrid House() {
 }
 
 struct Agreement {
-  double same_state = 0.0;    // share of B's known cells whose source cell has B's state
-  double known_in_a = 0.0;    // share of B's known cells that land on A's known cells
+  double same_state = 0.0;  // share of B's known cells whose source cell has B's state
+  double known_in_a = 0.0;  // share of B's known cells that land on A's known cells
 };
 
 // Where the truth puts B's known cells: the source map's cell and A's cell under each.

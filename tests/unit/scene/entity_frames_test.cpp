@@ -9,9 +9,7 @@ namespace fleetmap::scene {
 namespace {
 
 // A quarter turn about the origin, then 10 m along x: (1, 0) goes to (10, 1).
-Transform2 QuarterTurnThenShift() {
-  return Pose2{10.0, 0.0, std::numbers::pi / 2}.ToTransform();
-}
+Transform2 QuarterTurnThenShift() { return Pose2{10.0, 0.0, std::numbers::pi / 2}.ToTransform(); }
 
 TEST(EntityFramesTest, MovesADoorsJambsAndTurnsItsOpeningDirection) {
   DoorEntity door;

@@ -149,8 +149,7 @@ TEST(TileBudgetTest, ParticipantsOfOneHostShareTheHostsBudget) {
   size_t admitted = 0;
   for (int p = 0; p < 8; ++p) {
     for (int t = 0; t < 10; ++t) {
-      const TileBudget::Source source{RobotId{Numbered("r", p)}, Numbered("p", p),
-                                      "10.0.0.9"};
+      const TileBudget::Source source{RobotId{Numbered("r", p)}, Numbered("p", p), "10.0.0.9"};
       if (std::holds_alternative<TileBudget::Charged>(
               budget.Charge(source, {p, t}, Cost(1000), kSteady))) {
         ++admitted;

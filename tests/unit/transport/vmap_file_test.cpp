@@ -143,7 +143,7 @@ std::string DocumentedExample() {
       "9a 99 99 99 99 99 99 3f",                                      // quantum 0.025
       "00",                                                           // origin (0, 0)
       "02",                                                           // 2 polylines
-      "00 b4 00 00 a0 06 00",        // open, 2 vertices, half width 180: (0, 0) (400, 0)
+      "00 b4 00 00 a0 06 00",                 // open, 2 vertices, half width 180: (0, 0) (400, 0)
       "03 00 d7 04 c8 01 c8 01 00 00 c8 01",  // closed, 3: (100, 100) (200, 100) (200, 200)
       "01",                                   // 1 point
       "00 64 ac 02",                          // half width 0: (250, 350)
@@ -172,7 +172,7 @@ TEST(VmapFileTest, TheDocumentedExampleIsWhatTheCodecWrites) {
       Polyline{{At(id, 10, 0, 0), At(id, 10, 400, 0)}, false, Steps(180)},
       Polyline{{At(id, 10, 100, 100), At(id, 10, 200, 100), At(id, 10, 200, 200)}, true, 0.0},
       Polyline{{At(id, 10, 250, 350)}, false, 0.0}};
-  tile.free_space = {FreePolygon{{At(id, 10, 0, 0), At(id, 10, 400, 0), At(id, 10, 0, 400)}, {}}}; 
+  tile.free_space = {FreePolygon{{At(id, 10, 0, 0), At(id, 10, 400, 0), At(id, 10, 0, 400)}, {}}};
   const std::string documented = DocumentedExample();
   ASSERT_EQ(documented.size(), 152u);
   EXPECT_EQ(Encoded(map), documented);

@@ -34,8 +34,7 @@ TEST(ChainTracerTest, TJunctionContinuesStraightAndLeavesOneStub) {
   const auto chains = Trace(grid);
   ASSERT_EQ(chains.size(), 2u);
   // The longer chain is the bar, straight through the junction.
-  const PixelChain& bar =
-      chains[0].pixels.size() > chains[1].pixels.size() ? chains[0] : chains[1];
+  const PixelChain& bar = chains[0].pixels.size() > chains[1].pixels.size() ? chains[0] : chains[1];
   EXPECT_GE(bar.pixels.size(), 27u);
 }
 
