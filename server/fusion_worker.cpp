@@ -358,7 +358,12 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
       auto& tiles = held_[robot];
       if (tiles.size() >= options_.admission.max_tiles_per_robot &&
           tiles.count(event.tile.tile) == 0) {
-        Refuse(robot, Refusal::kTileQuota, "too many tiles held for an unclaimed robot id",
+        // The same quota as a claimed robot's, so the refusal reads the same either way.
+        Refuse(robot, Refusal::kTileQuota,
+               fmt::format("tile ({}, {}) would be unclaimed robot {}'s tile number {} held; a "
+                           "robot may hold {}",
+                           event.tile.tile.x, event.tile.tile.y, robot.value, tiles.size() + 1,
+                           options_.admission.max_tiles_per_robot),
                participant);
         return;
       }
