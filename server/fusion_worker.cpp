@@ -53,6 +53,17 @@ void FusionWorker::RememberContribution(const RobotId& robot, const TileId& tile
   }
 }
 
+HeldTiles::Limits FusionWorker::HeldLimits(const FusionWorkerOptions& options) {
+  HeldTiles::Limits limits;
+  limits.max_tiles_per_robot = options.admission.max_tiles_per_robot;
+  // One robot's worth for all the ids of a participant together: an agent's status reaches
+  // the server within its first tiles, so waiting is for the odd late status, not for floods.
+  limits.max_tiles_per_participant = options.admission.max_tiles_per_robot;
+  limits.max_bytes = options.admission.budget.max_memory_bytes / 8;
+  limits.wait = options.unclaimed_wait;
+  return limits;
+}
+
 StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
     transport::Participant& participant, const FusionWorkerOptions& options,
     std::shared_ptr<RobotRegistry> registry) {
@@ -346,31 +357,19 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
                          event.tile.tile.x, event.tile.tile.y, robot.value, participant),
              participant);
       return;
-    case RobotRegistry::Speaker::kUnclaimed: {
-      // Its status (and with it, who owns the id) may still be on its way: hold the newest
-      // revision of each tile for a while, for a bounded number of ids.
-      const bool known = held_.count(robot) > 0;
-      if (!known && held_.size() >= kMaxHeldRobots) {
-        Refuse(robot, Refusal::kUnclaimed, "a tile for a robot id no status claims (too many)",
-               participant);
-        return;
-      }
-      auto& tiles = held_[robot];
-      if (tiles.size() >= options_.admission.max_tiles_per_robot &&
-          tiles.count(event.tile.tile) == 0) {
-        // The same quota as a claimed robot's, so the refusal reads the same either way.
-        Refuse(robot, Refusal::kTileQuota,
-               fmt::format("tile ({}, {}) would be unclaimed robot {}'s tile number {} held; a "
-                           "robot may hold {}",
-                           event.tile.tile.x, event.tile.tile.y, robot.value, tiles.size() + 1,
-                           options_.admission.max_tiles_per_robot),
-               participant);
-        return;
-      }
-      const TileId key = event.tile.tile;
-      tiles.insert_or_assign(key, HeldTile{std::move(event), steady});
+    case RobotRegistry::Speaker::kOverCap:
+      Refuse(robot, Refusal::kTooManyIds,
+             fmt::format("tile ({}, {}) for robot {} from participant {}, which already speaks "
+                         "for as many robots as a participant may",
+                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
+             participant);
       return;
-    }
+    case RobotRegistry::Speaker::kUnclaimed:
+      // Its status (and with it, who owns the id) may still be on its way: held, bounded.
+      if (auto refused = held_.Hold(std::move(event), participant, steady)) {
+        Refuse(robot, refused->reason, refused->detail, participant);
+      }
+      return;
     case RobotRegistry::Speaker::kOwner:
       break;
   }
@@ -488,29 +487,18 @@ void FusionWorker::DropTileData(const RobotId& robot, const TileId& tile) {
 }
 
 void FusionWorker::ReleaseHeldTiles(std::chrono::steady_clock::time_point steady) {
+  const auto claimed = [&](const RobotId& robot) { return !registry_->OwnerOf(robot).empty(); };
+  const auto expired = [&](const RobotId& robot, const TileId& tile) {
+    Refuse(robot, Refusal::kUnclaimed,
+           fmt::format(
+               "tile ({}, {}) waited {} s for a status claiming robot {}; dropped", tile.x, tile.y,
+               std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait).count(),
+               robot.value));
+  };
   const Timestamp now = Clock::now();
-  for (auto robot = held_.begin(); robot != held_.end();) {
-    const std::string owner = registry_->OwnerOf(robot->first);
-    for (auto it = robot->second.begin(); it != robot->second.end();) {
-      HeldTile& held = it->second;
-      if (!owner.empty()) {
-        // Admit() sorts the owner's tiles from the others now that the id is claimed.
-        Admit(std::move(held.event), now, steady);
-        it = robot->second.erase(it);
-      } else if (steady - held.arrived > options_.unclaimed_wait) {
-        Refuse(
-            robot->first, Refusal::kUnclaimed,
-            fmt::format(
-                "tile ({}, {}) waited {} s for a status claiming robot {}; dropped", it->first.x,
-                it->first.y,
-                std::chrono::duration_cast<std::chrono::seconds>(options_.unclaimed_wait).count(),
-                robot->first.value));
-        it = robot->second.erase(it);
-      } else {
-        ++it;
-      }
-    }
-    robot = robot->second.empty() ? held_.erase(robot) : std::next(robot);
+  // Admit() sorts the owner's tiles from the others now that the id is claimed.
+  for (transport::TileEvent& event : held_.Release(steady, claimed, expired)) {
+    Admit(std::move(event), now, steady);
   }
 }
 

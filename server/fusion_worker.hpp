@@ -23,6 +23,7 @@
 #include "common/transport/vector_tile_reader.hpp"
 #include "common/transport/vector_tile_writer.hpp"
 #include "server/fair_tile_queue.hpp"
+#include "server/held_tiles.hpp"
 #include "server/map_frame_robots.hpp"
 #include "server/refusal_log.hpp"
 #include "server/robot_placer.hpp"
@@ -146,18 +147,15 @@ class FusionWorker {
     Timestamp evidence_stamp;
     size_t bytes = 0;
   };
-  // A tile of a robot id no status claims yet, with the writer that sent it.
-  struct HeldTile {
-    transport::TileEvent event;
-    std::chrono::steady_clock::time_point arrived;
-  };
 
   FusionWorker(const FusionWorkerOptions& options, fusion::TileFusion fusion,
                std::shared_ptr<RobotRegistry> registry)
       : options_(options),
         fusion_(std::move(fusion)),
         registry_(std::move(registry)),
-        admission_(options.admission, options.fusion) {}
+        admission_(options.admission, options.fusion),
+        held_(HeldLimits(options)) {}
+  static HeldTiles::Limits HeldLimits(const FusionWorkerOptions& options);
 
   // Rebuilds the fused map from the robot tiles in the store.
   Status Restore();
@@ -247,7 +245,7 @@ class FusionWorker {
   // Served fairly by participant (its robot ids share one place), keyed by robot and tile.
   FairTileQueue<PendingTile, std::string, std::pair<RobotId, TileId>> queue_;  // worker thread
 
-  std::map<RobotId, std::map<TileId, HeldTile>> held_;  // worker thread only
+  HeldTiles held_;  // worker thread only: tiles whose robot's status has not come yet
   // Robots whose open session lost tiles to a budget (CutsTheMap): not kept when it ends.
   std::set<RobotId> cut_sessions_;
   RefusalLog refusals_{"server"};    // worker thread only
@@ -264,7 +262,6 @@ class FusionWorker {
   static constexpr size_t kTileEventsPerDrain = 512;
   static constexpr std::chrono::milliseconds kTurnTarget{20};
   static constexpr std::chrono::milliseconds kFusionSlice{50};
-  static constexpr size_t kMaxHeldRobots = 64;
   std::chrono::steady_clock::time_point last_map_{};
   mutable std::mutex stats_mutex_;
   FusionStats stats_;  // guarded by stats_mutex_

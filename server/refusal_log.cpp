@@ -22,6 +22,8 @@ const char* RefusalName(Refusal refusal) {
       return "byte quota";
     case Refusal::kNotOwner:
       return "not the owner";
+    case Refusal::kTooManyIds:
+      return "too many ids";
     case Refusal::kUnclaimed:
       return "unclaimed robot id";
     case Refusal::kNotItself:

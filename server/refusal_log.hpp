@@ -19,6 +19,7 @@ enum class Refusal {
   kTileQuota,         // the robot already holds its maximum number of tiles
   kByteQuota,         // the robot sends more bytes per second than its quota
   kNotOwner,          // a sample for a robot id that another participant owns
+  kTooManyIds,        // the participant already speaks for its maximum number of robot ids
   kNotItself,         // secured: a sample for a robot id other than its writer's identity
   kUnclaimed,         // tiles for a robot id no live status claims, held too long
   kDecodedSize,       // a tile, or a robot's tiles, decode to more vertices, rings or cells

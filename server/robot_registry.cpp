@@ -51,8 +51,15 @@ RobotRegistry::Speaker RobotRegistry::WhoSpeaks(const RobotId& robot,
   std::lock_guard lock(mutex_);
   if (!IsItself(robot, writer)) return Speaker::kNotItself;
   const auto it = participant_by_robot_.find(robot);
-  if (it == participant_by_robot_.end()) return Speaker::kUnclaimed;
-  return it->second == ParticipantOf(writer) ? Speaker::kOwner : Speaker::kOther;
+  const std::string participant = ParticipantOf(writer);
+  if (it == participant_by_robot_.end()) {
+    // Its claim would be refused: what it sends for the id need not wait for a status.
+    const auto owned = robots_by_participant_.find(participant);
+    const bool full =
+        owned != robots_by_participant_.end() && owned->second >= max_robots_per_participant_;
+    return full ? Speaker::kOverCap : Speaker::kUnclaimed;
+  }
+  return it->second == participant ? Speaker::kOwner : Speaker::kOther;
 }
 
 std::string RobotRegistry::OwnerOf(const RobotId& robot) const {

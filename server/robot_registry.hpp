@@ -34,6 +34,7 @@ class RobotRegistry {
   enum class Speaker {
     kOwner,
     kUnclaimed,
+    kOverCap,  // unclaimed, but the writer's participant already speaks for its maximum of ids
     kOther,
     kNotItself,  // with RequireIdentity: the writer authenticated as another name
   };

@@ -170,7 +170,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
     return;
   }
   if (claim == RobotRegistry::Claim::kTooMany) {
-    refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
+    refusals_.Refuse(status.robot.value, Refusal::kTooManyIds,
                      fmt::format("participant {} already speaks for {} robots; its claim of {} "
                                  "is ignored",
                                  RobotRegistry::ParticipantOf(writer),
@@ -315,6 +315,16 @@ void ServerNode::HandleEntities() {
       continue;
     }
     const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot, event.writer);
+    if (speaker == RobotRegistry::Speaker::kOverCap) {
+      ++rejected_entities_;
+      refusals_.Refuse(robot.value, Refusal::kTooManyIds,
+                       fmt::format("entity {} for robot {} from participant {}, which already "
+                                   "speaks for {} robots",
+                                   event.message.entity_id(), robot.value,
+                                   RobotRegistry::ParticipantOf(event.writer),
+                                   options_.max_robots_per_participant));
+      continue;
+    }
     if (speaker == RobotRegistry::Speaker::kOther ||
         speaker == RobotRegistry::Speaker::kNotItself) {
       const bool itself = speaker == RobotRegistry::Speaker::kOther;

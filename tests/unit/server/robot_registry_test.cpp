@@ -38,7 +38,11 @@ TEST(RobotRegistryTest, AParticipantSpeaksForABoundedNumberOfIds) {
   EXPECT_EQ(registry.ClaimRobot(RobotId{"b"}, kPeerWriter), RobotRegistry::Claim::kNew);
   EXPECT_EQ(registry.ClaimRobot(RobotId{"c"}, kPeerWriter), RobotRegistry::Claim::kTooMany);
   EXPECT_EQ(registry.ClaimRobot(RobotId{"c"}, kAgentWriter), RobotRegistry::Claim::kNew);
+  // What the full participant sends for a free id need not wait for its status: it would fail.
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"e"}, kPeerWriter), RobotRegistry::Speaker::kOverCap);
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"e"}, kAgentWriter), RobotRegistry::Speaker::kUnclaimed);
   registry.Release(RobotId{"a"}, kPeerWriter);
+  EXPECT_EQ(registry.WhoSpeaks(RobotId{"e"}, kPeerWriter), RobotRegistry::Speaker::kUnclaimed);
   EXPECT_EQ(registry.ClaimRobot(RobotId{"d"}, kPeerWriter), RobotRegistry::Claim::kNew);
 }
 
