@@ -151,17 +151,18 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
       registry_->ClaimRobot(status.robot, writer, status.tiles_in_map_frame);
   if (claim == RobotRegistry::Claim::kClash) {
     ++robots_[status.robot].id_clashes;
-    refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
-                     fmt::format("a status from participant {} claims robot id {}, which "
-                                 "participant {} owns: keeping the first, ignoring the other",
-                                 RobotRegistry::ParticipantOf(writer), status.robot.value,
-                                 registry_->OwnerOf(status.robot)));
+    refusals_.RefuseFrom(RobotRegistry::ParticipantOf(writer), status.robot.value,
+                         Refusal::kNotOwner,
+                         fmt::format("a status from participant {} claims robot id {}, which "
+                                     "participant {} owns: keeping the first, ignoring the other",
+                                     RobotRegistry::ParticipantOf(writer), status.robot.value,
+                                     registry_->OwnerOf(status.robot)));
     return;
   }
   if (claim == RobotRegistry::Claim::kNotItself) {
     const std::optional<std::string> name = participant_->AuthenticatedName(writer);
-    refusals_.Refuse(
-        status.robot.value, Refusal::kNotItself,
+    refusals_.RefuseFrom(
+        RobotRegistry::ParticipantOf(writer), status.robot.value, Refusal::kNotItself,
         fmt::format("a status from participant {}, authenticated as {}, claims robot "
                     "id {}: a participant speaks only for the robot it is enrolled "
                     "as",
@@ -170,11 +171,12 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
     return;
   }
   if (claim == RobotRegistry::Claim::kTooMany) {
-    refusals_.Refuse(status.robot.value, Refusal::kTooManyIds,
-                     fmt::format("participant {} already speaks for {} robots; its claim of {} "
-                                 "is ignored",
-                                 RobotRegistry::ParticipantOf(writer),
-                                 options_.max_robots_per_participant, status.robot.value));
+    refusals_.RefuseFrom(RobotRegistry::ParticipantOf(writer), status.robot.value,
+                         Refusal::kTooManyIds,
+                         fmt::format("participant {} already speaks for {} robots; its claim of {} "
+                                     "is ignored",
+                                     RobotRegistry::ParticipantOf(writer),
+                                     options_.max_robots_per_participant, status.robot.value));
     return;
   }
   RobotRecord& record = robots_[status.robot];
@@ -212,9 +214,10 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
         SubmitEntity(std::move(entity), record);
       } else {
         ++rejected_entities_;
-        refusals_.Refuse(status.robot.value, Refusal::kNotOwner,
-                         "an entity sent for robot " + status.robot.value +
-                             " before its owner claimed it, by another participant");
+        refusals_.RefuseFrom(RobotRegistry::ParticipantOf(entity_writer), status.robot.value,
+                             Refusal::kNotOwner,
+                             "an entity sent for robot " + status.robot.value +
+                                 " before its owner claimed it, by another participant");
       }
     }
     early_entities_.erase(early);
@@ -239,11 +242,12 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
   if (it == robots_.end() || it->second.state != RobotRecord::State::kActive) return;
   if (registry_->WhoSpeaks(robot, writer) != RobotRegistry::Speaker::kOwner) {
     // A second agent with this id went away, or a peer disposed an instance it does not own.
-    refusals_.Refuse(robot.value, Refusal::kNotOwner,
-                     fmt::format("participant {} {} robot {}, which participant {} owns: ignored",
-                                 RobotRegistry::ParticipantOf(writer),
-                                 state == RobotRecord::State::kLeft ? "disposed" : "lost",
-                                 robot.value, registry_->OwnerOf(robot)));
+    refusals_.RefuseFrom(
+        RobotRegistry::ParticipantOf(writer), robot.value, Refusal::kNotOwner,
+        fmt::format("participant {} {} robot {}, which participant {} owns: ignored",
+                    RobotRegistry::ParticipantOf(writer),
+                    state == RobotRecord::State::kLeft ? "disposed" : "lost", robot.value,
+                    registry_->OwnerOf(robot)));
     return;
   }
   RobotRecord& record = it->second;
@@ -317,20 +321,22 @@ void ServerNode::HandleEntities() {
     const RobotRegistry::Speaker speaker = registry_->WhoSpeaks(robot, event.writer);
     if (speaker == RobotRegistry::Speaker::kOverCap) {
       ++rejected_entities_;
-      refusals_.Refuse(robot.value, Refusal::kTooManyIds,
-                       fmt::format("entity {} for robot {} from participant {}, which already "
-                                   "speaks for {} robots",
-                                   event.message.entity_id(), robot.value,
-                                   RobotRegistry::ParticipantOf(event.writer),
-                                   options_.max_robots_per_participant));
+      refusals_.RefuseFrom(RobotRegistry::ParticipantOf(event.writer), robot.value,
+                           Refusal::kTooManyIds,
+                           fmt::format("entity {} for robot {} from participant {}, which already "
+                                       "speaks for {} robots",
+                                       event.message.entity_id(), robot.value,
+                                       RobotRegistry::ParticipantOf(event.writer),
+                                       options_.max_robots_per_participant));
       continue;
     }
     if (speaker == RobotRegistry::Speaker::kOther ||
         speaker == RobotRegistry::Speaker::kNotItself) {
       const bool itself = speaker == RobotRegistry::Speaker::kOther;
       ++rejected_entities_;
-      refusals_.Refuse(
-          robot.value, itself ? Refusal::kNotOwner : Refusal::kNotItself,
+      refusals_.RefuseFrom(
+          RobotRegistry::ParticipantOf(event.writer), robot.value,
+          itself ? Refusal::kNotOwner : Refusal::kNotItself,
           fmt::format("entity {} for robot {} from participant {}, which {}",
                       event.message.entity_id(), robot.value,
                       RobotRegistry::ParticipantOf(event.writer),
@@ -347,8 +353,9 @@ void ServerNode::HandleEntities() {
       // Its fleet_from_map comes with its status: keep the entity until then (bounded).
       if (early_entities_.size() >= kMaxEarlyRobots && early_entities_.count(robot) == 0) {
         ++rejected_entities_;
-        refusals_.Refuse(robot.value, Refusal::kUnclaimed,
-                         "an entity for a robot id no status claims (too many such ids)");
+        refusals_.RefuseFrom(RobotRegistry::ParticipantOf(event.writer), robot.value,
+                             Refusal::kUnclaimed,
+                             "an entity for a robot id no status claims (too many such ids)");
         continue;
       }
       auto& early = early_entities_[robot];

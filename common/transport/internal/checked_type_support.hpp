@@ -11,6 +11,7 @@
 // refusals with a ScopedMalformedSink around its take loop.
 
 #include <fastdds/rtps/common/SerializedPayload.h>
+#include <fastdds/dds/core/LoanableSequence.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -121,21 +122,31 @@ void GuardListener(MalformedSink* sink, const char* what, Callback callback) noe
 }
 
 // Takes every sample `reader` holds and hands each valid one to `handle(sample, info)`, with
-// refusals going to `sink`. A refused payload does not end the loop; an empty reader does. A
-// sample whose handling throws is refused, and the loop goes on.
+// refusals going to `sink`. A refused payload does not end the loop (Fast DDS drops it from the
+// history); an empty reader does. A sample whose handling throws is refused, and the loop goes on.
+//
+// Samples are taken in batches, never one by one: Fast DDS 2.9 looks for the next sample from
+// the first instance on, visiting every change it holds back (those after a gap, waiting for a
+// repair), so take_next_sample() in a loop costs samples x instances. A flood of thousands of
+// keys over a lossy link made that the server's busiest thread.
 template <typename Sample, typename Handle>
 void TakeAll(eprosima::fastdds::dds::DataReader* reader, MalformedSink* sink, Handle handle) {
-  constexpr int kMaxTakes = 100000;  // a bound, so a misbehaving reader cannot spin forever
-  Sample sample;
-  eprosima::fastdds::dds::SampleInfo info;
+  constexpr int kBatch = 32;         // Fast DDS's default max_samples_per_read
+  constexpr int kMaxBatches = 4096;  // a bound, so a misbehaving reader cannot spin forever
+  eprosima::fastdds::dds::LoanableSequence<Sample> samples(kBatch);
+  eprosima::fastdds::dds::SampleInfoSeq infos(kBatch);
   const ScopedMalformedSink scope(sink);
-  for (int i = 0; i < kMaxTakes; ++i) {
+  for (int batch = 0; batch < kMaxBatches; ++batch) {
     const uint64_t refused_before = sink->refused();
     bool taken = false;
-    GuardListener(sink, "taking a sample", [&] {
-      taken = reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK;
-      if (taken) handle(sample, info);
+    GuardListener(sink, "taking samples", [&] {
+      taken = reader->take(samples, infos, kBatch) == ReturnCode_t::RETCODE_OK;
     });
+    if (taken) {
+      for (eprosima::fastdds::dds::LoanableCollection::size_type i = 0; i < samples.length(); ++i) {
+        GuardListener(sink, "handling a sample", [&] { handle(samples[i], infos[i]); });
+      }
+    }
     if (!taken && sink->refused() == refused_before) return;
   }
 }
