@@ -81,4 +81,21 @@ TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
   return out;
 }
 
+void CountAgreement(const grid::OccupancyGrid& robot_cells, const grid::OccupancyGrid& others,
+                    int tolerance_cells, TileContradiction* counted) {
+  FLEETMAP_CHECK(others.width() == robot_cells.width() && others.height() == robot_cells.height(),
+                 "CountAgreement needs cells on one lattice");
+  counted->walls_known = 0;
+  counted->walls_confirmed = 0;
+  std::vector<uint8_t> others_wall_near;  // computed once a known wall shows up
+  const size_t cells = robot_cells.data().size();
+  for (size_t i = 0; i < cells; ++i) {
+    if (robot_cells.data()[i] != grid::kOccupiedValue) continue;
+    if (others.data()[i] == grid::kUnknownValue) continue;
+    ++counted->walls_known;
+    if (others_wall_near.empty()) others_wall_near = OccupiedWithin(others, tolerance_cells);
+    if (others_wall_near[i] != 0) ++counted->walls_confirmed;
+  }
+}
+
 }  // namespace fleetmap::fusion

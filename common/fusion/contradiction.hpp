@@ -19,6 +19,10 @@ struct TileContradiction {
   int64_t contradicted = 0;      // of those, the ones it contradicts
   // The contradicted cells' bounding box on the tile's cells; empty (width 0) when none.
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
+  // Its occupied cells that robots of other participants know (free or occupied), and of those
+  // the ones they confirm: an occupied cell of theirs within the tolerance (CountAgreement).
+  int64_t walls_known = 0;
+  int64_t walls_confirmed = 0;
 
   bool any() const { return contradicted > 0; }
 };
@@ -36,5 +40,11 @@ struct EstablishedCells {
 TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
                                      const std::vector<uint32_t>& robot_dates,
                                      const EstablishedCells& established, int tolerance_cells);
+
+// Fills `counted`'s walls_known and walls_confirmed: `robot_cells`' occupied cells that `others`
+// (3-state, robots of other participants only) know, and those with an occupied cell of
+// `others` within `tolerance_cells`. Same lattice.
+void CountAgreement(const grid::OccupancyGrid& robot_cells, const grid::OccupancyGrid& others,
+                    int tolerance_cells, TileContradiction* counted);
 
 }  // namespace fleetmap::fusion

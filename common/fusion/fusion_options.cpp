@@ -20,6 +20,9 @@ Status QuarantineOptions::Validate() const {
     return InvalidArgumentError(
         "quarantine shares must satisfy 0 <= leave_share <= enter_share <= 1");
   }
+  if (bad(corroborate_share) || corroborate_share > 1.0) {
+    return InvalidArgumentError("quarantine corroborate_share must be in [0, 1]");
+  }
   return Status::Ok();
 }
 
@@ -30,6 +33,7 @@ void QuarantineOptions::Describe(OptionsPrinter& out) const {
   out.Add("enter_share", enter_share);
   out.Add("max_contradicted_m", max_contradicted_m);
   out.Add("leave_share", leave_share);
+  out.Add("corroborate_share", corroborate_share);
 }
 
 Status FusionOptions::Validate() const {

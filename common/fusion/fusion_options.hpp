@@ -27,6 +27,12 @@ struct QuarantineOptions {
   // A quarantined robot leaves when it contradicts less than min_contradicted_m, or less than
   // leave_share of what it sees (relocalized, or the change confirmed by another robot).
   double leave_share = 0.04;
+  // A robot is corroborated once robots of other participants confirm min_contradicted_m of its
+  // walls (an occupied cell of theirs within tolerance_m) and at least this share of its walls
+  // they know. Evidence of robots nobody corroborated never quarantines a corroborated robot: a
+  // robot that lost its localization, or a peer inventing walls, in space the fleet had not
+  // seen yet must not turn the robots that map it next into the contradicting ones.
+  double corroborate_share = 0.5;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;

@@ -29,7 +29,7 @@ RobotTrust::RobotTrust(const QuarantineOptions& options, double tile_size, doubl
 void RobotTrust::Record(const RobotId& robot, const TileId& tile,
                         const TileContradiction& counted) {
   Book& book = books_[robot];
-  if (counted.established_seen == 0 && counted.contradicted == 0) {
+  if (counted.established_seen == 0 && counted.contradicted == 0 && counted.walls_known == 0) {
     book.tiles.erase(tile);
   } else {
     book.tiles[tile] = counted;
@@ -46,6 +46,8 @@ RobotTrust::Totals RobotTrust::TotalsOf(const Book& book) const {
   for (const auto& [tile, counted] : book.tiles) {
     totals.contradicted += counted.contradicted;
     totals.established_seen += counted.established_seen;
+    totals.walls_known += counted.walls_known;
+    totals.walls_confirmed += counted.walls_confirmed;
   }
   return totals;
 }
@@ -87,6 +89,23 @@ bool RobotTrust::Decide(const RobotId& robot) {
   book.standing = Standing::kTrusted;
   book.reason = "left quarantine: its map agrees with the fleet again (" + Describe(totals) + ")";
   return true;
+}
+
+bool RobotTrust::Corroborate(const RobotId& robot) {
+  const auto it = books_.find(robot);
+  if (it == books_.end()) return false;
+  Book& book = it->second;
+  if (book.corroborated) return false;
+  const Totals totals = TotalsOf(book);
+  book.corroborated = totals.walls_confirmed >= min_cells_ &&
+                      static_cast<double>(totals.walls_confirmed) >=
+                          options_.corroborate_share * static_cast<double>(totals.walls_known);
+  return book.corroborated;
+}
+
+bool RobotTrust::corroborated(const RobotId& robot) const {
+  const auto it = books_.find(robot);
+  return it != books_.end() && it->second.corroborated;
 }
 
 bool RobotTrust::Admit(const RobotId& robot) {

@@ -50,6 +50,13 @@ class RobotTrust {
   void ForgetTile(const RobotId& robot, const TileId& tile);
   // Applies the rule to the robot's counts; true when its standing changed.
   bool Decide(const RobotId& robot);
+  // Applies the corroboration rule (QuarantineOptions::corroborate_share) to the robot's counts;
+  // true when the robot became corroborated. It stays so until Forget(): a robot whose map moves
+  // (a relocalization, a wrong transform) must not take the corroboration of the robots that
+  // confirmed it, and with it the evidence it is weighed against, away by disagreeing with them.
+  bool Corroborate(const RobotId& robot);
+  // Whether robots of other participants confirmed enough of the robot's walls.
+  bool corroborated(const RobotId& robot) const;
   // An operator's word: the robot is fused and never quarantined again (until Forget).
   // True when its standing changed.
   bool Admit(const RobotId& robot);
@@ -67,10 +74,13 @@ class RobotTrust {
   struct Totals {
     int64_t contradicted = 0;
     int64_t established_seen = 0;
+    int64_t walls_known = 0;
+    int64_t walls_confirmed = 0;
   };
   struct Book {
     std::map<TileId, TileContradiction> tiles;
     Standing standing = Standing::kTrusted;
+    bool corroborated = false;
     std::string reason;
   };
 

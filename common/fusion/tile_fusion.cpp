@@ -142,15 +142,20 @@ Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
 }
 
 grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& state,
-                                          const RobotId* without, std::vector<uint32_t>* dates,
-                                          const std::string* walls_only_source) const {
+                                          const Evidence& evidence,
+                                          std::vector<uint32_t>* dates) const {
   grid::OccupancyGrid fused = EmptyTileGrid(tile);
   std::vector<uint32_t> own_dates;
   std::vector<uint32_t>& best = dates != nullptr ? *dates : own_dates;
   best.assign(static_cast<size_t>(fused.cell_count()), 0);
   for (const auto& [robot, contribution] : state.robots) {
-    if ((without != nullptr && robot == *without) || !Fused(robot)) continue;
-    const bool walls_only = walls_only_source != nullptr && SourceOf(robot) == *walls_only_source;
+    if (evidence.without != nullptr && robot == *evidence.without) continue;
+    if (!evidence.with_quarantined && !Fused(robot)) continue;
+    if (evidence.corroborated_only && !trust_.corroborated(robot)) continue;
+    const std::string& source = SourceOf(robot);
+    if (evidence.skip_source != nullptr && source == *evidence.skip_source) continue;
+    const bool walls_only =
+        evidence.walls_only_source != nullptr && source == *evidence.walls_only_source;
     const int8_t* values = contribution.cells.data().data();
     for (size_t i = 0; i < best.size(); ++i) {
       const int8_t value = values[i];
@@ -168,7 +173,7 @@ grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& s
 
 bool TileFusion::Refuse(const TileId& tile, TileState* state) {
   const int cells = options_.CellsPerTile();
-  grid::OccupancyGrid fused = FuseCells(tile, *state, nullptr);
+  grid::OccupancyGrid fused = FuseCells(tile, *state, Evidence{});
   // Which borders the change reached decides which neighbours must be re-vectorized too.
   int min_x = cells, min_y = cells, max_x = -1, max_y = -1;
   for (int y = 0; y < cells; ++y) {
@@ -241,7 +246,7 @@ void TileFusion::SetRobotSource(const RobotId& robot, std::string source) {
 TileFusion::TileReview TileFusion::MakeTileReview(const TileId& tile,
                                                   const TileState& state) const {
   TileReview review;
-  review.trusted = FuseCells(tile, state, nullptr, &review.trusted_dates);
+  review.trusted = FuseCells(tile, state, {}, &review.trusted_dates);
   const size_t cells = review.trusted_dates.size();
   for (const auto& [other, contribution] : state.robots) {
     if (Fused(other)) continue;
@@ -277,9 +282,17 @@ TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state
   // The others' cells. For a robot being fused, robots of its own participant add their walls,
   // never their free space (they cannot confirm its changes). A quarantined robot is not in the
   // trusted cells already, and they serve all the quarantined robots of the tile at once.
+  // A corroborated robot is weighed against corroborated robots only (QuarantineOptions).
+  const bool corroborated = trust_.corroborated(robot);
   std::vector<uint32_t> own_dates;
   std::optional<grid::OccupancyGrid> others;
-  if (Fused(robot)) others = FuseCells(tile, state, &robot, &own_dates, &source);
+  if (Fused(robot) || corroborated) {
+    others = FuseCells(tile, state,
+                       Evidence{.without = &robot,
+                                .walls_only_source = Fused(robot) ? &source : nullptr,
+                                .corroborated_only = corroborated},
+                       &own_dates);
+  }
   // What quarantined robots of other participants saw free: not fused, but it confirms a change.
   std::vector<uint32_t> confirmed;
   if (!review.free_first.empty()) {
@@ -295,7 +308,15 @@ TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state
   const EstablishedCells established =
       others ? EstablishedCells{&*others, &own_dates, &confirmed}
              : EstablishedCells{&review.trusted, &review.trusted_dates, &confirmed};
-  return CountContradiction(mine.cells, mine.changed_at, established, tolerance);
+  TileContradiction counted =
+      CountContradiction(mine.cells, mine.changed_at, established, tolerance);
+  // What robots of other participants say of its walls: whether it is corroborated. Quarantined
+  // ones too: two robots that disagree on a shelf still corroborate each other's walls, so which
+  // one is weighed against the other does not depend on the order of their reviews.
+  CountAgreement(mine.cells,
+                 FuseCells(tile, state, Evidence{.skip_source = &source, .with_quarantined = true}),
+                 tolerance, &counted);
+  return counted;
 }
 
 void TileFusion::StandingChanged(const RobotId& robot) {
@@ -307,6 +328,15 @@ void TileFusion::StandingChanged(const RobotId& robot) {
     for (const auto& [other, contribution] : state.robots) {
       if (other != robot && !Fused(other)) to_review_.insert({tile, other});
     }
+  }
+}
+
+void TileFusion::CorroborationChanged(const RobotId& robot) {
+  // What it is weighed against changed, and what the others on its tiles are weighed against
+  // (its evidence counts against a corroborated robot now, or no longer does).
+  for (const auto& [tile, state] : tiles_) {
+    if (state.robots.count(robot) == 0) continue;
+    for (const auto& [other, contribution] : state.robots) to_review_.insert({tile, other});
   }
 }
 
@@ -324,7 +354,7 @@ void TileFusion::ReviewTrust() {
   }
   // A change of standing changes what the others are weighed against; a few passes settle it
   // (each pass only follows robots whose standing just changed).
-  constexpr int kMaxPasses = 4;
+  constexpr int kMaxPasses = 6;
   for (int pass = 0; pass < kMaxPasses && !(to_review_.empty() && to_decide_.empty()); ++pass) {
     std::set<RobotId> decide = std::move(to_decide_);
     to_decide_.clear();
@@ -347,6 +377,11 @@ void TileFusion::ReviewTrust() {
       decide.insert(robot);
     }
     for (const RobotId& robot : decide) {
+      // Newly (un)corroborated, it is weighed against other evidence: counted again, then decided.
+      if (trust_.Corroborate(robot)) {
+        CorroborationChanged(robot);
+        continue;
+      }
       if (trust_.Decide(robot)) StandingChanged(robot);
     }
   }
@@ -430,7 +465,7 @@ grid::OccupancyGrid TileFusion::FusedGrid(GridWindow* shown, const RobotId* with
     if (state.fused.empty() || !rect.Contains(tile)) continue;
     std::optional<grid::OccupancyGrid> others;  // the tile without `without`, when it is there
     if (without != nullptr && state.robots.count(*without) > 0) {
-      others = FuseCells(tile, state, without);
+      others = FuseCells(tile, state, Evidence{.without = without});
     }
     const grid::OccupancyGrid& fused = others ? *others : state.fused;
     const int x0 = static_cast<int>((int64_t{tile.x} - rect.min.x) * cells);

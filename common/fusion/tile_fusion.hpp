@@ -124,12 +124,19 @@ class TileFusion {
   // The tile's state, created (all unknown) when it is new.
   TileState& StateOf(const TileId& tile);
   uint32_t Deciseconds(Timestamp stamp) const;
-  // A tile's fused cells from its trusted contributions, leaving out `without`'s if given;
-  // `dates`, if given, receives each cell's evidence date (0: unknown). Robots of
-  // `walls_only_source`, if given, contribute their occupied cells only.
-  grid::OccupancyGrid FuseCells(const TileId& tile, const TileState& state, const RobotId* without,
-                                std::vector<uint32_t>* dates = nullptr,
-                                const std::string* walls_only_source = nullptr) const;
+  // Which trusted contributions FuseCells() takes (all of them by default).
+  struct Evidence {
+    const RobotId* without = nullptr;                // leaves this robot out
+    const std::string* walls_only_source = nullptr;  // its robots add their occupied cells only
+    const std::string* skip_source = nullptr;        // its robots add nothing
+    bool corroborated_only = false;                  // robots RobotTrust says are corroborated
+    bool with_quarantined = false;                   // quarantined robots' cells too
+  };
+  // A tile's fused cells from the trusted contributions `evidence` takes; `dates`, if given,
+  // receives each cell's evidence date (0: unknown).
+  grid::OccupancyGrid FuseCells(const TileId& tile, const TileState& state,
+                                const Evidence& evidence,
+                                std::vector<uint32_t>* dates = nullptr) const;
   bool Fused(const RobotId& robot) const { return !trust_.quarantined(robot); }
   const std::string& SourceOf(const RobotId& robot) const;
   // What every review of a tile in one pass shares: the trusted robots' cells, and per cell the
@@ -150,6 +157,7 @@ class TileFusion {
   // again: a robot released may confirm another's change).
   void ReviewTrust();
   void StandingChanged(const RobotId& robot);
+  void CorroborationChanged(const RobotId& robot);
   // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
   // border margin changed.
   bool Refuse(const TileId& tile, TileState* state);

@@ -103,15 +103,7 @@ EndpointQos KeyedStateQos() {
   return WithLossyNetworkTimings(qos);
 }
 
-EndpointQos VectorTileQos() {
-  EndpointQos qos = KeyedStateQos();
-  // A reader's pool of payloads grows to the most samples it ever held at once (with a flood of
-  // keys, those held back behind gaps too) and, preallocated, never shrinks: the server would
-  // keep a flood's peak for good. Dynamic payloads are freed when their sample is taken.
-  qos.reader.endpoint().history_memory_policy =
-      eprosima::fastrtps::rtps::DYNAMIC_RESERVE_MEMORY_MODE;
-  return qos;
-}
+EndpointQos VectorTileQos() { return KeyedStateQos(); }
 
 EndpointQos TfQos() {
   EndpointQos qos;

@@ -246,6 +246,50 @@ TEST(QuarantineTest, RobotsOfOneParticipantDoNotConfirmEachOther) {
   EXPECT_EQ(Fused(fusion).at(40, 50), kOccupiedValue);
 }
 
+// Walls that a robot lost in its localization (or a peer) paints in space nobody had seen yet
+// come first; the robots that map that space next see it free. Two robots of other participants
+// that agree elsewhere are corroborated, and uncorroborated walls never quarantine them.
+TEST(QuarantineTest, UncorroboratedWallsInUnseenSpaceDoNotQuarantineCorroboratedRobots) {
+  TileFusion fusion = MakeFusion();
+  fusion.SetRobotSource(RobotId{"lost"}, "participant-l");
+  fusion.SetRobotSource(RobotId{"alpha"}, "participant-a");
+  fusion.SetRobotSource(RobotId{"beta"}, "participant-b");
+  OccupancyGrid phantom(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
+  for (const int y : {50, 80, 110}) Outline(&phantom, 40, y, 70, y + 6);
+  Feed(&fusion, "lost", phantom, kT0);
+  Fuse(&fusion);
+  ASSERT_EQ(Fused(fusion).at(40, 50), kOccupiedValue);
+  // alpha maps the whole room; beta only its right half, which alpha's walls agree with.
+  OccupancyGrid right_half = Room();
+  Fill(&right_half, 0, 0, 95, kSide, kUnknownValue);
+  Feed(&fusion, "alpha", Room(), kT0 + std::chrono::seconds(10));
+  Feed(&fusion, "beta", right_half, kT0 + std::chrono::seconds(12));
+  Fuse(&fusion);
+  EXPECT_EQ(fusion.TrustOf(RobotId{"alpha"}).standing, Standing::kTrusted)
+      << fusion.TrustOf(RobotId{"alpha"}).reason;
+  EXPECT_EQ(fusion.TrustOf(RobotId{"beta"}).standing, Standing::kTrusted);
+  // alpha's newer free space wins over the phantom shelves; the room's walls stay.
+  const OccupancyGrid after = Fused(fusion);
+  EXPECT_EQ(after.at(40, 50), kFreeValue);
+  EXPECT_EQ(after.at(20, 60), kOccupiedValue);
+}
+
+// Without a second participant to corroborate it, the robot that came later is the one weighed
+// against what was there first, as before: first evidence wins between two lone robots.
+TEST(QuarantineTest, BetweenTwoLoneRobotsTheFirstEvidenceStillWins) {
+  TileFusion fusion = MakeFusion();
+  fusion.SetRobotSource(RobotId{"lost"}, "participant-l");
+  fusion.SetRobotSource(RobotId{"alpha"}, "participant-a");
+  OccupancyGrid phantom(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
+  for (const int y : {50, 80, 110}) Outline(&phantom, 40, y, 70, y + 6);
+  Feed(&fusion, "lost", phantom, kT0);
+  Fuse(&fusion);
+  Feed(&fusion, "alpha", Room(), kT0 + std::chrono::seconds(10));
+  Fuse(&fusion);
+  EXPECT_EQ(fusion.TrustOf(RobotId{"alpha"}).standing, Standing::kQuarantined);
+  EXPECT_EQ(Fused(fusion).at(40, 50), kOccupiedValue);
+}
+
 TEST(QuarantineTest, AnAdmittedRobotIsFusedAndStaysSo) {
   TileFusion fusion = MakeFusion();
   Establish(&fusion, /*shelves=*/true);

@@ -22,6 +22,33 @@ TileContradiction Counted(int64_t contradicted, int64_t seen) {
   return counted;
 }
 
+TileContradiction Walls(int64_t known, int64_t confirmed) {
+  TileContradiction counted;
+  counted.walls_known = known;
+  counted.walls_confirmed = confirmed;
+  return counted;
+}
+
+TEST(RobotTrustTest, IsCorroboratedPastBothTheLengthAndTheShareOfConfirmedWalls) {
+  RobotTrust trust(QuarantineOptions{}, 10.0, kResolution);
+  EXPECT_FALSE(trust.corroborated(kRobot));
+  trust.Record(kRobot, {0, 0}, Walls(60, 39));  // 65 % but under 2 m
+  EXPECT_FALSE(trust.Corroborate(kRobot));
+  trust.Record(kRobot, {1, 0}, Walls(60, 6));  // 45 of 120: 2.25 m but 38 %
+  EXPECT_FALSE(trust.Corroborate(kRobot));
+  EXPECT_FALSE(trust.corroborated(kRobot));
+  trust.Record(kRobot, {1, 0}, Walls(60, 30));  // 69 of 120: 58 %
+  EXPECT_TRUE(trust.Corroborate(kRobot));
+  EXPECT_TRUE(trust.corroborated(kRobot));
+  EXPECT_FALSE(trust.Corroborate(kRobot));  // unchanged
+  // Its map moved and disagrees now: it stays corroborated, until its data are forgotten.
+  trust.Record(kRobot, {1, 0}, Walls(60, 0));
+  EXPECT_FALSE(trust.Corroborate(kRobot));
+  EXPECT_TRUE(trust.corroborated(kRobot));
+  trust.Forget(kRobot);
+  EXPECT_FALSE(trust.corroborated(kRobot));
+}
+
 TEST(RobotTrustTest, EntersQuarantineOnlyPastBothTheLengthAndTheShare) {
   RobotTrust trust(QuarantineOptions{}, 10.0, kResolution);
   trust.Record(kRobot, {0, 0}, Counted(39, 100));  // 39 % but under 2 m
