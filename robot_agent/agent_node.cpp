@@ -41,6 +41,7 @@ Status AgentOptions::Validate() const {
     return InvalidArgumentError("the map check period must be > 0");
   if (duration.count() < 0) return InvalidArgumentError("--duration must be >= 0");
   if (claim_wait.count() < 0) return InvalidArgumentError("--claim-wait must be >= 0");
+  if (server_wait.count() <= 0) return InvalidArgumentError("--server-wait must be > 0");
   if (map_limits.max_cells <= 0 || map_limits.max_decoded_bytes <= 0) {
     return InvalidArgumentError("--max-cells and --max-decoded-bytes must be > 0");
   }
@@ -169,6 +170,17 @@ void AgentNode::DrainFusedTiles() {
   fused_tiles_received_ += fused_reader_->DrainCount();
 }
 
+void AgentNode::WatchServer(std::chrono::steady_clock::time_point now) {
+  const std::optional<std::string> said =
+      server_watch_->Update(fused_reader_->matched_writers(), now);
+  if (!said) return;
+  if (server_watch_->missing()) {
+    spdlog::warn("{}: {}", options_.robot.value, *said);
+  } else {
+    spdlog::info("{}: {}", options_.robot.value, *said);
+  }
+}
+
 void AgentNode::DrainRobotFrames() {
   for (const transport::RobotFrameEvent& event : frame_reader_->Drain()) {
     if (event.kind != transport::RobotFrameEvent::Kind::kSample ||
@@ -210,6 +222,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
                source_->Describe(), WireName(options_.wire));
 
   const auto start = std::chrono::steady_clock::now();
+  server_watch_.emplace(options_.server_wait, start);
   auto next_map_check = start + options_.map_check_period;
   while (!stop.load()) {
     const auto now = std::chrono::steady_clock::now();
@@ -235,6 +248,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
     }
     RefreshStatus();
     DrainFusedTiles();
+    WatchServer(now);
     DrainRobotFrames();
     WatchIdClaims();
     ReportHandshake();
@@ -285,6 +299,7 @@ void AgentOptions::Describe(OptionsPrinter& out) const {
   out.Add("map_check_period", map_check_period);
   out.Add("duration", duration);
   out.Add("claim_wait", claim_wait);
+  out.Add("server_wait", server_wait);
   out.Nested("dds", dds);
 }
 

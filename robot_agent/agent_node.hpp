@@ -19,6 +19,7 @@
 #include "robot_agent/grid_wire_publisher.hpp"
 #include "robot_agent/id_claim_watch.hpp"
 #include "robot_agent/map_source.hpp"
+#include "robot_agent/server_watch.hpp"
 #include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/status_heartbeat.hpp"
 #include "robot_agent/tile_publisher.hpp"
@@ -60,6 +61,8 @@ struct AgentOptions {
   // How long the agent listens, before it joins, for another participant already speaking for
   // its robot id (DDS discovery on a LAN takes a few hundred milliseconds). 0: do not check.
   std::chrono::milliseconds claim_wait{1000};
+  // Seen no fleet server this long (no writer of rt/fleetmap/fused_tiles), the agent says so.
+  std::chrono::milliseconds server_wait{10'000};
   transport::ParticipantOptions dds;
 
   // Checks every field once; the error names the option and the value.
@@ -88,6 +91,8 @@ class AgentNode {
   void DrainFusedTiles();
   // Learns the robot's map frame from rt/fleetmap/robot_frames.
   void DrainRobotFrames();
+  // Says when no fleet server has been in sight for options_.server_wait, and when one is again.
+  void WatchServer(std::chrono::steady_clock::time_point now);
   // Another participant that starts claiming this robot id once the agent is in the fleet is
   // reported: the server keeps this agent and refuses the other.
   void WatchIdClaims();
@@ -110,6 +115,7 @@ class AgentNode {
   std::unique_ptr<transport::RobotFrameReader> frame_reader_;
   std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
   std::unique_ptr<IdClaimWatch> claim_watch_;
+  std::optional<ServerWatch> server_watch_;  // from Run() on
   uint64_t fused_tiles_received_ = 0;
   bool placed_ = false;  // with unplaced: the server has placed the robot's map frame
   bool handshake_reported_ = false;

@@ -94,6 +94,10 @@ int main(int argc, char** argv) {
   app.add_option("--claim-wait", claim_wait_s,
                  "seconds to listen for another agent already using this robot id (0: skip)")
       ->check(CLI::NonNegativeNumber);
+  double server_wait_s = 10.0;
+  app.add_option("--server-wait", server_wait_s,
+                 "seconds without a fleet server in sight before the agent says so")
+      ->check(CLI::PositiveNumber);
   std::string security_dir;
   app.add_option("--security", security_dir,
                  "DDS Security folder (fleetmap security enroll): join the secured fleet as the "
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
   }
   options.map_from_robot = PoseFrom(pose);
   options.claim_wait = std::chrono::milliseconds(static_cast<int64_t>(claim_wait_s * 1000.0));
+  options.server_wait = std::chrono::milliseconds(static_cast<int64_t>(server_wait_s * 1000.0));
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
   if (localhost_only) options.dds.localhost_only = true;

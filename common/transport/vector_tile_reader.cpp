@@ -171,4 +171,10 @@ size_t VectorTileReader::queued() const { return listener_->queued(); }
 
 size_t VectorTileReader::dropped() const { return listener_->dropped(); }
 
+int VectorTileReader::matched_writers() const {
+  dds::SubscriptionMatchedStatus matched;
+  endpoint_->reader()->get_subscription_matched_status(matched);
+  return matched.current_count;
+}
+
 }  // namespace fleetmap::transport

@@ -53,6 +53,8 @@ class VectorTileReader {
   size_t queued() const;
   // Events dropped because the queue was full (the owner drained too slowly), since creation.
   size_t dropped() const;
+  // Writers of the topic matched now (on rt/fleetmap/fused_tiles: the fleet's servers).
+  int matched_writers() const;
 
  private:
   class Listener;
