@@ -10,6 +10,7 @@
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/status.hpp"
+#include "common/core/wire.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
@@ -23,7 +24,6 @@
 #include "robot_agent/sim_map_source.hpp"
 #include "robot_agent/status_heartbeat.hpp"
 #include "robot_agent/tile_publisher.hpp"
-#include "robot_agent/wire.hpp"
 #include "robot_agent/wire_baseline_meter.hpp"
 
 namespace fleetmap::agent {

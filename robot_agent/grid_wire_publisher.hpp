@@ -8,12 +8,12 @@
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
+#include "common/core/wire.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/transport/compressed_map_update_writer.hpp"
 #include "common/transport/map_update_writer.hpp"
 #include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
-#include "robot_agent/wire.hpp"
 
 namespace fleetmap::agent {
 

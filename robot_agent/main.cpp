@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
 
-  options.wire = *fleetmap::agent::WireFromName(wire);  // CLI11 checked the name
+  options.wire = *fleetmap::WireFromName(wire);  // CLI11 checked the name
   if (!sim_kind.empty()) {
     const auto kind = fleetmap::sim::TerrainKindFromName(sim_kind);
     if (!kind) {

@@ -626,7 +626,12 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
     transport::MapMessage map;
     fusion::GridWindow shown;
     map.grid = fusion_.FusedGrid(&shown);
-    if (shown.tiles_left_out > 0 && shown.tiles_left_out != tiles_outside_map_) {
+    // Said when tiles are first left out, and then at most every kWindowWarningPeriod while the
+    // number changes: a peer spreading tiles far away changes it at every map period.
+    const bool left_out_changed = shown.tiles_left_out != tiles_outside_map_;
+    if (shown.tiles_left_out > 0 && left_out_changed &&
+        (tiles_outside_map_ == 0 || now - last_window_warning_ >= kWindowWarningPeriod)) {
+      last_window_warning_ = now;
       spdlog::warn(
           "server: the fused tiles span more than one grid of {} cells can show: "
           "rt/fleetmap/map shows tiles ({}, {})..({}, {}) ({} tiles) and leaves {} out; "

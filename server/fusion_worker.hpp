@@ -254,6 +254,8 @@ class FusionWorker {
   uint64_t fused_revisions_ = 0;     // fused tile revisions made: the fleet map changed
   RobotId last_registered_;          // whose map the placer registered last (round robin)
   size_t tiles_outside_map_ = 0;     // worker thread only
+  std::chrono::steady_clock::time_point last_window_warning_{};  // worker thread only
+  static constexpr std::chrono::seconds kWindowWarningPeriod{30};
   // What one robot's turn may take before the next robot's (FairTileQueue sizes turns by cost),
   // and how long one loop fuses before it drains the readers again.
   static constexpr size_t kMaxTilesPerTurn = 16;

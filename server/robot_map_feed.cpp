@@ -4,29 +4,19 @@
 
 namespace fleetmap::server {
 
-std::optional<RobotMapFeed::Wire> RobotMapFeed::WireOf(const RobotId& robot,
-                                                       const std::string& map_topic) {
+std::optional<Wire> RobotMapFeed::WireOf(const RobotId& robot, const std::string& map_topic) {
   if (map_topic == transport::RobotMapTopic(robot)) return Wire::kGrid;
   if (map_topic == transport::RobotMapUpdatesTopic(robot)) return Wire::kGridUpdates;
   if (map_topic == transport::RobotCompressedMapUpdatesTopic(robot)) return Wire::kGridUpdatesZstd;
   return std::nullopt;
 }
 
-const char* RobotMapFeed::WireName(Wire wire) {
-  switch (wire) {
-    case Wire::kGrid:
-      return "grid";
-    case Wire::kGridUpdates:
-      return "grid-updates";
-    case Wire::kGridUpdatesZstd:
-      return "grid-updates-zstd";
-  }
-  return "unknown";
-}
-
 StatusOr<std::unique_ptr<RobotMapFeed>> RobotMapFeed::Create(transport::Participant& participant,
                                                              const RobotId& robot, Wire wire,
                                                              std::shared_ptr<WakeUp> wake_up) {
+  if (wire == Wire::kTiles) {
+    return InvalidArgumentError("robot " + robot.value + " is on the tile wire: no grid to follow");
+  }
   std::unique_ptr<RobotMapFeed> feed(new RobotMapFeed(wire));
   FLEETMAP_ASSIGN_OR_RETURN(feed->map_reader_,
                             transport::OccupancyGridReader::Create(

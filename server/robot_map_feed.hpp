@@ -9,6 +9,7 @@
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
 #include "common/core/wake_up.hpp"
+#include "common/core/wire.hpp"
 #include "common/transport/compressed_map_update_reader.hpp"
 #include "common/transport/map_message.hpp"
 #include "common/transport/map_update_reader.hpp"
@@ -25,10 +26,8 @@ namespace fleetmap::server {
 // work (inflating included) on the caller's thread, the server's control thread.
 class RobotMapFeed {
  public:
-  enum class Wire { kGrid, kGridUpdates, kGridUpdatesZstd };
   // The grid wire a status's map_topic names for `robot`; nothing for the tile wire.
   static std::optional<Wire> WireOf(const RobotId& robot, const std::string& map_topic);
-  static const char* WireName(Wire wire);
 
   static StatusOr<std::unique_ptr<RobotMapFeed>> Create(transport::Participant& participant,
                                                         const RobotId& robot, Wire wire,

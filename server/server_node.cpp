@@ -185,14 +185,12 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
       record.last_status.robot.value.empty() || record.state != RobotRecord::State::kActive;
   record.state = RobotRecord::State::kActive;
   record.last_status = status;
-  const std::optional<RobotMapFeed::Wire> grid_wire =
-      RobotMapFeed::WireOf(status.robot, status.map_topic);
+  const std::optional<Wire> grid_wire = RobotMapFeed::WireOf(status.robot, status.map_topic);
   if (grid_wire && record.map_feed == nullptr) {
     auto feed = RobotMapFeed::Create(*participant_, status.robot, *grid_wire, wake_up_);
     if (!feed.ok()) {
       spdlog::error("server: robot {} is on the {} wire but its map cannot be read: {}",
-                    status.robot.value, RobotMapFeed::WireName(*grid_wire),
-                    feed.status().message());
+                    status.robot.value, WireName(*grid_wire), feed.status().message());
     } else {
       record.map_feed = std::move(feed).value();
     }
@@ -229,8 +227,8 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   const std::optional<Pose2> fleet_from_map = GivenFrame(record);
   fusion_worker_->NoteRobotFrame(status.robot, fleet_from_map);
   spdlog::info("server: robot {} joined ({} wire, map {} x {} at {:.3f} m, fleet_from_map {})",
-               status.robot.value, grid_wire ? RobotMapFeed::WireName(*grid_wire) : "tiles",
-               status.map_width, status.map_height, status.map_resolution,
+               status.robot.value, grid_wire ? WireName(*grid_wire) : "tiles", status.map_width,
+               status.map_height, status.map_resolution,
                fleet_from_map ? fmt::format("({:.2f}, {:.2f}, {:.3f} rad)", fleet_from_map->x,
                                             fleet_from_map->y, fleet_from_map->yaw)
                               : std::string("unknown: the server places its map frame"));

@@ -85,7 +85,7 @@ Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
   contribution.cells = std::move(cells);
   contribution.stamp = std::max(contribution.stamp, stamp);
   state.newest_input = std::max(state.newest_input, stamp);
-  to_refuse_.insert(tile);
+  to_fuse_again_.insert(tile);
   to_review_.insert({tile, robot});
   return Status::Ok();
 }
@@ -93,7 +93,7 @@ Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
 void TileFusion::RemoveRobotTile(const RobotId& robot, const TileId& tile) {
   const auto it = tiles_.find(tile);
   if (it == tiles_.end() || it->second.robots.erase(robot) == 0) return;
-  to_refuse_.insert(tile);
+  to_fuse_again_.insert(tile);
   trust_.ForgetTile(robot, tile);
   to_decide_.insert(robot);
 }
@@ -136,7 +136,7 @@ Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
   contribution.changed_at = std::move(evidence.changed_at);
   contribution.stamp = evidence.stamp;
   state.newest_input = std::max(state.newest_input, evidence.stamp);
-  to_refuse_.insert(tile);
+  to_fuse_again_.insert(tile);
   to_review_.insert({tile, robot});
   return Status::Ok();
 }
@@ -171,7 +171,7 @@ grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& s
   return fused;
 }
 
-bool TileFusion::Refuse(const TileId& tile, TileState* state) {
+bool TileFusion::FuseAgain(const TileId& tile, TileState* state) {
   const int cells = options_.CellsPerTile();
   grid::OccupancyGrid fused = FuseCells(tile, *state, Evidence{});
   // Which borders the change reached decides which neighbours must be re-vectorized too.
@@ -323,7 +323,7 @@ void TileFusion::StandingChanged(const RobotId& robot) {
   trust_changed_.insert(robot);
   for (auto& [tile, state] : tiles_) {
     if (state.robots.count(robot) == 0) continue;
-    to_refuse_.insert(tile);
+    to_fuse_again_.insert(tile);
     // Its evidence joined or left the fleet's: the quarantined robots here are weighed again.
     for (const auto& [other, contribution] : state.robots) {
       if (other != robot && !Fused(other)) to_review_.insert({tile, other});
@@ -347,7 +347,7 @@ void TileFusion::ReviewTrust() {
     return;
   }
   // Changed tiles may confirm (or no longer contradict) a quarantined robot's view there.
-  for (const TileId& tile : to_refuse_) {
+  for (const TileId& tile : to_fuse_again_) {
     for (const auto& [robot, contribution] : tiles_.at(tile).robots) {
       if (!Fused(robot)) to_review_.insert({tile, robot});
     }
@@ -416,8 +416,8 @@ void TileFusion::ContinueRevisionsFrom(const std::map<TileId, uint32_t>& revisio
 
 StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   ReviewTrust();
-  for (const TileId& tile : to_refuse_) Refuse(tile, &tiles_.at(tile));
-  to_refuse_.clear();
+  for (const TileId& tile : to_fuse_again_) FuseAgain(tile, &tiles_.at(tile));
+  to_fuse_again_.clear();
   std::vector<FusedTile> changed;
   for (const auto& [tile, trigger] : to_vectorize_) {
     FLEETMAP_ASSIGN_OR_RETURN(vector_map::VectorMap map, VectorizeWithContext(tile));

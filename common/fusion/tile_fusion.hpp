@@ -160,7 +160,7 @@ class TileFusion {
   void CorroborationChanged(const RobotId& robot);
   // Recomputes a tile's fused cells; returns true if any changed, and marks neighbours whose
   // border margin changed.
-  bool Refuse(const TileId& tile, TileState* state);
+  bool FuseAgain(const TileId& tile, TileState* state);
   StatusOr<vector_map::VectorMap> VectorizeWithContext(const TileId& tile) const;
 
   FusionOptions options_;
@@ -168,7 +168,7 @@ class TileFusion {
   Timestamp epoch_;
   std::map<TileId, TileState> tiles_;
   uint64_t tiles_created_ = 0;
-  std::set<TileId> to_refuse_;  // robot input changed
+  std::set<TileId> to_fuse_again_;  // robot input changed
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;

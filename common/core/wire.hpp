@@ -1,12 +1,13 @@
 #pragma once
 
-// What an agent puts on the wire (--wire): docs/fleet.md compares them.
+// How a robot's map travels to the server: what an agent puts on the wire (--wire), and what the
+// server follows (a robot's status names the topic). docs/fleet.md compares them.
 
 #include <optional>
 #include <string>
 #include <string_view>
 
-namespace fleetmap::agent {
+namespace fleetmap {
 
 enum class Wire {
   kTiles,            // vector tiles on rt/fleetmap/robot_tiles: the product
@@ -36,4 +37,4 @@ inline std::optional<Wire> WireFromName(std::string_view name) {
   return std::nullopt;
 }
 
-}  // namespace fleetmap::agent
+}  // namespace fleetmap
