@@ -91,8 +91,14 @@ void ObjectLearningWorker::LearnPending() {
 }
 
 Status ObjectLearningWorker::Learn(const std::vector<MappingSession>& sessions) {
+  // The sessions' grids (a byte a cell) take at most a quarter of the learner's memory budget;
+  // its memory plan sizes the EM's working set from the rest. Without this bound, a dozen
+  // sessions spread wide (a peer's ids, tiles far apart) made a dozen of the largest grids.
+  const double grid_bytes = options_.memory_budget_mb * double{1 << 20} / 4.0;
+  const auto max_cells =
+      static_cast<int64_t>(grid_bytes / static_cast<double>(std::max<size_t>(1, sessions.size())));
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<grid::OccupancyGrid> grids,
-                            SessionGrids(sessions, fusion_));
+                            SessionGrids(sessions, fusion_, max_cells));
   object_learning::LearnOptions learn = options_.learn;
   learn.cancel = &cancel_;
   learn.memory_budget_mb = options_.memory_budget_mb;

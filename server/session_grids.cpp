@@ -31,7 +31,8 @@ StatusOr<grid::OccupancyGrid> SessionGrid(const MappingSession& session,
 }  // namespace
 
 StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<MappingSession>& sessions,
-                                                        const fusion::FusionOptions& options) {
+                                                        const fusion::FusionOptions& options,
+                                                        int64_t max_cells) {
   // The tiles every session mapped, each with the sessions that mapped it.
   std::map<TileId, std::vector<int>> sessions_of;
   for (size_t i = 0; i < sessions.size(); ++i) {
@@ -50,8 +51,11 @@ StatusOr<std::vector<grid::OccupancyGrid>> SessionGrids(const std::vector<Mappin
   // One window for all, within the grid budget: sessions kilometres apart (or a peer's tiles far
   // away) must not make every grid span the distance between them.
   const int cells = options.CellsPerTile();
+  const int64_t grid_cells =
+      max_cells > 0 ? std::min(max_cells, options.max_grid_cells) : options.max_grid_cells;
   const fusion::TileRect window =
-      fusion::ChooseGridWindow(tiles, options.max_grid_cells / (int64_t{cells} * cells)).rect;
+      fusion::ChooseGridWindow(tiles, std::max<int64_t>(1, grid_cells / (int64_t{cells} * cells)))
+          .rect;
   const double resolution = options.FusedResolution();
   const Pose2 origin{window.min.x * options.tile_size, window.min.y * options.tile_size, 0.0};
   std::vector<grid::OccupancyGrid> padded;

@@ -95,6 +95,26 @@ TEST(SessionGridsTest, ASessionFarAwayDoesNotStretchEveryGrid) {
   EXPECT_EQ((*grids)[2].StateAt(0, 0), grid::CellState::kUnknown);
 }
 
+TEST(SessionGridsTest, AMemoryBoundCutsTheWindowToFewerTiles) {
+  // Two sessions on two neighbouring 10 m tiles: together 400 x 200 cells at 5 cm.
+  const std::vector<MappingSession> sessions = {
+      Session(1, Room({1.5, 1.5}, Pose2{0.0, 0.0, 0.0})),
+      Session(2, Room({13.5, 1.5}, Pose2{12.0, 0.0, 0.0})),
+  };
+  const auto whole = SessionGrids(sessions, fusion::FusionOptions{});
+  ASSERT_TRUE(whole.ok()) << whole.status();
+  EXPECT_EQ((*whole)[0].width(), 400);
+  // One tile's cells at most: the window holds one of the two tiles, with its session's box.
+  const auto bounded = SessionGrids(sessions, fusion::FusionOptions{}, 200 * 200);
+  ASSERT_TRUE(bounded.ok()) << bounded.status();
+  for (const grid::OccupancyGrid& grid : *bounded) {
+    EXPECT_EQ(grid.width(), 200);
+    EXPECT_EQ(grid.height(), 200);
+  }
+  EXPECT_GE(OccupiedInBox((*bounded)[0], {1.5, 1.5}) + OccupiedInBox((*bounded)[1], {13.5, 1.5}),
+            28);
+}
+
 TEST(SessionGridsTest, NoSessionsGiveNoGrids) {
   const auto grids = SessionGrids({}, fusion::FusionOptions{});
   ASSERT_TRUE(grids.ok());
