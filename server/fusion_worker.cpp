@@ -343,26 +343,22 @@ void FusionWorker::Admit(transport::TileEvent event, Timestamp now,
     Refuse(robot, refused->reason, refused->detail, participant);
     return;
   }
+  // A tile its writer may not send for this robot id, refused naming both and why.
+  const auto refuse_sender = [&](Refusal reason, const char* which) {
+    Refuse(robot, reason,
+           fmt::format("tile ({}, {}) for robot {} from participant {}, which {}",
+                       event.tile.tile.x, event.tile.tile.y, robot.value, participant, which),
+           participant);
+  };
   switch (registry_->WhoSpeaks(robot, event.writer)) {
     case RobotRegistry::Speaker::kOther:
-      Refuse(robot, Refusal::kNotOwner,
-             fmt::format("tile ({}, {}) for robot {} from participant {}, which does not own it",
-                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
-             participant);
+      refuse_sender(Refusal::kNotOwner, "does not own it");
       return;
     case RobotRegistry::Speaker::kNotItself:
-      Refuse(robot, Refusal::kNotItself,
-             fmt::format("tile ({}, {}) for robot {} from participant {}, which authenticated "
-                         "as another identity",
-                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
-             participant);
+      refuse_sender(Refusal::kNotItself, "authenticated as another identity");
       return;
     case RobotRegistry::Speaker::kOverCap:
-      Refuse(robot, Refusal::kTooManyIds,
-             fmt::format("tile ({}, {}) for robot {} from participant {}, which already speaks "
-                         "for as many robots as a participant may",
-                         event.tile.tile.x, event.tile.tile.y, robot.value, participant),
-             participant);
+      refuse_sender(Refusal::kTooManyIds, "already speaks for as many robots as a participant may");
       return;
     case RobotRegistry::Speaker::kUnclaimed:
       // Its status (and with it, who owns the id) may still be on its way: held, bounded.

@@ -246,6 +246,13 @@ TEST(QuarantineTest, RobotsOfOneParticipantDoNotConfirmEachOther) {
   EXPECT_EQ(Fused(fusion).at(40, 50), kOccupiedValue);
 }
 
+// The shelf rows of Room(0, 0, true) alone, in space otherwise unknown: walls nobody else saw.
+OccupancyGrid PhantomShelves() {
+  OccupancyGrid phantom(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
+  for (const int y : {50, 80, 110}) Outline(&phantom, 40, y, 70, y + 6);
+  return phantom;
+}
+
 // Walls that a robot lost in its localization (or a peer) paints in space nobody had seen yet
 // come first; the robots that map that space next see it free. Two robots of other participants
 // that agree elsewhere are corroborated, and uncorroborated walls never quarantine them.
@@ -254,9 +261,7 @@ TEST(QuarantineTest, UncorroboratedWallsInUnseenSpaceDoNotQuarantineCorroborated
   fusion.SetRobotSource(RobotId{"lost"}, "participant-l");
   fusion.SetRobotSource(RobotId{"alpha"}, "participant-a");
   fusion.SetRobotSource(RobotId{"beta"}, "participant-b");
-  OccupancyGrid phantom(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
-  for (const int y : {50, 80, 110}) Outline(&phantom, 40, y, 70, y + 6);
-  Feed(&fusion, "lost", phantom, kT0);
+  Feed(&fusion, "lost", PhantomShelves(), kT0);
   Fuse(&fusion);
   ASSERT_EQ(Fused(fusion).at(40, 50), kOccupiedValue);
   // alpha maps the whole room; beta only its right half, which alpha's walls agree with.
@@ -280,9 +285,7 @@ TEST(QuarantineTest, BetweenTwoLoneRobotsTheFirstEvidenceStillWins) {
   TileFusion fusion = MakeFusion();
   fusion.SetRobotSource(RobotId{"lost"}, "participant-l");
   fusion.SetRobotSource(RobotId{"alpha"}, "participant-a");
-  OccupancyGrid phantom(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
-  for (const int y : {50, 80, 110}) Outline(&phantom, 40, y, 70, y + 6);
-  Feed(&fusion, "lost", phantom, kT0);
+  Feed(&fusion, "lost", PhantomShelves(), kT0);
   Fuse(&fusion);
   Feed(&fusion, "alpha", Room(), kT0 + std::chrono::seconds(10));
   Fuse(&fusion);
