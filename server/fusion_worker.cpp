@@ -441,7 +441,10 @@ void FusionWorker::ReportStandings() {
   std::vector<fusion::TrustReport> changes = fusion_.TakeTrustChanges();
   if (changes.empty()) return;
   for (const fusion::TrustReport& report : changes) {
-    if (report.standing == fusion::Standing::kQuarantined) {
+    if (!report.standing_changed) {
+      spdlog::debug("server: robot {} is still quarantined: {}", report.robot.value,
+                    report.reason);
+    } else if (report.standing == fusion::Standing::kQuarantined) {
       spdlog::warn(
           "server: robot {} quarantined: {}, around ({:.1f}, {:.1f})..({:.1f}, {:.1f}) m; its "
           "tiles are kept, not fused, until its map agrees, another robot confirms the change, "
@@ -456,7 +459,9 @@ void FusionWorker::ReportStandings() {
   }
   std::lock_guard lock(stats_mutex_);
   for (fusion::TrustReport& report : changes) {
-    if (report.standing == fusion::Standing::kQuarantined) ++stats_.quarantines;
+    if (report.standing_changed && report.standing == fusion::Standing::kQuarantined) {
+      ++stats_.quarantines;
+    }
     stats_.standings[report.robot] = std::move(report);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace fleetmap::fusion {
 
@@ -117,6 +118,22 @@ bool RobotTrust::Admit(const RobotId& robot) {
 }
 
 void RobotTrust::Forget(const RobotId& robot) { books_.erase(robot); }
+
+bool RobotTrust::FiguresMoved(const RobotId& robot) const {
+  const auto it = books_.find(robot);
+  if (it == books_.end() || it->second.standing != Standing::kQuarantined) return false;
+  const int64_t reported = it->second.reported_contradicted;
+  const int64_t moved = std::abs(TotalsOf(it->second).contradicted - reported);
+  return moved >= std::max(min_cells_, reported / 4);
+}
+
+TrustReport RobotTrust::TakeReport(const RobotId& robot) {
+  TrustReport report = Report(robot);
+  if (const auto it = books_.find(robot); it != books_.end()) {
+    it->second.reported_contradicted = report.contradicted_cells;
+  }
+  return report;
+}
 
 Standing RobotTrust::standing(const RobotId& robot) const {
   const auto it = books_.find(robot);

@@ -35,6 +35,8 @@ struct TrustReport {
   Point2 area_min = Point2::Zero();
   Point2 area_max = Point2(-1.0, -1.0);
   std::string reason;  // for people: why it entered (or left) quarantine; empty when trusted
+  // False when only the figures of a quarantined robot moved (its standing did not change).
+  bool standing_changed = true;
 };
 
 // The quarantine's bookkeeping: every robot's contradiction, tile by tile, and the rule that
@@ -63,6 +65,12 @@ class RobotTrust {
   // The robot's data is gone for good: its counts and standing too.
   void Forget(const RobotId& robot);
 
+  // Whether a quarantined robot's contradiction moved by a quarter, or by min_contradicted_m,
+  // since its last TakeReport(): what an operator sees follows the evidence while it waits.
+  bool FiguresMoved(const RobotId& robot) const;
+  // Report(), remembered as the last one given out.
+  TrustReport TakeReport(const RobotId& robot);
+
   Standing standing(const RobotId& robot) const;
   bool quarantined(const RobotId& robot) const { return standing(robot) == Standing::kQuarantined; }
   TrustReport Report(const RobotId& robot) const;
@@ -82,6 +90,7 @@ class RobotTrust {
     Standing standing = Standing::kTrusted;
     bool corroborated = false;
     std::string reason;
+    int64_t reported_contradicted = 0;  // at the last TakeReport()
   };
 
   Totals TotalsOf(const Book& book) const;

@@ -382,7 +382,11 @@ void TileFusion::ReviewTrust() {
         CorroborationChanged(robot);
         continue;
       }
-      if (trust_.Decide(robot)) StandingChanged(robot);
+      if (trust_.Decide(robot)) {
+        StandingChanged(robot);
+      } else if (trust_.FiguresMoved(robot)) {
+        figures_moved_.insert(robot);
+      }
     }
   }
   to_review_.clear();
@@ -402,8 +406,15 @@ bool TileFusion::AdmitRobot(const RobotId& robot) {
 
 std::vector<TrustReport> TileFusion::TakeTrustChanges() {
   std::vector<TrustReport> out;
-  for (const RobotId& robot : trust_changed_) out.push_back(trust_.Report(robot));
+  for (const RobotId& robot : trust_changed_) out.push_back(trust_.TakeReport(robot));
+  for (const RobotId& robot : figures_moved_) {
+    if (trust_changed_.count(robot) > 0 || !trust_.quarantined(robot)) continue;
+    TrustReport report = trust_.TakeReport(robot);
+    report.standing_changed = false;
+    out.push_back(std::move(report));
+  }
   trust_changed_.clear();
+  figures_moved_.clear();
   return out;
 }
 

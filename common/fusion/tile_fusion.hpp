@@ -86,7 +86,8 @@ class TileFusion {
   bool AdmitRobot(const RobotId& robot);
   // The robot's standing, why, and what it contradicts.
   TrustReport TrustOf(const RobotId& robot) const { return trust_.Report(robot); }
-  // Robots whose standing changed in the FuseChanged() calls since the last call.
+  // Robots whose standing changed in the FuseChanged() calls since the last call, and
+  // quarantined robots whose figures moved (TrustReport::standing_changed false).
   std::vector<TrustReport> TakeTrustChanges();
 
   // The fused cells as one fleet-frame grid (yaw 0): the smallest that holds every tile when it
@@ -177,6 +178,7 @@ class TileFusion {
   std::set<std::pair<TileId, RobotId>> to_review_;  // contributions to weigh again
   std::set<RobotId> to_decide_;                     // robots whose counts changed otherwise
   std::set<RobotId> trust_changed_;                 // since TakeTrustChanges()
+  std::set<RobotId> figures_moved_;                 // likewise, standing unchanged
   // Per tile, the revision its first fused revision follows (ContinueRevisionsFrom).
   std::map<TileId, uint32_t> revisions_before_;
 };

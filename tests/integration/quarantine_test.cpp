@@ -144,7 +144,12 @@ TEST_F(QuarantineTest, AFreshIdPaintingFreeSpaceErasesNoWallAndAnOperatorCanAdmi
 
   auto mallory = Start({testing::kAgentBinary, "--robot-id", "mallory", "--map", free_space});
   ASSERT_TRUE(server->WaitForOutput("robot mallory quarantined", kDeadline)) << server->Output();
-  Follow(kDeadline, [&] { return StandingOf("mallory") == Standing::kQuarantined; });
+  // Quarantined on its first tiles; the figures follow as the rest of its map arrives.
+  const auto quarantined_over_100_m = [&] {
+    return StandingOf("mallory") == Standing::kQuarantined &&
+           frames_seen_.at("mallory").contradicted_m > 100.0;
+  };
+  Follow(kDeadline, quarantined_over_100_m);
   ASSERT_EQ(StandingOf("mallory"), Standing::kQuarantined);
   const transport::RobotFrameMessage& frame = frames_seen_.at("mallory");
   EXPECT_GT(frame.contradicted_share, 0.9);

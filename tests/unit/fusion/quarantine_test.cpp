@@ -151,6 +151,34 @@ TEST(QuarantineTest, AFreshIdPaintingFreeOverTheWallsErasesNothing) {
   EXPECT_TRUE(fusion.ExportContribution(RobotId{"mallory"}, TileId{2, 2}).has_value());
 }
 
+TEST(QuarantineTest, AQuarantinedRobotsFiguresFollowItsLaterTiles) {
+  TileFusion fusion = MakeFusion();
+  Establish(&fusion);
+  // mallory's map reaches the server in two parts: the left of the room, then the right.
+  OccupancyGrid left(kSide, kSide, 0.05, Pose2{}, kUnknownValue);
+  Fill(&left, 0, 0, 80, kSide, kFreeValue);
+  Feed(&fusion, "mallory", left, kT0 + std::chrono::seconds(10));
+  Fuse(&fusion);
+  const std::vector<TrustReport> entered = fusion.TakeTrustChanges();
+  ASSERT_EQ(entered.size(), 1u);
+  ASSERT_EQ(entered[0].standing, Standing::kQuarantined);
+  EXPECT_TRUE(entered[0].standing_changed);
+
+  OccupancyGrid all_free(kSide, kSide, 0.05, Pose2{}, kFreeValue);
+  Feed(&fusion, "mallory", all_free, kT0 + std::chrono::seconds(20));
+  Fuse(&fusion);
+  const std::vector<TrustReport> moved = fusion.TakeTrustChanges();
+  ASSERT_EQ(moved.size(), 1u);
+  EXPECT_EQ(moved[0].standing, Standing::kQuarantined);
+  EXPECT_FALSE(moved[0].standing_changed);
+  EXPECT_GT(moved[0].contradicted_m, 1.5 * entered[0].contradicted_m);
+  EXPECT_GT(moved[0].area_max.x(), entered[0].area_max.x() + 2.0);
+  // Nothing moved since: nothing to report.
+  Feed(&fusion, "mallory", all_free, kT0 + std::chrono::seconds(30));
+  Fuse(&fusion);
+  EXPECT_TRUE(fusion.TakeTrustChanges().empty());
+}
+
 TEST(QuarantineTest, AnHonestSecondViewOfTheRoomIsFused) {
   TileFusion fusion = MakeFusion();
   const OccupancyGrid before = Establish(&fusion);
