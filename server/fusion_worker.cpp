@@ -171,6 +171,11 @@ void FusionWorker::Start() {
 
 void FusionWorker::Stop() { thread_.Stop(); }
 
+void FusionWorker::SetServing(bool serving) {
+  serving_ = serving;
+  thread_.Wake();
+}
+
 void FusionWorker::SubmitGrid(const RobotId& robot, transport::MapMessage map,
                               std::optional<Pose2> fleet_from_map) {
   grids_.Push(GridUpdate{robot, std::move(map), fleet_from_map});
@@ -442,8 +447,7 @@ void FusionWorker::ReportStandings() {
   if (changes.empty()) return;
   for (const fusion::TrustReport& report : changes) {
     if (!report.standing_changed) {
-      spdlog::debug("server: robot {} is still quarantined: {}", report.robot.value,
-                    report.reason);
+      spdlog::debug("server: robot {} is still quarantined: {}", report.robot.value, report.reason);
     } else if (report.standing == fusion::Standing::kQuarantined) {
       spdlog::warn(
           "server: robot {} quarantined: {}, around ({:.1f}, {:.1f})..({:.1f}, {:.1f}) m; its "
@@ -622,8 +626,12 @@ void FusionWorker::PublishFused(std::chrono::steady_clock::time_point now) {
   }
   if (!changed->empty()) map_dirty_ = true;
   fused_revisions_ += changed->size();
+  const bool serving = serving_.load();
+  if (serving && !was_serving_) last_map_ = {};  // the new server's map goes out at once
+  map_dirty_ = map_dirty_ || (serving && !was_serving_);
+  was_serving_ = serving;
   bool map_sent = false;
-  if (map_dirty_ && now - last_map_ >= options_.map_period) {
+  if (serving && map_dirty_ && now - last_map_ >= options_.map_period) {
     transport::MapMessage map;
     fusion::GridWindow shown;
     map.grid = fusion_.FusedGrid(&shown);
@@ -751,7 +759,7 @@ void FusionWorker::HandlePlacements(std::chrono::steady_clock::time_point now) {
     RefuseMapFrameRobot(decision.robot, map_frames_.Place(decision.robot, decision.fleet_from_map));
   }
   ScheduleRegistration(now);
-  placer_->PublishTf(now);
+  if (serving_.load()) placer_->PublishTf(now);
   std::lock_guard lock(stats_mutex_);
   stats_.frames = placer_->frames();
 }

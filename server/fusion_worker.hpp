@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -118,6 +119,11 @@ class FusionWorker {
 
   void Start();
   void Stop();
+  // Whether this server serves the fleet (docs/standby.md): only then does it write
+  // rt/fleetmap/map and rt/tf, shared topics on which every reader would take both servers'
+  // samples. It fuses and writes its fused tiles either way. From any thread; a server that
+  // starts serving writes its fused map at once. Serving until told otherwise.
+  void SetServing(bool serving);
 
   // A whole grid from a robot on the grid wire, with its fleet_from_map (nullopt: not known, the
   // server places the robot's map frame).
@@ -265,6 +271,8 @@ class FusionWorker {
   static constexpr std::chrono::milliseconds kTurnTarget{20};
   static constexpr std::chrono::milliseconds kFusionSlice{50};
   std::chrono::steady_clock::time_point last_map_{};
+  std::atomic<bool> serving_{true};
+  bool was_serving_ = true;  // at the last round (the worker's thread)
   mutable std::mutex stats_mutex_;
   FusionStats stats_;  // guarded by stats_mutex_
   // Wakes on new tiles (the reader's listener), grids and robot records; fuses at least every

@@ -117,6 +117,14 @@ int main(int argc, char** argv) {
                  "this often, in seconds, once its map changed (a contradiction revises it)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--ownership-strength", options.ownership_strength,
+                 "of the live servers on the domain the strongest serves the fleet; start a hot "
+                 "standby with a lower strength (docs/standby.md)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--name", options.name,
+                 "how other servers, the web view and the log name this server (default: "
+                 "host:pid)");
   std::string security_dir;
   app.add_option("--security", security_dir,
                  "DDS Security folder (fleetmap security init): join the secured fleet as "

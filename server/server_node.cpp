@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include "common/scene/entity_frames.hpp"
 #include "common/transport/topics.hpp"
@@ -35,6 +36,7 @@ Status ServerOptions::Validate() const {
   if (max_robots_per_participant == 0) {
     return InvalidArgumentError("--max-robots-per-participant must be >= 1");
   }
+  if (ownership_strength < 0) return InvalidArgumentError("--ownership-strength must be >= 0");
   FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
   // A part that is switched off is not made, so its options are not checked.
   if (learning.enabled) {
@@ -52,6 +54,7 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   node->registry_ = std::make_shared<RobotRegistry>(node->options_.max_robots_per_participant);
   transport::ParticipantOptions dds = node->options_.dds;
   dds.name = "fleetmap-server";
+  dds.ownership_strength = node->options_.ownership_strength;
   FLEETMAP_ASSIGN_OR_RETURN(node->participant_, transport::Participant::Create(dds));
   if (node->participant_->secured()) {
     // The registry outlives no reader: the workers that consult it go before the participant.
@@ -64,6 +67,12 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   FLEETMAP_ASSIGN_OR_RETURN(node->status_participant_, transport::Participant::Create(dds));
   FLEETMAP_ASSIGN_OR_RETURN(node->status_reader_, transport::RobotStatusReader::Create(
                                                       *node->status_participant_, node->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      node->presence_,
+      FleetPresence::Create(*node->status_participant_, *node->participant_,
+                            FleetPresence::Identity{node->participant_->id(), node->ServerName(),
+                                                    node->options_.ownership_strength},
+                            node->wake_up_));
   // The sessions in memory are the learner's input: as many as it reads.
   node->options_.fusion.sessions_in_memory = node->options_.learning.max_sessions;
   FLEETMAP_ASSIGN_OR_RETURN(
@@ -94,17 +103,27 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   return node;
 }
 
+std::string ServerNode::ServerName() const {
+  if (!options_.name.empty()) return options_.name;
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  return fmt::format("{}:{}", host[0] != '\0' ? host : "localhost", getpid());
+}
+
 Status ServerNode::Run(const std::atomic<bool>& stop) {
   spdlog::info("server: listening on DDS domain {}{}", participant_->domain_id(),
                participant_->localhost_only() ? " (localhost only)" : "");
   if (learning_worker_) learning_worker_->Start();
   if (prediction_worker_) prediction_worker_->Start();
+  // It serves once it has listened for a stronger server (FleetPresence).
+  fusion_worker_->SetServing(false);
   fusion_worker_->Start();
   const auto start = std::chrono::steady_clock::now();
   while (!stop.load()) {
-    if (options_.duration.count() > 0 &&
-        std::chrono::steady_clock::now() - start >= options_.duration) {
-      break;
+    const auto now = std::chrono::steady_clock::now();
+    if (options_.duration.count() > 0 && now - start >= options_.duration) break;
+    if (presence_->Tick(now, static_cast<uint32_t>(robots_.size()))) {
+      fusion_worker_->SetServing(presence_->serving());
     }
     wake_up_->WaitFor(std::chrono::milliseconds(100));
     HandleRobotEvents();
@@ -112,6 +131,8 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
     HandleEntities();
     SubmitEntitiesOfPlacedRobots();
   }
+  // Withdrawn first: a standby takes over while this one finishes.
+  presence_.reset();
   fusion_worker_->Stop();
   if (prediction_worker_) prediction_worker_->Stop();
   if (learning_worker_) learning_worker_->Stop();
@@ -481,6 +502,8 @@ void ServerOptions::Describe(OptionsPrinter& out) const {
   out.Nested("prediction", prediction);
   out.Add("transforms", transforms);
   out.Add("max_robots_per_participant", max_robots_per_participant);
+  out.Add("name", name);
+  out.Add("ownership_strength", ownership_strength);
 }
 
 }  // namespace fleetmap::server

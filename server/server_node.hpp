@@ -14,6 +14,7 @@
 #include "common/transport/map_message.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_reader.hpp"
+#include "server/fleet_presence.hpp"
 #include "server/fusion_worker.hpp"
 #include "server/object_learning_worker.hpp"
 #include "server/prediction_worker.hpp"
@@ -34,6 +35,11 @@ struct ServerOptions {
   std::map<RobotId, Pose2> transforms;
   // Robot ids one DDS participant may speak for (an agent speaks for one; a simulation for a few).
   size_t max_robots_per_participant = 16;
+  // How other servers, the view and the log name this server; empty: host:pid.
+  std::string name;
+  // Of the live servers on the domain, the strongest serves the fleet (docs/standby.md); a hot
+  // standby gets a lower strength.
+  int32_t ownership_strength = 100;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
@@ -95,6 +101,8 @@ class ServerNode {
   // Hands an entity of a known robot to the prediction worker, in the fleet frame.
   void SubmitEntity(transport::EntityMessage entity, const RobotRecord& record);
   void PrintSummary(const FusionStats& fusion) const;
+  // options_.name, else host:pid.
+  std::string ServerName() const;
 
   ServerOptions options_;
   std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
@@ -115,6 +123,8 @@ class ServerNode {
   std::map<RobotId, std::vector<std::pair<std::string, transport::EntityMessage>>> early_entities_;
   static constexpr size_t kMaxEntitiesAwaitingPlacement = 1024;  // per robot
   std::map<RobotId, std::vector<transport::EntityMessage>> awaiting_placement_;
+  // Among the fleet's servers: whether this one serves.
+  std::unique_ptr<FleetPresence> presence_;
   RefusalLog refusals_{"server"};
   uint64_t rejected_entities_ = 0;
   std::map<RobotId, RobotRecord> robots_;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
+#include "common/transport/served_state.hpp"
 #include "common/transport/topics.hpp"
 #include "view/map_json.hpp"
 
@@ -257,13 +259,44 @@ void FleetViewModel::RefreshRobot(const std::string& id, Timestamp now) {
   robots_.Put(id, RobotJson(id, it->second, now));
 }
 
+void FleetViewModel::OnServer(const transport::FleetServerEvent& event, Timestamp now) {
+  switch (event.kind) {
+    case transport::FleetServerEvent::Kind::kSample:
+      servers_[event.message.server_id] = Server{event.message, now};
+      server_seen_ = true;
+      break;
+    case transport::FleetServerEvent::Kind::kRemoved:
+      servers_.erase(event.message.server_id);
+      break;
+    case transport::FleetServerEvent::Kind::kRejected:
+      CountRejected(transport::kServersTopic);
+      break;
+  }
+}
+
+const FleetViewModel::Server* FleetViewModel::ServingServer() const {
+  const Server* best = nullptr;
+  for (const auto& [id, server] : servers_) {
+    const auto rank = [](const Server& s) {
+      return std::make_tuple(s.last.serving, s.last.ownership_strength);
+    };
+    if (best == nullptr || rank(server) > rank(*best)) best = &server;
+  }
+  return best;
+}
+
 void FleetViewModel::Tick(Timestamp now) {
   now_ = now;
+  std::erase_if(servers_, [&](const auto& entry) {
+    return now - entry.second.heard > transport::kServerSilenceLimit;
+  });
+  const bool no_server = server_seen_ && servers_.empty();
   for (auto& [id, robot] : robot_state_) {
     while (!robot.tiles.empty() && now - robot.tiles.front().received > options_.rate_window) {
       robot.tiles.pop_front();
     }
-    if (robot.liveliness == Liveliness::kLive && now - robot.last_status > options_.stale_after) {
+    const bool quiet = now - robot.last_status > options_.stale_after;
+    if (robot.liveliness == Liveliness::kLive && (quiet || no_server)) {
       robot.liveliness = Liveliness::kStale;
     }
     RefreshRobot(id, now);
@@ -296,7 +329,17 @@ json FleetViewModel::StatusJson() const {
           {"templates", templates_.size()},
           {"rejected", rejected},
           {"rejected_by_topic", rejected_by_topic_},
-          {"grid", grid_ ? *grid_ : json(nullptr)}};
+          {"grid", grid_ ? *grid_ : json(nullptr)},
+          {"server", ServerJson()}};
+}
+
+json FleetViewModel::ServerJson() const {
+  const Server* serving = ServingServer();
+  if (serving == nullptr) return nullptr;
+  return {{"name", serving->last.name},
+          {"strength", serving->last.ownership_strength},
+          {"robots", serving->last.robots},
+          {"standbys", servers_.size() - 1}};
 }
 
 std::string FleetViewModel::FullEvent() const {

@@ -57,12 +57,16 @@ class FleetViewModel {
   void OnSubmap(const transport::SubmapEvent& event);
   void OnObject(const transport::ObjectModelEvent& event);
   void OnTemplate(const transport::ObjectTemplateEvent& event);
+  // rt/fleetmap/servers: which server serves the fleet (docs/standby.md).
+  void OnServer(const transport::FleetServerEvent& event, Timestamp now);
   // rt/fleetmap/map: the fused grid the page can lay under the vectors.
   void OnFleetMap(const transport::MapMessage& map);
   // A sample one of the view's readers refused (malformed, or from a writer it may not have).
   void CountRejected(std::string_view topic);
 
-  // Brings the time-driven parts up to `now`: live robots that went quiet turn stale, rates move.
+  // Brings the time-driven parts up to `now`: live robots that went quiet turn stale, rates move,
+  // servers not heard for transport::kServerSilenceLimit are gone. Once the last server is gone,
+  // live robots are shown stale: nothing fuses or places what they send.
   void Tick(Timestamp now);
 
   // The whole state: {"type": "full", "seq", "tiles", "robots", "paths", "submaps", "objects",
@@ -108,6 +112,8 @@ class FleetViewModel {
   std::optional<Pose2> FleetPose(const Robot& robot) const;
   nlohmann::json RobotJson(const std::string& id, const Robot& robot, Timestamp now) const;
   nlohmann::json StatusJson() const;
+  // The serving server: {"name", "strength", "robots", "standbys"}, or null when none is live.
+  nlohmann::json ServerJson() const;
   void RefreshRobot(const std::string& id, Timestamp now);
 
   ViewModelOptions options_;
@@ -117,6 +123,15 @@ class FleetViewModel {
   JsonDictionary submaps_;
   JsonDictionary objects_;
   JsonDictionary templates_;
+  struct Server {
+    transport::FleetServerMessage last;
+    Timestamp heard;
+  };
+  // The server that serves (or, while none says so, the strongest live one); nullptr when none.
+  const Server* ServingServer() const;
+  // Live servers by id; whether one was ever heard (no server is news only after one was).
+  std::map<std::string, Server> servers_;
+  bool server_seen_ = false;
   std::optional<nlohmann::json> grid_;  // the newest fused grid's geometry
   uint64_t maps_received_ = 0;
   std::map<std::string, uint64_t, std::less<>> rejected_by_topic_;

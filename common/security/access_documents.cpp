@@ -57,6 +57,8 @@ std::string AllowRule(const PermissionsRequest& request) {
       criteria += Criterion("subscribe", Strings(kRobotOwnedTopics), any_partition);
       // Operators admit quarantined robots with the server's identity (`fleetmap admit`).
       criteria += Criterion("subscribe", {"rt/fleetmap/admissions"}, any_partition);
+      // A standby follows the servers it stands by for.
+      criteria += Criterion("subscribe", {"rt/fleetmap/servers"}, any_partition);
       // The robots' own grids and their patches: rt/<robot>/map, _updates, _updates_zstd.
       criteria += Criterion("subscribe", {"rt/*/map", "rt/*/map_updates", "rt/*/map_updates_zstd"},
                             any_partition);

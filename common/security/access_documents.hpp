@@ -23,10 +23,9 @@ std::optional<Role> ParseRole(const std::string& name);
 // The topics only the server may write, and the robot-owned topics every robot writes in the DDS
 // partition named after itself (transport puts a secured robot's publisher there).
 inline constexpr const char* kServerTopics[] = {
-    "rt/fleetmap/fused_tiles",  "rt/fleetmap/map",
-    "rt/fleetmap/submap_graph", "rt/fleetmap/object_templates",
-    "rt/fleetmap/objects",      "rt/fleetmap/robot_frames",
-    "rt/fleetmap/admissions",   "rt/tf"};
+    "rt/fleetmap/fused_tiles",      "rt/fleetmap/map",     "rt/fleetmap/submap_graph",
+    "rt/fleetmap/object_templates", "rt/fleetmap/objects", "rt/fleetmap/robot_frames",
+    "rt/fleetmap/admissions",       "rt/fleetmap/servers", "rt/tf"};
 inline constexpr const char* kRobotOwnedTopics[] = {
     "rt/fleetmap/robot_tiles", "rt/fleetmap/robot_status", "rt/fleetmap/entities"};
 

@@ -20,7 +20,8 @@ namespace {
 
 namespace dds = eprosima::fastdds::dds;
 
-// What differs between the four topics: the wire type, the topic, and which fields are the key.
+// What differs between the topics: the wire type, the topic, which fields are the key, and whether
+// a server serves it (served_state.hpp: exclusive ownership).
 template <typename Message>
 struct TopicTraits;
 
@@ -28,6 +29,7 @@ template <>
 struct TopicTraits<EntityMessage> {
   using Sample = fleetmap_msgs::msg::dds_::Entity_;
   static constexpr const char* kTopic = kEntitiesTopic;
+  static constexpr bool kServed = false;
   static dds::TypeSupport Type() { return EntityTypeSupport(); }
   static EntityMessage KeyOf(const EntityMessage& message) {
     scene::DoorEntity key_only;  // any alternative carries the id
@@ -47,6 +49,7 @@ template <>
 struct TopicTraits<SubmapMessage> {
   using Sample = fleetmap_msgs::msg::dds_::Submap_;
   static constexpr const char* kTopic = kSubmapGraphTopic;
+  static constexpr bool kServed = true;
   static dds::TypeSupport Type() { return SubmapTypeSupport(); }
   static SubmapMessage KeyOf(const SubmapMessage& message) {
     SubmapMessage key;
@@ -62,6 +65,7 @@ template <>
 struct TopicTraits<ObjectTemplateMessage> {
   using Sample = fleetmap_msgs::msg::dds_::ObjectTemplate_;
   static constexpr const char* kTopic = kObjectTemplatesTopic;
+  static constexpr bool kServed = true;
   static dds::TypeSupport Type() { return ObjectTemplateTypeSupport(); }
   static ObjectTemplateMessage KeyOf(const ObjectTemplateMessage& message) {
     ObjectTemplateMessage key;
@@ -77,6 +81,7 @@ template <>
 struct TopicTraits<ObjectModelMessage> {
   using Sample = fleetmap_msgs::msg::dds_::ObjectModel_;
   static constexpr const char* kTopic = kObjectsTopic;
+  static constexpr bool kServed = true;
   static dds::TypeSupport Type() { return ObjectModelTypeSupport(); }
   static ObjectModelMessage KeyOf(const ObjectModelMessage& message) {
     ObjectModelMessage key;
@@ -92,6 +97,7 @@ template <>
 struct TopicTraits<RobotFrameMessage> {
   using Sample = fleetmap_msgs::msg::dds_::RobotFrame_;
   static constexpr const char* kTopic = kRobotFramesTopic;
+  static constexpr bool kServed = true;
   static dds::TypeSupport Type() { return RobotFrameTypeSupport(); }
   static RobotFrameMessage KeyOf(const RobotFrameMessage& message) {
     RobotFrameMessage key;
@@ -104,9 +110,35 @@ struct TopicTraits<RobotFrameMessage> {
 };
 
 template <>
+struct TopicTraits<FleetServerMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::FleetServer_;
+  static constexpr const char* kTopic = kServersTopic;
+  static constexpr bool kServed = false;  // every server writes its own instance
+  static dds::TypeSupport Type() { return FleetServerTypeSupport(); }
+  static FleetServerMessage KeyOf(const FleetServerMessage& message) {
+    FleetServerMessage key;
+    key.server_id = message.server_id;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "server " + sample.server_id().substr(0, 64);
+  }
+};
+
+template <typename Message>
+EndpointQos QosOf(const Participant& participant) {
+  if constexpr (TopicTraits<Message>::kServed) {
+    return ServedStateQos(participant.ownership_strength());
+  } else {
+    return KeyedStateQos();
+  }
+}
+
+template <>
 struct TopicTraits<RobotAdmissionMessage> {
   using Sample = fleetmap_msgs::msg::dds_::RobotAdmission_;
   static constexpr const char* kTopic = kAdmissionsTopic;
+  static constexpr bool kServed = false;
   static dds::TypeSupport Type() { return RobotAdmissionTypeSupport(); }
   static RobotAdmissionMessage KeyOf(const RobotAdmissionMessage& message) {
     RobotAdmissionMessage key;
@@ -125,9 +157,9 @@ StatusOr<std::unique_ptr<KeyedStateWriter<Message>>> KeyedStateWriter<Message>::
     Participant& participant) {
   using Traits = TopicTraits<Message>;
   std::unique_ptr<KeyedStateWriter> self(new KeyedStateWriter());
-  FLEETMAP_ASSIGN_OR_RETURN(
-      self->endpoint_,
-      WriterEndpoint::Create(participant, Traits::kTopic, Traits::Type(), KeyedStateQos().writer));
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            WriterEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
+                                                   QosOf<Message>(participant).writer));
   return self;
 }
 
@@ -138,7 +170,7 @@ template <typename Message>
 StatusOr<size_t> KeyedStateWriter<Message>::Write(const Message& message) {
   using Sample = typename TopicTraits<Message>::Sample;
   FLEETMAP_ASSIGN_OR_RETURN(Sample sample, ToIdl(message));
-  if (!endpoint_->writer()->write(&sample)) {
+  if (!endpoint_->Write(&sample)) {
     return UnavailableError("could not write on " + endpoint_->topic_name());
   }
   return Sample::getCdrSerializedSize(sample) + 4;
@@ -148,8 +180,7 @@ template <typename Message>
 Status KeyedStateWriter<Message>::Dispose(const Message& key) {
   using Traits = TopicTraits<Message>;
   FLEETMAP_ASSIGN_OR_RETURN(typename Traits::Sample sample, ToIdl(Traits::KeyOf(key)));
-  // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
-  if (endpoint_->writer()->dispose(&sample, dds::HANDLE_NIL) != ReturnCode_t::RETCODE_OK) {
+  if (!endpoint_->Dispose(&sample)) {
     return UnavailableError("could not dispose an instance on " + endpoint_->topic_name());
   }
   return Status::Ok();
@@ -238,9 +269,10 @@ StatusOr<std::unique_ptr<KeyedStateReader<Message>>> KeyedStateReader<Message>::
   using Traits = TopicTraits<Message>;
   std::unique_ptr<KeyedStateReader> self(new KeyedStateReader());
   self->listener_ = std::make_unique<Listener>(std::move(wake_up));
-  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
-                            ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
-                                                   KeyedStateQos().reader, self->listener_.get()));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
+                             QosOf<Message>(participant).reader, self->listener_.get()));
   return self;
 }
 
@@ -271,5 +303,7 @@ template class KeyedStateWriter<RobotFrameMessage>;
 template class KeyedStateReader<RobotFrameMessage>;
 template class KeyedStateWriter<RobotAdmissionMessage>;
 template class KeyedStateReader<RobotAdmissionMessage>;
+template class KeyedStateWriter<FleetServerMessage>;
+template class KeyedStateReader<FleetServerMessage>;
 
 }  // namespace fleetmap::transport

@@ -2,10 +2,11 @@
 
 // Readers and writers of the keyed state topics that carry one instance per thing: the entities
 // agents recognise (rt/fleetmap/entities), the sub-map graph (rt/fleetmap/submap_graph) and the
-// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects) and the robots' map
-// frames (rt/fleetmap/robot_frames). All five share one QoS (KeyedStateQos: reliable, transient
-// local, keep last 1 per instance) and one behaviour, so they are one template, instantiated in
-// keyed_state_topic.cpp for the five message types.
+// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects), the robots' map
+// frames (rt/fleetmap/robot_frames), operators' admissions (rt/fleetmap/admissions) and the
+// servers (rt/fleetmap/servers). All share one QoS (KeyedStateQos: reliable, transient local, keep
+// last 1 per instance), with exclusive ownership on those a server serves (served_state.hpp), and
+// one behaviour, so they are one template, instantiated in keyed_state_topic.cpp per message type.
 
 #include <memory>
 #include <string>
@@ -89,5 +90,8 @@ using RobotFrameReader = KeyedStateReader<RobotFrameMessage>;
 using RobotAdmissionEvent = KeyedEvent<RobotAdmissionMessage>;
 using RobotAdmissionWriter = KeyedStateWriter<RobotAdmissionMessage>;
 using RobotAdmissionReader = KeyedStateReader<RobotAdmissionMessage>;
+using FleetServerEvent = KeyedEvent<FleetServerMessage>;
+using FleetServerWriter = KeyedStateWriter<FleetServerMessage>;
+using FleetServerReader = KeyedStateReader<FleetServerMessage>;
 
 }  // namespace fleetmap::transport

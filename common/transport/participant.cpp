@@ -15,6 +15,7 @@
 #include <string>
 
 #include "common/transport/internal/participant_identities.hpp"
+#include "common/transport/internal/served_writers.hpp"
 #include "common/transport/internal/writer_id.hpp"
 
 namespace fleetmap::transport {
@@ -143,6 +144,9 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
   dds::PublisherQos publisher_qos = dds::PUBLISHER_QOS_DEFAULT;
   dds::SubscriberQos subscriber_qos = dds::SUBSCRIBER_QOS_DEFAULT;
   self->identities_ = std::make_unique<ParticipantIdentities>();
+  self->served_writers_ = std::make_unique<ServedWriters>();
+  self->ownership_strength_ = options.ownership_strength;
+  self->participant_lease_ = options.participant_lease;
   if (options.security) {
     AddSecurityProperties(*options.security, &qos);
     self->secured_ = true;
@@ -198,6 +202,8 @@ std::string Participant::id() const {
   return WriterId(handle).substr(0, 24);
 }
 
+size_t Participant::RepublishServedState() { return served_writers_->WriteAgain(); }
+
 Participant::~Participant() {
   if (participant_ == nullptr) return;
   // Readers and writers are gone by contract; this also removes any topic still held.
@@ -250,6 +256,7 @@ void ParticipantOptions::Describe(OptionsPrinter& out) const {
   out.Add("localhost_only", localhost_only);
   out.Add("intraprocess_delivery", intraprocess_delivery);
   out.Add("participant_lease", participant_lease);
+  out.Add("ownership_strength", ownership_strength);
   out.Add("security", security ? security->name + " (" + security::RoleName(security->role) + ", " +
                                      security->cert + ")"
                                : std::string("off"));

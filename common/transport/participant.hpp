@@ -21,6 +21,7 @@ class TypeSupport;
 namespace fleetmap::transport {
 
 class ParticipantIdentities;
+class ServedWriters;
 
 struct ParticipantOptions {
   // Unset: the FLEETMAP_DOMAIN environment variable, else 0. Valid DDS domains are 0..232.
@@ -39,6 +40,9 @@ struct ParticipantOptions {
   // then writes in the DDS partition named after the robot (its permissions allow no other), and
   // the subscriber reads every partition. Unset: no security (anyone on the domain may join).
   std::optional<security::SecurityIdentity> security;
+  // The strength of this participant's writers on the exclusive topics (served_state.hpp): of the
+  // live servers, readers take the strongest's samples. A standby gets a lower one.
+  int32_t ownership_strength = 0;
 
   // Sets `security` to `identity`'s identity in the fleet security folder `dir`, checked
   // (security::LoadIdentity): an error names the file and what is wrong with it.
@@ -84,6 +88,15 @@ class Participant {
                                                         eprosima::fastdds::dds::TypeSupport type);
   void ReleaseTopic(eprosima::fastdds::dds::Topic* topic);
 
+  // Writes the last sample of every instance of this participant's writers on the exclusive
+  // topics again (served_state.hpp): what a server does when it starts serving, since readers
+  // refused what it wrote while another server was their owner. The number of instances.
+  size_t RepublishServedState();
+  int32_t ownership_strength() const { return ownership_strength_; }
+  std::chrono::milliseconds participant_lease() const { return participant_lease_; }
+  // For transport's own writers on the exclusive topics.
+  ServedWriters& served_writers() { return *served_writers_; }
+
   eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
 
@@ -98,6 +111,10 @@ class Participant {
   int domain_id_ = 0;
   bool localhost_only_ = false;
   bool secured_ = false;
+  int32_t ownership_strength_ = 0;
+  std::chrono::milliseconds participant_lease_{0};
+  // Declared before the participant: its writers are deleted first.
+  std::unique_ptr<ServedWriters> served_writers_;
   // Declared before the participant: Fast DDS calls it until the participant is deleted.
   std::unique_ptr<ParticipantIdentities> identities_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;

@@ -101,4 +101,16 @@ struct RobotAdmissionMessage {
   std::string operator_name;
 };
 
+// A fleetmap-server's word that it is alive (rt/fleetmap/servers, docs/standby.md): written every
+// half second; of the live servers the strongest serves.
+struct FleetServerMessage {
+  std::string server_id;  // its DDS participant's GUID prefix (Participant::id())
+  std::string name;       // for people
+  int32_t ownership_strength = 0;
+  bool serving = false;
+  Timestamp started{};
+  Timestamp stamp{};
+  uint32_t robots = 0;
+};
+
 }  // namespace fleetmap::transport

@@ -19,6 +19,7 @@ inline constexpr char kObjectTemplatesTopic[] = "rt/fleetmap/object_templates";
 inline constexpr char kObjectsTopic[] = "rt/fleetmap/objects";
 inline constexpr char kRobotFramesTopic[] = "rt/fleetmap/robot_frames";
 inline constexpr char kAdmissionsTopic[] = "rt/fleetmap/admissions";
+inline constexpr char kServersTopic[] = "rt/fleetmap/servers";
 // ROS 2's transform tree (/tf): the server publishes fleet -> <robot>/map there.
 inline constexpr char kTfTopic[] = "rt/tf";
 

@@ -12,6 +12,7 @@
 #include "common/transport/internal/qos.hpp"
 #include "common/transport/internal/vector_tile_codec.hpp"
 #include "common/transport/internal/writer_id.hpp"
+#include "common/transport/topics.hpp"
 #include "fleetmap_msgs/msg/VectorTile.h"
 
 namespace fleetmap::transport {
@@ -153,9 +154,10 @@ StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
     const TileDecodeLimits& limits) {
   std::unique_ptr<VectorTileReader> self(new VectorTileReader());
   self->listener_ = std::make_unique<Listener>(participant, topic_name, std::move(wake_up), limits);
+  const EndpointQos qos = topic_name == kFusedTilesTopic ? ServedStateQos() : VectorTileQos();
   FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
                             ReaderEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
-                                                   VectorTileQos().reader, self->listener_.get()));
+                                                   qos.reader, self->listener_.get()));
   return self;
 }
 

@@ -158,10 +158,14 @@ CyclonePeer::~CyclonePeer() {
   dds_delete(domain_ > 0 ? domain_ : participant_);
 }
 
-dds_entity_t CyclonePeer::Writer(dds_entity_t* writer, dds_entity_t topic, bool status) {
+dds_entity_t CyclonePeer::Writer(dds_entity_t* writer, dds_entity_t topic, Kind kind) {
   if (*writer > 0) return *writer;
   dds_qos_t* qos = StateQos();
-  if (status) dds_qset_liveliness(qos, DDS_LIVELINESS_MANUAL_BY_TOPIC, kLivelinessLease);
+  if (kind == Kind::kStatus) {
+    dds_qset_liveliness(qos, DDS_LIVELINESS_MANUAL_BY_TOPIC, kLivelinessLease);
+  }
+  // docs/standby.md: what a server serves has exclusive ownership (strength 0 here, the least).
+  if (kind == Kind::kServed) dds_qset_ownership(qos, DDS_OWNERSHIP_EXCLUSIVE);
   *writer = dds_create_writer(participant_, topic, qos, nullptr);
   dds_delete_qos(qos);
   return *writer;
@@ -179,15 +183,15 @@ bool CyclonePeer::WriteTile(dds_entity_t writer, const TileSample& tile, std::st
 }
 
 bool CyclonePeer::WriteRobotTile(const TileSample& tile, std::string* error) {
-  return WriteTile(Writer(&tiles_writer_, tiles_topic_, false), tile, error);
+  return WriteTile(Writer(&tiles_writer_, tiles_topic_, Kind::kRobot), tile, error);
 }
 
 bool CyclonePeer::WriteFusedTile(const TileSample& tile, std::string* error) {
-  return WriteTile(Writer(&fused_writer_, fused_topic_, false), tile, error);
+  return WriteTile(Writer(&fused_writer_, fused_topic_, Kind::kServed), tile, error);
 }
 
 bool CyclonePeer::WriteStatus(const StatusSample& status, std::string* error) {
-  const dds_entity_t writer = Writer(&status_writer_, status_topic_, true);
+  const dds_entity_t writer = Writer(&status_writer_, status_topic_, Kind::kStatus);
   if (writer < 0) {
     *error = Failed("creating the status writer", writer);
     return false;
@@ -199,7 +203,7 @@ bool CyclonePeer::WriteStatus(const StatusSample& status, std::string* error) {
 }
 
 bool CyclonePeer::DisposeStatus(const StatusSample& status, std::string* error) {
-  const dds_entity_t writer = Writer(&status_writer_, status_topic_, true);
+  const dds_entity_t writer = Writer(&status_writer_, status_topic_, Kind::kStatus);
   if (writer < 0) {
     *error = Failed("creating the status writer", writer);
     return false;

@@ -53,7 +53,9 @@ class CyclonePeer {
   static std::string LocalhostConfig(int participant_index);
 
  private:
-  dds_entity_t Writer(dds_entity_t* writer, dds_entity_t topic, bool status);
+  // What a writer writes: a robot's state, its status (liveliness), or a server's (exclusive).
+  enum class Kind { kRobot, kStatus, kServed };
+  dds_entity_t Writer(dds_entity_t* writer, dds_entity_t topic, Kind kind);
   bool WriteTile(dds_entity_t writer, const TileSample& tile, std::string* error);
 
   dds_entity_t domain_ = 0;

@@ -324,7 +324,20 @@ function renderStatus() {
   setText('status-templates', s.templates);
   const byTopic = Object.entries(s.rejected_by_topic).map(([topic, n]) => `${topic}: ${n}`);
   setText('status-rejected', byTopic.length ? `${s.rejected} (${byTopic.join(', ')})` : '0');
+  renderServer(s.server);
   updateGrid(s.grid);
+}
+
+// Which fleetmap-server serves the fleet (docs/standby.md), or that none is alive.
+function renderServer(server) {
+  const element = document.getElementById('status-server');
+  element.dataset.state = server ? 'serving' : 'none';
+  if (!server) {
+    element.textContent = 'no fleet server';
+    return;
+  }
+  const standbys = server.standbys ? ` + ${server.standbys} standby` : '';
+  element.textContent = `server ${server.name}${standbys}`;
 }
 
 function updateGrid(grid) {

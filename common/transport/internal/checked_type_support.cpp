@@ -3,6 +3,7 @@
 #include "common/transport/internal/idl_shapes.hpp"
 #include "fleetmap_msgs/msg/CompressedGridUpdatePubSubTypes.h"
 #include "fleetmap_msgs/msg/EntityPubSubTypes.h"
+#include "fleetmap_msgs/msg/FleetServerPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectModelPubSubTypes.h"
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotAdmissionPubSubTypes.h"
@@ -86,6 +87,11 @@ eprosima::fastdds::dds::TypeSupport RobotAdmissionTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<fleetmap_msgs::msg::dds_::RobotAdmission_PubSubType>(
           RobotAdmissionShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport FleetServerTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::FleetServer_PubSubType>(FleetServerShape()));
 }
 
 eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport() {

@@ -4,6 +4,9 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include "common/transport/internal/last_samples.hpp"
+#include "common/transport/internal/served_writers.hpp"
+
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
@@ -18,12 +21,34 @@ StatusOr<std::unique_ptr<WriterEndpoint>> WriterEndpoint::Create(Participant& pa
   if (self->writer_ == nullptr) {
     return UnavailableError("could not create a DDS writer on " + topic_name);
   }
+  if (qos.ownership().kind == dds::EXCLUSIVE_OWNERSHIP_QOS) {
+    self->last_samples_ = std::make_unique<LastSamples>(type);
+    participant.served_writers().Add(self.get());
+  }
   return self;
 }
 
+WriterEndpoint::WriterEndpoint(Participant& participant, std::string topic_name)
+    : participant_(participant), topic_name_(std::move(topic_name)) {}
+
 WriterEndpoint::~WriterEndpoint() {
+  if (last_samples_) participant_.served_writers().Remove(this);
   if (writer_ != nullptr) participant_.publisher()->delete_datawriter(writer_);
   if (topic_ != nullptr) participant_.ReleaseTopic(topic_);
+}
+
+bool WriterEndpoint::Write(void* sample) {
+  return last_samples_ ? last_samples_->Write(writer_, sample) : writer_->write(sample);
+}
+
+bool WriterEndpoint::Dispose(void* key) {
+  if (last_samples_) return last_samples_->Dispose(writer_, key);
+  // HANDLE_NIL: the instance is found from the key (Fast DDS 2.9 lacks lookup_instance).
+  return writer_->dispose(key, dds::HANDLE_NIL) == ReturnCode_t::RETCODE_OK;
+}
+
+size_t WriterEndpoint::WriteAgain() {
+  return last_samples_ ? last_samples_->WriteAgain(writer_) : 0;
 }
 
 StatusOr<std::unique_ptr<ReaderEndpoint>> ReaderEndpoint::Create(

@@ -15,6 +15,10 @@
 
 namespace fleetmap::transport {
 
+class LastSamples;
+
+// A writer with EXCLUSIVE ownership serves state (served_state.hpp): it remembers the last sample
+// of each instance and joins its participant's ServedWriters.
 class WriterEndpoint {
  public:
   static StatusOr<std::unique_ptr<WriterEndpoint>> Create(
@@ -27,14 +31,21 @@ class WriterEndpoint {
   eprosima::fastdds::dds::DataWriter* writer() const { return writer_; }
   const std::string& topic_name() const { return topic_name_; }
 
+  // Writes `sample`, of the endpoint's type; false when DDS refused it.
+  bool Write(void* sample);
+  // Disposes the instance `key` (a sample with its key fields set) names.
+  bool Dispose(void* key);
+  // A writer that serves state: its instances written again (disposals too); the count. Others: 0.
+  size_t WriteAgain();
+
  private:
-  WriterEndpoint(Participant& participant, std::string topic_name)
-      : participant_(participant), topic_name_(std::move(topic_name)) {}
+  WriterEndpoint(Participant& participant, std::string topic_name);
 
   Participant& participant_;
   std::string topic_name_;
   eprosima::fastdds::dds::Topic* topic_ = nullptr;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  std::unique_ptr<LastSamples> last_samples_;  // writers that serve state only
 };
 
 class ReaderEndpoint {

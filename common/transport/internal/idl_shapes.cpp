@@ -193,6 +193,17 @@ const CdrShape& RobotAdmissionShape() {
   return shape;
 }
 
+const CdrShape& FleetServerShape() {
+  static const CdrShape shape = {String("server_id"),
+                                 String("name"),
+                                 Primitive("ownership_strength", 4),
+                                 Primitive("serving", 1),
+                                 Struct("started", TimeShape()),
+                                 Struct("stamp", TimeShape()),
+                                 Primitive("robots", 4)};
+  return shape;
+}
+
 const CdrShape& TfMessageShape() {
   static const CdrShape vector3 = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8)};
   static const CdrShape quaternion = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8),

@@ -24,6 +24,7 @@ const CdrShape& ObjectTemplateShape();
 const CdrShape& ObjectModelShape();
 const CdrShape& RobotFrameShape();
 const CdrShape& RobotAdmissionShape();
+const CdrShape& FleetServerShape();
 const CdrShape& TfMessageShape();
 
 }  // namespace fleetmap::transport

@@ -1,5 +1,7 @@
 #include "common/transport/internal/qos.hpp"
 
+#include <algorithm>
+
 namespace fleetmap::transport {
 namespace {
 
@@ -104,6 +106,25 @@ EndpointQos KeyedStateQos() {
 }
 
 EndpointQos VectorTileQos() { return KeyedStateQos(); }
+
+EndpointQos ServedStateQos(int32_t strength) {
+  EndpointQos qos = KeyedStateQos();
+  qos.writer.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
+  qos.reader.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
+  qos.writer.ownership_strength().value = static_cast<uint32_t>(std::max(0, strength));
+  // MANUAL_BY_TOPIC at both ends. Fast DDS 2.9 watches a remote writer under the *reader's* kind
+  // and lease (and only when the lease is finite), and one assertion of an AUTOMATIC or
+  // MANUAL_BY_PARTICIPANT writer renews every writer the reader watches under that kind, whoever
+  // owns it (LivelinessManager::assert_liveliness). A reader requesting AUTOMATIC would let the
+  // standby's assertions keep the dead server alive until its participant lease ran out
+  // (measured: 6 s, not 1 s); under MANUAL_BY_TOPIC each writer renews only itself.
+  qos.writer.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
+  qos.writer.liveliness().lease_duration = ToDuration(kServedLivelinessLease);
+  qos.writer.liveliness().announcement_period = ToDuration(kServedLivelinessLease / 4);
+  qos.reader.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
+  qos.reader.liveliness().lease_duration = ToDuration(kServedLivelinessLease);
+  return qos;
+}
 
 EndpointQos TfQos() {
   EndpointQos qos;

@@ -8,6 +8,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include "common/transport/robot_status_reader.hpp"
+#include "common/transport/served_state.hpp"
 
 namespace fleetmap::transport {
 
@@ -40,6 +41,14 @@ EndpointQos VectorTileQos();
 // transient local, keep last 1 per instance, no instance limit), so a late joiner gets the current
 // entities, graph and models.
 EndpointQos KeyedStateQos();
+
+// rt/fleetmap/fused_tiles, robot_frames, submap_graph, object_templates and objects, the state a
+// server serves (docs/standby.md): KeyedStateQos with EXCLUSIVE ownership, so that readers take
+// each instance from the strongest live server only. The writers, of `strength`, offer
+// MANUAL_BY_TOPIC liveliness with a kServedLivelinessLease (transport asserts it:
+// internal/served_writers.hpp); the readers request that kind and lease, so they leave a dead
+// server for the next within about a second.
+EndpointQos ServedStateQos(int32_t strength = 0);
 
 // rt/tf: ROS 2's /tf QoS (reliable, volatile, keep last 100), so tf2 listeners (RViz) match.
 EndpointQos TfQos();

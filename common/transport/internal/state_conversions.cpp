@@ -11,6 +11,7 @@ namespace fleetmap::transport {
 namespace {
 
 using fleetmap_msgs::msg::dds_::Entity_;
+using fleetmap_msgs::msg::dds_::FleetServer_;
 using fleetmap_msgs::msg::dds_::ObjectModel_;
 using fleetmap_msgs::msg::dds_::ObjectTemplate_;
 using fleetmap_msgs::msg::dds_::RobotAdmission_;
@@ -555,6 +556,50 @@ StatusOr<RobotAdmissionMessage> FromIdl(const RobotAdmission_& sample) {
   message.robot = RobotId{sample.robot_id()};
   message.stamp = FromIdl(sample.stamp());
   message.operator_name = sample.operator_name();
+  return message;
+}
+
+// A server's name: printable, at most kMaxIdLength characters (spaces allowed).
+Status CheckServerName(const std::string& name) {
+  if (name.size() > kMaxIdLength) {
+    return InvalidArgumentError("FleetServer name longer than " + std::to_string(kMaxIdLength) +
+                                " characters");
+  }
+  const bool printable =
+      std::all_of(name.begin(), name.end(), [](char c) { return c >= ' ' && c < 127; });
+  if (!printable) return InvalidArgumentError("FleetServer name has unprintable characters");
+  return Status::Ok();
+}
+
+StatusOr<FleetServer_> ToIdl(const FleetServerMessage& message) {
+  FLEETMAP_RETURN_IF_ERROR(CheckId(message.server_id, "FleetServer server_id"));
+  FLEETMAP_RETURN_IF_ERROR(CheckServerName(message.name));
+  FleetServer_ sample;
+  sample.server_id(message.server_id);
+  sample.name(message.name);
+  sample.ownership_strength(message.ownership_strength);
+  sample.serving(message.serving);
+  sample.started(ToIdl(message.started));
+  sample.stamp(ToIdl(message.stamp));
+  sample.robots(message.robots);
+  return sample;
+}
+
+StatusOr<FleetServerMessage> FromIdl(const FleetServer_& sample) {
+  FLEETMAP_RETURN_IF_ERROR(CheckId(sample.server_id(), "FleetServer server_id"));
+  FLEETMAP_RETURN_IF_ERROR(CheckServerName(sample.name()));
+  if (sample.ownership_strength() < 0) {
+    return InvalidArgumentError("FleetServer " + sample.server_id() + " has ownership_strength " +
+                                std::to_string(sample.ownership_strength()) + " (< 0)");
+  }
+  FleetServerMessage message;
+  message.server_id = sample.server_id();
+  message.name = sample.name();
+  message.ownership_strength = sample.ownership_strength();
+  message.serving = sample.serving();
+  message.started = FromIdl(sample.started());
+  message.stamp = FromIdl(sample.stamp());
+  message.robots = sample.robots();
   return message;
 }
 

@@ -8,6 +8,7 @@
 #include "common/core/status.hpp"
 #include "common/transport/state_messages.hpp"
 #include "fleetmap_msgs/msg/Entity.h"
+#include "fleetmap_msgs/msg/FleetServer.h"
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotAdmission.h"
@@ -37,5 +38,7 @@ StatusOr<fleetmap_msgs::msg::dds_::RobotFrame_> ToIdl(const RobotFrameMessage& m
 StatusOr<RobotFrameMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotFrame_& sample);
 StatusOr<fleetmap_msgs::msg::dds_::RobotAdmission_> ToIdl(const RobotAdmissionMessage& message);
 StatusOr<RobotAdmissionMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotAdmission_& sample);
+StatusOr<fleetmap_msgs::msg::dds_::FleetServer_> ToIdl(const FleetServerMessage& message);
+StatusOr<FleetServerMessage> FromIdl(const fleetmap_msgs::msg::dds_::FleetServer_& sample);
 
 }  // namespace fleetmap::transport

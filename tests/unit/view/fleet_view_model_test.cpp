@@ -45,6 +45,60 @@ json Parse(const std::optional<std::string>& event) {
   return event ? json::parse(*event) : json();
 }
 
+transport::FleetServerEvent Server(const std::string& name, int32_t strength, bool serving) {
+  transport::FleetServerEvent event;
+  event.message.server_id = name + "-id";
+  event.message.name = name;
+  event.message.ownership_strength = strength;
+  event.message.serving = serving;
+  event.message.robots = 1;
+  return event;
+}
+
+TEST(FleetViewModelTest, TheStatusNamesTheServingServerAndSaysWhenNoneIsLeft) {
+  FleetViewModel model;
+  model.OnRobotEvent(Status("alpha", 1.0), kStart);
+  model.Tick(kStart);
+  EXPECT_TRUE(json::parse(model.FullEvent())["status"]["server"].is_null());
+  EXPECT_EQ(json::parse(model.FullEvent())["robots"]["alpha"]["state"], "live")
+      << "no server was ever heard: the robot is not stale for it";
+
+  model.OnServer(Server("b", 50, false), kStart);
+  model.OnServer(Server("a", 100, true), kStart);
+  model.Tick(kStart + milliseconds(100));
+  json server = json::parse(model.FullEvent())["status"]["server"];
+  EXPECT_EQ(server["name"], "a");
+  EXPECT_EQ(server["standbys"], 1);
+
+  // a is killed; b serves.
+  const Timestamp failover = kStart + milliseconds(1600);
+  model.OnServer(Server("b", 50, true), failover);
+  model.OnRobotEvent(Status("alpha", 1.5), failover);
+  model.Tick(failover);
+  server = json::parse(model.FullEvent())["status"]["server"];
+  EXPECT_EQ(server["name"], "b");
+  EXPECT_EQ(server["standbys"], 0);
+
+  // b dies too: within the silence limit the page says there is no server, and the robot that
+  // still sends its status is stale, since nothing fuses what it sends.
+  const Timestamp none = failover + seconds(2);
+  model.OnRobotEvent(Status("alpha", 2.0), none);
+  model.Tick(none);
+  const json full = json::parse(model.FullEvent());
+  EXPECT_TRUE(full["status"]["server"].is_null());
+  EXPECT_EQ(full["robots"]["alpha"]["state"], "stale");
+}
+
+TEST(FleetViewModelTest, AServerThatWithdrewIsGoneAtOnce) {
+  FleetViewModel model;
+  model.OnServer(Server("a", 100, true), kStart);
+  transport::FleetServerEvent withdrawn = Server("a", 100, true);
+  withdrawn.kind = transport::FleetServerEvent::Kind::kRemoved;
+  model.OnServer(withdrawn, kStart + milliseconds(10));
+  model.Tick(kStart + milliseconds(20));
+  EXPECT_TRUE(json::parse(model.FullEvent())["status"]["server"].is_null());
+}
+
 TEST(FleetViewModelTest, ADeltaHoldsOnlyWhatChanged) {
   FleetViewModel model;
   model.OnFusedTile(FusedTile(0, 0, 1));
