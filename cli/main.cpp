@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/extrapolation/bench_extrapolation_command.hpp"
+#include "bench/fleet/bench_capacity_command.hpp"
 #include "bench/fleet/bench_failover_command.hpp"
 #include "bench/fleet/bench_fleet_command.hpp"
 #include "bench/fleet/bench_flood_command.hpp"
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchLossCommand(app, &exit_code);
   fleetmap::bench::AddBenchQuarantineCommand(app, &exit_code);
   fleetmap::bench::AddBenchFailoverCommand(app, &exit_code);
+  fleetmap::bench::AddBenchCapacityCommand(app, &exit_code);
   fleetmap::bench::AddBenchFloodCommand(app, &exit_code);
   fleetmap::cli::AddTerrainCommand(app, &exit_code);
   fleetmap::bench::AddBenchPaperCommand(app, &exit_code);

@@ -1,6 +1,7 @@
 // The web view in a real browser (Debian's chromium, headless): what a person watching the page
 // would see of a live fleet. As many robots as live agents, as many drawn tiles as fused tiles
-// published, a killed agent shown lost, a prediction's colour once it is confirmed. The page is
+// published, a killed agent shown lost, a prediction's colour once it is confirmed, the serving
+// server named and, once it is killed, "no fleet server". The page is
 // saved as a screenshot in <build>/test-artifacts/view.png.
 
 #include <gmock/gmock.h>
@@ -145,6 +146,25 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   EXPECT_EQ(Shown(page, "document.querySelector('#robots tr[data-robot=\"alpha\"]').dataset.state"),
             "live");
   EXPECT_EQ(Shown(page, "document.getElementById('status-lost').textContent"), "1");
+
+  // The status line names the server that serves; killed, the page says there is none, and the
+  // robot that still sends its status is stale: nothing fuses what it sends (docs/standby.md).
+  const std::string server_state = "document.getElementById('status-server').dataset.state";
+  auto serving = page.WaitFor(server_state + " === 'serving'", kDeadline);
+  ASSERT_TRUE(serving.ok()) << serving.status();
+  EXPECT_EQ(*serving, true);
+  EXPECT_THAT(Shown(page, "document.getElementById('status-server').textContent").dump(),
+              ::testing::HasSubstr("server "));
+  fleet.server().Signal(SIGKILL);
+  auto none = page.WaitFor(server_state + " === 'none'", seconds(30));
+  ASSERT_TRUE(none.ok()) << none.status();
+  EXPECT_EQ(*none, true);
+  EXPECT_EQ(Shown(page, "document.getElementById('status-server').textContent"), "no fleet server");
+  auto stale = page.WaitFor(
+      "document.querySelector('#robots tr[data-robot=\"alpha\"]')?.dataset.state === 'stale'",
+      seconds(30));
+  ASSERT_TRUE(stale.ok()) << stale.status();
+  EXPECT_EQ(*stale, true);
 
   submaps->reset();
   fused->reset();

@@ -1,0 +1,76 @@
+// `fleetmap bench failover` and `fleetmap bench capacity` at small sizes (issue 32): the drivers
+// run real servers and robots, and what they report holds. The full sweeps are benchmarks
+// (docs/results.md), not tests.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/integration/fleetmap_cli.hpp"
+
+namespace fleetmap {
+namespace {
+
+using std::chrono::seconds;
+
+nlohmann::json ReadJson(const std::string& path) {
+  return nlohmann::json::parse(testing::ReadFile(path), nullptr, false);
+}
+
+TEST(CliBenchStandbyTest, AFailoverLeavesEveryReaderOnTheStandbysLatestTiles) {
+  const std::string out = testing::FreshTempDir("bench_failover");
+  const auto run =
+      testing::RunFleetmap({"bench", "failover", "--robots", "2", "--runs", "1", "--warmup", "4",
+                            "--after", "4", "--size", "20", "--out", out},
+                           seconds(240));
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  EXPECT_NE(run.out.find("reader follows the standby"), std::string::npos) << run.output();
+  const nlohmann::json runs = ReadJson(out + "/failover.json");
+  ASSERT_TRUE(runs.is_array() && runs.size() == 1) << runs.dump();
+  const nlohmann::json& failover = runs[0];
+  // The reader took the standby's tiles, map and frames, and holds its last revision of every
+  // fused tile: nothing the standby wrote while the reader still followed the dead server is lost.
+  EXPECT_FALSE(failover["tiles_ms"].is_null()) << failover.dump();
+  EXPECT_FALSE(failover["map_ms"].is_null()) << failover.dump();
+  EXPECT_FALSE(failover["frames_ms"].is_null()) << failover.dump();
+  EXPECT_GT(failover["reader_tiles"].get<int>(), 0);
+  EXPECT_EQ(failover["reader_stale"], 0) << failover.dump();
+  // The standby fused what a never-killed server fused.
+  EXPECT_GT(failover["store_tiles"].get<int>(), 0);
+  EXPECT_EQ(failover["missing_tiles"], 0) << failover.dump();
+  EXPECT_EQ(failover["differing_cells"], 0) << failover.dump();
+}
+
+TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
+  const std::string out = testing::FreshTempDir("bench_capacity");
+  const auto run =
+      testing::RunFleetmap({"bench", "capacity", "--robots", "4", "--stage", "3", "--steps", "6",
+                            "--size", "20", "--server-core", "-1", "--out", out},
+                           seconds(180));
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  EXPECT_NE(run.out.find("largest fleet with fusion p99"), std::string::npos) << run.output();
+  const nlohmann::json stages = ReadJson(out + "/capacity.json");
+  ASSERT_TRUE(stages.is_array() && stages.size() == 1) << stages.dump();
+  const nlohmann::json& stage = stages[0];
+  EXPECT_EQ(stage["robots"], 4);
+  EXPECT_FALSE(stage["joined_s"].is_null()) << "every robot's tiles were fused: " << stage.dump();
+  EXPECT_GT(stage["offered_tiles_per_s"].get<double>(), 0.0);
+  EXPECT_GT(stage["fused_tiles_per_s"].get<double>(), 0.0);
+  EXPECT_GT(stage["latencies"].get<int>(), 0);
+  EXPECT_GE(stage["p99_ms"].get<double>(), stage["p50_ms"].get<double>());
+  EXPECT_GT(stage["server_cores"].get<double>(), 0.0);
+  EXPECT_GT(stage["server_rss_mb"].get<double>(), 0.0);
+}
+
+TEST(CliBenchStandbyTest, BadOptionsExitTwo) {
+  EXPECT_EQ(testing::RunFleetmap({"bench", "failover", "--robots", "0"}).exit_code, 2);
+  EXPECT_EQ(testing::RunFleetmap({"bench", "failover", "--terrain", "moon"}).exit_code, 2);
+  const auto no_map = testing::RunFleetmap({"bench", "capacity", "--map", "/nonexistent.yaml"});
+  EXPECT_EQ(no_map.exit_code, 2) << no_map.output();
+  EXPECT_NE(no_map.output().find("/nonexistent.yaml"), std::string::npos) << no_map.output();
+}
+
+}  // namespace
+}  // namespace fleetmap
