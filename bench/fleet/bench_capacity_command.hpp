@@ -9,7 +9,8 @@
 // eight robots share each building, each at its own phase, so their tiles overlap as a floor's
 // robots' do. Measured per N, on a reader of rt/fleetmap/fused_tiles: tile updates offered and
 // fused per second, latency from the robot's tile stamp to the fused tile (p50, p99), the
-// server's CPU (cores) and RSS, and how long until every robot's first tiles were fused. Prints
+// server's CPU (cores) and RSS, and how long until the server followed every robot (its log says
+// it joined) and had fused each building's first tiles. Prints
 // the largest N with p99 <= 50 ms; table, CSV and JSON.
 
 #include <CLI/CLI.hpp>
