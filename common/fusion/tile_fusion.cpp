@@ -66,6 +66,16 @@ uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
   return static_cast<uint32_t>(std::clamp<int64_t>(ticks, 1, std::numeric_limits<uint32_t>::max()));
 }
 
+void TileFusion::Contribution::SetCells(grid::OccupancyGrid known) {
+  cells = std::move(known);
+  const std::vector<int8_t>& values = cells.data();
+  const auto is_known = [](int8_t value) { return value != kUnknownValue; };
+  const auto first = std::find_if(values.begin(), values.end(), is_known);
+  const auto last = std::find_if(values.rbegin(), values.rend(), is_known);
+  known_begin = static_cast<size_t>(first - values.begin());
+  known_end = first == values.end() ? known_begin : static_cast<size_t>(values.rend() - last);
+}
+
 Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
                                    const vector_map::VectorMap& map, Timestamp stamp) {
   FLEETMAP_RETURN_IF_ERROR(options_.CheckTileInRange(tile));
@@ -82,7 +92,7 @@ Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
       if (cells.data()[i] != contribution.cells.data()[i]) contribution.changed_at[i] = now;
     }
   }
-  contribution.cells = std::move(cells);
+  contribution.SetCells(std::move(cells));
   contribution.stamp = std::max(contribution.stamp, stamp);
   state.newest_input = std::max(state.newest_input, stamp);
   to_fuse_again_.insert(tile);
@@ -132,7 +142,7 @@ Status TileFusion::ImportContribution(const RobotId& robot, const TileId& tile,
   cells.mutable_data() = std::move(evidence.cells);
   TileState& state = StateOf(tile);
   Contribution& contribution = state.robots[robot];
-  contribution.cells = std::move(cells);
+  contribution.SetCells(std::move(cells));
   contribution.changed_at = std::move(evidence.changed_at);
   contribution.stamp = evidence.stamp;
   state.newest_input = std::max(state.newest_input, evidence.stamp);
@@ -157,7 +167,7 @@ grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& s
     const bool walls_only =
         evidence.walls_only_source != nullptr && source == *evidence.walls_only_source;
     const int8_t* values = contribution.cells.data().data();
-    for (size_t i = 0; i < best.size(); ++i) {
+    for (size_t i = contribution.known_begin; i < contribution.known_end; ++i) {
       const int8_t value = values[i];
       if (value == kUnknownValue || (walls_only && value != kOccupiedValue)) continue;
       const uint32_t at = contribution.changed_at[i];
@@ -256,7 +266,7 @@ TileFusion::TileReview TileFusion::MakeTileReview(const TileId& tile,
       review.free_first_source.assign(cells, nullptr);
     }
     const std::string* source = &SourceOf(other);
-    for (size_t i = 0; i < cells; ++i) {
+    for (size_t i = contribution.known_begin; i < contribution.known_end; ++i) {
       if (contribution.cells.data()[i] != grid::kFreeValue) continue;
       const uint32_t date = contribution.changed_at[i];
       const std::string*& first_source = review.free_first_source[i];

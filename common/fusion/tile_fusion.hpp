@@ -111,6 +111,13 @@ class TileFusion {
     grid::OccupancyGrid cells;         // 3-state, on the tile's fused cells
     std::vector<uint32_t> changed_at;  // per cell: when it last changed state (deciseconds)
     Timestamp stamp;                   // the newest revision received
+    // The cells from the first known one to past the last (row-major): a robot that has seen
+    // part of a tile is weighed over that part only (fusing is most of the server's time).
+    size_t known_begin = 0;
+    size_t known_end = 0;
+
+    // Sets `cells` and the known span.
+    void SetCells(grid::OccupancyGrid known);
   };
   struct TileState {
     std::map<RobotId, Contribution> robots;
