@@ -187,27 +187,31 @@ struct StageOutcome {
   double server_peak_mb = 0.0;
 };
 
-// N robots of the load generator: one participant, status writer and tile writer per 16.
+// N robots of the load generator: one participant, status writer and tile writer per 16 robots,
+// dealt round so that the eight robots of a building are eight participants' (eight agents that
+// confirm each other's walls, as on a real floor).
 class LoadGenerator {
  public:
   static StatusOr<std::unique_ptr<LoadGenerator>> Create(int domain, int robots,
                                                          const TileStream& stream, double rate) {
     std::unique_ptr<LoadGenerator> self(new LoadGenerator(stream, rate));
-    for (int first = 0; first < robots; first += kRobotsPerParticipant) {
+    // At most 16 robots each, and at least as many participants as robots share a building.
+    const int participants =
+        std::max((robots + kRobotsPerParticipant - 1) / kRobotsPerParticipant,
+                 std::min(robots, kRobotsPerBuilding));
+    for (int index = 0; index < participants; ++index) {
       transport::ParticipantOptions options;
       options.domain_id = domain;
       options.localhost_only = true;
       options.intraprocess_delivery = false;
-      options.name = fmt::format("fleetmap-bench-capacity-{}", first / kRobotsPerParticipant);
+      options.name = fmt::format("fleetmap-bench-capacity-{}", index);
       Group group;
       FLEETMAP_ASSIGN_OR_RETURN(group.participant, transport::Participant::Create(options));
       FLEETMAP_ASSIGN_OR_RETURN(group.status,
                                 transport::RobotStatusWriter::Create(*group.participant));
       FLEETMAP_ASSIGN_OR_RETURN(group.tiles, transport::VectorTileWriter::Create(
                                                  *group.participant, transport::kRobotTilesTopic));
-      for (int robot = first; robot < std::min(robots, first + kRobotsPerParticipant); ++robot) {
-        group.robots.push_back(robot);
-      }
+      for (int robot = index; robot < robots; robot += participants) group.robots.push_back(robot);
       self->groups_.push_back(std::move(group));
     }
     self->robots_ = robots;

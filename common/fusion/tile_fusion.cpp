@@ -322,10 +322,14 @@ TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state
       CountContradiction(mine.cells, mine.changed_at, established, tolerance);
   // What robots of other participants say of its walls: whether it is corroborated. Quarantined
   // ones too: two robots that disagree on a shelf still corroborate each other's walls, so which
-  // one is weighed against the other does not depend on the order of their reviews.
-  CountAgreement(mine.cells,
-                 FuseCells(tile, state, Evidence{.skip_source = &source, .with_quarantined = true}),
-                 tolerance, &counted);
+  // one is weighed against the other does not depend on the order of their reviews. A robot
+  // corroborated once stays so (RobotTrust::Corroborate): its agreement is not counted again.
+  if (!corroborated) {
+    CountAgreement(
+        mine.cells,
+        FuseCells(tile, state, Evidence{.skip_source = &source, .with_quarantined = true}),
+        tolerance, &counted);
+  }
   return counted;
 }
 
