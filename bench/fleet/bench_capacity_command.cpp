@@ -196,9 +196,8 @@ class LoadGenerator {
                                                          const TileStream& stream, double rate) {
     std::unique_ptr<LoadGenerator> self(new LoadGenerator(stream, rate));
     // At most 16 robots each, and at least as many participants as robots share a building.
-    const int participants =
-        std::max((robots + kRobotsPerParticipant - 1) / kRobotsPerParticipant,
-                 std::min(robots, kRobotsPerBuilding));
+    const int participants = std::max((robots + kRobotsPerParticipant - 1) / kRobotsPerParticipant,
+                                      std::min(robots, kRobotsPerBuilding));
     for (int index = 0; index < participants; ++index) {
       transport::ParticipantOptions options;
       options.domain_id = domain;
@@ -399,12 +398,11 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
       measuring_since = now;
       cpu_at_start = CpuSeconds(server.pid());
       sent_at_start = generator->tiles_sent();
-      std::cerr << fmt::format("  {} robots: {}; measuring {:.0f} s\n", robots,
-                               outcome.joined_s
-                                   ? fmt::format("all fused after {:.1f} s", *outcome.joined_s)
-                                   : fmt::format("{} of {} joined after 60 s", joined_robots,
-                                                 robots),
-                               args.stage_s);
+      std::cerr << fmt::format(
+          "  {} robots: {}; measuring {:.0f} s\n", robots,
+          outcome.joined_s ? fmt::format("all fused after {:.1f} s", *outcome.joined_s)
+                           : fmt::format("{} of {} joined after 60 s", joined_robots, robots),
+          args.stage_s);
     }
     if (measuring_since && now - *measuring_since >= std::chrono::duration<double>(args.stage_s)) {
       break;
