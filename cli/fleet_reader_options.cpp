@@ -8,6 +8,7 @@ StatusOr<transport::ParticipantOptions> FleetReaderOptions::Participant(
   dds.domain_id = domain;
   dds.name = name;
   if (localhost_only) dds.localhost_only = true;
+  dds.discovery_server = discovery_server;
   if (!security_dir.empty()) {
     if (const Status secured = dds.UseSecurityFolder(security_dir, security_identity);
         !secured.ok()) {
@@ -22,6 +23,9 @@ FleetReaderFlags::FleetReaderFlags(CLI::App* command, FleetReaderOptions* option
   command->add_option("--domain", *domain_, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
   command->add_flag("--localhost-only", options->localhost_only,
                     "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
+  command->add_option("--discovery-server", options->discovery_server,
+                      "Fast DDS discovery servers to discover through, IP:PORT[;IP:PORT] (also "
+                      "$ROS_DISCOVERY_SERVER)");
   command->add_option("--security", options->security_dir,
                       "DDS Security folder (fleetmap security): join the secured fleet as "
                       "--identity");

@@ -131,6 +131,9 @@ int main(int argc, char** argv) {
                  "identity \"server\"");
   app.add_flag("--localhost-only", localhost_only,
                "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
+  app.add_option("--discovery-server", options.dds.discovery_server,
+                 "Fast DDS discovery servers to discover through, IP:PORT[;IP:PORT] (also "
+                 "$ROS_DISCOVERY_SERVER; `fastdds discovery -i 0 -l IP -p PORT` starts one)");
   if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
 
   options.fusion.placement.check_period =

@@ -56,6 +56,8 @@ struct CapacityArgs {
   double size = 40.0;     // the simulated office's side, metres
   int steps = 24;         // reveal steps of a building
   int server_core = 1;    // the server's core (taskset); -1: not pinned
+  // "simple" (the default discovery), "server" (a Fast DDS discovery server), or "both".
+  std::string discovery = "simple";
   std::string out_dir = "out/bench-capacity";
 };
 
@@ -176,8 +178,10 @@ std::optional<double> StatusMb(pid_t pid, const std::string& key) {
 
 struct StageOutcome {
   int robots = 0;
-  double offered_per_s = 0.0;  // robot tile updates sent per second
-  double fused_per_s = 0.0;    // fused tile updates received per second
+  std::string discovery;          // "simple" or "server"
+  std::optional<double> join_mb;  // loopback bytes until every robot joined (with first tiles)
+  double offered_per_s = 0.0;     // robot tile updates sent per second
+  double fused_per_s = 0.0;       // fused tile updates received per second
   double p50_ms = 0.0;
   double p99_ms = 0.0;
   size_t latencies = 0;
@@ -193,7 +197,8 @@ struct StageOutcome {
 class LoadGenerator {
  public:
   static StatusOr<std::unique_ptr<LoadGenerator>> Create(int domain, int robots,
-                                                         const TileStream& stream, double rate) {
+                                                         const TileStream& stream, double rate,
+                                                         const std::string& discovery_server) {
     std::unique_ptr<LoadGenerator> self(new LoadGenerator(stream, rate));
     // At most 16 robots each, and at least as many participants as robots share a building.
     const int participants = std::max((robots + kRobotsPerParticipant - 1) / kRobotsPerParticipant,
@@ -204,6 +209,7 @@ class LoadGenerator {
       options.localhost_only = true;
       options.intraprocess_delivery = false;
       options.name = fmt::format("fleetmap-bench-capacity-{}", index);
+      options.discovery_server = discovery_server;
       Group group;
       FLEETMAP_ASSIGN_OR_RETURN(group.participant, transport::Participant::Create(options));
       FLEETMAP_ASSIGN_OR_RETURN(group.status,
@@ -307,15 +313,30 @@ class LoadGenerator {
 };
 
 StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const TileStream& stream,
-                                const std::string& bin) {
+                                const std::string& bin, bool discovery_server) {
   const auto binary = [&](const std::string& name, const std::string& subdir) {
     const std::string side_by_side = bin + name;
     return fs::exists(side_by_side) ? side_by_side : bin + subdir + "/" + name;
   };
   const int domain = process::RandomDomainId();
-  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
-                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  const std::string store = fmt::format("{}/server-{}.db", args.out_dir, robots);
+  std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                            {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  // A Fast DDS discovery server of its own (server id 0), on a port no other stage uses.
+  std::unique_ptr<process::Subprocess> discovery;
+  std::string discovery_list;
+  if (discovery_server) {
+    const int port = 11811 + domain;
+    discovery_list = fmt::format("127.0.0.1:{}", port);
+    discovery = std::make_unique<process::Subprocess>(std::vector<std::string>{
+        "/usr/bin/fastdds", "discovery", "-i", "0", "-l", "127.0.0.1", "-p", std::to_string(port)});
+    if (!discovery->WaitForOutput("Server is running", seconds(20))) {
+      return UnavailableError("the Fast DDS discovery server did not start: " +
+                              discovery->Output());
+    }
+    env["ROS_DISCOVERY_SERVER"] = discovery_list;
+  }
+  const std::string store = fmt::format("{}/server-{}-{}.db", args.out_dir, robots,
+                                        discovery_server ? "server" : "simple");
   std::error_code error;
   fs::remove(store, error);
   std::vector<std::string> argv;
@@ -336,14 +357,17 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   options.localhost_only = true;
   options.intraprocess_delivery = false;
   options.name = "fleetmap-bench-capacity-reader";
+  options.discovery_server = discovery_list;
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<transport::Participant> reader_participant,
                             transport::Participant::Create(options));
   auto wake_up = std::make_shared<WakeUp>();
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<transport::VectorTileReader> fused,
                             transport::VectorTileReader::Create(
                                 *reader_participant, transport::kFusedTilesTopic, wake_up));
-  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<LoadGenerator> generator,
-                            LoadGenerator::Create(domain, robots, stream, args.rate));
+  const std::optional<uint64_t> loopback_at_start = LoopbackBytesSent();
+  FLEETMAP_ASSIGN_OR_RETURN(
+      std::unique_ptr<LoadGenerator> generator,
+      LoadGenerator::Create(domain, robots, stream, args.rate, discovery_list));
 
   // Every building's tiles: a building is fused once a fused tile inside it arrived.
   std::set<std::pair<int, int>> buildings_waiting;
@@ -357,6 +381,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
 
   StageOutcome outcome;
   outcome.robots = robots;
+  outcome.discovery = discovery_server ? "server" : "simple";
   const auto started = SteadyClock::now();
   std::optional<SteadyClock::time_point> measuring_since;
   std::optional<double> cpu_at_start;
@@ -394,12 +419,15 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
     if (!measuring_since && (joined || now - started > join_limit)) {
       if (joined) {
         outcome.joined_s = std::chrono::duration<double>(now - started).count();
+        if (const auto bytes = LoopbackBytesSent(); bytes && loopback_at_start) {
+          outcome.join_mb = static_cast<double>(*bytes - *loopback_at_start) / 1e6;
+        }
       }
       measuring_since = now;
       cpu_at_start = CpuSeconds(server.pid());
       sent_at_start = generator->tiles_sent();
       std::cerr << fmt::format(
-          "  {} robots: {}; measuring {:.0f} s\n", robots,
+          "  {} robots, {} discovery: {}; measuring {:.0f} s\n", robots, outcome.discovery,
           outcome.joined_s ? fmt::format("all fused after {:.1f} s", *outcome.joined_s)
                            : fmt::format("{} of {} joined after 60 s", joined_robots, robots),
           args.stage_s);
@@ -425,6 +453,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   reader_participant.reset();
   server.Signal(SIGINT);
   server.Wait(seconds(60));
+  if (discovery) discovery->Signal(SIGINT);
   return outcome;
 }
 
@@ -455,48 +484,66 @@ int RunBenchCapacity(const CapacityArgs& args) {
     if (CPU_COUNT(&others) > 0) sched_setaffinity(0, sizeof(others), &others);
   }
 
+  std::vector<bool> discovery_servers;
+  if (args.discovery != "server") discovery_servers.push_back(false);
+  if (args.discovery != "simple") discovery_servers.push_back(true);
   std::vector<StageOutcome> outcomes;
   for (const int robots : args.robots) {
-    std::cerr << fmt::format("{} robots at {} updates/s each\n", robots, args.rate);
-    StatusOr<StageOutcome> outcome = RunStage(args, robots, *stream, *bin);
-    if (!outcome.ok()) return fail(outcome.status().message(), 1);
-    outcomes.push_back(*outcome);
+    for (const bool discovery_server : discovery_servers) {
+      std::cerr << fmt::format("{} robots at {} updates/s each, {} discovery\n", robots, args.rate,
+                               discovery_server ? "server" : "simple");
+      StatusOr<StageOutcome> outcome = RunStage(args, robots, *stream, *bin, discovery_server);
+      if (!outcome.ok()) return fail(outcome.status().message(), 1);
+      outcomes.push_back(*outcome);
+    }
   }
 
   nlohmann::json json = nlohmann::json::array();
   std::string csv =
-      "robots,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,latencies,joined_s,"
-      "server_cores,server_rss_mb,server_peak_mb\n";
+      "robots,discovery,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,latencies,joined_s,"
+      "join_mb,server_cores,server_rss_mb,server_peak_mb\n";
   fmt::print("\nfleet capacity of one server core{}: robots explore at {} updates/s each ({})\n",
              args.server_core >= 0 ? fmt::format(" (core {})", args.server_core) : "", args.rate,
              args.map_path.empty() ? fmt::format("a {:.0f} m simulated office", args.size)
                                    : args.map_path);
-  fmt::print("{:>7} {:>12} {:>12} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9}\n", "robots", "offered/s",
-             "fused/s", "p50 ms", "p99 ms", "joined s", "cores", "RSS MB", "peak MB");
-  std::optional<int> largest;
+  fmt::print("{:>7} {:>10} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>7} {:>8}\n", "robots",
+             "discovery", "offered/s", "fused/s", "p50 ms", "p99 ms", "joined s", "join MB",
+             "cores", "RSS MB", "peak MB");
+  std::map<std::string, int> largest;
   for (const StageOutcome& o : outcomes) {
-    fmt::print("{:>7} {:>12} {:>12} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9}\n", o.robots,
-               Fixed(o.offered_per_s, 0), Fixed(o.fused_per_s, 0), Fixed(o.p50_ms, 1),
+    fmt::print("{:>7} {:>10} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>7} {:>8}\n", o.robots,
+               o.discovery, Fixed(o.offered_per_s, 0), Fixed(o.fused_per_s, 0), Fixed(o.p50_ms, 1),
                Fixed(o.p99_ms, 1), o.joined_s ? Fixed(*o.joined_s, 1) : "-",
-               Fixed(o.server_cores, 2), Fixed(o.server_rss_mb, 0), Fixed(o.server_peak_mb, 0));
-    if (o.p99_ms <= kP99TargetMs && o.joined_s && o.latencies > 0) largest = o.robots;
+               o.join_mb ? Fixed(*o.join_mb, 1) : "-", Fixed(o.server_cores, 2),
+               Fixed(o.server_rss_mb, 0), Fixed(o.server_peak_mb, 0));
+    if (o.p99_ms <= kP99TargetMs && o.joined_s && o.latencies > 0) largest[o.discovery] = o.robots;
+    const auto optional = [](const std::optional<double>& v) {
+      return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+    };
     json.push_back({{"robots", o.robots},
+                    {"discovery", o.discovery},
                     {"offered_tiles_per_s", o.offered_per_s},
                     {"fused_tiles_per_s", o.fused_per_s},
                     {"p50_ms", o.p50_ms},
                     {"p99_ms", o.p99_ms},
                     {"latencies", o.latencies},
-                    {"joined_s", o.joined_s ? nlohmann::json(*o.joined_s) : nullptr},
+                    {"joined_s", optional(o.joined_s)},
+                    {"join_mb", optional(o.join_mb)},
                     {"server_cores", o.server_cores},
                     {"server_rss_mb", o.server_rss_mb},
                     {"server_peak_mb", o.server_peak_mb}});
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", o.robots, Fixed(o.offered_per_s, 1),
-                       Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2), Fixed(o.p99_ms, 2), o.latencies,
-                       o.joined_s ? Fixed(*o.joined_s, 2) : "", Fixed(o.server_cores, 3),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", o.robots, o.discovery,
+                       Fixed(o.offered_per_s, 1), Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2),
+                       Fixed(o.p99_ms, 2), o.latencies, o.joined_s ? Fixed(*o.joined_s, 2) : "",
+                       o.join_mb ? Fixed(*o.join_mb, 2) : "", Fixed(o.server_cores, 3),
                        Fixed(o.server_rss_mb, 1), Fixed(o.server_peak_mb, 1));
   }
-  fmt::print("largest fleet with fusion p99 <= {:.0f} ms: {}\n", kP99TargetMs,
-             largest ? std::to_string(*largest) + " robots" : std::string("none"));
+  for (const bool discovery_server : discovery_servers) {
+    const std::string kind = discovery_server ? "server" : "simple";
+    const auto it = largest.find(kind);
+    fmt::print("largest fleet with fusion p99 <= {:.0f} ms ({} discovery): {}\n", kP99TargetMs,
+               kind, it != largest.end() ? std::to_string(it->second) + " robots" : "none");
+  }
   fmt::print(
       "(latency: a robot tile's stamp to the fused tile on a reader; offered: robot tiles "
       "sent; fused: fused tile updates received)\n");
@@ -540,6 +587,12 @@ void AddBenchCapacityCommand(CLI::App& app, int* exit_code) {
       ->add_option("--server-core", args->server_core,
                    "the core the server is pinned to (taskset); -1: not pinned")
       ->check(CLI::Range(-1, 1023))
+      ->capture_default_str();
+  command
+      ->add_option("--discovery", args->discovery,
+                   "simple discovery, a Fast DDS discovery server (`fastdds discovery`), or both "
+                   "at each fleet size")
+      ->check(CLI::IsMember({"simple", "server", "both"}))
       ->capture_default_str();
   command->add_option("--out", args->out_dir, "where the stores, CSV and JSON go")
       ->capture_default_str();

@@ -11,7 +11,9 @@
 // fused per second, latency from the robot's tile stamp to the fused tile (p50, p99), the
 // server's CPU (cores) and RSS, and how long until the server followed every robot (its log says
 // it joined) and had fused each building's first tiles. Prints
-// the largest N with p99 <= 50 ms; table, CSV and JSON.
+// the largest N with p99 <= 50 ms; table, CSV and JSON. With --discovery server (or both), the
+// fleet discovers through a Fast DDS discovery server (`fastdds discovery`, started per stage)
+// instead of simple discovery, and the join's loopback traffic compares the two.
 
 #include <CLI/CLI.hpp>
 

@@ -33,27 +33,6 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::steady_clock;
 
-// Total bytes sent on the loopback interface of this thread's network namespace so far (the
-// run's own namespace when the caller entered one), if readable.
-std::optional<uint64_t> LoopbackBytesSent() {
-  std::ifstream dev("/proc/thread-self/net/dev");
-  std::string line;
-  while (std::getline(dev, line)) {
-    const size_t colon = line.find(':');
-    if (colon == std::string::npos) continue;
-    const size_t name = line.find_first_not_of(' ');
-    if (line.compare(name, colon - name, "lo") != 0) continue;
-    // Received: bytes packets errs drop fifo frame compressed multicast; then transmitted bytes.
-    std::istringstream fields(line.substr(colon + 1));
-    uint64_t value = 0;
-    for (int i = 0; i < 9; ++i) {
-      if (!(fields >> value)) return std::nullopt;
-    }
-    return value;
-  }
-  return std::nullopt;
-}
-
 // The handshake time a secured agent logged ("authenticated the server 1.23 s after joining").
 std::optional<double> HandshakeSeconds(const std::string& agent_output) {
   constexpr std::string_view kSays = "authenticated the server ";
@@ -211,6 +190,27 @@ class Observer {
 };
 
 }  // namespace
+
+// Total bytes sent on the loopback interface of this thread's network namespace so far (the
+// run's own namespace when the caller entered one), if readable.
+std::optional<uint64_t> LoopbackBytesSent() {
+  std::ifstream dev("/proc/thread-self/net/dev");
+  std::string line;
+  while (std::getline(dev, line)) {
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const size_t name = line.find_first_not_of(' ');
+    if (line.compare(name, colon - name, "lo") != 0) continue;
+    // Received: bytes packets errs drop fifo frame compressed multicast; then transmitted bytes.
+    std::istringstream fields(line.substr(colon + 1));
+    uint64_t value = 0;
+    for (int i = 0; i < 9; ++i) {
+      if (!(fields >> value)) return std::nullopt;
+    }
+    return value;
+  }
+  return std::nullopt;
+}
 
 Status FleetSimOptions::Validate() const {
   if (robots < 1 || robots > 64) return InvalidArgumentError("--robots must be in 1..64");

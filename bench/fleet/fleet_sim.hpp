@@ -156,4 +156,8 @@ Status MakeSimSecurityFolder(const std::string& dir, int robots);
 // The binaries next to this program (build tree or installed): an error names what is missing.
 StatusOr<std::string> FindFleetBinaries();
 
+// Total bytes sent on the loopback interface of this thread's network namespace so far, if
+// readable.
+std::optional<uint64_t> LoopbackBytesSent();
+
 }  // namespace fleetmap::bench

@@ -1,5 +1,6 @@
 #include "common/transport/participant.hpp"
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/PortParameters.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
@@ -47,12 +48,29 @@ eprosima::fastrtps::Duration_t ToDuration(std::chrono::milliseconds ms) {
   return eprosima::fastrtps::Duration_t(static_cast<double>(ms.count()) / 1000.0);
 }
 
-dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localhost_only) {
+// The discovery servers of `list` (ROS_DISCOVERY_SERVER syntax), or nullopt if it is not one.
+std::optional<eprosima::fastdds::rtps::RemoteServerList_t> DiscoveryServers(
+    const std::string& list) {
+  eprosima::fastdds::rtps::RemoteServerList_t servers;
+  if (!eprosima::fastdds::rtps::load_environment_server_info(list, servers) || servers.empty()) {
+    return std::nullopt;
+  }
+  return servers;
+}
+
+dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localhost_only,
+                                  const std::string& discovery_server) {
   dds::DomainParticipantQos qos;
   qos.name(options.name);
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
   discovery.leaseDuration = ToDuration(options.participant_lease);
   discovery.leaseDuration_announcementperiod = ToDuration(options.participant_lease / 4);
+  if (!discovery_server.empty()) {
+    // A client of the discovery servers: it announces itself to them only, and learns from them
+    // only the participants it has endpoints to match (ResolveDiscoveryServer checked the list).
+    discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+    discovery.m_DiscoveryServers = *DiscoveryServers(discovery_server);
+  }
   if (localhost_only) {
     // UDP on loopback only, unicast discovery through initial peers: no packet leaves the host,
     // and no multicast is needed (the loopback interface has none).
@@ -126,6 +144,22 @@ bool ResolveLocalhostOnly(const std::optional<bool>& requested) {
   return EnvironmentFlag("FLEETMAP_LOCALHOST_ONLY") || EnvironmentFlag("ROS_LOCALHOST_ONLY");
 }
 
+StatusOr<std::string> ResolveDiscoveryServer(const std::optional<std::string>& requested) {
+  std::string list;
+  std::string source = "--discovery-server";
+  if (requested.has_value()) {
+    list = *requested;
+  } else if (const char* env = std::getenv("ROS_DISCOVERY_SERVER"); env != nullptr) {
+    list = env;
+    source = "ROS_DISCOVERY_SERVER";
+  }
+  if (!list.empty() && !DiscoveryServers(list)) {
+    return InvalidArgumentError(source + " \"" + list +
+                                "\" is not a list of discovery servers (IP:PORT[;IP:PORT...])");
+  }
+  return list;
+}
+
 StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOptions& options) {
   FLEETMAP_ASSIGN_OR_RETURN(const int domain_id, ResolveDomainId(options.domain_id));
 
@@ -138,9 +172,11 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
   std::unique_ptr<Participant> self(new Participant());
   self->domain_id_ = domain_id;
   self->localhost_only_ = ResolveLocalhostOnly(options.localhost_only);
+  FLEETMAP_ASSIGN_OR_RETURN(self->discovery_server_,
+                            ResolveDiscoveryServer(options.discovery_server));
 
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  dds::DomainParticipantQos qos = MakeQos(options, self->localhost_only_);
+  dds::DomainParticipantQos qos = MakeQos(options, self->localhost_only_, self->discovery_server_);
   dds::PublisherQos publisher_qos = dds::PUBLISHER_QOS_DEFAULT;
   dds::SubscriberQos subscriber_qos = dds::SUBSCRIBER_QOS_DEFAULT;
   self->identities_ = std::make_unique<ParticipantIdentities>();
@@ -257,6 +293,7 @@ void ParticipantOptions::Describe(OptionsPrinter& out) const {
   out.Add("intraprocess_delivery", intraprocess_delivery);
   out.Add("participant_lease", participant_lease);
   out.Add("ownership_strength", ownership_strength);
+  out.Add("discovery_server", discovery_server.value_or("(ROS_DISCOVERY_SERVER, else simple)"));
   out.Add("security", security ? security->name + " (" + security::RoleName(security->role) + ", " +
                                      security->cert + ")"
                                : std::string("off"));

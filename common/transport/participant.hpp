@@ -33,6 +33,11 @@ struct ParticipantOptions {
   // Fast DDS hands samples between entities of one process without the wire by default. Tests
   // that must exercise serialization and UDP turn it off; the setting is process-wide.
   bool intraprocess_delivery = true;
+  // Fast DDS discovery servers to discover through instead of simple (multicast or initial-peer)
+  // discovery, in ROS 2's ROS_DISCOVERY_SERVER syntax: "IP:PORT", or "IP:PORT;IP:PORT" for the
+  // servers of ids 0 and 1 (`fastdds discovery -i 0 -l IP -p PORT` starts server 0). Unset:
+  // $ROS_DISCOVERY_SERVER, else simple discovery.
+  std::optional<std::string> discovery_server;
   // How long a silent participant is kept before its endpoints are dropped.
   std::chrono::milliseconds participant_lease{6000};
   // DDS Security (docs/security.md): this participant authenticates as `security->name`, checks
@@ -54,6 +59,9 @@ struct ParticipantOptions {
 // Resolves the domain id from the options and the environment; an error names the bad value.
 StatusOr<int> ResolveDomainId(const std::optional<int>& requested);
 bool ResolveLocalhostOnly(const std::optional<bool>& requested);
+// The discovery servers from the options and the environment ("" for simple discovery); an error
+// names the bad value and where it came from.
+StatusOr<std::string> ResolveDiscoveryServer(const std::optional<std::string>& requested);
 
 // One DDS domain participant with one publisher and one subscriber, and the topics its readers
 // and writers share. Not thread-safe: create readers and writers from one thread (the node's).
@@ -67,6 +75,8 @@ class Participant {
 
   int domain_id() const { return domain_id_; }
   bool localhost_only() const { return localhost_only_; }
+  // The discovery servers it discovers through; empty for simple discovery.
+  const std::string& discovery_server() const { return discovery_server_; }
   // The participant's GUID prefix in hex (24 digits): the first digits of every WriterId of its
   // writers (see writer_id.hpp), so a node can tell its own samples from another participant's.
   std::string id() const;
@@ -110,6 +120,7 @@ class Participant {
 
   int domain_id_ = 0;
   bool localhost_only_ = false;
+  std::string discovery_server_;
   bool secured_ = false;
   int32_t ownership_strength_ = 0;
   std::chrono::milliseconds participant_lease_{0};

@@ -45,23 +45,27 @@ TEST(CliBenchStandbyTest, AFailoverLeavesEveryReaderOnTheStandbysLatestTiles) {
 
 TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
   const std::string out = testing::FreshTempDir("bench_capacity");
-  const auto run =
-      testing::RunFleetmap({"bench", "capacity", "--robots", "4", "--stage", "3", "--steps", "6",
-                            "--size", "20", "--server-core", "-1", "--out", out},
-                           seconds(180));
+  // Once with simple discovery, once through a Fast DDS discovery server.
+  const auto run = testing::RunFleetmap(
+      {"bench", "capacity", "--robots", "4", "--stage", "3", "--steps", "6", "--size", "20",
+       "--server-core", "-1", "--discovery", "both", "--out", out},
+      seconds(240));
   ASSERT_EQ(run.exit_code, 0) << run.output();
   EXPECT_NE(run.out.find("largest fleet with fusion p99"), std::string::npos) << run.output();
   const nlohmann::json stages = ReadJson(out + "/capacity.json");
-  ASSERT_TRUE(stages.is_array() && stages.size() == 1) << stages.dump();
-  const nlohmann::json& stage = stages[0];
-  EXPECT_EQ(stage["robots"], 4);
-  EXPECT_FALSE(stage["joined_s"].is_null()) << "every robot's tiles were fused: " << stage.dump();
-  EXPECT_GT(stage["offered_tiles_per_s"].get<double>(), 0.0);
-  EXPECT_GT(stage["fused_tiles_per_s"].get<double>(), 0.0);
-  EXPECT_GT(stage["latencies"].get<int>(), 0);
-  EXPECT_GE(stage["p99_ms"].get<double>(), stage["p50_ms"].get<double>());
-  EXPECT_GT(stage["server_cores"].get<double>(), 0.0);
-  EXPECT_GT(stage["server_rss_mb"].get<double>(), 0.0);
+  ASSERT_TRUE(stages.is_array() && stages.size() == 2) << stages.dump();
+  EXPECT_EQ(stages[0]["discovery"], "simple");
+  EXPECT_EQ(stages[1]["discovery"], "server");
+  for (const nlohmann::json& stage : stages) {
+    EXPECT_EQ(stage["robots"], 4);
+    EXPECT_FALSE(stage["joined_s"].is_null()) << "every robot's tiles were fused: " << stage.dump();
+    EXPECT_GT(stage["offered_tiles_per_s"].get<double>(), 0.0);
+    EXPECT_GT(stage["fused_tiles_per_s"].get<double>(), 0.0);
+    EXPECT_GT(stage["latencies"].get<int>(), 0);
+    EXPECT_GE(stage["p99_ms"].get<double>(), stage["p50_ms"].get<double>());
+    EXPECT_GT(stage["server_cores"].get<double>(), 0.0);
+    EXPECT_GT(stage["server_rss_mb"].get<double>(), 0.0);
+  }
 }
 
 TEST(CliBenchStandbyTest, BadOptionsExitTwo) {
@@ -70,6 +74,7 @@ TEST(CliBenchStandbyTest, BadOptionsExitTwo) {
   const auto no_map = testing::RunFleetmap({"bench", "capacity", "--map", "/nonexistent.yaml"});
   EXPECT_EQ(no_map.exit_code, 2) << no_map.output();
   EXPECT_NE(no_map.output().find("/nonexistent.yaml"), std::string::npos) << no_map.output();
+  EXPECT_EQ(testing::RunFleetmap({"bench", "capacity", "--discovery", "gossip"}).exit_code, 2);
 }
 
 }  // namespace

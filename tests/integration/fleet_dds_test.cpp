@@ -597,6 +597,17 @@ TEST_F(FleetDdsTest, AgentRefusesBadMapWithExitCodeTwo) {
   EXPECT_NE(result.output().find("/nonexistent/map.yaml"), std::string::npos) << result.output();
 }
 
+TEST_F(FleetDdsTest, ABadDiscoveryServerListIsNamedWithExitCodeTwo) {
+  for (const std::string& binary : {kAgent, kServer}) {
+    std::vector<std::string> argv = {binary, "--discovery-server", "127.0.0.1:port"};
+    if (binary == kAgent) argv.insert(argv.end(), {"--robot-id", "alpha", "--map", map_path_});
+    const auto result = process::RunCommand(argv);
+    EXPECT_EQ(result.exit_code, 2) << binary << ": " << result.output();
+    EXPECT_NE(result.output().find("--discovery-server \"127.0.0.1:port\""), std::string::npos)
+        << result.output();
+  }
+}
+
 TEST_F(FleetDdsTest, AgentRefusesBadRobotName) {
   const auto result = process::RunCommand({kAgent, "--robot-id", "no/slash", "--map", map_path_});
   EXPECT_EQ(result.exit_code, 2);

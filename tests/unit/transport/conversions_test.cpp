@@ -150,5 +150,24 @@ TEST(ParticipantOptionsTest, DomainComesFromOptionThenEnvironment) {
   EXPECT_EQ(*ResolveDomainId(std::nullopt), 0);
 }
 
+TEST(ParticipantOptionsTest, DiscoveryServersComeFromOptionThenEnvironment) {
+  unsetenv("ROS_DISCOVERY_SERVER");
+  EXPECT_EQ(*ResolveDiscoveryServer(std::nullopt), "") << "simple discovery";
+  EXPECT_EQ(*ResolveDiscoveryServer("127.0.0.1:11811"), "127.0.0.1:11811");
+  EXPECT_EQ(*ResolveDiscoveryServer("10.0.0.1:11811;10.0.0.2:11812"),
+            "10.0.0.1:11811;10.0.0.2:11812");
+  const Status bad = ResolveDiscoveryServer("127.0.0.1:port").status();
+  EXPECT_EQ(bad.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(bad.message().find("--discovery-server \"127.0.0.1:port\""), std::string::npos)
+      << bad.message();
+  setenv("ROS_DISCOVERY_SERVER", "192.168.1.2:11811", 1);
+  EXPECT_EQ(*ResolveDiscoveryServer(std::nullopt), "192.168.1.2:11811");
+  EXPECT_EQ(*ResolveDiscoveryServer(""), "") << "the option overrides the environment";
+  setenv("ROS_DISCOVERY_SERVER", "nonsense:", 1);
+  EXPECT_NE(ResolveDiscoveryServer(std::nullopt).status().message().find("ROS_DISCOVERY_SERVER"),
+            std::string::npos);
+  unsetenv("ROS_DISCOVERY_SERVER");
+}
+
 }  // namespace
 }  // namespace fleetmap::transport
