@@ -29,6 +29,7 @@ FleetPresence::FleetPresence(transport::Participant& served, Identity identity, 
       role_(identity_.server_id, identity_.strength, started) {}
 
 FleetPresence::~FleetPresence() {
+  if (!writer_) return;  // Create() failed before it could say anything
   transport::FleetServerMessage key;
   key.server_id = identity_.server_id;
   if (Status withdrawn = writer_->Dispose(key); !withdrawn.ok()) {
