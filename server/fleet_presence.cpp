@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-
 #include "common/transport/served_state.hpp"
 
 namespace fleetmap::server {
