@@ -7,7 +7,8 @@
 // changed. The tile streams are recorded once before the sweep: a building (a simulated one, or a
 // real SLAM map with --map) revealed column by column, vectorized into 10 m tiles at every step;
 // eight robots share each building, each at its own phase, so their tiles overlap as a floor's
-// robots' do. Measured per N, on a reader of rt/fleetmap/fused_tiles: tile updates offered and
+// robots' do. Measured per N, from --settle seconds after the join, on a reader of
+// rt/fleetmap/fused_tiles: tile updates offered and
 // fused per second, latency from the robot's tile stamp to the fused tile (p50, p99), the
 // server's CPU (cores) and RSS, and how long until the server followed every robot (its log says
 // it joined) and had fused each building's first tiles. Prints

@@ -47,8 +47,8 @@ TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
   const std::string out = testing::FreshTempDir("bench_capacity");
   // Once with simple discovery, once through a Fast DDS discovery server.
   const auto run = testing::RunFleetmap(
-      {"bench", "capacity", "--robots", "4", "--stage", "3", "--steps", "6", "--size", "20",
-       "--server-core", "-1", "--discovery", "both", "--out", out},
+      {"bench", "capacity", "--robots", "4", "--stage", "3", "--settle", "1", "--steps", "6",
+       "--size", "20", "--server-core", "-1", "--discovery", "both", "--out", out},
       seconds(240));
   ASSERT_EQ(run.exit_code, 0) << run.output();
   EXPECT_NE(run.out.find("largest fleet with fusion p99"), std::string::npos) << run.output();
