@@ -25,6 +25,7 @@
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
 #include "tests/integration/loopback_participant.hpp"
+#include "tests/integration/occupied_cells.hpp"
 
 namespace fleetmap {
 namespace {
@@ -52,18 +53,7 @@ std::string WriteMap(const std::string& name, bool walls) {
   return path;
 }
 
-// The fused grid's occupied cells, as fleet-frame cell keys.
-std::set<std::pair<int, int>> OccupiedCells(const grid::OccupancyGrid& grid) {
-  std::set<std::pair<int, int>> cells;
-  const int ox = static_cast<int>(std::lround(grid.origin().x / grid.resolution()));
-  const int oy = static_cast<int>(std::lround(grid.origin().y / grid.resolution()));
-  for (int y = 0; y < grid.height(); ++y) {
-    for (int x = 0; x < grid.width(); ++x) {
-      if (grid.at(x, y) >= 65) cells.emplace(ox + x, oy + y);
-    }
-  }
-  return cells;
-}
+using testing::OccupiedCells;
 
 class QuarantineTest : public ::testing::Test {
  protected:

@@ -25,6 +25,7 @@
 #include "common/transport/vector_tile_reader.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/integration/loopback_participant.hpp"
+#include "tests/integration/occupied_cells.hpp"
 
 namespace fleetmap {
 namespace {
@@ -51,18 +52,7 @@ std::string WriteRooms(const std::string& name, double x, double y) {
   return path;
 }
 
-// Occupied cells of a fleet-frame grid as fleet-frame cell keys.
-std::set<std::pair<int, int>> OccupiedCells(const grid::OccupancyGrid& grid) {
-  std::set<std::pair<int, int>> cells;
-  const int ox = static_cast<int>(std::lround(grid.origin().x / grid.resolution()));
-  const int oy = static_cast<int>(std::lround(grid.origin().y / grid.resolution()));
-  for (int y = 0; y < grid.height(); ++y) {
-    for (int x = 0; x < grid.width(); ++x) {
-      if (grid.at(x, y) >= 65) cells.emplace(ox + x, oy + y);
-    }
-  }
-  return cells;
-}
+using testing::OccupiedCells;
 
 size_t CountIn(const std::set<std::pair<int, int>>& cells, int min_x, int min_y) {
   size_t n = 0;
