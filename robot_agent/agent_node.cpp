@@ -196,8 +196,7 @@ void AgentNode::DrainRobotFrames() {
         "{}: this robot's map frame is at ({:.2f}, {:.2f}, {:.1f} deg) in the fleet "
         "frame ({} by the server, confidence {:.2f}, against {})",
         options_.robot.value, frame.fleet_from_map.x, frame.fleet_from_map.y,
-        frame.fleet_from_map.yaw * 180.0 / M_PI, transport::RobotFrameStateName(frame.state),
-        frame.confidence,
+        frame.fleet_from_map.yaw * 180.0 / M_PI, RobotFrameStateName(frame.state), frame.confidence,
         frame.placed_against.empty() ? "nothing: it anchors the fleet" : frame.placed_against);
   }
 }

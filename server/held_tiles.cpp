@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "server/tile_cost.hpp"
+#include "common/fusion/tile_cost.hpp"
 
 namespace fleetmap::server {
 
@@ -17,7 +17,7 @@ uint64_t HeldBytes(const transport::TileEvent& event) {
     vertices += polygon.outer.size();
     for (const auto& hole : polygon.holes) vertices += hole.size();
   }
-  return kBytesPerTile + kBytesPerVertex * vertices + kBytesPerRing * rings;
+  return fusion::kBytesPerTile + fusion::kBytesPerVertex * vertices + fusion::kBytesPerRing * rings;
 }
 
 std::optional<HeldTiles::Refused> HeldTiles::Hold(transport::TileEvent event,
@@ -27,7 +27,7 @@ std::optional<HeldTiles::Refused> HeldTiles::Hold(transport::TileEvent event,
   const TileId tile = event.tile.tile;
   const auto robot_it = robots_.find(robot);
   if (robot_it == robots_.end() && robots_.size() >= limits_.max_robots) {
-    return Refused{Refusal::kUnclaimed,
+    return Refused{fusion::Refusal::kUnclaimed,
                    fmt::format("tile ({}, {}) of robot {}, which no status claims: {} unclaimed "
                                "ids already wait for their status",
                                tile.x, tile.y, robot.value, limits_.max_robots)};
@@ -41,7 +41,7 @@ std::optional<HeldTiles::Refused> HeldTiles::Hold(transport::TileEvent event,
   if (replaced == nullptr && robot_tiles >= limits_.max_tiles_per_robot) {
     // The same quota as a claimed robot's, so the refusal reads the same either way.
     return Refused{
-        Refusal::kTileQuota,
+        fusion::Refusal::kTileQuota,
         fmt::format("tile ({}, {}) would be unclaimed robot {}'s tile number {} held; "
                     "a robot may hold {}",
                     tile.x, tile.y, robot.value, robot_tiles + 1, limits_.max_tiles_per_robot)};
@@ -50,7 +50,7 @@ std::optional<HeldTiles::Refused> HeldTiles::Hold(transport::TileEvent event,
   const size_t participant_tiles =
       by_participant == tiles_by_participant_.end() ? 0 : by_participant->second;
   if (replaced == nullptr && participant_tiles >= limits_.max_tiles_per_participant) {
-    return Refused{Refusal::kTileQuota,
+    return Refused{fusion::Refusal::kTileQuota,
                    fmt::format("tile ({}, {}) of unclaimed robot {}: participant {} already has "
                                "{} tiles waiting for their robots' status",
                                tile.x, tile.y, robot.value, participant, participant_tiles)};
@@ -58,7 +58,7 @@ std::optional<HeldTiles::Refused> HeldTiles::Hold(transport::TileEvent event,
   const uint64_t bytes = HeldBytes(event);
   const uint64_t freed = replaced == nullptr ? 0 : replaced->bytes;
   if (bytes_ - freed + bytes > limits_.max_bytes) {
-    return Refused{Refusal::kMemoryBudget,
+    return Refused{fusion::Refusal::kMemoryBudget,
                    fmt::format("tile ({}, {}) of unclaimed robot {} would take the tiles waiting "
                                "for a status past {} MB",
                                tile.x, tile.y, robot.value, limits_.max_bytes >> 20)};

@@ -19,7 +19,7 @@ namespace fleetmap::server {
 // different topics, so tiles may come first: the newest revision of each is held for a while and
 // admitted once the id is claimed. Ids are free to invent, so what is held is bounded four ways:
 // robot ids, tiles per id, tiles per participant (all its ids together) and decoded memory (the
-// held geometry is charged as TileCost charges it). A tile over a bound is refused at once.
+// held geometry is charged as fusion::TileCost charges it). A tile over a bound is refused at once.
 // Not thread-safe: the fusion worker owns it.
 class HeldTiles {
  public:
@@ -31,7 +31,7 @@ class HeldTiles {
     std::chrono::milliseconds wait{std::chrono::seconds(10)};
   };
   struct Refused {
-    Refusal reason;
+    fusion::Refusal reason;
     std::string detail;
   };
 
@@ -68,7 +68,7 @@ class HeldTiles {
   uint64_t bytes_ = 0;
 };
 
-// The memory a held tile keeps: its decoded geometry, as TileCost counts it.
+// The memory a held tile keeps: its decoded geometry, as fusion::TileCost counts it.
 uint64_t HeldBytes(const transport::TileEvent& event);
 
 }  // namespace fleetmap::server

@@ -31,9 +31,9 @@ int main(int argc, char** argv) {
   app.add_option("--duration", duration_s, "seconds to run (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--domain", domain, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
-  app.add_option("--store", options.fusion.store_path,
+  app.add_option("--store", options.worker.store_path,
                  "SQLite map store: the fused map survives restarts (empty: keep nothing)");
-  app.add_option("--history-rows", options.fusion.history_rows,
+  app.add_option("--history-rows", options.worker.history_rows,
                  "tile revisions kept in the store's history (0: all)")
       ->check(CLI::NonNegativeNumber);
   double store_lock_timeout_s = 10.0;
@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
   std::string transforms_path;
   app.add_option("--transforms", transforms_path,
                  "YAML of known fleet_from_map transforms (robots: {name: [x, y, yaw]})");
-  app.add_option("--tile-size", options.fusion.fusion.tile_size, "fleet tile side, metres");
-  app.add_option("--resolution", options.fusion.fusion.resolution, "fused grid cell size, metres");
+  app.add_option("--tile-size", options.map.fusion.tile_size, "fleet tile side, metres");
+  app.add_option("--resolution", options.map.fusion.resolution, "fused grid cell size, metres");
   double map_period_s = 1.0;
   app.add_option("--map-period", map_period_s,
                  "at most one fused grid on rt/fleetmap/map per this many seconds")
@@ -71,43 +71,41 @@ int main(int argc, char** argv) {
                  "extrapolation threshold on the peak-normalised kernels, in (0, 1)");
   app.add_option("--confirm-precision", options.prediction.confirm_precision,
                  "a judged prediction is confirmed at this observed precision, else retracted");
-  app.add_option("--max-tiles-per-robot", options.fusion.admission.max_tiles_per_robot,
+  app.add_option("--max-tiles-per-robot", options.map.admission.max_tiles_per_robot,
                  "distinct tiles one robot id may hold (about 250 KB of server memory each)")
       ->check(CLI::PositiveNumber);
   double max_clock_ahead_s = 30.0;
   app.add_option("--max-clock-ahead", max_clock_ahead_s,
                  "refuse tiles stamped more than this many seconds ahead of the server's clock")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--max-bytes-per-second", options.fusion.admission.max_bytes_per_second,
+  app.add_option("--max-bytes-per-second", options.map.admission.max_bytes_per_second,
                  "sustained tile bytes per second one robot may send")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-vertices-per-tile", options.fusion.admission.budget.max_vertices_per_tile,
+  app.add_option("--max-vertices-per-tile", options.map.admission.budget.max_vertices_per_tile,
                  "vertices one robot tile may decode to (refused before it is inflated)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-vertices-per-robot", options.fusion.admission.budget.max_vertices_per_robot,
+  app.add_option("--max-vertices-per-robot", options.map.admission.budget.max_vertices_per_robot,
                  "vertices all of one robot id's tiles may hold")
       ->check(CLI::PositiveNumber);
-  double max_memory_mb =
-      static_cast<double>(options.fusion.admission.budget.max_memory_bytes >> 20);
+  double max_memory_mb = static_cast<double>(options.map.admission.budget.max_memory_bytes >> 20);
   app.add_option("--max-tile-memory", max_memory_mb,
                  "MB all robots' tiles may hold, decoded; past it the robots claimed last give way")
       ->check(CLI::PositiveNumber);
-  double max_robot_mb =
-      static_cast<double>(options.fusion.admission.budget.max_bytes_per_robot >> 20);
+  double max_robot_mb = static_cast<double>(options.map.admission.budget.max_bytes_per_robot >> 20);
   app.add_option("--max-robot-memory", max_robot_mb,
                  "MB one robot id's tiles may hold, decoded (a participant's ids: 2 robots' worth)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-painted-tiles-per-second",
-                 options.fusion.admission.budget.max_painted_tiles_per_second,
+                 options.map.admission.budget.max_painted_tiles_per_second,
                  "tiles' worth of cells one participant's tiles may paint a second, sustained")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-robots-per-participant", options.max_robots_per_participant,
                  "robot ids one DDS participant may speak for")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-map-cells", options.fusion.fusion.max_grid_cells,
+  app.add_option("--max-map-cells", options.map.fusion.max_grid_cells,
                  "cells of the one grid on rt/fleetmap/map (the fused tiles carry everything)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--placement-confidence", options.fusion.placement.registration.min_confidence,
+  app.add_option("--placement-confidence", options.map.placement.registration.min_confidence,
                  "least registration confidence that places a robot started with --unplaced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
@@ -136,19 +134,18 @@ int main(int argc, char** argv) {
                  "$ROS_DISCOVERY_SERVER; `fastdds discovery -i 0 -l IP -p PORT` starts one)");
   if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
 
-  options.fusion.placement.check_period =
+  options.map.placement.check_period =
       std::chrono::milliseconds(static_cast<int64_t>(check_period_s * 1000.0));
 
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
-  options.fusion.admission.max_clock_ahead =
+  options.map.admission.max_clock_ahead =
       std::chrono::milliseconds(static_cast<int64_t>(max_clock_ahead_s * 1000.0));
-  options.fusion.store_lock_timeout =
+  options.worker.store_lock_timeout =
       std::chrono::milliseconds(static_cast<int64_t>(store_lock_timeout_s * 1000.0));
-  options.fusion.admission.budget.max_memory_bytes =
-      static_cast<uint64_t>(max_memory_mb * (1 << 20));
-  options.fusion.admission.budget.max_bytes_per_robot =
+  options.map.admission.budget.max_memory_bytes = static_cast<uint64_t>(max_memory_mb * (1 << 20));
+  options.map.admission.budget.max_bytes_per_robot =
       static_cast<uint64_t>(max_robot_mb * (1 << 20));
-  options.fusion.map_period =
+  options.worker.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
   if (domain >= 0) options.dds.domain_id = domain;
   if (!transforms_path.empty()) {
@@ -168,7 +165,7 @@ int main(int argc, char** argv) {
   }
   options.learning.enabled = !no_learning;
   options.prediction.enabled = !no_prediction;
-  options.fusion.fusion.quarantine.enabled = !no_quarantine;
+  options.map.fusion.quarantine.enabled = !no_quarantine;
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

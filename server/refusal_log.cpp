@@ -4,52 +4,13 @@
 
 namespace fleetmap::server {
 
-const char* RefusalName(Refusal refusal) {
-  switch (refusal) {
-    case Refusal::kMalformed:
-      return "malformed";
-    case Refusal::kBadRobotId:
-      return "bad robot id";
-    case Refusal::kTileOutOfRange:
-      return "tile out of range";
-    case Refusal::kBadTileSettings:
-      return "bad tile settings";
-    case Refusal::kStampOutOfWindow:
-      return "stamp out of window";
-    case Refusal::kTileQuota:
-      return "tile quota";
-    case Refusal::kByteQuota:
-      return "byte quota";
-    case Refusal::kNotOwner:
-      return "not the owner";
-    case Refusal::kTooManyIds:
-      return "too many ids";
-    case Refusal::kUnclaimed:
-      return "unclaimed robot id";
-    case Refusal::kNotItself:
-      return "not its identity";
-    case Refusal::kDecodedSize:
-      return "decoded size";
-    case Refusal::kMemoryBudget:
-      return "memory budget";
-    case Refusal::kPaintRate:
-      return "paint rate";
-  }
-  return "unknown";
-}
-
-bool CutsTheMap(Refusal refusal) {
-  return refusal == Refusal::kTileQuota || refusal == Refusal::kDecodedSize ||
-         refusal == Refusal::kMemoryBudget;
-}
-
-void RefusalLog::Refuse(const std::string& robot, Refusal reason, const std::string& detail,
+void RefusalLog::Refuse(const std::string& robot, fusion::Refusal reason, const std::string& detail,
                         std::chrono::steady_clock::time_point now) {
   RefuseFrom(std::string(), robot, reason, detail, now);
 }
 
 void RefusalLog::RefuseFrom(const std::string& participant, const std::string& robot,
-                            Refusal reason, const std::string& detail,
+                            fusion::Refusal reason, const std::string& detail,
                             std::chrono::steady_clock::time_point now) {
   ++total_;
   std::string key = robot.empty() ? "(unnamed)" : robot;
@@ -85,13 +46,15 @@ void RefusalLog::RefuseFrom(const std::string& participant, const std::string& r
   }
 }
 
-uint64_t RefusalLog::count(const std::string& robot, Refusal reason) const {
+uint64_t RefusalLog::count(const std::string& robot, fusion::Refusal reason) const {
   const auto it = robots_.find(robot.empty() ? "(unnamed)" : robot);
   if (it == robots_.end()) return 0;
   const auto count = it->second.find(reason);
   return count == it->second.end() ? 0 : count->second;
 }
 
-std::map<std::string, std::map<Refusal, uint64_t>> RefusalLog::counts() const { return robots_; }
+std::map<std::string, std::map<fusion::Refusal, uint64_t>> RefusalLog::counts() const {
+  return robots_;
+}
 
 }  // namespace fleetmap::server

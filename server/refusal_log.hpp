@@ -7,30 +7,9 @@
 #include <string>
 #include <utility>
 
+#include "common/fusion/refusal.hpp"
+
 namespace fleetmap::server {
-
-// Why the server refused something a peer sent.
-enum class Refusal {
-  kMalformed,         // the sample failed its shape or content checks
-  kBadRobotId,        // not a ROS 2 name token of at most 64 characters
-  kTileOutOfRange,    // a tile key beyond the server's max_coordinate
-  kBadTileSettings,   // tile size, epsilon or resolution outside what the server fuses
-  kStampOutOfWindow,  // stamped too far ahead of the server's clock, or implausibly old
-  kTileQuota,         // the robot already holds its maximum number of tiles
-  kByteQuota,         // the robot sends more bytes per second than its quota
-  kNotOwner,          // a sample for a robot id that another participant owns
-  kTooManyIds,        // the participant already speaks for its maximum number of robot ids
-  kNotItself,         // secured: a sample for a robot id other than its writer's identity
-  kUnclaimed,         // tiles for a robot id no live status claims, held too long
-  kDecodedSize,       // a tile, or a robot's tiles, decode to more vertices, rings or cells
-  kMemoryBudget,      // the memory of a robot, its participant, its host or all robots is spent
-  kPaintRate,         // the participant asks to paint more cells a second than its quota
-};
-
-const char* RefusalName(Refusal refusal);
-// Whether refusing a tile for this reason leaves the server without the robot's whole map (it can
-// never hold it), rather than delaying or dropping one revision.
-bool CutsTheMap(Refusal refusal);
 
 // Counts every refusal per robot and reason, and logs them without letting a flood fill the log:
 // per source and `period`, each distinct message is logged once and at most kLinesPerPeriod
@@ -44,19 +23,19 @@ class RefusalLog {
       : who_(std::move(who)), period_(period) {}
 
   // Counts a refusal; `robot` may be empty when the sample is too broken to name one.
-  void Refuse(const std::string& robot, Refusal reason, const std::string& detail,
+  void Refuse(const std::string& robot, fusion::Refusal reason, const std::string& detail,
               std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
   // The same, rate-limited per `participant` (empty: per robot).
-  void RefuseFrom(const std::string& participant, const std::string& robot, Refusal reason,
+  void RefuseFrom(const std::string& participant, const std::string& robot, fusion::Refusal reason,
                   const std::string& detail,
                   std::chrono::steady_clock::time_point now = std::chrono::steady_clock::now());
 
-  uint64_t count(const std::string& robot, Refusal reason) const;
+  uint64_t count(const std::string& robot, fusion::Refusal reason) const;
   uint64_t total() const { return total_; }
   // Lines written to the log so far (refusals and summaries).
   uint64_t lines_logged() const { return lines_logged_; }
   // Every count, by robot then reason.
-  std::map<std::string, std::map<Refusal, uint64_t>> counts() const;
+  std::map<std::string, std::map<fusion::Refusal, uint64_t>> counts() const;
 
   static constexpr size_t kLinesPerPeriod = 20;
 
@@ -71,7 +50,7 @@ class RefusalLog {
 
   std::string who_;
   std::chrono::milliseconds period_;
-  std::map<std::string, std::map<Refusal, uint64_t>> robots_;  // counts by robot
+  std::map<std::string, std::map<fusion::Refusal, uint64_t>> robots_;  // counts by robot
   std::map<std::string, SourceLog> sources_;
   uint64_t total_ = 0;
   uint64_t lines_logged_ = 0;

@@ -37,7 +37,8 @@ Status ServerOptions::Validate() const {
     return InvalidArgumentError("--max-robots-per-participant must be >= 1");
   }
   if (ownership_strength < 0) return InvalidArgumentError("--ownership-strength must be >= 0");
-  FLEETMAP_RETURN_IF_ERROR(fusion.Validate());
+  FLEETMAP_RETURN_IF_ERROR(map.Validate());
+  FLEETMAP_RETURN_IF_ERROR(worker.Validate());
   // A part that is switched off is not made, so its options are not checked.
   if (learning.enabled) {
     FLEETMAP_RETURN_IF_ERROR(learning.Validate().WithContext("object learning"));
@@ -74,15 +75,15 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
                                                     node->options_.ownership_strength},
                             node->wake_up_));
   // The sessions in memory are the learner's input: as many as it reads.
-  node->options_.fusion.sessions_in_memory = node->options_.learning.max_sessions;
-  FLEETMAP_ASSIGN_OR_RETURN(
-      node->fusion_worker_,
-      FusionWorker::Create(*node->participant_, node->options_.fusion, node->registry_));
+  node->options_.worker.sessions_in_memory = node->options_.learning.max_sessions;
+  FLEETMAP_ASSIGN_OR_RETURN(node->fusion_worker_,
+                            FusionWorker::Create(*node->participant_, node->options_.map,
+                                                 node->options_.worker, node->registry_));
   if (node->options_.learning.enabled) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->learning_worker_,
         ObjectLearningWorker::Create(*node->participant_, node->options_.learning,
-                                     node->options_.fusion.fusion));
+                                     node->options_.map.fusion));
   }
   if (node->options_.prediction.enabled) {
     FLEETMAP_ASSIGN_OR_RETURN(
@@ -160,7 +161,7 @@ void ServerNode::HandleRobotEvents() {
         OnRobotGone(event.robot, RobotRecord::State::kLost, event.writer);
         break;
       case transport::RobotEvent::Kind::kRejected:
-        refusals_.Refuse("", Refusal::kMalformed,
+        refusals_.Refuse("", fusion::Refusal::kMalformed,
                          "a robot status sample: " + event.error.message());
         break;
     }
@@ -173,7 +174,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   if (claim == RobotRegistry::Claim::kClash) {
     ++robots_[status.robot].id_clashes;
     refusals_.RefuseFrom(RobotRegistry::ParticipantOf(writer), status.robot.value,
-                         Refusal::kNotOwner,
+                         fusion::Refusal::kNotOwner,
                          fmt::format("a status from participant {} claims robot id {}, which "
                                      "participant {} owns: keeping the first, ignoring the other",
                                      RobotRegistry::ParticipantOf(writer), status.robot.value,
@@ -183,7 +184,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   if (claim == RobotRegistry::Claim::kNotItself) {
     const std::optional<std::string> name = participant_->AuthenticatedName(writer);
     refusals_.RefuseFrom(
-        RobotRegistry::ParticipantOf(writer), status.robot.value, Refusal::kNotItself,
+        RobotRegistry::ParticipantOf(writer), status.robot.value, fusion::Refusal::kNotItself,
         fmt::format("a status from participant {}, authenticated as {}, claims robot "
                     "id {}: a participant speaks only for the robot it is enrolled "
                     "as",
@@ -193,7 +194,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
   }
   if (claim == RobotRegistry::Claim::kTooMany) {
     refusals_.RefuseFrom(RobotRegistry::ParticipantOf(writer), status.robot.value,
-                         Refusal::kTooManyIds,
+                         fusion::Refusal::kTooManyIds,
                          fmt::format("participant {} already speaks for {} robots; its claim of {} "
                                      "is ignored",
                                      RobotRegistry::ParticipantOf(writer),
@@ -234,7 +235,7 @@ void ServerNode::OnRobotAlive(const RobotStatus& status, const std::string& writ
       } else {
         ++rejected_entities_;
         refusals_.RefuseFrom(RobotRegistry::ParticipantOf(entity_writer), status.robot.value,
-                             Refusal::kNotOwner,
+                             fusion::Refusal::kNotOwner,
                              "an entity sent for robot " + status.robot.value +
                                  " before its owner claimed it, by another participant");
       }
@@ -262,7 +263,7 @@ void ServerNode::OnRobotGone(const RobotId& robot, RobotRecord::State state,
   if (registry_->WhoSpeaks(robot, writer) != RobotRegistry::Speaker::kOwner) {
     // A second agent with this id went away, or a peer disposed an instance it does not own.
     refusals_.RefuseFrom(
-        RobotRegistry::ParticipantOf(writer), robot.value, Refusal::kNotOwner,
+        RobotRegistry::ParticipantOf(writer), robot.value, fusion::Refusal::kNotOwner,
         fmt::format("participant {} {} robot {}, which participant {} owns: ignored",
                     RobotRegistry::ParticipantOf(writer),
                     state == RobotRecord::State::kLeft ? "disposed" : "lost", robot.value,
@@ -310,7 +311,7 @@ void ServerNode::HandleMaps() {
       ++record.rejected_samples;
       // Through the refusal log: a peer flooding bad samples must not flood the log too.
       refusals_.Refuse(
-          robot.value, Refusal::kMalformed,
+          robot.value, fusion::Refusal::kMalformed,
           fmt::format("dropped a map sample from {}: {}", robot.value, error.message()));
     }
     record.maps_received += received.maps;
@@ -341,7 +342,7 @@ void ServerNode::HandleEntities() {
     if (speaker == RobotRegistry::Speaker::kOverCap) {
       ++rejected_entities_;
       refusals_.RefuseFrom(RobotRegistry::ParticipantOf(event.writer), robot.value,
-                           Refusal::kTooManyIds,
+                           fusion::Refusal::kTooManyIds,
                            fmt::format("entity {} for robot {} from participant {}, which already "
                                        "speaks for {} robots",
                                        event.message.entity_id(), robot.value,
@@ -355,7 +356,7 @@ void ServerNode::HandleEntities() {
       ++rejected_entities_;
       refusals_.RefuseFrom(
           RobotRegistry::ParticipantOf(event.writer), robot.value,
-          itself ? Refusal::kNotOwner : Refusal::kNotItself,
+          itself ? fusion::Refusal::kNotOwner : fusion::Refusal::kNotItself,
           fmt::format("entity {} for robot {} from participant {}, which {}",
                       event.message.entity_id(), robot.value,
                       RobotRegistry::ParticipantOf(event.writer),
@@ -373,7 +374,7 @@ void ServerNode::HandleEntities() {
       if (early_entities_.size() >= kMaxEarlyRobots && early_entities_.count(robot) == 0) {
         ++rejected_entities_;
         refusals_.RefuseFrom(RobotRegistry::ParticipantOf(event.writer), robot.value,
-                             Refusal::kUnclaimed,
+                             fusion::Refusal::kUnclaimed,
                              "an entity for a robot id no status claims (too many such ids)");
         continue;
       }
@@ -423,10 +424,10 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
     const std::string placement =
         frame == fusion.frames.end() ? std::string("-")
         : !frame->second.placed()
-            ? std::string(transport::RobotFrameStateName(frame->second.state))
+            ? std::string(RobotFrameStateName(frame->second.state))
             : fmt::format("{} ({:.2f}, {:.2f}, {:.1f} deg)",
-                          transport::RobotFrameStateName(frame->second.state),
-                          frame->second.fleet_from_map.x, frame->second.fleet_from_map.y,
+                          RobotFrameStateName(frame->second.state), frame->second.fleet_from_map.x,
+                          frame->second.fleet_from_map.y,
                           frame->second.fleet_from_map.yaw * 180.0 / M_PI);
     fmt::print("{:<16} {:<8} {:>7} {:>6} {:>12} {:>9} {:>8}  {}\n", robot.value,
                RobotStateName(record.state), counts.tiles, record.maps_received,
@@ -497,7 +498,8 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
 void ServerOptions::Describe(OptionsPrinter& out) const {
   out.Add("duration", duration);
   out.Nested("dds", dds);
-  out.Nested("fusion", fusion);
+  out.Nested("map", map);
+  out.Nested("worker", worker);
   out.Nested("learning", learning);
   out.Nested("prediction", prediction);
   out.Add("transforms", transforms);

@@ -27,7 +27,8 @@ namespace fleetmap::server {
 struct ServerOptions {
   std::chrono::milliseconds duration{0};  // run this long; 0: until stopped
   transport::ParticipantOptions dds;
-  FusionWorkerOptions fusion;
+  fusion::FleetMapOptions map;  // what the fleet map fuses, admits and places
+  FusionWorkerOptions worker;   // how the fusion worker keeps, publishes and waits
   ObjectLearningOptions learning;
   extrapolation::PredictionOptions prediction;
   // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what

@@ -206,7 +206,7 @@ json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timest
   // Where its map frame sits: as given, or as the server placed it (registration).
   std::string placement = "given";
   if (robot.frame) {
-    placement = transport::RobotFrameStateName(robot.frame->state);
+    placement = RobotFrameStateName(robot.frame->state);
   } else if (robot.status && robot.status->tiles_in_map_frame) {
     placement = "unplaced";
   }
@@ -215,7 +215,7 @@ json FleetViewModel::RobotJson(const std::string& id, const Robot& robot, Timest
     out["waiting_reason"] = robot.frame->waiting_reason;
   }
   // Whether the server fuses its tiles (docs/fleet.md, "Quarantine"), why not, and where.
-  out["standing"] = robot.frame ? transport::RobotStandingName(robot.frame->standing) : "trusted";
+  out["standing"] = robot.frame ? RobotStandingName(robot.frame->standing) : "trusted";
   if (robot.frame && robot.frame->standing != transport::RobotFrameMessage::Standing::kTrusted) {
     out["standing_reason"] = robot.frame->standing_reason;
   }

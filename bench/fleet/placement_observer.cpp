@@ -59,7 +59,7 @@ void PlacementObserver::Poll(double now_s, FleetRunResult* result) {
     if (event.kind != transport::RobotFrameEvent::Kind::kSample) continue;
     const transport::RobotFrameMessage& frame = event.message;
     RobotPlacement& placement = PlacementOf(frame.robot.value, result);
-    placement.state = transport::RobotFrameStateName(frame.state);
+    placement.state = RobotFrameStateName(frame.state);
     placement.fleet_from_map = frame.fleet_from_map;
     placement.confidence = frame.confidence;
     placement.placements = frame.placements;

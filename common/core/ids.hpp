@@ -31,6 +31,9 @@ std::ostream& operator<<(std::ostream& os, const RobotId& id);
 // A robot id must be usable as one ROS 2 name token: [A-Za-z][A-Za-z0-9_]*, at most 64 chars.
 bool IsValidRobotName(const std::string& name);
 
+// The fused map's owner name: fused tiles carry it as their robot id, and no robot may take it.
+inline constexpr char kFleetRobotName[] = "fleet";
+
 }  // namespace fleetmap
 
 template <>

@@ -8,8 +8,8 @@
 
 #include "cli/inputs/command_inputs.hpp"
 #include "common/process/subprocess.hpp"
+#include "common/registration/placer.hpp"
 #include "common/registration/registration.hpp"
-#include "server/robot_placer.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
 
 namespace fleetmap::cli {
@@ -57,7 +57,7 @@ TEST(CliRegisterTest, FoundIsTheServersPlacementDecision) {
   const std::string map = DataPath("real/aws_small_house.yaml");
   const StatusOr<grid::LoadedMap> loaded = LoadGridInput(map, kDefaultMaxCells);
   ASSERT_TRUE(loaded.ok()) << loaded.status();
-  server::PlacementOptions server;
+  registration::PlacementOptions server;
 
   // A clear pair (the map on itself): placed by both at the default bar.
   process::CommandResult run = RunFleetmap({"register", map, map, "--json"});

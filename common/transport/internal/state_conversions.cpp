@@ -460,22 +460,6 @@ StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
   return message;
 }
 
-const char* RobotFrameStateName(RobotFrameMessage::State state) {
-  switch (state) {
-    case RobotFrameMessage::State::kUnplaced:
-      return "unplaced";
-    case RobotFrameMessage::State::kPlaced:
-      return "placed";
-    case RobotFrameMessage::State::kRevised:
-      return "revised";
-    case RobotFrameMessage::State::kGiven:
-      return "given";
-    case RobotFrameMessage::State::kAnchor:
-      return "anchor";
-  }
-  return "unknown";
-}
-
 StatusOr<RobotFrame_> ToIdl(const RobotFrameMessage& message) {
   FLEETMAP_RETURN_IF_ERROR(CheckRobotFrame(message));
   RobotFrame_ sample;
@@ -601,18 +585,6 @@ StatusOr<FleetServerMessage> FromIdl(const FleetServer_& sample) {
   message.stamp = FromIdl(sample.stamp());
   message.robots = sample.robots();
   return message;
-}
-
-const char* RobotStandingName(RobotFrameMessage::Standing standing) {
-  switch (standing) {
-    case RobotFrameMessage::Standing::kTrusted:
-      return "trusted";
-    case RobotFrameMessage::Standing::kQuarantined:
-      return "quarantined";
-    case RobotFrameMessage::Standing::kAdmitted:
-      return "admitted";
-  }
-  return "unknown";
 }
 
 }  // namespace fleetmap::transport

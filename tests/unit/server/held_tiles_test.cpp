@@ -63,18 +63,18 @@ TEST(HeldTilesTest, IdsTilesPerIdAndTilesPerParticipantAreBounded) {
   for (int x = 0; x < 3; ++x) EXPECT_FALSE(held.Hold(Tile("a", x), "p1", kStart).has_value());
   auto refused = held.Hold(Tile("a", 3), "p1", kStart);
   ASSERT_TRUE(refused.has_value());
-  EXPECT_EQ(refused->reason, Refusal::kTileQuota);
+  EXPECT_EQ(refused->reason, fusion::Refusal::kTileQuota);
   EXPECT_NE(refused->detail.find("a robot may hold 3"), std::string::npos) << refused->detail;
   // The participant's fourth tile, under another id: its last.
   EXPECT_FALSE(held.Hold(Tile("b", 0), "p1", kStart).has_value());
   refused = held.Hold(Tile("b", 1), "p1", kStart);
   ASSERT_TRUE(refused.has_value());
-  EXPECT_EQ(refused->reason, Refusal::kTileQuota);
+  EXPECT_EQ(refused->reason, fusion::Refusal::kTileQuota);
   EXPECT_NE(refused->detail.find("participant p1"), std::string::npos) << refused->detail;
   // A third id, from anyone: too many ids wait already.
   refused = held.Hold(Tile("c", 0), "p2", kStart);
   ASSERT_TRUE(refused.has_value());
-  EXPECT_EQ(refused->reason, Refusal::kUnclaimed);
+  EXPECT_EQ(refused->reason, fusion::Refusal::kUnclaimed);
   // Another participant's tile of a waiting id still fits.
   EXPECT_FALSE(held.Hold(Tile("b", 1), "p2", kStart).has_value());
 }
@@ -87,7 +87,7 @@ TEST(HeldTilesTest, HeldGeometryIsChargedAgainstTheMemoryBound) {
   EXPECT_FALSE(held.Hold(Tile("a", 1, 1000), "p1", kStart).has_value());
   const auto refused = held.Hold(Tile("a", 2, 1000), "p1", kStart);
   ASSERT_TRUE(refused.has_value());
-  EXPECT_EQ(refused->reason, Refusal::kMemoryBudget);
+  EXPECT_EQ(refused->reason, fusion::Refusal::kMemoryBudget);
   EXPECT_EQ(held.bytes(), limits.max_bytes);
   EXPECT_GT(HeldBytes(Tile("a", 0, 1000)), 40'000u);
 }

@@ -31,7 +31,7 @@ TEST(ServerOptionsTest, ValidateRecursesIntoEveryPartThatRuns) {
   EXPECT_TRUE(Contains(learning.message(), "em.annealing")) << learning;
 
   ServerOptions bad_tiles;
-  bad_tiles.fusion.fusion.tile_size = -1.0;
+  bad_tiles.map.fusion.tile_size = -1.0;
   EXPECT_FALSE(bad_tiles.Validate().ok());
 }
 
@@ -39,12 +39,11 @@ TEST(ServerOptionsTest, ValidateRecursesIntoEveryPartThatRuns) {
 // registration module's bar (the one `fleetmap register` uses by default).
 TEST(ServerOptionsTest, PlacesAtTheRegistrationPlacementBar) {
   const ServerOptions options;
-  EXPECT_EQ(options.fusion.placement.registration.min_confidence,
-            registration::kPlacementConfidence);
+  EXPECT_EQ(options.map.placement.registration.min_confidence, registration::kPlacementConfidence);
   EXPECT_TRUE(Contains(DescribeOptions(options), "    min_confidence: 0.95\n"))
       << DescribeOptions(options);
   ServerOptions bad;
-  bad.fusion.placement.registration.min_confidence = 1.5;
+  bad.map.placement.registration.min_confidence = 1.5;
   EXPECT_FALSE(bad.Validate().ok());
 }
 
@@ -60,7 +59,7 @@ TEST(ServerOptionsTest, DescribeShowsTheNestedOptions) {
   ServerOptions options;
   options.transforms[RobotId{"alpha"}] = Pose2{1.0, 2.0, 0.5};
   const std::string text = DescribeOptions(options);
-  EXPECT_TRUE(Contains(text, "fusion:\n  fusion:\n    tile_size: 10\n")) << text;
+  EXPECT_TRUE(Contains(text, "map:\n  fusion:\n    tile_size: 10\n")) << text;
   EXPECT_TRUE(Contains(text, "  admission:\n    max_clock_ahead: 30 s\n")) << text;
   EXPECT_TRUE(Contains(text, "prediction:\n  enabled: true\n  extrapolation:\n    p_th: 0.5\n"))
       << text;

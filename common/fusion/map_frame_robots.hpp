@@ -9,7 +9,7 @@
 #include "common/core/types.hpp"
 #include "common/vector_map/vector_map.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 // The robots whose tiles come in their own map frame (agents started with --unplaced): their
 // tiles as received, where the server placed each map frame, and what each contributes to the
@@ -77,4 +77,4 @@ class MapFrameRobots {
   std::map<RobotId, Robot> robots_;
 };
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -1,11 +1,11 @@
-#include "server/fair_tile_queue.hpp"
+#include "common/fusion/fair_tile_queue.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 using std::chrono::milliseconds;
@@ -113,4 +113,4 @@ TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

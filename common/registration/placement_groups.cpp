@@ -1,8 +1,8 @@
-#include "server/placement_groups.hpp"
+#include "common/registration/placement_groups.hpp"
 
 #include <deque>
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 
 PlacementGroup GroupOf(const RobotId& robot, const std::vector<RobotLink>& links,
                        const std::set<RobotId>& excluded) {
@@ -40,4 +40,4 @@ PlacementGroup GroupOf(const RobotId& robot, const std::vector<RobotLink>& links
   return group;
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

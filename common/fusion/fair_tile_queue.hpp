@@ -9,7 +9,7 @@
 
 #include "common/core/ids.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 // Robot tiles waiting for fusion, served fairly between payers: each payer's queue keeps only the
 // newest revision of each key (a robot that sends the same tiles faster than they are fused costs
@@ -125,4 +125,4 @@ class FairTileQueue {
   size_t size_ = 0;
 };
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -1,10 +1,10 @@
-#include "server/map_frame_robots.hpp"
+#include "common/fusion/map_frame_robots.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 // One wall from (1, 1) to (4, 1) in the robot's map frame, in its tile (0, 0) of 10 m.
@@ -90,4 +90,4 @@ TEST(MapFrameRobotsTest, ForgettingARobotNamesEveryTileItContributedTo) {
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -1,10 +1,10 @@
-#include "server/tile_budget.hpp"
+#include "common/fusion/tile_budget.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 double Mb(uint64_t bytes) { return static_cast<double>(bytes) / (1 << 20); }
@@ -264,4 +264,4 @@ uint64_t TileBudget::participant_bytes(const std::string& participant) const {
   return it == participant_bytes_.end() ? 0 : it->second;
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -13,11 +13,11 @@
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/fusion/fusion_options.hpp"
-#include "common/transport/vector_tile_message.hpp"
-#include "server/refusal_log.hpp"
-#include "server/tile_budget.hpp"
+#include "common/fusion/refusal.hpp"
+#include "common/fusion/tile_budget.hpp"
+#include "common/vector_map/vector_tile.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 // What the server accepts from one robot. The defaults admit any honest agent with room to
 // spare and bound what a misbehaving or hostile peer can make the server hold.
@@ -38,7 +38,7 @@ struct AdmissionOptions {
   BudgetOptions budget;
 
   // What the tile reader may decode a robot tile to (the per-tile budget).
-  transport::TileDecodeLimits DecodeLimits() const;
+  vector_map::TileDecodeLimits DecodeLimits() const;
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
 };
@@ -66,16 +66,15 @@ class TileAdmission {
       : options_(options), fusion_(fusion), budget_(options.budget, fusion) {}
 
   // Whether `robot` may name a robot tile's owner: a ROS 2 name token, not the fused map's.
-  static std::optional<Refused> CheckRobotId(const transport::VectorTileMessage& tile);
+  static std::optional<Refused> CheckRobotId(const vector_map::VectorTile& tile);
 
   // Checks a decoded robot tile of `bytes` serialized bytes received at `now` (system clock for
   // stamps, steady clock for rates). An admitted tile counts towards its robot's quotas.
-  Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes, Timestamp now,
+  Verdict Admit(const vector_map::VectorTile& tile, size_t bytes, Timestamp now,
                 std::chrono::steady_clock::time_point steady_now);
   // The same, paid for by `source` (the robot id, the participant and host that sent it).
-  Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes,
-                const TileBudget::Source& source, Timestamp now,
-                std::chrono::steady_clock::time_point steady_now);
+  Verdict Admit(const vector_map::VectorTile& tile, size_t bytes, const TileBudget::Source& source,
+                Timestamp now, std::chrono::steady_clock::time_point steady_now);
 
   // A robot's tile that exists without passing Admit (restored from the store): it counts
   // towards the robot's tile quota.
@@ -96,8 +95,8 @@ class TileAdmission {
     bool started = false;
   };
 
-  std::optional<Refused> CheckSettings(const transport::VectorTileMessage& tile) const;
-  std::optional<Refused> CheckStamp(const transport::VectorTileMessage& tile, Timestamp now) const;
+  std::optional<Refused> CheckSettings(const vector_map::VectorTile& tile) const;
+  std::optional<Refused> CheckStamp(const vector_map::VectorTile& tile, Timestamp now) const;
 
   AdmissionOptions options_;
   fusion::FusionOptions fusion_;
@@ -105,4 +104,4 @@ class TileAdmission {
   std::map<RobotId, RobotQuota> robots_;
 };
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -1,9 +1,9 @@
-#include "server/tile_cost.hpp"
+#include "common/fusion/tile_cost.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 double RingArea(const std::vector<Point2>& ring) {
@@ -79,4 +79,4 @@ TileCost CostOf(const vector_map::VectorMap& map, const fusion::FusionOptions& f
   return cost;
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

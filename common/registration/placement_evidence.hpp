@@ -7,7 +7,7 @@
 #include "common/core/ids.hpp"
 #include "common/core/types.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 
 // One kind of registration the placer runs: `robot`'s map (or, for the root of a group, the
 // merged map of its group: PlacementGroup) on `target` (empty: the fleet map). Each kind has its
@@ -73,4 +73,4 @@ class PlacementEvidence {
   std::map<RegistrationKey, Leader> leaders_;
 };
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

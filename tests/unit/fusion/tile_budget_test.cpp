@@ -1,11 +1,11 @@
-#include "server/tile_budget.hpp"
+#include "common/fusion/tile_budget.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 using std::chrono::seconds;
@@ -209,4 +209,4 @@ TEST(TileBudgetTest, AParticipantsPaintingRateIsBounded) {
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

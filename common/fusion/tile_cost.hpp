@@ -5,7 +5,7 @@
 #include "common/fusion/fusion_options.hpp"
 #include "common/vector_map/vector_map.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 // What one robot tile costs the server once decoded: its vertices and free rings, the cells its
 // geometry paints when fusion rasterizes it (free polygons' areas and obstacles' bands, in cells of
@@ -40,4 +40,4 @@ TileCost CostOfUnknownTile(const fusion::FusionOptions& fusion);
 // Cells of one fused tile grid (FusionOptions::CellsPerTile() is cells per side).
 uint64_t CellsPerTile(const fusion::FusionOptions& fusion);
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

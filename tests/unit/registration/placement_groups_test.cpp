@@ -1,10 +1,10 @@
-#include "server/placement_groups.hpp"
+#include "common/registration/placement_groups.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 namespace {
 
 // Where `point` of `member`'s map lands in the group root's frame.
@@ -55,4 +55,4 @@ TEST(PlacementGroupsTest, PlacedRobotsAreLeftOutAndSplitTheGroup) {
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

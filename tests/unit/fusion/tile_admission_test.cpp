@@ -1,9 +1,9 @@
-#include "server/tile_admission.hpp"
+#include "common/fusion/tile_admission.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 using std::chrono::hours;
@@ -13,8 +13,8 @@ using ::testing::HasSubstr;
 const Timestamp kNow = Timestamp(hours(24 * 365 * 56));  // 2026
 const auto kSteady = std::chrono::steady_clock::time_point(hours(1));
 
-transport::VectorTileMessage Tile(const std::string& robot, TileId key = {0, 0}) {
-  transport::VectorTileMessage tile;
+vector_map::VectorTile Tile(const std::string& robot, TileId key = {0, 0}) {
+  vector_map::VectorTile tile;
   tile.robot_id = RobotId{robot};
   tile.tile = key;
   tile.stamp = kNow - seconds(1);
@@ -46,7 +46,7 @@ class TileAdmissionTest : public ::testing::Test {
     return options;
   }
 
-  TileAdmission::Verdict Admit(const transport::VectorTileMessage& tile, size_t bytes = 100,
+  TileAdmission::Verdict Admit(const vector_map::VectorTile& tile, size_t bytes = 100,
                                std::chrono::steady_clock::time_point at = kSteady) {
     return admission_.Admit(tile, bytes, kNow, at);
   }
@@ -130,4 +130,4 @@ TEST_F(TileAdmissionTest, BytesBeyondTheBurstWaitForTheSustainedRate) {
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

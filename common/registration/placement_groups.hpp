@@ -7,7 +7,7 @@
 #include "common/core/ids.hpp"
 #include "common/core/types.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 
 // Where one unplaced robot's map sits in another's, found by registering the two maps.
 struct RobotLink {
@@ -32,4 +32,4 @@ struct PlacementGroup {
 PlacementGroup GroupOf(const RobotId& robot, const std::vector<RobotLink>& links,
                        const std::set<RobotId>& excluded);
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

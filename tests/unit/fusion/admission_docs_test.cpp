@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "server/tile_admission.hpp"
+#include "common/fusion/tile_admission.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
 const std::string kFleetDoc = std::string(FLEETMAP_TEST_DATA_DIR) + "/../../docs/fleet.md";
@@ -99,7 +99,7 @@ TEST(AdmissionDocsTest, TheAdmissionTableStatesEveryDefaultOfTheCode) {
 TEST(AdmissionDocsTest, TheDefaultBudgetsAdmitAnHonestTileAndDecodeLimitsFollowThem) {
   const AdmissionOptions options;
   ASSERT_TRUE(options.Validate().ok());
-  const transport::TileDecodeLimits limits = options.DecodeLimits();
+  const vector_map::TileDecodeLimits limits = options.DecodeLimits();
   EXPECT_EQ(limits.max_vertices, options.budget.max_vertices_per_tile);
   EXPECT_EQ(limits.max_rings, options.budget.max_rings_per_tile);
   EXPECT_EQ(limits.max_geometry_bytes, 64 + 12 * limits.max_vertices + 4 * limits.max_rings);
@@ -108,4 +108,4 @@ TEST(AdmissionDocsTest, TheDefaultBudgetsAdmitAnHonestTileAndDecodeLimitsFollowT
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

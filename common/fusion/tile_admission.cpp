@@ -1,16 +1,14 @@
-#include "server/tile_admission.hpp"
+#include "common/fusion/tile_admission.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "common/store/store_records.hpp"
-
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 namespace {
 
-std::string TileName(const transport::VectorTileMessage& tile) {
+std::string TileName(const vector_map::VectorTile& tile) {
   return fmt::format("tile ({}, {})", tile.tile.x, tile.tile.y);
 }
 
@@ -30,8 +28,8 @@ Status AdmissionOptions::Validate() const {
   return budget.Validate();
 }
 
-transport::TileDecodeLimits AdmissionOptions::DecodeLimits() const {
-  transport::TileDecodeLimits limits;
+vector_map::TileDecodeLimits AdmissionOptions::DecodeLimits() const {
+  vector_map::TileDecodeLimits limits;
   limits.max_geometry_bytes = budget.MaxGeometryBytes();
   limits.max_vertices = budget.max_vertices_per_tile;
   limits.max_rings = budget.max_rings_per_tile;
@@ -39,7 +37,7 @@ transport::TileDecodeLimits AdmissionOptions::DecodeLimits() const {
 }
 
 std::optional<TileAdmission::Refused> TileAdmission::CheckSettings(
-    const transport::VectorTileMessage& tile) const {
+    const vector_map::VectorTile& tile) const {
   const double tile_size = fusion_.tile_size;
   if (std::abs(tile.tile_size - tile_size) > 1e-9 * tile_size) {
     return Refused{Refusal::kBadTileSettings,
@@ -65,8 +63,8 @@ std::optional<TileAdmission::Refused> TileAdmission::CheckSettings(
   return std::nullopt;
 }
 
-std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(
-    const transport::VectorTileMessage& tile, Timestamp now) const {
+std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(const vector_map::VectorTile& tile,
+                                                                Timestamp now) const {
   if (tile.stamp > now + options_.max_clock_ahead) {
     return Refused{
         Refusal::kStampOutOfWindow,
@@ -85,23 +83,22 @@ std::optional<TileAdmission::Refused> TileAdmission::CheckStamp(
 }
 
 std::optional<TileAdmission::Refused> TileAdmission::CheckRobotId(
-    const transport::VectorTileMessage& tile) {
-  if (IsValidRobotName(tile.robot_id.value) && tile.robot_id.value != store::kFleetOwner)
+    const vector_map::VectorTile& tile) {
+  if (IsValidRobotName(tile.robot_id.value) && tile.robot_id.value != kFleetRobotName)
     return std::nullopt;
-  return Refused{
-      Refusal::kBadRobotId,
-      fmt::format("robot_id \"{}\" of {} is not a ROS 2 name token of at most 64 "
-                  "characters (or is the reserved \"{}\")",
-                  tile.robot_id.value.substr(0, 64), TileName(tile), store::kFleetOwner)};
+  return Refused{Refusal::kBadRobotId,
+                 fmt::format("robot_id \"{}\" of {} is not a ROS 2 name token of at most 64 "
+                             "characters (or is the reserved \"{}\")",
+                             tile.robot_id.value.substr(0, 64), TileName(tile), kFleetRobotName)};
 }
 
-TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
+TileAdmission::Verdict TileAdmission::Admit(const vector_map::VectorTile& tile, size_t bytes,
                                             Timestamp now,
                                             std::chrono::steady_clock::time_point steady_now) {
   return Admit(tile, bytes, TileBudget::Source{tile.robot_id, {}, {}}, now, steady_now);
 }
 
-TileAdmission::Verdict TileAdmission::Admit(const transport::VectorTileMessage& tile, size_t bytes,
+TileAdmission::Verdict TileAdmission::Admit(const vector_map::VectorTile& tile, size_t bytes,
                                             const TileBudget::Source& source, Timestamp now,
                                             std::chrono::steady_clock::time_point steady_now) {
   if (auto refused = CheckRobotId(tile)) return *refused;
@@ -183,4 +180,4 @@ void AdmissionOptions::Describe(OptionsPrinter& out) const {
   out.Nested("budget", budget);
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

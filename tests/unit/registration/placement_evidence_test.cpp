@@ -1,9 +1,9 @@
-#include "server/placement_evidence.hpp"
+#include "common/registration/placement_evidence.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 namespace {
 
 using ::testing::HasSubstr;
@@ -82,4 +82,4 @@ TEST(PlacementEvidenceTest, TargetsAndGroupMapsCountApartAndOneConfirmationPlace
 }
 
 }  // namespace
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

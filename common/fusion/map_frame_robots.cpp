@@ -1,8 +1,8 @@
-#include "server/map_frame_robots.hpp"
+#include "common/fusion/map_frame_robots.hpp"
 
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 void MapFrameRobots::PlaceTile(Robot& robot, const TileId& tile, OwnTile& own,
                                std::set<TileId>* changed) {
@@ -142,4 +142,4 @@ std::vector<RobotId> MapFrameRobots::robots() const {
   return out;
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

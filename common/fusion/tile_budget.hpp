@@ -12,10 +12,10 @@
 #include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
 #include "common/fusion/fusion_options.hpp"
-#include "server/refusal_log.hpp"
-#include "server/tile_cost.hpp"
+#include "common/fusion/refusal.hpp"
+#include "common/fusion/tile_cost.hpp"
 
-namespace fleetmap::server {
+namespace fleetmap::fusion {
 
 // What robots' tiles may cost the server once decoded (docs/fleet.md, "Admission control").
 // Robot ids are free to invent, DDS participants cheap to open: so every robot's tiles count
@@ -122,4 +122,4 @@ class TileBudget {
   uint64_t next_order_ = 1;
 };
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::fusion

@@ -1,10 +1,10 @@
-#include "server/placement_evidence.hpp"
+#include "common/registration/placement_evidence.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-namespace fleetmap::server {
+namespace fleetmap::registration {
 
 PlacementEvidence::Verdict PlacementEvidence::Observe(const RegistrationKey& key,
                                                       const Vote& vote) {
@@ -55,4 +55,4 @@ bool PlacementEvidence::Same(const Pose2& a, const Pose2& b, const Point2& centr
   return (at_a - at_b).norm() <= options_.same_distance && yaw_deg <= options_.same_yaw_deg;
 }
 
-}  // namespace fleetmap::server
+}  // namespace fleetmap::registration

@@ -1,0 +1,265 @@
+// fusion::FleetMap without DDS, a store or threads: tiles offered, fused turn by turn and fairly,
+// removed and evicted; the frames table (given, anchored, placed, rotated); what TakeChanged
+// hands over.
+#include "common/fusion/fleet_map.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace fleetmap::fusion {
+namespace {
+
+using std::chrono::seconds;
+
+constexpr double kTileSize = 2.0;
+const auto kSteady = std::chrono::steady_clock::time_point(std::chrono::hours(1));
+
+FleetMapOptions Options() {
+  FleetMapOptions options;
+  options.fusion.tile_size = kTileSize;
+  options.fusion.resolution = 0.05;
+  options.placement.confirmations = 1;
+  return options;
+}
+
+FleetMap MakeMap(const FleetMapOptions& options = Options()) {
+  StatusOr<FleetMap> map = FleetMap::Create(options);
+  EXPECT_TRUE(map.ok()) << map.status();
+  return std::move(map).value();
+}
+
+// A wall from (x0, y) to (x1, y) with free space below it, in tile `key`'s frame coordinates
+// (fleet frame for fleet-frame robots, the robot's own map frame for the others).
+vector_map::VectorTile Tile(const std::string& robot, TileId key, double y = 1.0, double x0 = 0.4,
+                            double x1 = 1.6) {
+  const double ox = key.x * kTileSize;
+  const double oy = key.y * kTileSize;
+  vector_map::VectorTile tile;
+  tile.robot_id = RobotId{robot};
+  tile.tile = key;
+  tile.stamp = Clock::now() - seconds(1);
+  tile.tile_size = kTileSize;
+  tile.map.resolution = 0.05;
+  tile.map.epsilon = 0.07;
+  tile.map.obstacles.push_back(
+      vector_map::Polyline{{Point2(ox + x0, oy + y), Point2(ox + x1, oy + y)}, false, 0.025});
+  vector_map::FreePolygon free;
+  free.outer = {Point2(ox + x0, oy + 0.2), Point2(ox + x1, oy + 0.2), Point2(ox + x1, oy + y - 0.1),
+                Point2(ox + x0, oy + y - 0.1)};
+  tile.map.free_space.push_back(free);
+  return tile;
+}
+
+TileOrigin From(const std::string& robot, const std::string& participant,
+                bool in_map_frame = false) {
+  return TileOrigin{{RobotId{robot}, participant, "10.0.0.1"}, 1000, in_map_frame};
+}
+
+// The fleet-frame cell state at (x, y) metres in the fused grid (unknown outside it).
+int8_t CellAt(const FleetMap& map, double x, double y) {
+  const grid::OccupancyGrid grid = map.FusedGrid();
+  if (grid.empty()) return grid::kUnknownValue;
+  const int cx = static_cast<int>(std::floor((x - grid.origin().x) / grid.resolution()));
+  const int cy = static_cast<int>(std::floor((y - grid.origin().y) / grid.resolution()));
+  if (cx < 0 || cy < 0 || cx >= grid.width() || cy >= grid.height()) return grid::kUnknownValue;
+  return grid.at(cx, cy);
+}
+
+void Offer(FleetMap& map, vector_map::VectorTile tile, const TileOrigin& origin) {
+  const auto refused = map.Offer(std::move(tile), origin, Clock::now(), kSteady);
+  ASSERT_FALSE(refused.has_value()) << refused->detail;
+}
+
+void FuseAll(FleetMap& map) {
+  while (map.HasQueued()) map.FuseTurn();
+}
+
+bool HasContribution(const FleetMapChanges& changes, const std::string& robot, TileId tile,
+                     bool present) {
+  return std::any_of(changes.contributions.begin(), changes.contributions.end(),
+                     [&](const ContributionChange& change) {
+                       return change.robot.value == robot && change.tile == tile &&
+                              change.map.has_value() == present;
+                     });
+}
+
+TEST(FleetMapTest, AnOfferedTileIsFusedAndHandedOverOnce) {
+  FleetMap map = MakeMap();
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  EXPECT_TRUE(map.HasQueued());
+  EXPECT_EQ(map.FuseTurn(), 1u);
+  EXPECT_FALSE(map.HasQueued());
+
+  const FleetMapChanges changes = map.TakeChanged();
+  ASSERT_EQ(changes.fused.size(), 1u);
+  EXPECT_EQ(changes.fused[0].tile, (TileId{0, 0}));
+  ASSERT_EQ(changes.received.size(), 1u);
+  EXPECT_EQ(changes.received[0].tile.robot_id.value, "alpha");
+  EXPECT_EQ(changes.received[0].wire_bytes, 1000u);
+  EXPECT_FALSE(changes.received[0].in_map_frame);
+  EXPECT_TRUE(HasContribution(changes, "alpha", {0, 0}, true));
+  EXPECT_EQ(CellAt(map, 1.0, 1.0), grid::kOccupiedValue);
+  EXPECT_EQ(CellAt(map, 1.0, 0.5), grid::kFreeValue);
+
+  // Taken: the next call has nothing.
+  const FleetMapChanges again = map.TakeChanged();
+  EXPECT_TRUE(again.fused.empty());
+  EXPECT_TRUE(again.received.empty());
+  EXPECT_TRUE(again.contributions.empty());
+}
+
+TEST(FleetMapTest, AdmissionRefusesWhatItMustAndNothingIsQueued) {
+  FleetMap map = MakeMap();
+  vector_map::VectorTile future = Tile("alpha", {0, 0});
+  future.stamp = Clock::now() + std::chrono::hours(1);
+  const auto refused = map.Offer(future, From("alpha", "p1"), Clock::now(), kSteady);
+  ASSERT_TRUE(refused.has_value());
+  EXPECT_EQ(refused->reason, Refusal::kStampOutOfWindow);
+  vector_map::VectorTile wrong_size = Tile("alpha", {0, 0});
+  wrong_size.tile_size = 10.0;
+  const auto wrong = map.Offer(wrong_size, From("alpha", "p1"), Clock::now(), kSteady);
+  ASSERT_TRUE(wrong.has_value());
+  EXPECT_EQ(wrong->reason, Refusal::kBadTileSettings);
+  EXPECT_FALSE(map.HasQueued());
+}
+
+TEST(FleetMapTest, SendersTakeTurnsHoweverMuchOneOfThemQueued) {
+  FleetMap map = MakeMap();
+  // One participant floods 40 tiles under many ids; another sends one.
+  for (int i = 0; i < 40; ++i) {
+    Offer(map, Tile("flood" + std::to_string(i % 8), {i, 5}),
+          From("flood" + std::to_string(i % 8), "flooder"));
+  }
+  Offer(map, Tile("honest", {0, 0}), From("honest", "p2"));
+  map.FuseTurn();  // the flooder's first turn (queued first)
+  map.TakeChanged();
+  map.FuseTurn();
+  const FleetMapChanges second = map.TakeChanged();
+  ASSERT_EQ(second.received.size(), 1u);
+  EXPECT_EQ(second.received[0].tile.robot_id.value, "honest");
+}
+
+TEST(FleetMapTest, ARemovedTileLeavesTheFusedMap) {
+  FleetMap map = MakeMap();
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  FuseAll(map);
+  map.TakeChanged();
+  ASSERT_EQ(CellAt(map, 1.0, 1.0), grid::kOccupiedValue);
+  map.Remove(RobotId{"alpha"}, TileId{0, 0});
+  const FleetMapChanges changes = map.TakeChanged();
+  EXPECT_TRUE(HasContribution(changes, "alpha", {0, 0}, false));
+  EXPECT_EQ(map.fusion().contribution_count(), 0u);
+  EXPECT_EQ(map.admission().tiles_held(RobotId{"alpha"}), 0u);
+}
+
+TEST(FleetMapTest, TheMemoryBudgetEvictsTheRobotClaimedLast) {
+  FleetMapOptions options = Options();
+  // Room for two tiles of 2 m at 5 cm (about 20 KB each), not three.
+  options.admission.budget.max_bytes_per_robot = 50'000;
+  options.admission.budget.max_memory_bytes = 50'000;
+  FleetMap map = MakeMap(options);
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  Offer(map, Tile("beta", {3, 0}), From("beta", "p2"));
+  FuseAll(map);
+  map.TakeChanged();
+  ASSERT_EQ(map.fusion().contribution_count(), 2u);
+
+  Offer(map, Tile("alpha", {1, 0}), From("alpha", "p1"));
+  FuseAll(map);
+  const FleetMapChanges changes = map.TakeChanged();
+  ASSERT_EQ(changes.evicted.size(), 1u);
+  EXPECT_EQ(changes.evicted[0].value, "beta");
+  ASSERT_EQ(changes.dropped.size(), 1u);
+  EXPECT_EQ(changes.dropped[0].reason, Refusal::kMemoryBudget);
+  EXPECT_TRUE(HasContribution(changes, "beta", {3, 0}, false));
+  EXPECT_TRUE(HasContribution(changes, "alpha", {1, 0}, true));
+  EXPECT_EQ(map.fusion().contribution_count(), 2u);
+}
+
+TEST(FleetMapTest, AGivenFrameIsOneRowOfTheFramesTable) {
+  FleetMap map = MakeMap();
+  map.Join(RobotId{"alpha"}, Pose2{1.0, 2.0, 0.0});
+  map.Join(RobotId{"beta"}, std::nullopt);
+  ASSERT_TRUE(map.PlacementOf(RobotId{"alpha"}).has_value());
+  EXPECT_EQ(*map.PlacementOf(RobotId{"alpha"}), (Pose2{1.0, 2.0, 0.0}));
+  EXPECT_FALSE(map.PlacementOf(RobotId{"beta"}).has_value());
+  const FleetMapChanges changes = map.TakeChanged();
+  ASSERT_EQ(changes.frames.size(), 2u);
+  EXPECT_EQ(map.FrameOf(RobotId{"alpha"})->state, RobotFrame::State::kGiven);
+  EXPECT_EQ(map.FrameOf(RobotId{"beta"})->state, RobotFrame::State::kUnplaced);
+  // The same given frame again changes nothing.
+  map.Join(RobotId{"alpha"}, Pose2{1.0, 2.0, 0.0});
+  EXPECT_TRUE(map.TakeChanged().frames.empty());
+}
+
+TEST(FleetMapTest, TheFirstMapFrameRobotAnchorsTheFleetFrame) {
+  FleetMap map = MakeMap();
+  map.Join(RobotId{"alpha"}, std::nullopt);
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1", /*in_map_frame=*/true));
+  FuseAll(map);
+  // Kept in its own frame, not fused, until the frame is known.
+  EXPECT_EQ(map.fusion().contribution_count(), 0u);
+  EXPECT_FALSE(map.NextRegistration(kSteady).has_value());
+  EXPECT_EQ(map.FrameOf(RobotId{"alpha"})->state, RobotFrame::State::kAnchor);
+  const FleetMapChanges changes = map.TakeChanged();
+  EXPECT_TRUE(HasContribution(changes, "alpha", {0, 0}, true));
+  ASSERT_EQ(changes.received.size(), 1u);
+  EXPECT_TRUE(changes.received[0].in_map_frame);
+  EXPECT_EQ(CellAt(map, 1.0, 1.0), grid::kOccupiedValue);
+}
+
+TEST(FleetMapTest, ARegistrationResultPlacesTheRobotAndMovesItsTiles) {
+  FleetMap map = MakeMap();
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  map.Join(RobotId{"beta"}, std::nullopt);
+  Offer(map, Tile("beta", {0, 0}, 1.4), From("beta", "p2", /*in_map_frame=*/true));
+  FuseAll(map);
+  map.TakeChanged();
+
+  std::optional<registration::PlacementJob> job = map.NextRegistration(kSteady);
+  ASSERT_TRUE(job.has_value());
+  EXPECT_EQ(job->robot.value, "beta");
+  EXPECT_TRUE(job->target_robot.value.empty());  // on the fleet map
+  EXPECT_FALSE(job->target.empty());
+  EXPECT_FALSE(map.NextRegistration(kSteady).has_value()) << "one registration at a time";
+
+  // The registration found beta's map 4 m east of the fleet origin.
+  registration::PlacementResult result;
+  result.job = *job;
+  registration::Registration found;
+  found.found = true;
+  found.a_from_b = Pose2{4.0, 0.0, 0.0};
+  found.confidence = 0.99;
+  found.overlap = 0.5;
+  result.registration = found;
+  map.Placed(result, kSteady);
+
+  const std::optional<RobotFrame> frame = map.FrameOf(RobotId{"beta"});
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->state, RobotFrame::State::kPlaced);
+  EXPECT_EQ(frame->fleet_from_map, (Pose2{4.0, 0.0, 0.0}));
+  const FleetMapChanges changes = map.TakeChanged();
+  EXPECT_TRUE(HasContribution(changes, "beta", {2, 0}, true));
+  EXPECT_EQ(CellAt(map, 5.0, 1.4), grid::kOccupiedValue);
+  EXPECT_EQ(CellAt(map, 1.0, 1.0), grid::kOccupiedValue);  // alpha's, untouched by beta
+}
+
+TEST(FleetMapTest, ARotatedGivenFrameCarriesMapFrameTilesAtThatAngle) {
+  FleetMap map = MakeMap();
+  // A quarter turn about the fleet origin, then 10 m north: map (x, y) -> fleet (-y, x + 10).
+  map.Join(RobotId{"alpha"}, Pose2{0.0, 10.0, std::numbers::pi / 2});
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1", /*in_map_frame=*/true));
+  FuseAll(map);
+  map.TakeChanged();
+  EXPECT_EQ(map.FrameOf(RobotId{"alpha"})->state, RobotFrame::State::kGiven);
+  // The wall at map y = 1 runs along fleet x = -1, from y = 10.4 to 11.6.
+  EXPECT_EQ(CellAt(map, -1.0, 11.0), grid::kOccupiedValue);
+  EXPECT_EQ(CellAt(map, -0.5, 11.0), grid::kFreeValue);
+}
+
+}  // namespace
+}  // namespace fleetmap::fusion
