@@ -5,28 +5,9 @@
 
 #include <malloc.h>
 
+#include "server/fleet_map_log.hpp"
+
 namespace fleetmap::server {
-namespace {
-
-void Log(const Notice& notice) {
-  switch (notice.level) {
-    case Notice::Level::kDebug:
-      spdlog::debug("server: {}", notice.text);
-      return;
-    case Notice::Level::kInfo:
-      spdlog::info("server: {}", notice.text);
-      return;
-    case Notice::Level::kWarning:
-      spdlog::warn("server: {}", notice.text);
-      return;
-    case Notice::Level::kError:
-      spdlog::error("server: {}", notice.text);
-      return;
-  }
-}
-
-}  // namespace
-
 StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
     transport::Participant& participant, const fusion::FleetMapOptions& map,
     const FusionWorkerOptions& options, std::shared_ptr<RobotRegistry> registry) {
@@ -235,7 +216,7 @@ void FusionWorker::HandleRobotRecords() {
 
 void FusionWorker::Publish() {
   fusion::FleetMapChanges changes = map_.TakeChanged();
-  for (const Notice& notice : changes.notices) Log(notice);
+  for (const Notice& notice : changes.notices) LogNotice(notice);
   for (const fusion::DroppedTiles& dropped : changes.dropped) {
     Refuse(dropped.robot, dropped.reason, dropped.detail);
   }
@@ -260,21 +241,7 @@ void FusionWorker::Publish() {
 
 void FusionWorker::ReportStandings(const std::vector<fusion::TrustReport>& standings) {
   if (standings.empty()) return;
-  for (const fusion::TrustReport& report : standings) {
-    if (!report.standing_changed) {
-      spdlog::debug("server: robot {} is still quarantined: {}", report.robot.value, report.reason);
-    } else if (report.standing == fusion::Standing::kQuarantined) {
-      spdlog::warn(
-          "server: robot {} quarantined: {}, around ({:.1f}, {:.1f})..({:.1f}, {:.1f}) m; its "
-          "tiles are kept, not fused, until its map agrees, another robot confirms the change, "
-          "or an operator runs `fleetmap admit {}`",
-          report.robot.value, report.reason, report.area_min.x(), report.area_min.y(),
-          report.area_max.x(), report.area_max.y(), report.robot.value);
-    } else if (report.standing == fusion::Standing::kTrusted) {
-      spdlog::info("server: robot {} {}; its tiles are fused again", report.robot.value,
-                   report.reason);
-    }
-  }
+  for (const fusion::TrustReport& report : standings) LogStanding(report);
   std::lock_guard lock(stats_mutex_);
   for (const fusion::TrustReport& report : standings) {
     if (report.standing_changed && report.standing == fusion::Standing::kQuarantined) {
