@@ -68,8 +68,8 @@ void FleetMapStore::RestoreMapFrameTiles(fusion::FleetMap& map,
                                          const std::vector<store::TileRecord>& rows) {
   size_t restored = 0;
   for (const store::TileRecord& row : rows) {
-    const RobotId robot = *store::MapFrameRobot(row.owner);
-    const std::string name = options_.path + ": map-frame tile " + row.owner + " (" +
+    const RobotId& robot = row.owner.robot();
+    const std::string name = options_.path + ": map-frame tile " + row.owner.key() + " (" +
                              std::to_string(row.tile.x) + ", " + std::to_string(row.tile.y) + ")";
     StatusOr<transport::VectorTileMessage> tile = transport::DecodeTilePayload(row.payload, name);
     if (!tile.ok()) {
@@ -89,7 +89,7 @@ void FleetMapStore::RestoreMapFrameTiles(fusion::FleetMap& map,
   }
 }
 
-void FleetMapStore::KeepTile(const std::string& owner, const vector_map::VectorTile& tile) {
+void FleetMapStore::KeepTile(const store::TileOwner& owner, const vector_map::VectorTile& tile) {
   StatusOr<std::string> payload = transport::EncodeTilePayload(tile);
   if (!payload.ok()) return;  // it was decoded from the wire or made here; it encodes
   const Status queued = sync_.AddTile(store::TileRecord{
@@ -105,14 +105,16 @@ void FleetMapStore::Keep(const fusion::FleetMapChanges& changes,
     // A robot's map-frame tiles are kept apart from its fleet-frame rows: the fused map is not
     // rebuilt from them.
     const RobotId& robot = received.tile.robot_id;
-    KeepTile(received.in_map_frame ? store::MapFrameOwner(robot) : robot.value, received.tile);
+    KeepTile(received.in_map_frame ? store::TileOwner::RobotMapFrame(robot)
+                                   : store::TileOwner::Robot(robot),
+             received.tile);
   }
   for (const fusion::ContributionChange& change : changes.contributions) {
     if (const Status queued = sync_.ContributionChanged(change.robot, change.tile); !queued.ok()) {
       Failed("a contribution", queued);
     }
   }
-  for (const transport::VectorTileMessage& tile : fused) KeepTile(store::kFleetOwner, tile);
+  for (const transport::VectorTileMessage& tile : fused) KeepTile(store::TileOwner::Fleet(), tile);
 }
 
 void FleetMapStore::KeepAdmission(const transport::RobotAdmissionMessage& admission) {

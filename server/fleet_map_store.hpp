@@ -58,7 +58,7 @@ class FleetMapStore {
   FleetMapStore(const Options& options, std::unique_ptr<store::MapStore> store)
       : options_(options), store_(std::move(store)), sync_(store_.get(), StoreSync::Options{}) {}
 
-  void KeepTile(const std::string& owner, const vector_map::VectorTile& tile);
+  void KeepTile(const store::TileOwner& owner, const vector_map::VectorTile& tile);
   void RestoreMapFrameTiles(fusion::FleetMap& map, const std::vector<store::TileRecord>& rows);
   void Failed(const char* what, const Status& status);
 

@@ -15,6 +15,10 @@ std::string Describe(const std::string& owner, const TileId& tile) {
   return owner + "'s tile (" + std::to_string(tile.x) + ", " + std::to_string(tile.y) + ")";
 }
 
+std::string Describe(const store::TileOwner& owner, const TileId& tile) {
+  return Describe(owner.key(), tile);
+}
+
 Timestamp FromNanoseconds(int64_t ns) {
   return Timestamp(std::chrono::duration_cast<Clock::duration>(std::chrono::nanoseconds(ns)));
 }
@@ -28,9 +32,9 @@ int64_t ToNanoseconds(Timestamp stamp) {
 std::optional<std::string> PayloadProblem(const store::TileRecord& row, const std::string& name) {
   StatusOr<transport::VectorTileMessage> tile = transport::DecodeTilePayload(row.payload, name);
   if (!tile.ok()) return std::string(tile.status().message());
-  const std::optional<RobotId> map_frame_robot = store::MapFrameRobot(row.owner);
-  const std::string robot = map_frame_robot ? map_frame_robot->value : row.owner;
-  if (tile->tile != row.tile || tile->robot_id.value != robot) {
+  // A fused tile's payload names the fleet; a robot's, in either frame, the robot.
+  const std::string owner = row.owner.is_fleet() ? kFleetRobotName : row.owner.robot().value;
+  if (tile->tile != row.tile || tile->robot_id.value != owner) {
     return name + ": its payload is " + Describe(tile->robot_id.value, tile->tile) +
            ", not the row's key";
   }
@@ -51,12 +55,12 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
   const int cells_per_tile = fusion->options().CellsPerTile();
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::TileRecord> latest, store_->LatestTiles());
   FLEETMAP_ASSIGN_OR_RETURN(const auto corrupt, CheckTilePayloads(latest, &restored));
-  std::set<store::TileKey> done;
+  std::set<std::pair<RobotId, TileId>> done;  // contributions restored from their evidence
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<store::EvidenceRecord> evidence, store_->Evidence());
   for (const store::EvidenceRecord& record : evidence) {
     const std::string name =
-        store_->path() + ": evidence of " + Describe(record.owner, record.tile);
-    if (record.owner == store::kFleetOwner) {
+        store_->path() + ": evidence of " + Describe(record.robot.value, record.tile);
+    if (record.robot.value == kFleetRobotName) {
       restored.skipped.push_back(name + ": the fleet owns no evidence");
       continue;
     }
@@ -67,12 +71,12 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
       continue;
     }
     const Status imported =
-        fusion->ImportContribution(RobotId{record.owner}, record.tile, std::move(decoded).value());
+        fusion->ImportContribution(record.robot, record.tile, std::move(decoded).value());
     if (!imported.ok()) {
       restored.skipped.push_back(name + ": " + std::string(imported.message()));
       continue;
     }
-    done.insert({record.owner, record.tile});
+    done.insert({record.robot, record.tile});
     ++restored.from_evidence;
   }
 
@@ -80,18 +84,19 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
   // again in order, date each cell's evidence as the live fusion did (as far as the history goes).
   std::map<TileId, uint32_t> fused_revisions;
   for (const store::TileRecord& row : latest) {
-    if (row.owner == store::kFleetOwner) {
+    if (row.owner.is_fleet()) {
       // Fused tiles are rebuilt, not trusted; their revisions go on from the stored ones (the
       // revision is a column of its own: it holds even when the payload is corrupt).
       fused_revisions[row.tile] = row.revision;
       continue;
     }
     const bool row_corrupt = corrupt.count({row.owner, row.tile, row.revision, row.stamp_ns}) > 0;
-    if (store::MapFrameRobot(row.owner)) {
+    if (row.owner.kind() == store::TileOwner::Kind::kRobotMapFrame) {
       if (!row_corrupt) restored.map_frame_tiles.push_back(row);
       continue;
     }
-    if (done.count({row.owner, row.tile}) > 0) continue;
+    const RobotId& robot = row.owner.robot();
+    if (done.count({robot, row.tile}) > 0) continue;
     FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> revisions,
                               store_->TileHistory(row.owner, row.tile));
     if (revisions.empty() && !row_corrupt) revisions.push_back(row);  // kept without history
@@ -110,14 +115,14 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
       }
       // The payload's coordinates are relative to its own tile: fused under another key they
       // would land far away (and once kept start-up busy for good).
-      if (tile->tile != record.tile || tile->robot_id.value != record.owner) {
+      if (tile->tile != record.tile || tile->robot_id != robot) {
         restored.skipped.push_back(name + ": its payload is " +
                                    Describe(tile->robot_id.value, tile->tile) +
                                    ", not the row's key");
         continue;
       }
-      const Status updated = fusion->UpdateRobotTile(RobotId{record.owner}, record.tile, tile->map,
-                                                     FromNanoseconds(record.stamp_ns));
+      const Status updated =
+          fusion->UpdateRobotTile(robot, record.tile, tile->map, FromNanoseconds(record.stamp_ns));
       if (!updated.ok()) {
         restored.skipped.push_back(name + ": " + std::string(updated.message()));
         continue;
@@ -126,15 +131,15 @@ StatusOr<StoreSync::Restored> StoreSync::Restore(fusion::TileFusion* fusion) {
     }
     if (fused == 0) continue;
     ++restored.from_history;
-    changed_.insert({row.owner, row.tile});  // the store gets its evidence at the next Flush
+    changed_.insert({robot, row.tile});  // the store gets its evidence at the next Flush
   }
   fusion->ContinueRevisionsFrom(fused_revisions);
   return restored;
 }
 
-StatusOr<std::set<std::tuple<std::string, TileId, uint32_t, int64_t>>> StoreSync::CheckTilePayloads(
+StatusOr<std::set<StoreSync::RowKey>> StoreSync::CheckTilePayloads(
     const std::vector<store::TileRecord>& latest, Restored* restored) const {
-  std::set<std::tuple<std::string, TileId, uint32_t, int64_t>> corrupt;
+  std::set<RowKey> corrupt;
   const auto check = [&](const store::TileRecord& row, const std::string& table, size_t* named) {
     ++restored->tile_rows_checked;
     const std::string name = store_->path() + ": " + table + " row of " +
@@ -184,8 +189,8 @@ Status StoreSync::AddTile(store::TileRecord record) {
 
 Status StoreSync::ContributionChanged(const RobotId& robot, const TileId& tile) {
   if (store_ == nullptr) return Status::Ok();
-  FLEETMAP_RETURN_IF_ERROR(store::ValidateEvidenceRecord({robot.value, tile, 0, ""}));
-  changed_.insert({robot.value, tile});
+  FLEETMAP_RETURN_IF_ERROR(store::ValidateEvidenceRecord({robot, tile, 0, ""}));
+  changed_.insert({robot, tile});
   return Status::Ok();
 }
 
@@ -219,18 +224,18 @@ void StoreSync::Coalesce() {
 StatusOr<store::StoreBatch> StoreSync::MakeBatch(const fusion::TileFusion& fusion) const {
   store::StoreBatch batch;
   std::set<store::TileKey> removed;
-  for (const store::TileKey& key : changed_) {
+  for (const auto& [robot, tile] : changed_) {
     const std::optional<fusion::ContributionEvidence> evidence =
-        fusion.ExportContribution(RobotId{key.owner}, key.tile);
+        fusion.ExportContribution(robot, tile);
     if (!evidence.has_value()) {
+      const store::TileKey key{store::TileOwner::Robot(robot), tile};
       batch.removed.push_back(key);
       removed.insert(key);
       continue;
     }
     FLEETMAP_ASSIGN_OR_RETURN(std::string payload, fusion::EncodeEvidence(*evidence));
-    batch.evidence.push_back({key.owner, key.tile,
-                              std::max<int64_t>(0, ToNanoseconds(evidence->stamp)),
-                              std::move(payload)});
+    batch.evidence.push_back(
+        {robot, tile, std::max<int64_t>(0, ToNanoseconds(evidence->stamp)), std::move(payload)});
   }
   for (const store::TileRecord& record : tiles_) {
     // A revision of a tile that is gone since must not bring its rows back.

@@ -93,14 +93,16 @@ class StoreSync {
   StatusOr<store::StoreBatch> MakeBatch(const fusion::TileFusion& fusion) const;
   // Decodes every history and latest tile payload; names the corrupt ones in `restored` and
   // returns their rows' keys, so that the restore skips them without naming them twice.
-  StatusOr<std::set<std::tuple<std::string, TileId, uint32_t, int64_t>>> CheckTilePayloads(
+  // One stored row: owner, tile, revision and stamp.
+  using RowKey = std::tuple<store::TileOwner, TileId, uint32_t, int64_t>;
+  StatusOr<std::set<RowKey>> CheckTilePayloads(
       const std::vector<store::TileRecord>& latest, Restored* restored) const;
 
   store::MapStore* store_;
   Options options_;
   std::vector<store::TileRecord> tiles_;
   std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
-  std::set<store::TileKey> changed_;
+  std::set<std::pair<RobotId, TileId>> changed_;  // contributions changed or removed
   std::map<RobotId, store::RobotRecord> robots_;
   bool behind_ = false;
   uint64_t failed_attempts_ = 0;

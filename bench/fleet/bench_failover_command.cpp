@@ -193,7 +193,7 @@ StatusOr<std::map<TileId, store::TileRecord>> FusedTilesIn(const std::string& pa
   FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<store::MapStore> store,
                             store::MapStore::Open(path, options));
   FLEETMAP_ASSIGN_OR_RETURN(std::vector<store::TileRecord> tiles,
-                            store->LatestTiles(store::kFleetOwner));
+                            store->LatestTiles(store::TileOwner::Fleet()));
   std::map<TileId, store::TileRecord> out;
   for (store::TileRecord& tile : tiles) out[tile.tile] = std::move(tile);
   return out;

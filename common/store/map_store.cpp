@@ -211,7 +211,7 @@ StatusOr<int64_t> QueryInt(SqliteConnection& db, const char* sql, const std::str
 
 Status BindTile(SqliteStatement& statement, const TileRecord& tile) {
   statement.Reset();
-  FLEETMAP_RETURN_IF_ERROR(statement.BindText(1, tile.owner));
+  FLEETMAP_RETURN_IF_ERROR(statement.BindText(1, tile.owner.key()));
   FLEETMAP_RETURN_IF_ERROR(statement.Bind(2, tile.tile.x));
   FLEETMAP_RETURN_IF_ERROR(statement.Bind(3, tile.tile.y));
   FLEETMAP_RETURN_IF_ERROR(statement.Bind(4, tile.revision));
@@ -605,14 +605,14 @@ Status MapStore::Write(const StoreBatch& batch) {
     return statement.Bind(3, tile.y);
   };
   for (const TileKey& key : batch.removed) {
-    FLEETMAP_RETURN_IF_ERROR(bind_key(*count_tile_history_, key.owner, key.tile));
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*count_tile_history_, key.owner.key(), key.tile));
     FLEETMAP_ASSIGN_OR_RETURN(const bool row, count_tile_history_->Step());
     const int64_t tile_history = row ? count_tile_history_->ColumnInt64(0) : 0;
     count_tile_history_->Reset();
-    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_latest_, key.owner, key.tile));
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_latest_, key.owner.key(), key.tile));
     FLEETMAP_RETURN_IF_ERROR(delete_latest_->Run());
     if (db_->Changes() > 0) history_rows -= tile_history;  // the cascade took its history
-    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_evidence_, key.owner, key.tile));
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*delete_evidence_, key.owner.key(), key.tile));
     FLEETMAP_RETURN_IF_ERROR(delete_evidence_->Run());
   }
   for (const TileRecord& tile : batch.tiles) {
@@ -625,7 +625,7 @@ Status MapStore::Write(const StoreBatch& batch) {
     }
   }
   for (const EvidenceRecord& evidence : batch.evidence) {
-    FLEETMAP_RETURN_IF_ERROR(bind_key(*upsert_evidence_, evidence.owner, evidence.tile));
+    FLEETMAP_RETURN_IF_ERROR(bind_key(*upsert_evidence_, evidence.robot.value, evidence.tile));
     FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->Bind(4, evidence.stamp_ns));
     FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->BindBlob(5, evidence.payload));
     FLEETMAP_RETURN_IF_ERROR(upsert_evidence_->Run());
@@ -649,7 +649,7 @@ StatusOr<std::vector<EvidenceRecord>> MapStore::Evidence() const {
     FLEETMAP_ASSIGN_OR_RETURN(const bool row, select_evidence_->Step());
     if (!row) break;
     EvidenceRecord& evidence = out.emplace_back();
-    evidence.owner = select_evidence_->ColumnText(0);
+    evidence.robot = RobotId{select_evidence_->ColumnText(0)};
     evidence.tile.x = static_cast<int32_t>(select_evidence_->ColumnInt64(1));
     evidence.tile.y = static_cast<int32_t>(select_evidence_->ColumnInt64(2));
     evidence.stamp_ns = select_evidence_->ColumnInt64(3);
@@ -664,7 +664,7 @@ StatusOr<std::vector<TileRecord>> MapStore::ReadTiles(SqliteStatement& query) co
     FLEETMAP_ASSIGN_OR_RETURN(const bool row, query.Step());
     if (!row) break;
     TileRecord& tile = tiles.emplace_back();
-    tile.owner = query.ColumnText(0);
+    tile.owner = TileOwner::FromKey(query.ColumnText(0));
     tile.tile.x = static_cast<int32_t>(query.ColumnInt64(1));
     tile.tile.y = static_cast<int32_t>(query.ColumnInt64(2));
     tile.revision = static_cast<uint32_t>(query.ColumnInt64(3));
@@ -674,21 +674,21 @@ StatusOr<std::vector<TileRecord>> MapStore::ReadTiles(SqliteStatement& query) co
   return tiles;
 }
 
-StatusOr<std::vector<TileRecord>> MapStore::LatestTiles(const std::string& owner) const {
-  if (owner.empty()) {
-    select_latest_all_->Reset();
-    return ReadTiles(*select_latest_all_);
-  }
+StatusOr<std::vector<TileRecord>> MapStore::LatestTiles() const {
+  select_latest_all_->Reset();
+  return ReadTiles(*select_latest_all_);
+}
+
+StatusOr<std::vector<TileRecord>> MapStore::LatestTiles(const TileOwner& owner) const {
   select_latest_owner_->Reset();
-  FLEETMAP_RETURN_IF_ERROR(select_latest_owner_->BindText(1, owner));
+  FLEETMAP_RETURN_IF_ERROR(select_latest_owner_->BindText(1, owner.key()));
   return ReadTiles(*select_latest_owner_);
 }
 
-StatusOr<std::vector<TileRecord>> MapStore::TileHistory(const std::string& owner,
-                                                        const TileId& tile,
+StatusOr<std::vector<TileRecord>> MapStore::TileHistory(const TileOwner& owner, const TileId& tile,
                                                         int64_t since_ns) const {
   select_history_->Reset();
-  FLEETMAP_RETURN_IF_ERROR(select_history_->BindText(1, owner));
+  FLEETMAP_RETURN_IF_ERROR(select_history_->BindText(1, owner.key()));
   FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(2, tile.x));
   FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(3, tile.y));
   FLEETMAP_RETURN_IF_ERROR(select_history_->Bind(4, since_ns));
@@ -727,11 +727,11 @@ StatusOr<std::vector<RobotRecord>> MapStore::Robots() const {
   return robots;
 }
 
-Status MapStore::DeleteOwner(const std::string& owner) {
+Status MapStore::DeleteOwner(const TileOwner& owner) {
   SqliteTransaction transaction(*db_);
   FLEETMAP_RETURN_IF_ERROR(transaction.Begin());
   delete_owner_->Reset();
-  FLEETMAP_RETURN_IF_ERROR(delete_owner_->BindText(1, owner));
+  FLEETMAP_RETURN_IF_ERROR(delete_owner_->BindText(1, owner.key()));
   FLEETMAP_RETURN_IF_ERROR(delete_owner_->Run());
   // Cascaded deletes are not in Changes(): count again.
   FLEETMAP_ASSIGN_OR_RETURN(const int64_t history_rows, CountHistoryRows());
@@ -803,7 +803,7 @@ Status MapStore::ForEachHistoryRow(const std::function<void(const TileRecord&)>&
       return row.status();
     }
     if (!*row) break;
-    tile.owner = select_history_all_->ColumnText(0);
+    tile.owner = TileOwner::FromKey(select_history_all_->ColumnText(0));
     tile.tile.x = static_cast<int32_t>(select_history_all_->ColumnInt64(1));
     tile.tile.y = static_cast<int32_t>(select_history_all_->ColumnInt64(2));
     tile.revision = static_cast<uint32_t>(select_history_all_->ColumnInt64(3));

@@ -89,10 +89,11 @@ class MapStore {
   StatusOr<std::vector<EvidenceRecord>> Evidence() const;
 
   // The latest revision of every tile, or of `owner`'s tiles only; ordered by owner, x, y.
-  StatusOr<std::vector<TileRecord>> LatestTiles(const std::string& owner = "") const;
+  StatusOr<std::vector<TileRecord>> LatestTiles() const;
+  StatusOr<std::vector<TileRecord>> LatestTiles(const TileOwner& owner) const;
 
   // Every stored revision of `owner`'s `tile` stamped at or after `since_ns`, oldest first.
-  StatusOr<std::vector<TileRecord>> TileHistory(const std::string& owner, const TileId& tile,
+  StatusOr<std::vector<TileRecord>> TileHistory(const TileOwner& owner, const TileId& tile,
                                                 int64_t since_ns = 0) const;
 
   // Inserts or updates a robot: first_seen_ns keeps the earliest value, last_seen_ns the latest,
@@ -102,7 +103,7 @@ class MapStore {
   StatusOr<std::vector<RobotRecord>> Robots() const;
 
   // Removes `owner`'s latest tiles and their history (robot records stay). Unknown owner: OK.
-  Status DeleteOwner(const std::string& owner);
+  Status DeleteOwner(const TileOwner& owner);
 
   StatusOr<int64_t> HistoryRowCount() const;
   // Calls `visit` with every history row, oldest first, one at a time (the history may be larger

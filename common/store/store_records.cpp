@@ -20,36 +20,47 @@ Status CheckOwnerAndStamp(const std::string& owner, int64_t stamp_ns, const std:
   return InvalidArgumentError(where + ": " + what.str());
 }
 
+constexpr char kFleetKey[] = "fleet";
 constexpr char kMapFrameSuffix[] = "/map";
 
 }  // namespace
 
-std::string MapFrameOwner(const RobotId& robot) { return robot.value + kMapFrameSuffix; }
-
-std::optional<RobotId> MapFrameRobot(const std::string& owner) {
+TileOwner TileOwner::FromKey(const std::string& key) {
+  if (key == kFleetKey) return Fleet();
   const size_t suffix = sizeof(kMapFrameSuffix) - 1;
-  if (owner.size() <= suffix || owner.compare(owner.size() - suffix, suffix, kMapFrameSuffix)) {
-    return std::nullopt;
+  if (key.size() > suffix && key.compare(key.size() - suffix, suffix, kMapFrameSuffix) == 0) {
+    return RobotMapFrame(RobotId{key.substr(0, key.size() - suffix)});
   }
-  RobotId robot{owner.substr(0, owner.size() - suffix)};
-  if (!IsValidRobotName(robot.value)) return std::nullopt;
-  return robot;
+  return Robot(RobotId{key});
 }
+
+std::string TileOwner::key() const {
+  switch (kind_) {
+    case Kind::kFleet:
+      return kFleetKey;
+    case Kind::kRobot:
+      return robot_.value;
+    case Kind::kRobotMapFrame:
+      return robot_.value + kMapFrameSuffix;
+  }
+  return robot_.value;
+}
+
+std::ostream& operator<<(std::ostream& os, const TileOwner& owner) { return os << owner.key(); }
 
 Status ValidateTileRecord(const TileRecord& record) {
   std::ostringstream where;
   where << "tile record (owner '" << record.owner << "', " << record.tile << ", revision "
         << record.revision << ")";
-  // A robot's map-frame tiles are its own: the robot's name must be valid.
-  const std::optional<RobotId> map_frame = MapFrameRobot(record.owner);
-  return CheckOwnerAndStamp(map_frame ? map_frame->value : record.owner, record.stamp_ns,
-                            where.str());
+  // The fleet's rows have no robot; a robot's, in either frame, must name a valid one.
+  return CheckOwnerAndStamp(record.owner.is_fleet() ? kFleetKey : record.owner.robot().value,
+                            record.stamp_ns, where.str());
 }
 
 Status ValidateEvidenceRecord(const EvidenceRecord& record) {
   std::ostringstream where;
-  where << "evidence record (owner '" << record.owner << "', " << record.tile << ")";
-  return CheckOwnerAndStamp(record.owner, record.stamp_ns, where.str());
+  where << "evidence record (robot '" << record.robot.value << "', " << record.tile << ")";
+  return CheckOwnerAndStamp(record.robot.value, record.stamp_ns, where.str());
 }
 
 Status ValidateRobotRecord(const RobotRecord& record) {

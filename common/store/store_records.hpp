@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -10,24 +11,45 @@
 
 namespace fleetmap::store {
 
-// The owner of fused tiles in TileRecord::owner. Robot ids are the other owners.
-//
-// Owners stay strings, not RobotId: an owner is the key of a stored row, and the fleet that owns
-// the fused tiles is not a robot. The server turns them into RobotId where it hands a robot's
-// tiles and evidence to the fusion (server/store_sync.cpp).
-inline constexpr char kFleetOwner[] = "fleet";
+// Whose a stored tile row is: the fleet's (fused tiles), a robot's (its tiles in the fleet
+// frame, which the fused map is rebuilt from) or a robot's own map frame (the tiles of a robot
+// the server places by registration, kept apart). Rows store it as a key: "fleet", "<robot>" or
+// "<robot>/map" (the ROS name of that frame).
+class TileOwner {
+ public:
+  enum class Kind : uint8_t { kFleet, kRobot, kRobotMapFrame };
 
-// The owner of a robot's tiles in its own map frame (a robot the server places by registration):
-// "<robot>/map", the ROS name of that frame. They are kept apart from the robot's fleet-frame
-// rows, which the fused map is rebuilt from.
-std::string MapFrameOwner(const RobotId& robot);
-// The robot whose map-frame tiles `owner` holds, if it is such an owner.
-std::optional<RobotId> MapFrameRobot(const std::string& owner);
+  static TileOwner Fleet() { return TileOwner(Kind::kFleet, RobotId{}); }
+  static TileOwner Robot(RobotId robot) { return TileOwner(Kind::kRobot, std::move(robot)); }
+  static TileOwner RobotMapFrame(RobotId robot) {
+    return TileOwner(Kind::kRobotMapFrame, std::move(robot));
+  }
+  // The owner a stored key names. Any other key is read as a robot's, whose name the record
+  // checks (ValidateTileRecord) refuse when it is not one.
+  static TileOwner FromKey(const std::string& key);
+
+  Kind kind() const { return kind_; }
+  bool is_fleet() const { return kind_ == Kind::kFleet; }
+  // The robot whose tiles these are; empty for the fleet.
+  const RobotId& robot() const { return robot_; }
+  std::string key() const;
+
+  friend auto operator<=>(const TileOwner&, const TileOwner&) = default;
+  friend bool operator==(const TileOwner&, const TileOwner&) = default;
+
+ private:
+  TileOwner(Kind kind, RobotId robot) : kind_(kind), robot_(std::move(robot)) {}
+
+  Kind kind_;
+  RobotId robot_;
+};
+
+std::ostream& operator<<(std::ostream& os, const TileOwner& owner);
 
 // One revision of one tile. The payload is opaque to the store: the server encodes tiles with its
 // own codec.
 struct TileRecord {
-  std::string owner;  // robot id, kFleetOwner for fused tiles, or a MapFrameOwner
+  TileOwner owner = TileOwner::Fleet();
   TileId tile;
   uint32_t revision = 0;  // newer content has a higher revision
   int64_t stamp_ns = 0;   // when this revision was made, ns since the Unix epoch
@@ -39,7 +61,7 @@ struct TileRecord {
 // One robot's evidence for one tile: what the fusion needs to rebuild that robot's contribution
 // exactly (its cells and when each last changed). Opaque to the store, like tile payloads.
 struct EvidenceRecord {
-  std::string owner;  // robot id
+  RobotId robot;
   TileId tile;
   int64_t stamp_ns = 0;  // the newest tile revision it reflects, ns since the Unix epoch
   std::string payload;
@@ -49,14 +71,11 @@ struct EvidenceRecord {
 
 // One (owner, tile): the key of tile_latest and tile_evidence rows.
 struct TileKey {
-  std::string owner;
+  TileOwner owner = TileOwner::Fleet();
   TileId tile;
 
+  friend auto operator<=>(const TileKey&, const TileKey&) = default;
   friend bool operator==(const TileKey&, const TileKey&) = default;
-  friend bool operator<(const TileKey& a, const TileKey& b) {
-    if (a.owner != b.owner) return a.owner < b.owner;
-    return a.tile < b.tile;
-  }
 };
 
 // What the server knows about a robot of the fleet.

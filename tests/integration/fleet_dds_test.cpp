@@ -567,11 +567,14 @@ TEST_F(FleetDdsTest, StoredTilesOfAnOlderWireFormatAreSkippedAndTheRestRestored)
     tile.map.obstacles.push_back({{Point2(1.0, 5.0), Point2(9.0, 5.0)}, false, 0.0});
     const StatusOr<std::string> good = transport::EncodeTilePayload(tile);
     ASSERT_TRUE(good.ok()) << good.status();
-    ASSERT_TRUE((*store)
-                    ->PutTiles({{"alpha", TileId{0, 0}, 1, 1, *good},
-                                {"beta", TileId{1, 0}, 1, 1, VersionThreeTilePayload("beta")},
-                                {"gamma", TileId{2, 0}, 1, 1, VersionFourTilePayload("gamma")}})
-                    .ok());
+    ASSERT_TRUE(
+        (*store)
+            ->PutTiles({{store::TileOwner::Robot(RobotId{"alpha"}), TileId{0, 0}, 1, 1, *good},
+                        {store::TileOwner::Robot(RobotId{"beta"}), TileId{1, 0}, 1, 1,
+                         VersionThreeTilePayload("beta")},
+                        {store::TileOwner::Robot(RobotId{"gamma"}), TileId{2, 0}, 1, 1,
+                         VersionFourTilePayload("gamma")}})
+            .ok());
   }
   Subprocess server({kServer, "--duration", "30", "--store", path}, env_);
   EXPECT_TRUE(server.WaitForOutput("restored 1 robot tiles", kDeadline)) << server.Output();

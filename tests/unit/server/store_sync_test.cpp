@@ -56,7 +56,8 @@ void Publish(fusion::TileFusion* fusion, StoreSync* sync, const std::string& rob
     ASSERT_TRUE(payload.ok()) << payload.status();
     const int64_t ns =
         std::chrono::duration_cast<std::chrono::nanoseconds>(stamp.time_since_epoch()).count();
-    ASSERT_TRUE(sync->AddTile({robot, tile, revision, ns, *payload}).ok());
+    ASSERT_TRUE(
+        sync->AddTile({store::TileOwner::FromKey(robot), tile, revision, ns, *payload}).ok());
     ASSERT_TRUE(sync->ContributionChanged(RobotId{robot}, tile).ok());
   }
 }
@@ -118,7 +119,7 @@ TEST(StoreSyncTest, RestartRebuildsTheFusedMapCellForCell) {
     ASSERT_EQ(sync.Flush(live, kNow), FlushResult::kWritten) << sync.last_error();
     EXPECT_EQ(sync.pending(), 0u);
     // The blanked tile left the store; the others' evidence is there.
-    EXPECT_EQ(store->LatestTiles("alpha")->size(), 1u);
+    EXPECT_EQ(store->LatestTiles(store::TileOwner::FromKey("alpha"))->size(), 1u);
     EXPECT_EQ(store->Evidence()->size(), 2u);
   }
   ASSERT_EQ(live.FusedGrid().at(20, 20), kOccupiedValue);  // beta's newer wall
@@ -190,9 +191,9 @@ TEST(StoreSyncTest, RowWhoseKeyDisagreesWithItsPayloadIsSkipped) {
     // The payload of tile (0, 0) under a key 2000 Mm away (its cells beyond the int range: fused
     // there, start-up spun at 100 % CPU), another under beta's name; and one good row.
     ASSERT_TRUE(store
-                    ->PutTiles({{"alpha", {1 << 30, 0}, 1, 1, *tile_0_0},
-                                {"beta", {0, 0}, 1, 1, *tile_0_0},
-                                {"alpha", {0, 0}, 1, 1, *tile_0_0}})
+                    ->PutTiles({{store::TileOwner::FromKey("alpha"), {1 << 30, 0}, 1, 1, *tile_0_0},
+                                {store::TileOwner::FromKey("beta"), {0, 0}, 1, 1, *tile_0_0},
+                                {store::TileOwner::FromKey("alpha"), {0, 0}, 1, 1, *tile_0_0}})
                     .ok());
   }
   auto store = OpenStore(path);
@@ -223,7 +224,11 @@ TEST(StoreSyncTest, DamagedEvidenceIsSkippedWithItsReason) {
     auto store = OpenStore(path);
     ASSERT_NE(store, nullptr);
     ASSERT_TRUE(
-        store->Write({{}, {{"alpha", {0, 0}, 1, "garbage"}, {"fleet", {0, 0}, 1, ""}}, {}, {}})
+        store
+            ->Write({{},
+                     {{RobotId{"alpha"}, {0, 0}, 1, "garbage"}, {RobotId{"fleet"}, {0, 0}, 1, ""}},
+                     {},
+                     {}})
             .ok());
   }
   auto store = OpenStore(path);
@@ -255,7 +260,9 @@ TEST(StoreSyncTest, DiskFullKeepsTheNewestOfEachTileAndCatchesUpWhenSpaceReturns
   while (result == FlushResult::kWritten && revision < 1000) {
     ++revision;
     for (int x = 0; x < 8; ++x) {
-      ASSERT_TRUE(sync.AddTile({"alpha", {x, 0}, revision, revision, filler}).ok());
+      ASSERT_TRUE(
+          sync.AddTile({store::TileOwner::FromKey("alpha"), {x, 0}, revision, revision, filler})
+              .ok());
     }
     result = sync.Flush(fusion, now);
   }
@@ -270,7 +277,9 @@ TEST(StoreSyncTest, DiskFullKeepsTheNewestOfEachTileAndCatchesUpWhenSpaceReturns
   for (int more = 0; more < 50; ++more) {
     ++revision;
     for (int x = 0; x < 8; ++x) {
-      ASSERT_TRUE(sync.AddTile({"alpha", {x, 0}, revision, revision, filler}).ok());
+      ASSERT_TRUE(
+          sync.AddTile({store::TileOwner::FromKey("alpha"), {x, 0}, revision, revision, filler})
+              .ok());
     }
   }
   EXPECT_EQ(sync.pending(), 8u);
@@ -286,7 +295,7 @@ TEST(StoreSyncTest, DiskFullKeepsTheNewestOfEachTileAndCatchesUpWhenSpaceReturns
   ASSERT_EQ(sync.Flush(fusion, now), FlushResult::kWritten) << sync.last_error();
   EXPECT_FALSE(sync.behind());
   EXPECT_EQ(sync.pending(), 0u);
-  const auto latest = store->LatestTiles("alpha");
+  const auto latest = store->LatestTiles(store::TileOwner::FromKey("alpha"));
   ASSERT_TRUE(latest.ok());
   ASSERT_EQ(latest->size(), 8u);
   for (const store::TileRecord& tile : *latest) EXPECT_EQ(tile.revision, revision);
@@ -299,12 +308,14 @@ TEST(StoreSyncTest, RecordsTheStoreWouldRefuseAreRefusedAlone) {
   ASSERT_NE(store, nullptr);
   StoreSync sync(store.get(), {});
   fusion::TileFusion fusion = MakeFusion();
-  EXPECT_EQ(sync.AddTile({"", {0, 0}, 1, 1, "x"}).code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(sync.AddTile({"alpha", {0, 0}, 1, -5, "x"}).code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(sync.AddTile({store::TileOwner::FromKey(""), {0, 0}, 1, 1, "x"}).code(),
+            StatusCode::kInvalidArgument);
+  EXPECT_EQ(sync.AddTile({store::TileOwner::FromKey("alpha"), {0, 0}, 1, -5, "x"}).code(),
+            StatusCode::kInvalidArgument);
   EXPECT_EQ(sync.ContributionChanged(RobotId{"no good"}, {0, 0}).code(),
             StatusCode::kInvalidArgument);
   EXPECT_EQ(sync.AddRobot({"alpha", 5, 1, "active", ""}).code(), StatusCode::kInvalidArgument);
-  ASSERT_TRUE(sync.AddTile({"alpha", {0, 0}, 1, 1, "x"}).ok());
+  ASSERT_TRUE(sync.AddTile({store::TileOwner::FromKey("alpha"), {0, 0}, 1, 1, "x"}).ok());
   EXPECT_EQ(sync.Flush(fusion, kNow), FlushResult::kWritten) << sync.last_error();
   EXPECT_EQ(store->LatestTiles()->size(), 1u);
 }
@@ -320,7 +331,7 @@ TEST(StoreSyncTest, FusedRevisionsGoOnFromTheStoredOnesAfterARestart) {
     const auto fused =
         transport::EncodeTilePayload({RobotId{"fleet"}, {0, 0}, 7, kT0, kTileSize, map});
     ASSERT_TRUE(fused.ok()) << fused.status();
-    ASSERT_TRUE(store->PutTiles({{"fleet", {0, 0}, 7, 1, *fused}}).ok());
+    ASSERT_TRUE(store->PutTiles({{store::TileOwner::FromKey("fleet"), {0, 0}, 7, 1, *fused}}).ok());
   }
   auto store = OpenStore(path);
   ASSERT_NE(store, nullptr);
@@ -338,12 +349,12 @@ TEST(StoreSyncTest, FusedRevisionsGoOnFromTheStoredOnesAfterARestart) {
   EXPECT_EQ(fusion.FindFusedTile({0, 0})->revision, 8u);
   EXPECT_EQ(fusion.FindFusedTile({1, 0})->revision, 1u);
   // Stored as published: the store's latest fused row is the new one.
-  ASSERT_TRUE(sync.AddTile({"fleet", {0, 0}, 8, 2, "eight"}).ok());
+  ASSERT_TRUE(sync.AddTile({store::TileOwner::FromKey("fleet"), {0, 0}, 8, 2, "eight"}).ok());
   ASSERT_EQ(sync.Flush(fusion, kNow), FlushResult::kWritten);
-  const auto latest = store->LatestTiles("fleet");
+  const auto latest = store->LatestTiles(store::TileOwner::FromKey("fleet"));
   ASSERT_TRUE(latest.ok());
   ASSERT_EQ(latest->size(), 1u);
-  EXPECT_EQ((*latest)[0], (store::TileRecord{"fleet", {0, 0}, 8, 2, "eight"}));
+  EXPECT_EQ((*latest)[0], (store::TileRecord{store::TileOwner::Fleet(), {0, 0}, 8, 2, "eight"}));
 }
 
 // A corrupt history BLOB (the restore from evidence never reads it) is named at start-up by its

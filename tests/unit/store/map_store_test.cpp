@@ -25,7 +25,7 @@ using ::testing::StartsWith;
 TileRecord Tile(const std::string& owner, int x, int y, uint32_t revision, int64_t stamp_ns,
                 std::string payload = "") {
   if (payload.empty()) payload = owner + "@" + std::to_string(revision);
-  return {owner, {x, y}, revision, stamp_ns, std::move(payload)};
+  return {TileOwner::FromKey(owner), {x, y}, revision, stamp_ns, std::move(payload)};
 }
 
 std::vector<uint32_t> Revisions(const std::vector<TileRecord>& tiles) {
@@ -82,19 +82,43 @@ class MapStoreTest : public ::testing::Test {
   std::string path_;
 };
 
+// A row's owner is one of three kinds, stored as a key it is read back from.
+TEST(TileOwnerTest, KeysNameTheFleetARobotAndARobotsMapFrame) {
+  const TileOwner fleet = TileOwner::Fleet();
+  const TileOwner robot = TileOwner::Robot(RobotId{"alpha"});
+  const TileOwner map_frame = TileOwner::RobotMapFrame(RobotId{"alpha"});
+  EXPECT_EQ(fleet.key(), "fleet");
+  EXPECT_EQ(robot.key(), "alpha");
+  EXPECT_EQ(map_frame.key(), "alpha/map");
+  for (const TileOwner& owner : {fleet, robot, map_frame}) {
+    EXPECT_EQ(TileOwner::FromKey(owner.key()), owner) << owner;
+  }
+  EXPECT_TRUE(TileOwner::FromKey("fleet").is_fleet());
+  EXPECT_EQ(TileOwner::FromKey("alpha/map").robot().value, "alpha");
+  EXPECT_NE(robot, map_frame);
+  // A key naming no valid robot is read as one, and the record checks refuse it.
+  const TileRecord bad{TileOwner::FromKey("no good/map"), {0, 0}, 1, 1, "x"};
+  EXPECT_EQ(ValidateTileRecord(bad).code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(ValidateTileRecord({map_frame, {0, 0}, 1, 1, "x"}).ok());
+}
+
 TEST_F(MapStoreTest, RoundTripsTiles) {
   auto store = OpenOrDie();
   ASSERT_NE(store, nullptr);
   const std::vector<TileRecord> tiles = {
       Tile("robot_b", -3, 7, 1, 100, std::string("bin\0ary\xff", 8)),
-      Tile(kFleetOwner, 0, 0, 4, 50),
-      {"robot_a", {1, 2}, 2, 300, ""},  // an empty payload stays empty, not NULL
+      Tile("fleet", 0, 0, 4, 50),
+      {TileOwner::Robot(RobotId{"robot_a"}),
+       {1, 2},
+       2,
+       300,
+       ""},  // an empty payload stays empty, not NULL
   };
   ASSERT_TRUE(store->PutTiles(tiles).ok());
   const auto latest = store->LatestTiles();
   ASSERT_TRUE(latest.ok()) << latest.status();
   EXPECT_THAT(*latest, ElementsAre(tiles[1], tiles[2], tiles[0]));  // by owner, x, y
-  const auto fleet = store->LatestTiles(kFleetOwner);
+  const auto fleet = store->LatestTiles(TileOwner::FromKey("fleet"));
   ASSERT_TRUE(fleet.ok());
   EXPECT_THAT(*fleet, ElementsAre(tiles[1]));
 }
@@ -105,10 +129,10 @@ TEST_F(MapStoreTest, LatestKeepsNewestRevisionAndHistoryKeepsAll) {
   // Revision 2 arrives after revision 3 (out of order): it enters the history only.
   ASSERT_TRUE(store->PutTiles({Tile("robot_a", 1, 1, 1, 10), Tile("robot_a", 1, 1, 3, 30)}).ok());
   ASSERT_TRUE(store->PutTiles({Tile("robot_a", 1, 1, 2, 20)}).ok());
-  const auto latest = store->LatestTiles("robot_a");
+  const auto latest = store->LatestTiles(TileOwner::FromKey("robot_a"));
   ASSERT_TRUE(latest.ok());
   EXPECT_THAT(*latest, ElementsAre(Tile("robot_a", 1, 1, 3, 30)));
-  const auto history = store->TileHistory("robot_a", {1, 1});
+  const auto history = store->TileHistory(TileOwner::FromKey("robot_a"), {1, 1});
   ASSERT_TRUE(history.ok()) << history.status();
   EXPECT_THAT(*history, ElementsAre(Tile("robot_a", 1, 1, 1, 10), Tile("robot_a", 1, 1, 2, 20),
                                     Tile("robot_a", 1, 1, 3, 30)));
@@ -131,11 +155,11 @@ TEST_F(MapStoreTest, HistorySinceTimeStartsAtThatStamp) {
                                 Tile("robot_b", 2, 3, revision, revision * 100)})
                     .ok());
   }
-  const auto since = store->TileHistory("robot_a", {2, 3}, 300);
+  const auto since = store->TileHistory(TileOwner::FromKey("robot_a"), {2, 3}, 300);
   ASSERT_TRUE(since.ok());
   EXPECT_THAT(Revisions(*since), ElementsAre(3, 4, 5));
-  EXPECT_TRUE(store->TileHistory("robot_a", {2, 3}, 501)->empty());
-  EXPECT_TRUE(store->TileHistory("robot_a", {3, 2})->empty());
+  EXPECT_TRUE(store->TileHistory(TileOwner::FromKey("robot_a"), {2, 3}, 501)->empty());
+  EXPECT_TRUE(store->TileHistory(TileOwner::FromKey("robot_a"), {3, 2})->empty());
 }
 
 TEST_F(MapStoreTest, RoundTripsRobotsAndMergesSightings) {
@@ -184,11 +208,12 @@ TEST_F(MapStoreTest, ReopenKeepsEverything) {
   }
   auto store = OpenOrDie();
   ASSERT_NE(store, nullptr);
-  const auto latest = store->LatestTiles(testing::kWriterRobot);
+  const auto latest = store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}));
   ASSERT_TRUE(latest.ok());
   ASSERT_EQ(latest->size(), 2u * testing::kWriterTilesPerBatch);
   EXPECT_EQ(latest->front(), testing::WriterBatch(0).front());
-  EXPECT_THAT(Revisions(store->TileHistory(kFleetOwner, {0, 0}).value()), ElementsAre(1, 2));
+  EXPECT_THAT(Revisions(store->TileHistory(TileOwner::FromKey("fleet"), {0, 0}).value()),
+              ElementsAre(1, 2));
   EXPECT_EQ(store->HistoryRowCount().value(), 2 * (testing::kWriterTilesPerBatch + 1));
   EXPECT_THAT(store->Robots().value(), ElementsAre(RobotRecord{"robot_a", 1, 2, "left", "bye"}));
   EXPECT_TRUE(store->CheckIntegrity().ok());
@@ -222,7 +247,7 @@ TEST_F(MapStoreTest, MaxHistoryRowsDropsTheOldest) {
   auto store = OpenOrDie(options);  // the count survives a reopen
   ASSERT_NE(store, nullptr);
   ASSERT_TRUE(store->PutTiles({Tile("robot_a", 0, 0, 9, 9), Tile("robot_a", 0, 0, 10, 10)}).ok());
-  EXPECT_THAT(Revisions(store->TileHistory("robot_a", {0, 0}).value()),
+  EXPECT_THAT(Revisions(store->TileHistory(TileOwner::FromKey("robot_a"), {0, 0}).value()),
               ElementsAre(6, 7, 8, 9, 10));
   EXPECT_THAT(Revisions(store->LatestTiles().value()), ElementsAre(10));
 }
@@ -245,12 +270,12 @@ TEST_F(MapStoreTest, DeleteOwnerRemovesItsTilesAndHistory) {
                               Tile("robot_b", 0, 0, 1, 1)})
                   .ok());
   ASSERT_TRUE(store->PutRobot({"robot_a", 1, 2, "left", ""}).ok());
-  ASSERT_TRUE(store->DeleteOwner("robot_a").ok());
+  ASSERT_TRUE(store->DeleteOwner(TileOwner::FromKey("robot_a")).ok());
   EXPECT_THAT(store->LatestTiles().value(), ElementsAre(Tile("robot_b", 0, 0, 1, 1)));
-  EXPECT_TRUE(store->TileHistory("robot_a", {0, 0})->empty());
+  EXPECT_TRUE(store->TileHistory(TileOwner::FromKey("robot_a"), {0, 0})->empty());
   EXPECT_EQ(store->HistoryRowCount().value(), 1);
   EXPECT_EQ(store->Robots()->size(), 1u);
-  EXPECT_TRUE(store->DeleteOwner("nobody").ok());
+  EXPECT_TRUE(store->DeleteOwner(TileOwner::FromKey("nobody")).ok());
 }
 
 TEST_F(MapStoreTest, RefusesInvalidOptions) {
@@ -378,7 +403,7 @@ TEST_F(MapStoreTest, EveryReportedBatchSurvivesSigkill) {
   auto store = OpenOrDie();  // replays the WAL the killed writer left behind
   ASSERT_NE(store, nullptr);
   EXPECT_TRUE(store->CheckIntegrity().ok()) << store->CheckIntegrity();
-  const auto latest = store->LatestTiles(testing::kWriterRobot);
+  const auto latest = store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}));
   ASSERT_TRUE(latest.ok()) << latest.status();
   // Batches are atomic: batch `last + 1` may have committed before the kill, never in part.
   const size_t batches = latest->size() / testing::kWriterTilesPerBatch;
@@ -392,7 +417,7 @@ TEST_F(MapStoreTest, EveryReportedBatchSurvivesSigkill) {
           << "batch " << batch << " tile " << i;
     }
   }
-  const auto fused = store->LatestTiles(kFleetOwner);
+  const auto fused = store->LatestTiles(TileOwner::FromKey("fleet"));
   ASSERT_TRUE(fused.ok());
   ASSERT_EQ(fused->size(), 1u);
   EXPECT_EQ(fused->front().revision, batches);
@@ -460,7 +485,7 @@ TEST_F(MapStoreTest, MigratesAVersionTwoFileAndKeepsItsTilesAndSessions) {
   ASSERT_NE(store, nullptr);
   EXPECT_EQ(store->open_report().found_version, 2);
   EXPECT_FALSE(store->open_report().unclean_close);
-  EXPECT_EQ(store->LatestTiles(testing::kWriterRobot)->size(),
+  EXPECT_EQ(store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}))->size(),
             static_cast<size_t>(testing::kWriterTilesPerBatch));
   EXPECT_EQ(store->Sessions()->size(), 1u);
   EXPECT_TRUE(store->Evidence()->empty());
@@ -515,8 +540,8 @@ TEST_F(MapStoreTest, EvidenceRowsAreReplacedAndRoundTrip) {
   ASSERT_TRUE(store->Write({{}, {{"alpha", {0, 0}, 9, "new"}}, {}, {}}).ok());
   const auto evidence = store->Evidence();
   ASSERT_TRUE(evidence.ok()) << evidence.status();
-  EXPECT_THAT(*evidence, ElementsAre(EvidenceRecord{"alpha", {0, 0}, 9, "new"},
-                                     EvidenceRecord{"beta", {-1, 2}, 6, binary}));
+  EXPECT_THAT(*evidence, ElementsAre(EvidenceRecord{RobotId{"alpha"}, {0, 0}, 9, "new"},
+                                     EvidenceRecord{RobotId{"beta"}, {-1, 2}, 6, binary}));
   const Status refused = store->Write({{}, {{"", {0, 0}, 1, "x"}}, {}, {}});
   EXPECT_EQ(refused.code(), StatusCode::kInvalidArgument);
   EXPECT_THAT(refused.message(), HasSubstr("evidence record 0"));
@@ -534,20 +559,25 @@ TEST_F(MapStoreTest, RemovedTileLosesItsRowsHistoryAndEvidenceOnly) {
                   .ok());
   ASSERT_EQ(store->HistoryRowCount().value(), 4);
   // The robot disposed tile (0, 0); in the same batch a fused revision arrives.
-  ASSERT_TRUE(store->Write({{Tile(kFleetOwner, 0, 0, 1, 30)}, {}, {{"alpha", {0, 0}}}, {}}).ok());
+  ASSERT_TRUE(store
+                  ->Write({{Tile("fleet", 0, 0, 1, 30)},
+                           {},
+                           {{TileOwner::Robot(RobotId{"alpha"}), {0, 0}}},
+                           {}})
+                  .ok());
   const auto latest = store->LatestTiles();
   ASSERT_TRUE(latest.ok());
   std::vector<std::string> keys;
   for (const TileRecord& tile : *latest) {
-    keys.push_back(tile.owner + " " + std::to_string(tile.tile.x));
+    keys.push_back(tile.owner.key() + " " + std::to_string(tile.tile.x));
   }
   EXPECT_THAT(keys, ElementsAre("alpha 1", "beta 0", "fleet 0"));
-  EXPECT_TRUE(store->TileHistory("alpha", {0, 0})->empty());
+  EXPECT_TRUE(store->TileHistory(TileOwner::FromKey("alpha"), {0, 0})->empty());
   EXPECT_EQ(store->HistoryRowCount().value(), 3);
-  EXPECT_THAT(*store->Evidence(), ElementsAre(EvidenceRecord{"alpha", {1, 0}, 10, "a10"}));
+  EXPECT_THAT(*store->Evidence(), ElementsAre(EvidenceRecord{RobotId{"alpha"}, {1, 0}, 10, "a10"}));
   EXPECT_EQ(store->Robots()->size(), 1u);
   // Removing a key the store does not hold is not an error.
-  EXPECT_TRUE(store->Write({{}, {}, {{"gamma", {5, 5}}}, {}}).ok());
+  EXPECT_TRUE(store->Write({{}, {}, {{TileOwner::Robot(RobotId{"gamma"}), {5, 5}}}, {}}).ok());
 }
 
 TEST_F(MapStoreTest, RemovalsCountTowardsTheHistoryLimit) {
@@ -559,11 +589,11 @@ TEST_F(MapStoreTest, RemovalsCountTowardsTheHistoryLimit) {
                   ->PutTiles({Tile("alpha", 0, 0, 1, 1), Tile("alpha", 0, 0, 2, 2),
                               Tile("alpha", 1, 0, 1, 1)})
                   .ok());
-  ASSERT_TRUE(store->Write({{}, {}, {{"alpha", {0, 0}}}, {}}).ok());
+  ASSERT_TRUE(store->Write({{}, {}, {{TileOwner::Robot(RobotId{"alpha"}), {0, 0}}}, {}}).ok());
   // One row left: two more fit without dropping the (1, 0) row.
   ASSERT_TRUE(store->PutTiles({Tile("alpha", 2, 0, 1, 1), Tile("alpha", 3, 0, 1, 1)}).ok());
   EXPECT_EQ(store->HistoryRowCount().value(), 3);
-  EXPECT_EQ(store->TileHistory("alpha", {1, 0})->size(), 1u);
+  EXPECT_EQ(store->TileHistory(TileOwner::FromKey("alpha"), {1, 0})->size(), 1u);
 }
 
 TEST_F(MapStoreTest, RefusesAnEmptyFileAndSaysHowToStartFresh) {
@@ -622,7 +652,8 @@ TEST_F(MapStoreTest, ReportsAKilledWriterAndWhatItsWalGaveBack) {
   EXPECT_GT(report.wal_frames_recovered, 0);
   EXPECT_TRUE(report.warnings.empty()) << report.Summary();
   EXPECT_THAT(report.Summary(), HasSubstr("not closed by its last writer (WAL of"));
-  EXPECT_GE(store->LatestTiles(testing::kWriterRobot)->size(), 6u * testing::kWriterTilesPerBatch);
+  EXPECT_GE(store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}))->size(),
+            6u * testing::kWriterTilesPerBatch);
 }
 
 TEST_F(MapStoreTest, WarnsWhenAKilledWritersWalIsMissing) {
@@ -690,7 +721,7 @@ TEST_F(MapStoreTest, ReportsAWalCutMidFrameWithWhatRecoveryDropped) {
   EXPECT_THAT(warning, HasSubstr("its last writer's -shm counts " + std::to_string(frames) +
                                  " committed frames"));
   // What the warning says was kept is what the store holds: whole batches, fewer than 6.
-  const auto latest = store->LatestTiles(testing::kWriterRobot);
+  const auto latest = store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}));
   ASSERT_TRUE(latest.ok());
   EXPECT_LT(latest->size(), 6u * testing::kWriterTilesPerBatch);
   EXPECT_EQ(latest->size() % testing::kWriterTilesPerBatch, 0u);
@@ -777,7 +808,7 @@ TEST_F(MapStoreTest, AWaitingWriterGetsTheStoreOnceItsHolderExits) {
   ASSERT_EQ(notices.size(), 1u);
   EXPECT_EQ(notices[0], path_ + " is in use by process " + std::to_string(holder) +
                             ": waiting up to 60 s for it to close the store");
-  EXPECT_EQ((*store)->LatestTiles(testing::kWriterRobot)->size(),
+  EXPECT_EQ((*store)->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}))->size(),
             static_cast<size_t>(testing::kWriterTilesPerBatch));
   EXPECT_EQ(writer->Wait(std::chrono::seconds(10)), 128 + SIGKILL);
 }
@@ -801,7 +832,7 @@ TEST_F(MapStoreTest, HistoryRowsAreVisitedOneByOneOldestFirst) {
   std::vector<std::string> visited;
   ASSERT_TRUE(store
                   ->ForEachHistoryRow([&](const TileRecord& row) {
-                    visited.push_back(row.owner + "@" + std::to_string(row.revision));
+                    visited.push_back(row.owner.key() + "@" + std::to_string(row.revision));
                   })
                   .ok());
   EXPECT_THAT(visited, ElementsAre("alpha@1", "beta@1", "alpha@2"));
@@ -821,7 +852,7 @@ TEST_F(MapStoreTest, FullFileFailsAsDiskFullAndKeepsEarlierCommits) {
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.code(), StatusCode::kResourceExhausted) << status;
   EXPECT_THAT(status.message(), HasSubstr("database or disk is full"));
-  EXPECT_EQ(store->LatestTiles(testing::kWriterRobot)->size(),
+  EXPECT_EQ(store->LatestTiles(TileOwner::Robot(RobotId{testing::kWriterRobot}))->size(),
             static_cast<size_t>(committed * testing::kWriterTilesPerBatch));
 }
 

@@ -21,9 +21,14 @@ inline std::vector<TileRecord> WriterBatch(int batch) {
   for (int i = 0; i < kWriterTilesPerBatch; ++i) {
     std::string payload = "batch " + std::to_string(batch) + " tile " + std::to_string(i) + ";";
     payload.resize(1024, static_cast<char>('a' + (batch + i) % 26));
-    tiles.push_back({kWriterRobot, {batch, i}, revision, stamp_ns, std::move(payload)});
+    tiles.push_back({TileOwner::Robot(RobotId{kWriterRobot}),
+                     {batch, i},
+                     revision,
+                     stamp_ns,
+                     std::move(payload)});
   }
-  tiles.push_back({kFleetOwner, {0, 0}, revision, stamp_ns, "fused " + std::to_string(batch)});
+  tiles.push_back(
+      {TileOwner::Fleet(), {0, 0}, revision, stamp_ns, "fused " + std::to_string(batch)});
   return tiles;
 }
 
