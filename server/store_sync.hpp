@@ -95,13 +95,13 @@ class StoreSync {
   // returns their rows' keys, so that the restore skips them without naming them twice.
   // One stored row: owner, tile, revision and stamp.
   using RowKey = std::tuple<store::TileOwner, TileId, uint32_t, int64_t>;
-  StatusOr<std::set<RowKey>> CheckTilePayloads(
-      const std::vector<store::TileRecord>& latest, Restored* restored) const;
+  StatusOr<std::set<RowKey>> CheckTilePayloads(const std::vector<store::TileRecord>& latest,
+                                               Restored* restored) const;
 
   store::MapStore* store_;
   Options options_;
   std::vector<store::TileRecord> tiles_;
-  std::map<store::TileKey, size_t> tile_index_;  // into tiles_, while behind_
+  std::map<store::TileKey, size_t> tile_index_;   // into tiles_, while behind_
   std::set<std::pair<RobotId, TileId>> changed_;  // contributions changed or removed
   std::map<RobotId, store::RobotRecord> robots_;
   bool behind_ = false;
