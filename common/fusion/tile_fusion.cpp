@@ -183,7 +183,10 @@ grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& s
 
 bool TileFusion::FuseAgain(const TileId& tile, TileState* state) {
   const int cells = options_.CellsPerTile();
-  grid::OccupancyGrid fused = FuseCells(tile, *state, Evidence{});
+  const auto reviewed = reviewed_cells_.find(tile);
+  grid::OccupancyGrid fused = reviewed != reviewed_cells_.end()
+                                  ? std::move(reviewed->second)
+                                  : FuseCells(tile, *state, Evidence{});
   // Which borders the change reached decides which neighbours must be re-vectorized too.
   int min_x = cells, min_y = cells, max_x = -1, max_y = -1;
   for (int y = 0; y < cells; ++y) {
@@ -338,6 +341,7 @@ void TileFusion::StandingChanged(const RobotId& robot) {
   for (auto& [tile, state] : tiles_) {
     if (state.robots.count(robot) == 0) continue;
     to_fuse_again_.insert(tile);
+    reviewed_cells_.erase(tile);  // the robot's evidence joined or left the trusted cells
     // Its evidence joined or left the fleet's: the quarantined robots here are weighed again.
     for (const auto& [other, contribution] : state.robots) {
       if (other != robot && !Fused(other)) to_review_.insert({tile, other});
@@ -390,6 +394,8 @@ void TileFusion::ReviewTrust() {
       }
       decide.insert(robot);
     }
+    // Before the decisions below: a standing they change drops its tiles' cells again.
+    for (auto& [tile, review] : tile_reviews) reviewed_cells_[tile] = std::move(review.trusted);
     for (const RobotId& robot : decide) {
       // Newly (un)corroborated, it is weighed against other evidence: counted again, then decided.
       if (trust_.Corroborate(robot)) {
@@ -443,6 +449,7 @@ StatusOr<std::vector<FusedTile>> TileFusion::FuseChanged() {
   ReviewTrust();
   for (const TileId& tile : to_fuse_again_) FuseAgain(tile, &tiles_.at(tile));
   to_fuse_again_.clear();
+  reviewed_cells_.clear();
   std::vector<FusedTile> changed;
   for (const auto& [tile, trigger] : to_vectorize_) {
     FLEETMAP_ASSIGN_OR_RETURN(vector_map::VectorMap map, VectorizeWithContext(tile));

@@ -177,6 +177,10 @@ class TileFusion {
   std::map<TileId, TileState> tiles_;
   uint64_t tiles_created_ = 0;
   std::set<TileId> to_fuse_again_;  // robot input changed
+  // The trusted cells the last trust review of a tile fused, while still what FuseAgain would
+  // fuse (no standing changed on the tile since): FuseAgain takes them instead of fusing again.
+  // Within one FuseChanged() only.
+  std::map<TileId, grid::OccupancyGrid> reviewed_cells_;
   // Fused cells (or a neighbour's border) changed, with the newest robot stamp that caused it.
   std::map<TileId, Timestamp> to_vectorize_;
   std::map<TileId, FusedTile> vector_tiles_;
