@@ -1,6 +1,5 @@
 #include "server/fusion_worker.hpp"
 
-#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <malloc.h>
@@ -8,6 +7,7 @@
 #include "server/fleet_map_log.hpp"
 
 namespace fleetmap::server {
+
 StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
     transport::Participant& participant, const fusion::FleetMapOptions& map,
     const FusionWorkerOptions& options, std::shared_ptr<RobotRegistry> registry) {
