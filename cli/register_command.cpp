@@ -119,6 +119,7 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     json["confidence"] = r.confidence;
     json["score"] = r.score;
     json["overlap"] = r.overlap;
+    json["drift_m"] = r.drift;
     json["ms"] = ms;
     if (!r.found) json["why_not"] = r.why_not;
     out << json.dump() << "\n";
@@ -137,6 +138,8 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
         << r.contradicting_cells
         << " occupied cells contradict, the best other placement verifies at "
         << Num(100.0 * r.peak_ratio) << " % of the best\n"
+        << "drift:      " << Num(r.drift)
+        << " m, the largest shift a block of B took to verify (docs/registration.md)\n"
         << "time:       " << Num(ms) << " ms\n";
   }
   out.flush();

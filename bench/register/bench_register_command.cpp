@@ -116,6 +116,7 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   bench_options.seed = options.seed;
   bench_options.run_mexplore = !options.skip_mexplore;
   bench_options.drift = !options.no_drift;
+  bench_options.registration.max_drift_per_m = options.max_drift_per_m;
   const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &err);
   const std::vector<SummaryRow> rows = Summarize(run.pairs);
   const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
@@ -137,8 +138,13 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
         .append(Fixed(100.0 * bench_options.drift_options.max_scale, 0))
         .append(" %, bend up to ")
         .append(Fixed(bench_options.drift_options.max_bend_deg_per_m, 2))
-        .append(" deg/m)");
+        .append(" deg/m), drifted pairs judged where they overlap A");
   }
+  source.append(bench_options.registration.max_drift_per_m > 0.0
+                    ? "; fleetmap verifies allowing drift up to " +
+                          Fixed(100.0 * bench_options.registration.max_drift_per_m, 1) +
+                          " cm per metre"
+                    : "; fleetmap verifies rigidly (--max-drift-per-m 0)");
   out << "Map registration, " << source << ", " << options.pairs_per_overlap
       << " pairs per map and overlap (seed " << options.seed << "): " << run.pairs.size()
       << " pairs";
@@ -277,6 +283,12 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   command->add_flag("--no-drift", options->no_drift,
                     "skip the drifted pairs (each pair again with B warped smoothly)");
+  command
+      ->add_option("--max-drift-per-m", options->max_drift_per_m,
+                   "drift the verification allows per metre from where the maps agree "
+                   "(docs/registration.md, Drift); 0 verifies rigidly")
+      ->check(CLI::Range(0.0, 0.2))
+      ->capture_default_str();
   command->add_option("--synthetic", options->synthetic_maps,
                       "use this many synthetic terrains (office, maze, unstructured, warehouse, "
                       "office rows, corridors) instead of --maps, and print the confidence "

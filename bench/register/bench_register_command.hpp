@@ -17,6 +17,8 @@
 #include <ostream>
 #include <string>
 
+#include "common/registration/registration.hpp"
+
 namespace fleetmap::bench {
 
 struct BenchRegisterOptions {
@@ -29,6 +31,9 @@ struct BenchRegisterOptions {
   std::string csv_path;   // empty: none
   std::string json_path;  // empty: none
   bool skip_mexplore = false;
+  // The registration's drift bound (RegistrationOptions::max_drift_per_m); 0 verifies rigidly,
+  // the verification before issue 31's drift model, for a side-by-side figure.
+  double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;
 };
 
 // Bad options or unreadable maps print a message naming them and return cli::kExitBadInput.

@@ -235,6 +235,37 @@ grid::OccupancyGrid Warp(const grid::OccupancyGrid& map, const Point2& pivot, do
   return out;
 }
 
+WarpedPoint WarpPoint(const grid::OccupancyGrid& map, const Point2& pivot, double scale,
+                      double bend_per_metre, const Point2& p) {
+  const Transform2 map_from_grid = map.origin().ToTransform();
+  const Point2 pivot_grid = map_from_grid.inverse() * pivot;
+  const Point2 d = map_from_grid.inverse() * p - pivot_grid;
+  const double turn = bend_per_metre * d.x();
+  const Point2 w = pivot_grid + (1.0 + scale) * (Eigen::Rotation2Dd(turn) * d);
+  return {map_from_grid * w, turn};
+}
+
+Point2 OverlapCentroid(const MapPair& pair) {
+  const Transform2 map_from_grid_b = pair.b.origin().ToTransform();
+  const Transform2 grid_a_from_b = pair.a.origin().ToTransform().inverse() * pair.a_from_b;
+  const double res_b = pair.b.resolution(), res_a = pair.a.resolution();
+  Point2 sum(0.0, 0.0);
+  int64_t count = 0;
+  for (int y = 0; y < pair.b.height(); ++y) {
+    for (int x = 0; x < pair.b.width(); ++x) {
+      if (pair.b.at(x, y) == grid::kUnknownValue) continue;
+      const Point2 p = map_from_grid_b * Point2((x + 0.5) * res_b, (y + 0.5) * res_b);
+      const Point2 q = grid_a_from_b * p;
+      const int ax = static_cast<int>(std::floor(q.x() / res_a));
+      const int ay = static_cast<int>(std::floor(q.y() / res_a));
+      if (!pair.a.Contains(ax, ay) || pair.a.at(ax, ay) == grid::kUnknownValue) continue;
+      sum += p;
+      ++count;
+    }
+  }
+  return count > 0 ? Point2(sum / static_cast<double>(count)) : KnownCentroid(pair.b);
+}
+
 Point2 KnownCentroid(const grid::OccupancyGrid& map) {
   Point2 sum(0, 0);
   int n = 0;

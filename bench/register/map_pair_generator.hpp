@@ -75,6 +75,19 @@ struct DriftOptions {
 grid::OccupancyGrid Warp(const grid::OccupancyGrid& map, const Point2& pivot, double scale,
                          double bend_per_metre);
 
+// Where Warp(map, pivot, scale, bend_per_metre) takes the map-frame point `p`, and how far it
+// turns the map there (radians).
+struct WarpedPoint {
+  Point2 point;
+  double turn = 0.0;
+};
+WarpedPoint WarpPoint(const grid::OccupancyGrid& map, const Point2& pivot, double scale,
+                      double bend_per_metre, const Point2& p);
+
+// The map-frame centroid of the pair's overlap: B's known cells that the truth lays on A's known
+// cells (B's known centroid when there are none).
+Point2 OverlapCentroid(const MapPair& pair);
+
 // The cells [x0, x0 + w) x [y0, y0 + h) of `map` in `map`'s frame (origin at the crop's corner);
 // cells outside `map` are unknown.
 grid::OccupancyGrid CropCells(const grid::OccupancyGrid& map, int x0, int y0, int w, int h);

@@ -21,13 +21,35 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Errors of an estimate at B's known centroid, in cells and degrees.
-void Judge(const MapPair& pair, const Point2& centroid_b, const Pose2& estimate,
+// Where a placement is judged: a point of the registered B (map frame), where the truth lays it
+// on A, and how the truth's yaw reads there.
+struct JudgePoint {
+  Point2 b;
+  Point2 a;
+  double yaw = 0.0;
+};
+
+// A plain pair is rigid, so it is judged at B's known centroid. A drifted B has no rigid truth:
+// it is judged where it overlaps A, the overlap's centroid carried by the warp (and the warp's
+// turn there), since a rigid placement can be right there and nowhere else far from it.
+JudgePoint PlainJudgePoint(const MapPair& pair, const Point2& centroid_b) {
+  return {centroid_b, pair.a_from_b * centroid_b, Pose2::FromTransform(pair.a_from_b).yaw};
+}
+
+JudgePoint DriftedJudgePoint(const MapPair& pair, const Point2& pivot, double scale,
+                             double bend_per_metre) {
+  const Point2 overlap = OverlapCentroid(pair);
+  const WarpedPoint warped = WarpPoint(pair.b, pivot, scale, bend_per_metre, overlap);
+  return {warped.point, pair.a_from_b * overlap,
+          Pose2::FromTransform(pair.a_from_b).yaw - warped.turn};
+}
+
+// Errors of an estimate at the judge point, in cells and degrees.
+void Judge(const MapPair& pair, const JudgePoint& at, const Pose2& estimate,
            const RegisterBenchOptions& options, MethodOutcome* outcome) {
-  const Point2 d = estimate.ToTransform() * centroid_b - pair.a_from_b * centroid_b;
+  const Point2 d = estimate.ToTransform() * at.b - at.a;
   outcome->translation_error_cells = d.norm() / pair.b.resolution();
-  outcome->yaw_error_deg =
-      std::abs(NormalizeAngle(estimate.yaw - Pose2::FromTransform(pair.a_from_b).yaw)) / kDegree;
+  outcome->yaw_error_deg = std::abs(NormalizeAngle(estimate.yaw - at.yaw)) / kDegree;
   outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
                    outcome->yaw_error_deg <= options.max_yaw_deg;
   outcome->success = outcome->found && outcome->right;
@@ -90,9 +112,9 @@ StatusOr<std::vector<SourceMap>> TerrainMaps(int count, uint32_t first_seed, boo
   return maps;
 }
 
-// Registers one pair with both methods and judges them against the truth at `centroid_b`.
+// Registers one pair with both methods and judges them against the truth at `at`.
 PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b,
-                         const MapPair& truth, const Point2& centroid_b,
+                         const MapPair& truth, const JudgePoint& at,
                          const RegisterBenchOptions& options) {
   PairOutcome outcome;
   outcome.overlap = truth.overlap;
@@ -106,7 +128,7 @@ PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid
     outcome.fleetmap.confidence = r->confidence;
     outcome.fleetmap.score = r->score;
     outcome.fleetmap.why_not = r->why_not;
-    Judge(truth, centroid_b, r->a_from_b, options, &outcome.fleetmap);
+    Judge(truth, at, r->a_from_b, options, &outcome.fleetmap);
   }
   if (options.run_mexplore) {
     t0 = std::chrono::steady_clock::now();
@@ -114,7 +136,7 @@ PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid
     outcome.mexplore.seconds = SecondsSince(t0);
     outcome.mexplore.found = mx.found;
     outcome.mexplore.confidence = mx.match_confidence;
-    Judge(truth, centroid_b, mx.a_from_b, options, &outcome.mexplore);
+    Judge(truth, at, mx.a_from_b, options, &outcome.mexplore);
   }
   return outcome;
 }
@@ -158,22 +180,25 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
           continue;
         }
         const Point2 centroid_b = KnownCentroid(pair->b);
-        PairOutcome outcome = RegisterPair(pair->a, pair->b, *pair, centroid_b, options);
+        PairOutcome outcome =
+            RegisterPair(pair->a, pair->b, *pair, PlainJudgePoint(*pair, centroid_b), options);
         outcome.map = maps[m].name;
         outcome.group = maps[m].group;
         outcome.target_overlap = options.overlaps[o];
         run.pairs.push_back(outcome);
         if (options.drift) {
-          // The same pair with B warped about its known centroid, where it is judged (drawn
-          // after the pair, so the plain pairs do not depend on whether drift is on).
+          // The same pair with B warped about its known centroid, judged where it overlaps A
+          // (drawn after the pair, so the plain pairs do not depend on whether drift is on).
           std::uniform_real_distribution<double> scale(-options.drift_options.max_scale,
                                                        options.drift_options.max_scale);
           std::uniform_real_distribution<double> bend(
               -options.drift_options.max_bend_deg_per_m * kDegree,
               options.drift_options.max_bend_deg_per_m * kDegree);
           const double s = scale(rng);
-          const grid::OccupancyGrid drifted = Warp(pair->b, centroid_b, s, bend(rng));
-          PairOutcome warped = RegisterPair(pair->a, drifted, *pair, centroid_b, options);
+          const double b = bend(rng);
+          const grid::OccupancyGrid drifted = Warp(pair->b, centroid_b, s, b);
+          PairOutcome warped = RegisterPair(pair->a, drifted, *pair,
+                                            DriftedJudgePoint(*pair, centroid_b, s, b), options);
           warped.map = maps[m].name;
           warped.group = maps[m].group + " drifted";
           warped.target_overlap = options.overlaps[o];

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/registration/confidence_calibration.hpp"
+#include "common/registration/placement_verifier.hpp"
 
 namespace fleetmap::registration {
 namespace {
@@ -278,37 +279,6 @@ class BranchAndBound {
   int height_;
 };
 
-// A rigid transform between the grids' own frames (metres from cell (0, 0)'s outer corner).
-struct GridTransform {
-  double yaw = 0.0;
-  double tx = 0.0;
-  double ty = 0.0;
-  Point2 Apply(const Point2& p) const {
-    const double c = std::cos(yaw), s = std::sin(yaw);
-    return {c * p.x() - s * p.y() + tx, s * p.x() + c * p.y() + ty};
-  }
-};
-
-// The centres (grid metres) of g's cells in `state`, evenly thinned to at most `max_points`.
-std::vector<Point2> CellCentres(const grid::OccupancyGrid& g, grid::CellState state, int max_points,
-                                const grid::StateThresholds& thresholds) {
-  std::vector<Point2> all;
-  const double res = g.resolution();
-  for (int y = 0; y < g.height(); ++y) {
-    for (int x = 0; x < g.width(); ++x) {
-      if (g.StateAt(x, y, thresholds) == state) {
-        all.emplace_back((x + 0.5) * res, (y + 0.5) * res);
-      }
-    }
-  }
-  if (static_cast<int>(all.size()) <= max_points) return all;
-  std::vector<Point2> thinned;
-  thinned.reserve(max_points);
-  const double stride = static_cast<double>(all.size()) / max_points;
-  for (int i = 0; i < max_points; ++i) thinned.push_back(all[static_cast<size_t>(i * stride)]);
-  return thinned;
-}
-
 // The mean field value at `points` moved by `t`, interpolated bilinearly between cell centres
 // (a nearest-cell read would score every shift within a cell alike).
 double FieldScore(const cv::Mat& field, double res, const std::vector<Point2>& points,
@@ -358,168 +328,6 @@ GridTransform LocalSearch(const cv::Mat& field, double res, const std::vector<Po
   return best;
 }
 
-// Occupied cells within `radius` cells of an occupied cell.
-std::vector<uint8_t> NearOccupied(const grid::OccupancyGrid& g, int radius,
-                                  const grid::StateThresholds& thresholds) {
-  cv::Mat occupied(g.height(), g.width(), CV_8U, cv::Scalar(0));
-  for (int y = 0; y < g.height(); ++y) {
-    for (int x = 0; x < g.width(); ++x) {
-      if (g.StateAt(x, y, thresholds) == grid::CellState::kOccupied) occupied.at<uint8_t>(y, x) = 1;
-    }
-  }
-  cv::Mat near;
-  cv::dilate(occupied, near,
-             cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1)));
-  return std::vector<uint8_t>(near.datastart, near.dataend);
-}
-
-struct Evidence {
-  int64_t known = 0;            // `from` cells known
-  int64_t known_shared = 0;     // ... landing on a known `to` cell
-  int64_t occupied_shared = 0;  // `from` occupied cells landing on a known `to` cell
-  int64_t agree = 0;            // `from` occupied cells with a `to` occupied cell near
-  int64_t contradict = 0;       // `from` occupied cells on a free `to` cell with none near
-};
-
-// What `from`'s cells find in `to` when moved by to_from_from (grid metres).
-Evidence Compare(const grid::OccupancyGrid& from, const grid::OccupancyGrid& to,
-                 const std::vector<uint8_t>& to_near_occupied, const GridTransform& to_from_from,
-                 const grid::StateThresholds& thresholds) {
-  Evidence e;
-  const double res = from.resolution();
-  const double c = std::cos(to_from_from.yaw), s = std::sin(to_from_from.yaw);
-  for (int y = 0; y < from.height(); ++y) {
-    for (int x = 0; x < from.width(); ++x) {
-      const grid::CellState state = from.StateAt(x, y, thresholds);
-      if (state == grid::CellState::kUnknown) continue;
-      ++e.known;
-      const double px = (x + 0.5) * res, py = (y + 0.5) * res;
-      const int tx = static_cast<int>(std::floor((c * px - s * py + to_from_from.tx) / res));
-      const int ty = static_cast<int>(std::floor((s * px + c * py + to_from_from.ty) / res));
-      if (!to.Contains(tx, ty)) continue;
-      const grid::CellState to_state = to.StateAt(tx, ty, thresholds);
-      if (to_state == grid::CellState::kUnknown) continue;
-      ++e.known_shared;
-      if (state != grid::CellState::kOccupied) continue;
-      ++e.occupied_shared;
-      if (to_near_occupied[static_cast<size_t>(ty) * to.width() + tx]) {
-        ++e.agree;
-      } else if (to_state == grid::CellState::kFree) {
-        ++e.contradict;
-      }
-    }
-  }
-  return e;
-}
-
-GridTransform Inverse(const GridTransform& t) {
-  const double c = std::cos(t.yaw), s = std::sin(t.yaw);
-  return {-t.yaw, -(c * t.tx + s * t.ty), -(-s * t.tx + c * t.ty)};
-}
-
-// Scores a candidate placement at full resolution from thinned samples of both maps, so that
-// many candidates can be compared for little more than one: B's and A's occupied cells that meet
-// an occupied cell of the other map (within the tolerance) agree, those on the other's free space
-// with none near contradict. Samples stand for all the cells they were thinned from, so the
-// figures are cell counts. (Counting B's free cells on A's free cells as agreement too was tried
-// and measured worse on synthetic pairs: any placement with overlap earns it.)
-class PlacementVerifier {
- public:
-  struct Verdict {
-    double agree = 0.0;       // occupied cells, both ways
-    double contradict = 0.0;  // occupied cells, both ways
-    double value = 0.0;       // agree - w * contradict
-  };
-
-  // near_a / near_b: NearOccupied of each map at the tolerance.
-  PlacementVerifier(const grid::OccupancyGrid& a, std::vector<uint8_t> near_a,
-                    const grid::OccupancyGrid& b, std::vector<uint8_t> near_b,
-                    const RegistrationOptions& options)
-      : a_(Side(a, std::move(near_a), options)),
-        b_(Side(b, std::move(near_b), options)),
-        contradiction_weight_(options.verify_contradiction_weight) {}
-
-  // `t` takes B's grid metres to A's.
-  Verdict Verify(const GridTransform& t) const {
-    Verdict v;
-    const Tally b_in_a = Occupied(b_, a_, t);
-    const Tally a_in_b = Occupied(a_, b_, Inverse(t));
-    v.agree = b_in_a.agree + a_in_b.agree;
-    v.contradict = b_in_a.contradict + a_in_b.contradict;
-    v.value = v.agree - contradiction_weight_ * v.contradict;
-    return v;
-  }
-
-  const std::vector<uint8_t>& near_a() const { return a_.near_occupied; }
-  const std::vector<uint8_t>& near_b() const { return b_.near_occupied; }
-
- private:
-  static constexpr uint8_t kUnknown = 0, kFree = 1, kOccupied = 2;
-  struct SideData {
-    int width = 0, height = 0;
-    double res = 1.0;
-    std::vector<uint8_t> state;
-    std::vector<uint8_t> near_occupied;
-    std::vector<Point2> occupied_points;
-    double occupied_weight = 1.0;  // cells per sample
-    int64_t Index(const Point2& p) const {
-      const int x = static_cast<int>(std::floor(p.x() / res));
-      const int y = static_cast<int>(std::floor(p.y() / res));
-      if (x < 0 || y < 0 || x >= width || y >= height) return -1;
-      return static_cast<int64_t>(y) * width + x;
-    }
-  };
-  struct Tally {
-    double agree = 0.0, contradict = 0.0;
-  };
-
-  static SideData Side(const grid::OccupancyGrid& g, std::vector<uint8_t> near_occupied,
-                       const RegistrationOptions& options) {
-    const grid::StateThresholds& th = options.thresholds;
-    SideData s;
-    s.width = g.width();
-    s.height = g.height();
-    s.res = g.resolution();
-    s.state.resize(g.cell_count());
-    int64_t occupied = 0;
-    for (int y = 0; y < g.height(); ++y) {
-      for (int x = 0; x < g.width(); ++x) {
-        const grid::CellState state = g.StateAt(x, y, th);
-        uint8_t& out = s.state[static_cast<size_t>(y) * g.width() + x];
-        out = state == grid::CellState::kOccupied ? kOccupied
-              : state == grid::CellState::kFree   ? kFree
-                                                  : kUnknown;
-        occupied += out == kOccupied;
-      }
-    }
-    s.near_occupied = std::move(near_occupied);
-    s.occupied_points = CellCentres(g, grid::CellState::kOccupied, options.max_refine_points, th);
-    if (!s.occupied_points.empty()) {
-      s.occupied_weight = static_cast<double>(occupied) / s.occupied_points.size();
-    }
-    return s;
-  }
-
-  static Tally Occupied(const SideData& from, const SideData& to, const GridTransform& t) {
-    Tally tally;
-    for (const Point2& p : from.occupied_points) {
-      const int64_t i = to.Index(t.Apply(p));
-      if (i < 0) continue;
-      const size_t k = static_cast<size_t>(i);
-      if (to.near_occupied[k]) {
-        tally.agree += from.occupied_weight;
-      } else if (to.state[k] == kFree) {
-        tally.contradict += from.occupied_weight;
-      }
-    }
-    return tally;
-  }
-
-  SideData a_;
-  SideData b_;
-  double contradiction_weight_;
-};
-
 Status CheckGrid(const grid::OccupancyGrid& g, const char* name) {
   std::string which(name);
   if (g.empty()) return InvalidArgumentError(which.append(" is empty (no cells)"));
@@ -564,6 +372,14 @@ Status RegistrationOptions::Validate() const {
   }
   if (tolerance_cells < 0 || tolerance_cells > 10) {
     return InvalidArgumentError("registration tolerance_cells must be in 0..10");
+  }
+  if (!(drift_block_m >= 0.5 && drift_block_m <= 100.0)) {
+    return InvalidArgumentError("registration drift_block_m must be in [0.5, 100]");
+  }
+  if (!(max_drift_per_m >= 0.0 && max_drift_per_m <= 0.2) || max_drift_cells < 0 ||
+      max_drift_cells > 50) {
+    return InvalidArgumentError(
+        "registration max_drift_per_m must be in [0, 0.2] and max_drift_cells in 0..50");
   }
   if (candidates < 1 || candidates > 64) {
     return InvalidArgumentError("registration candidates must be in 1..64");
@@ -618,6 +434,9 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("symmetry_min_yaw_deg", symmetry_min_yaw_deg);
   out.Add("symmetry_min_agreement", symmetry_min_agreement);
   out.Add("symmetry_max_consistency_drop", symmetry_max_consistency_drop);
+  out.Add("drift_block_m", drift_block_m);
+  out.Add("max_drift_per_m", max_drift_per_m);
+  out.Add("max_drift_cells", max_drift_cells);
   out.Add("tolerance_cells", tolerance_cells);
   out.Add("min_agreeing_cells", min_agreeing_cells);
   out.Add("min_agreeing_share", min_agreeing_share);
@@ -778,8 +597,7 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   // the coarse field may blur the door or pillar that tells two places apart, and its score
   // rewards B's walls near A's walls wherever they are, so neither its order nor the fine
   // field's is trusted. Candidates that refine onto the same placement count once.
-  const PlacementVerifier verifier(a, NearOccupied(a, options.tolerance_cells, th), b,
-                                   NearOccupied(b, options.tolerance_cells, th), options);
+  const PlacementVerifier verifier(a, b, options);
   struct Verified {
     GridTransform t;
     PlacementVerifier::Verdict verdict;
@@ -800,7 +618,9 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   for (const Verified& s : screened) {
     Verified v;
     v.t = refine_fine(s.t);
-    v.verdict = verifier.Verify(v.t);
+    // The finalists are judged allowing for drift, so that a drifted map's right placement is
+    // not outvoted by walls that land a few cells off far from where the maps meet.
+    v.verdict = verifier.VerifyWithDrift(v.t);
     bool merged = false;
     for (Verified& other : verified) {
       if (distinct(other.t, v.t)) continue;
@@ -847,8 +667,10 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                                          b.origin().ToTransform().inverse());
 
   // Verification of the winner, both ways, on every cell.
-  const Evidence b_in_a = Compare(b, a, verifier.near_a(), grid_a_from_b, th);
-  const Evidence a_in_b = Compare(a, b, verifier.near_b(), Inverse(grid_a_from_b), th);
+  const DriftCorrection& drift = verified.front().verdict.drift;
+  const Evidence b_in_a = verifier.BInA(grid_a_from_b, drift);
+  const Evidence a_in_b = verifier.AInB(grid_a_from_b, drift);
+  result.drift = drift.Largest();
   result.agreeing_cells = static_cast<int>(b_in_a.agree);
   result.contradicting_cells = static_cast<int>(b_in_a.contradict + a_in_b.contradict);
   result.overlap = b_in_a.known > 0 ? static_cast<double>(b_in_a.known_shared) / b_in_a.known : 0.0;

@@ -60,6 +60,13 @@ struct RegistrationOptions {
   double symmetry_min_yaw_deg = 10.0;
   double symmetry_min_agreement = 0.5;
   double symmetry_max_consistency_drop = 0.1;
+  // Drift (docs/registration.md, *Drift*): the finalists are verified with each block of B,
+  // drift_block_m square, shifted on A by up to max_drift_per_m of the block's distance from the
+  // centre of the rigid agreement, and never more than max_drift_cells. The placement stays one
+  // rigid transform; 0 for either bound verifies rigidly.
+  double drift_block_m = 3.0;
+  double max_drift_per_m = 0.03;
+  int max_drift_cells = 8;
   // Verification at full resolution: occupied cells agree when the other map has an occupied cell
   // within tolerance_cells; they contradict when they land on a free cell with none within it.
   int tolerance_cells = 1;
@@ -106,6 +113,9 @@ struct Registration {
   // placement bar 0.95"); empty when found.
   std::string why_not;
   // The figures behind the decision.
+  // The largest shift (metres) a block of B took in the drift-tolerant verification: how far
+  // B's walls are from A's where they are farthest, under a_from_b (0 for a rigid fit).
+  double drift = 0.0;
   int agreeing_cells = 0;
   int contradicting_cells = 0;
   // How well the best clearly different placement verifies, as a fraction of the best's (1 when

@@ -309,6 +309,64 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
   }
 }
 
+// Drift (issue 31): crop B of each real map bent and stretched as a second SLAM run would map
+// the same walls (2 % scale, 0.1 degree per metre of heading creep, about B's known centroid).
+// A drifted map has no rigid truth, so a placement is judged where B overlaps A (as `bench
+// register` judges drifted pairs): within 3 cells and 2 degrees there. A rigid verification sees
+// B's far walls miss A's and refuses the right placements; the drift-tolerant one, where each
+// block of B may move by what drift could have done there, places more, and nothing wrongly.
+TEST(RegistrationTest, PlacesDriftedCropsOfRealMapsThatARigidVerificationRefuses) {
+  const auto maps = RealMaps();
+  ASSERT_FALSE(maps.empty()) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
+  RegistrationOptions rigid;
+  rigid.max_drift_per_m = 0.0;
+  constexpr double kBend = 0.1 * kDegree;
+  int cases = 0, placed_rigid = 0, placed_with_drift = 0, wrong = 0;
+  for (const auto& [name, map] : maps) {
+    if (name == "tb3_world") continue;  // point-symmetric: see the test above
+    const Box box = KnownBox(map);
+    const int w = box.x1 - box.x0 + 1, h = box.y1 - box.y0 + 1;
+    const bool along_x = w >= h;
+    const int crop_len = (along_x ? w : h) * 5 / 8;
+    const int shift = (along_x ? w : h) - crop_len;
+    bench::MapPair crops;  // both crops in the source map's frame: the truth is the identity
+    crops.a =
+        along_x ? Crop(map, box.x0, box.y0, crop_len, h) : Crop(map, box.x0, box.y0, w, crop_len);
+    crops.b = along_x ? Crop(map, box.x0 + shift, box.y0, crop_len, h)
+                      : Crop(map, box.x0, box.y0 + shift, w, crop_len);
+    const Point2 pivot = bench::KnownCentroid(crops.b);
+    const Point2 overlap = bench::OverlapCentroid(crops);
+    for (const double scale : {0.02, -0.02}) {
+      SCOPED_TRACE(name + " scale " + std::to_string(scale));
+      const bench::WarpedPoint judged = bench::WarpPoint(crops.b, pivot, scale, kBend, overlap);
+      Transform2 crop_from_b;
+      const grid::OccupancyGrid b = Turn(bench::Warp(crops.b, pivot, scale, kBend), 71.0 * kDegree,
+                                         Pose2{35.0, -140.0, -0.6}, &crop_from_b);
+      const Point2 judged_in_b = crop_from_b.inverse() * judged.point;
+      const double truth_yaw = Pose2::FromTransform(crop_from_b).yaw - judged.turn;
+      const auto right = [&](const Registration& r) {
+        const double error = (r.a_from_b.ToTransform() * judged_in_b - overlap).norm();
+        return error <= 3.0 * b.resolution() &&
+               std::abs(NormalizeAngle(r.a_from_b.yaw - truth_yaw)) <= 2.0 * kDegree;
+      };
+      const StatusOr<Registration> with_drift = Register(crops.a, b, {});
+      const StatusOr<Registration> without = Register(crops.a, b, rigid);
+      ASSERT_TRUE(with_drift.ok() && without.ok());
+      EXPECT_FALSE(with_drift->found && !right(*with_drift))
+          << ::testing::PrintToString(*with_drift) << ", drift " << with_drift->drift;
+      placed_with_drift += with_drift->found && right(*with_drift) ? 1 : 0;
+      wrong += with_drift->found && !right(*with_drift) ? 1 : 0;
+      placed_rigid += without->found && right(*without) ? 1 : 0;
+      EXPECT_EQ(without->drift, 0.0);
+      ++cases;
+    }
+  }
+  std::cout << "drifted real-map crops: " << placed_with_drift << " of " << cases
+            << " placed (rigid verification: " << placed_rigid << "), " << wrong << " wrong\n";
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(placed_with_drift, placed_rigid);
+}
+
 TEST(RegistrationTest, RecoversATurnBetweenMapsOf2000By2000Cells) {
   const auto maps = RealMaps();
   ASSERT_FALSE(maps.empty()) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
