@@ -28,17 +28,6 @@ const char* LivelinessName(int liveliness) {
   return kNames[liveliness];
 }
 
-// [x0, y0, x1, y1, ...]
-template <typename Points>
-json FlatPoints(const Points& points) {
-  json flat = json::array();
-  for (const Point2& point : points) {
-    flat.push_back(Millimetres(point.x()));
-    flat.push_back(Millimetres(point.y()));
-  }
-  return flat;
-}
-
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -57,7 +46,7 @@ FleetViewModel::Robot* FleetViewModel::RobotNamed(const RobotId& id, std::string
     CountRejected(topic);
     return nullptr;
   }
-  return &robot_state_[id.value];
+  return &robot_state_.try_emplace(id.value, options_).first->second;
 }
 
 bool FleetViewModel::Admit(const JsonDictionary& section, const std::string& key,
@@ -89,11 +78,56 @@ void FleetViewModel::OnRobotTile(const transport::TileEvent& event) {
     CountRejected(transport::kRobotTilesTopic);
     return;
   }
-  if (event.kind != transport::TileEvent::Kind::kTile) return;
+  const std::string& id = event.tile.robot_id.value;
+  const std::string key = id + "/" + TileKey(event.tile.tile);
+  if (event.kind == transport::TileEvent::Kind::kRemoved) {
+    if (const auto it = robot_state_.find(id); it != robot_state_.end())
+      it->second.own_tiles.erase(key);
+    own_tiles_.Remove(key);
+    return;
+  }
   Robot* robot = RobotNamed(event.tile.robot_id, transport::kRobotTilesTopic);
   if (robot == nullptr) return;
   robot->tiles.push_back({event.received, event.serialized_bytes,
                           1000.0 * SecondsBetween(event.tile.stamp, event.received)});
+  // Its own-frame tiles, kept until the robot is known to be placed or to tile in the fleet frame.
+  if (const std::optional<bool> own_frame = OwnFrame(*robot); own_frame && !*own_frame) return;
+  if (robot->own_tiles.count(key) == 0 && CountOwnTiles() >= options_.max_items) {
+    CountRejected(transport::kRobotTilesTopic);
+    return;
+  }
+  json item = TileJson(event.tile);
+  item["robot"] = id;
+  if (robot->own_tiles_shown) own_tiles_.Put(key, item);
+  robot->own_tiles[key] = std::move(item);
+}
+
+std::optional<bool> FleetViewModel::OwnFrame(const Robot& robot) {
+  if (robot.frame && robot.frame->placed()) return false;
+  if (!robot.status) return std::nullopt;
+  return robot.status->tiles_in_map_frame;
+}
+
+size_t FleetViewModel::CountOwnTiles() const {
+  size_t count = 0;
+  for (const auto& [id, robot] : robot_state_) count += robot.own_tiles.size();
+  return count;
+}
+
+void FleetViewModel::RefreshOwnTiles(Robot& robot) {
+  const std::optional<bool> own_frame = OwnFrame(robot);
+  const bool show = own_frame.value_or(false);
+  if (show != robot.own_tiles_shown) {
+    for (const auto& [key, item] : robot.own_tiles) {
+      if (show) {
+        own_tiles_.Put(key, item);
+      } else {
+        own_tiles_.Remove(key);
+      }
+    }
+    robot.own_tiles_shown = show;
+  }
+  if (own_frame && !*own_frame) robot.own_tiles.clear();  // placed: the fused map holds them
 }
 
 void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp now) {
@@ -102,15 +136,11 @@ void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp 
       Robot* robot = RobotNamed(event.robot, transport::kRobotStatusTopic);
       if (robot == nullptr) return;
       robot->status = event.status;
+      RefreshOwnTiles(*robot);
       robot->liveliness = Liveliness::kLive;
       robot->last_status = now;
       if (const std::optional<Pose2> pose = FleetPose(*robot)) {
-        const Point2 here = pose->translation();
-        if (robot->path.empty() || (robot->path.back() - here).norm() >= options_.path_spacing_m) {
-          robot->path.push_back(here);
-          robot->path_gained.push_back(here);
-          if (robot->path.size() > options_.path_points) robot->path.pop_front();
-        }
+        robot->path.Add(pose->translation(), FleetFromMap(*robot));
       }
       break;
     }
@@ -119,7 +149,12 @@ void FleetViewModel::OnRobotEvent(const transport::RobotEvent& event, Timestamp 
       // Only a robot the view knows can leave or be lost.
       const auto it = robot_state_.find(event.robot.value);
       if (it == robot_state_.end()) return;
-      it->second.liveliness =
+      Liveliness& liveliness = it->second.liveliness;
+      // As the server has it (ServerNode::OnRobotGone), only a robot still there can go: its end
+      // stands until it sends a status again. An agent that exits cleanly disposes its status
+      // (left), then its writer goes, which DDS reports too (lost): that is not news.
+      if (liveliness == Liveliness::kLeft || liveliness == Liveliness::kLost) return;
+      liveliness =
           event.kind == transport::RobotEvent::Kind::kLeft ? Liveliness::kLeft : Liveliness::kLost;
       break;
     }
@@ -142,6 +177,7 @@ void FleetViewModel::OnRobotFrame(const transport::RobotFrameEvent& event) {
   } else {
     robot->frame.reset();
   }
+  RefreshOwnTiles(*robot);
 }
 
 template <typename Message>
@@ -193,11 +229,14 @@ void FleetViewModel::CountRejected(std::string_view topic) {
   ++it->second;
 }
 
+Pose2 FleetViewModel::FleetFromMap(const Robot& robot) {
+  if (robot.frame && robot.frame->placed()) return robot.frame->fleet_from_map;
+  return robot.status ? robot.status->fleet_from_map : Pose2{};
+}
+
 std::optional<Pose2> FleetViewModel::FleetPose(const Robot& robot) const {
   if (!robot.status) return std::nullopt;
-  const Pose2 fleet_from_map = robot.frame && robot.frame->placed() ? robot.frame->fleet_from_map
-                                                                    : robot.status->fleet_from_map;
-  return Pose2::FromTransform(fleet_from_map.ToTransform() *
+  return Pose2::FromTransform(FleetFromMap(robot).ToTransform() *
                               robot.status->map_from_robot.ToTransform());
 }
 
@@ -347,11 +386,12 @@ std::string FleetViewModel::FullEvent() const {
   // item changes several times a second; resending its path with it would be most of the stream).
   json paths = json::object();
   for (const auto& [id, robot] : robot_state_) {
-    if (robots_.items().count(id) > 0) paths[id] = FlatPoints(robot.path);
+    if (robots_.items().count(id) > 0) paths[id] = robot.path.Json();
   }
   return json{{"type", "full"},
               {"seq", seq_},
               {"tiles", tiles_.All()},
+              {"own_tiles", own_tiles_.All()},
               {"robots", robots_.All()},
               {"paths", std::move(paths)},
               {"submaps", submaps_.All()},
@@ -365,6 +405,7 @@ std::optional<std::string> FleetViewModel::TakeDelta() {
   json delta = {{"type", "delta"}};
   bool changed = false;
   for (auto [name, section] : {std::pair<const char*, JsonDictionary*>{"tiles", &tiles_},
+                               {"own_tiles", &own_tiles_},
                                {"robots", &robots_},
                                {"submaps", &submaps_},
                                {"objects", &objects_},
@@ -376,9 +417,7 @@ std::optional<std::string> FleetViewModel::TakeDelta() {
   }
   json gained = json::object();
   for (auto& [id, robot] : robot_state_) {
-    if (robot.path_gained.empty()) continue;
-    gained[id] = FlatPoints(robot.path_gained);
-    robot.path_gained.clear();
+    if (std::optional<json> runs = robot.path.TakeGained()) gained[id] = *std::move(runs);
   }
   if (!gained.empty()) {
     delta["path_points"] = std::move(gained);

@@ -23,6 +23,7 @@
 #include "common/transport/robot_status_reader.hpp"
 #include "common/transport/vector_tile_reader.hpp"
 #include "view/json_dictionary.hpp"
+#include "view/robot_path.hpp"
 
 namespace fleetmap::view {
 
@@ -48,7 +49,8 @@ class FleetViewModel {
 
   // rt/fleetmap/fused_tiles: a tile, its removal, or a refused sample.
   void OnFusedTile(const transport::TileEvent& event);
-  // rt/fleetmap/robot_tiles: what each robot costs the wire (bytes/s, updates/s, latency).
+  // rt/fleetmap/robot_tiles: what each robot costs the wire (bytes/s, updates/s, latency), and
+  // the tiles of a robot that maps in its own frame, shown (in its colour) until it is placed.
   void OnRobotTile(const transport::TileEvent& event);
   // rt/fleetmap/robot_status: the robot's pose and liveliness.
   void OnRobotEvent(const transport::RobotEvent& event, Timestamp now);
@@ -88,13 +90,17 @@ class FleetViewModel {
     double latency_ms = 0.0;
   };
   struct Robot {
+    explicit Robot(const ViewModelOptions& options)
+        : path(options.path_points, options.path_spacing_m) {}
     std::optional<RobotStatus> status;
     std::optional<transport::RobotFrameMessage> frame;
     Liveliness liveliness = Liveliness::kLive;
     Timestamp last_status{};
-    std::deque<Point2> path;
-    std::vector<Point2> path_gained;  // since the previous delta
-    std::deque<TileSample> tiles;     // received within the rate window
+    RobotPath path;
+    std::deque<TileSample> tiles;  // received within the rate window
+    // Its tiles while it may be unplaced, by own_tiles key; shown while it is known to be.
+    std::map<std::string, nlohmann::json> own_tiles;
+    bool own_tiles_shown = false;
   };
 
   // The robot's record, made on first sight; nullptr (counted as refused on `topic`) for a new
@@ -108,6 +114,16 @@ class FleetViewModel {
   void ApplyKeyed(const transport::KeyedEvent<Message>& event, const std::string& key,
                   JsonDictionary& section, nlohmann::json (*to_json)(const Message&),
                   std::string_view topic);
+  // Whether the robot's tiles are in its own, unplaced map frame: false once the server placed it
+  // or when its status says it tiles in the fleet frame; nullopt before its first status.
+  static std::optional<bool> OwnFrame(const Robot& robot);
+  // Shows or hides the robot's own-frame tiles as OwnFrame says, and forgets them once placed.
+  void RefreshOwnTiles(Robot& robot);
+  // Own-frame tiles held in all robots' records, shown or not (bounded by max_items).
+  size_t CountOwnTiles() const;
+  // Where the robot's map frame sits in the fleet frame: the server's placement once it has one,
+  // else as the robot's status gives it.
+  static Pose2 FleetFromMap(const Robot& robot);
   // The robot's pose in the fleet frame: its status pose through the newest placement.
   std::optional<Pose2> FleetPose(const Robot& robot) const;
   nlohmann::json RobotJson(const std::string& id, const Robot& robot, Timestamp now) const;
@@ -119,6 +135,7 @@ class FleetViewModel {
   ViewModelOptions options_;
   std::map<std::string, Robot> robot_state_;
   JsonDictionary tiles_;
+  JsonDictionary own_tiles_;  // "robot/x,y": the own-frame tiles of unplaced robots
   JsonDictionary robots_;
   JsonDictionary submaps_;
   JsonDictionary objects_;

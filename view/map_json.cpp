@@ -22,12 +22,6 @@ void AppendPoint(json& flat, const Point2& point) {
   flat.push_back(Millimetres(point.y()));
 }
 
-json FlatRing(const std::vector<Point2>& ring) {
-  json flat = json::array();
-  for (const Point2& point : ring) AppendPoint(flat, point);
-  return flat;
-}
-
 // The navigable cells of a sub-map as rings in the fleet frame, one cell's simplification error.
 json NavigableRings(const transport::SubmapMessage& node) {
   const grid::OccupancyGrid& cells = node.submap.navigable;
@@ -39,7 +33,7 @@ json NavigableRings(const transport::SubmapMessage& node) {
     std::vector<Point2> fleet;
     fleet.reserve(ring.size());
     for (const Point2& point : ring) fleet.push_back(fleet_from_submap * frame.ToMap(point));
-    return FlatRing(fleet);
+    return FlatPoints(fleet);
   };
   const grid::CellRect whole{0, 0, cells.width(), cells.height()};
   for (const vector_map::CellPolygon& polygon :
@@ -56,6 +50,12 @@ json PatchExtent(const scene::Patch& patch) {
 
 }  // namespace
 
+json FlatPoints(const std::vector<Point2>& points) {
+  json flat = json::array();
+  for (const Point2& point : points) AppendPoint(flat, point);
+  return flat;
+}
+
 std::string TileKey(const TileId& tile) { return fmt::format("{},{}", tile.x, tile.y); }
 
 json TileJson(const transport::VectorTileMessage& tile) {
@@ -67,8 +67,8 @@ json TileJson(const transport::VectorTileMessage& tile) {
   }
   json free_space = json::array();
   for (const vector_map::FreePolygon& polygon : tile.map.free_space) {
-    json rings = json::array({FlatRing(polygon.outer)});
-    for (const auto& hole : polygon.holes) rings.push_back(FlatRing(hole));
+    json rings = json::array({FlatPoints(polygon.outer)});
+    for (const auto& hole : polygon.holes) rings.push_back(FlatPoints(hole));
     free_space.push_back(std::move(rings));
   }
   return {{"key", TileKey(tile.tile)},
@@ -76,6 +76,10 @@ json TileJson(const transport::VectorTileMessage& tile) {
           {"y", tile.tile.y},
           {"rev", tile.revision},
           {"size", Millimetres(tile.tile_size)},
+          // The free outlines pass through the centres of the boundary cells: the page widens
+          // them by half a cell, as the rasterizer does, so neighbouring tiles meet. The wire's
+          // float, rounded to micrometres, not its binary noise.
+          {"res", std::round(tile.map.resolution * 1e6) / 1e6},
           {"ob", std::move(obstacles)},
           {"fr", std::move(free_space)}};
 }

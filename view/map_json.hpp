@@ -4,6 +4,9 @@
 // frame, metres rounded to millimetres (docs/view.md, "The event stream", gives every field). The
 // page draws exactly this; nothing here knows about clients or deltas.
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "common/core/ids.hpp"
@@ -12,10 +15,13 @@
 
 namespace fleetmap::view {
 
+// [x0, y0, x1, y1, ...]: points in metres, rounded to millimetres.
+nlohmann::json FlatPoints(const std::vector<Point2>& points);
+
 // "x,y": a tile's key in the page's dictionaries.
 std::string TileKey(const TileId& tile);
 
-// {key, rev, size, ob: [[half_width, closed, x0, y0, x1, y1, ...], ...],
+// {key, x, y, rev, size, res, ob: [[half_width, closed, x0, y0, x1, y1, ...], ...],
 //  fr: [[[outer x0, y0, ...], [hole ...], ...], ...]}
 nlohmann::json TileJson(const transport::VectorTileMessage& tile);
 

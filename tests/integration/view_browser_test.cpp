@@ -1,13 +1,17 @@
 // The web view in a real browser (Debian's chromium, headless): what a person watching the page
-// would see of a live fleet. As many robots as live agents, as many drawn tiles as fused tiles
-// published, a killed agent shown lost, a prediction's colour once it is confirmed, the serving
-// server named and, once it is killed, "no fleet server". The page is
-// saved as a screenshot in <build>/test-artifacts/view.png.
+// would see of a live fleet, read from the page's DOM and from the pixels it drew. As many robots
+// as live agents, each in its own colour; a legend for the four robot states; as many drawn tiles
+// as fused tiles published, with no seam where two tiles meet at any zoom; a prediction's colour
+// once it is confirmed; no robot shown live while the page has lost its view process; a killed
+// agent shown lost and a cleanly stopped one left; the serving server named and, once it is
+// killed, "no fleet server". The page is saved as a screenshot in <build>/test-artifacts/view.png.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -38,6 +42,108 @@ constexpr seconds kDeadline{90};
 nlohmann::json Shown(testing::HeadlessChromium& page, const std::string& expression) {
   auto value = page.Evaluate(expression);
   return value.ok() ? *value : nlohmann::json(nullptr);
+}
+
+// The same, as text ("" when it is not a string).
+std::string ShownText(testing::HeadlessChromium& page, const std::string& expression) {
+  const nlohmann::json value = Shown(page, expression);
+  return value.is_string() ? value.get<std::string>() : "";
+}
+
+std::string RowOf(const std::string& robot) {
+  return "document.querySelector('#robots tr[data-robot=\"" + robot + "\"]')";
+}
+
+// How far apart two '#rrggbb' colours are: the largest difference of a channel.
+int ColourDistance(const std::string& a, const std::string& b) {
+  if (a.size() != 7 || b.size() != 7) return 255;
+  int largest = 0;
+  for (size_t i = 1; i < 7; i += 2) {
+    const int difference =
+        std::abs(std::stoi(a.substr(i, 2), nullptr, 16) - std::stoi(b.substr(i, 2), nullptr, 16));
+    largest = std::max(largest, difference);
+  }
+  return largest;
+}
+
+// The colour ('#rrggbb') of the pixel at the centre of a robot's dot, as the robots' canvas holds
+// it.
+std::string DotPixel(testing::HeadlessChromium& page, const std::string& robot) {
+  return ShownText(page, R"((() => {
+    const canvas = document.querySelector('.leaflet-robots-pane canvas');
+    const box = canvas.getBoundingClientRect();
+    const mapBox = document.getElementById('map').getBoundingClientRect();
+    const robot = state.robots[')" +
+                             robot + R"('];
+    const at = map.latLngToContainerPoint([robot.y, robot.x]);
+    const scale = canvas.width / box.width;
+    const x = Math.round((mapBox.left + at.x - box.left) * scale);
+    const y = Math.round((mapBox.top + at.y - box.top) * scale);
+    const [r, g, b] = canvas.getContext('2d').getImageData(x, y, 1, 1).data;
+    return '#' + [r, g, b].map((v) => v.toString(16).padStart(2, '0')).join('');
+  })())");
+}
+
+// Centres the map on the tile corner nearest the middle of the drawn tiles that has the most
+// drawn tiles around it, at `zoom`; returns that corner [x, y] in metres.
+nlohmann::json CentreOnATileCorner(testing::HeadlessChromium& page, double zoom) {
+  return Shown(page, R"((() => {
+    const keys = new Set(Object.keys(drawn.tiles));
+    const any = Object.values(drawn.tiles)[0];
+    const size = any.bounds[1][1] - any.bounds[0][1];
+    const tiles = [...keys].map((key) => key.split(',').map(Number));
+    const middle = tiles.reduce(([sx, sy], [x, y]) => [sx + x + 0.5, sy + y + 0.5], [0, 0])
+      .map((sum) => sum / tiles.length);
+    let best = null;
+    tiles.forEach(([x, y]) => [[x, y], [x + 1, y], [x, y + 1], [x + 1, y + 1]].forEach(([cx, cy]) => {
+      const around = [[cx - 1, cy - 1], [cx, cy - 1], [cx - 1, cy], [cx, cy]]
+        .filter(([tx, ty]) => keys.has(`${tx},${ty}`)).length;
+      const distance = Math.hypot(cx - middle[0], cy - middle[1]);
+      if (!best || around > best.around || (around === best.around && distance < best.distance)) {
+        best = { cx, cy, around, distance };
+      }
+    }));
+    map.setView([best.cy * size, best.cx * size], )" +
+                         std::to_string(zoom) + R"(, { animate: false });
+    return [best.cx * size, best.cy * size];
+  })())");
+}
+
+// Scans the free-space canvas across the tile borders through the corner the map is centred on
+// (CentreOnATileCorner): every row across the vertical border and every column across the
+// horizontal one, where the pixels a little way either side are opaque white (free space on both
+// sides). {crossings, seams}: how many such were found, and how many of them had a pixel between
+// that was not opaque white (the unknown grey showing through).
+nlohmann::json SeamsAtTheCentre(testing::HeadlessChromium& page) {
+  return Shown(page, R"((() => {
+    const canvas = document.querySelector('.leaflet-free-pane canvas');
+    const box = canvas.getBoundingClientRect();
+    const mapBox = document.getElementById('map').getBoundingClientRect();
+    const scale = canvas.width / box.width;
+    const pixels = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    const white = (x, y) => {
+      if (x < 0 || y < 0 || x >= canvas.width || y >= canvas.height) return false;
+      const i = 4 * (y * canvas.width + x);
+      return pixels[i] >= 250 && pixels[i + 1] >= 250 && pixels[i + 2] >= 250 && pixels[i + 3] >= 250;
+    };
+    const centre = map.getSize().divideBy(2);
+    const cx = (mapBox.left + centre.x - box.left) * scale;
+    const cy = (mapBox.top + centre.y - box.top) * scale;
+    // Past where the old drawing left its gap (one cell), plus a margin.
+    const reach = Math.ceil(0.05 * Math.pow(2, map.getZoom()) * scale) + 3;
+    let crossings = 0;
+    let seams = 0;
+    const across = (at) => {  // at(offset): the pixel `offset` from the border
+      if (!at(-reach) || !at(reach)) return;
+      ++crossings;
+      for (let d = -reach + 1; d < reach; ++d) {
+        if (!at(d)) { ++seams; return; }
+      }
+    };
+    for (let y = 0; y < canvas.height; ++y) across((d) => white(Math.round(cx) + d, y));
+    for (let x = 0; x < canvas.width; ++x) across((d) => white(x, Math.round(cy) + d));
+    return { crossings, seams };
+  })())");
 }
 
 // A predicted door sub-map, 2 x 1.5 m of free cells at (x, y) in the fleet frame.
@@ -79,10 +185,30 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   testing::HeadlessChromium& page = **browser;
 
   // Two live agents: two robot rows, both live.
-  auto shown = page.WaitFor(
-      "document.querySelectorAll('#robots tbody tr[data-state=\"live\"]').length === 2", kDeadline);
+  const std::string two_live =
+      "document.querySelectorAll('#robots tbody tr[data-state=\"live\"]').length === 2";
+  auto shown = page.WaitFor(two_live, kDeadline);
   ASSERT_TRUE(shown.ok()) << shown.status();
   EXPECT_EQ(*shown, true) << fleet.server().Output();
+
+  // The legend names the four states a robot can be shown in.
+  EXPECT_EQ(Shown(page,
+                  "[...document.querySelectorAll('#legend li[data-state]')]"
+                  ".map((item) => item.dataset.state).join(' ')"),
+            "live stale lost left");
+
+  // Each robot has its own colour: its row says which, its path is drawn in it, and so is its dot.
+  const std::string alpha_colour = ShownText(page, RowOf("alpha") + ".dataset.color");
+  const std::string bravo_colour = ShownText(page, RowOf("bravo") + ".dataset.color");
+  EXPECT_GT(ColourDistance(alpha_colour, bravo_colour), 60) << alpha_colour << " " << bravo_colour;
+  EXPECT_EQ(Shown(page, "drawn.robots.alpha[0].options.color"), alpha_colour);
+  EXPECT_EQ(Shown(page, "drawn.robots.bravo[0].options.color"), bravo_colour);
+  Shown(page,
+        "map.setView([(state.robots.alpha.y + state.robots.bravo.y) / 2,"
+        " (state.robots.alpha.x + state.robots.bravo.x) / 2], 4, { animate: false }), true");
+  std::this_thread::sleep_for(milliseconds(500));  // the canvases redraw on the next frames
+  EXPECT_LE(ColourDistance(DotPixel(page, "alpha"), alpha_colour), 2) << DotPixel(page, "alpha");
+  EXPECT_LE(ColourDistance(DotPixel(page, "bravo"), bravo_colour), 2) << DotPixel(page, "bravo");
 
   // The fused tiles published, once the map has stopped changing, are the tiles drawn.
   std::set<std::pair<int, int>> published;
@@ -113,6 +239,18 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   EXPECT_EQ(Shown(page, "document.getElementById('status-tiles').textContent"),
             std::to_string(published.size()));
 
+  // Where tiles meet, free space runs on without a seam of the unknown grey, at any zoom.
+  for (const double zoom : {3.0, 5.0, 7.0}) {
+    const nlohmann::json corner = CentreOnATileCorner(page, zoom);
+    std::this_thread::sleep_for(milliseconds(500));
+    const nlohmann::json seams = SeamsAtTheCentre(page);
+    ASSERT_TRUE(seams.is_object()) << seams;
+    EXPECT_GT(seams["crossings"].get<int>(), 20)
+        << "zoom " << zoom << ", corner " << corner << ": too few free pixels across its borders";
+    EXPECT_EQ(seams["seams"], 0) << "zoom " << zoom << ", corner " << corner << ": " << seams;
+  }
+  Shown(page, "fitted = false, fitOnce(), true");  // the whole map again, for the screenshot
+
   // A prediction appears orange, then turns green with its precision once confirmed.
   ASSERT_TRUE((*submaps)->Write(DoorPrediction(7, scene::SubmapState::kPredicted, -1.0F)).ok());
   const std::string row = "document.querySelector('#predictions tr[data-submap=\"7\"]')";
@@ -132,6 +270,26 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   std::filesystem::create_directories(artifacts);
   EXPECT_TRUE(page.Screenshot(artifacts + "/view.png").ok());
   EXPECT_GT(std::filesystem::file_size(artifacts + "/view.png"), 10000u);
+
+  // A page that lost its view process shows nobody live; it follows the fleet again once a view
+  // process answers on its port.
+  const int port = view.port();
+  view.process().Signal(SIGTERM);
+  EXPECT_TRUE(view.process().Wait(seconds(30)).has_value());
+  auto unheard = page.WaitFor(
+      "document.getElementById('connection').dataset.state === 'reconnecting' && "
+      "document.querySelectorAll('#robots tbody tr').length === 2 && "
+      "document.querySelectorAll('#robots tbody tr[data-state=\"live\"]').length === 0",
+      seconds(30));
+  ASSERT_TRUE(unheard.ok()) << unheard.status();
+  EXPECT_EQ(*unheard, true);
+  EXPECT_EQ(Shown(page, RowOf("alpha") + ".dataset.state"), "stale");
+  EXPECT_EQ(Shown(page, "document.getElementById('status-live').textContent"), "0");
+  testing::ViewProcess view_again(domain, {}, port);
+  ASSERT_EQ(view_again.port(), port) << view_again.process().Output();
+  auto followed = page.WaitFor(two_live, kDeadline);
+  ASSERT_TRUE(followed.ok()) << followed.status();
+  EXPECT_EQ(*followed, true);
 
   // A killed agent is shown lost: DDS declares it when its 2 s liveliness lease lapses.
   fleet.agent("bravo").Signal(SIGKILL);
@@ -165,6 +323,16 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
       seconds(30));
   ASSERT_TRUE(stale.ok()) << stale.status();
   EXPECT_EQ(*stale, true);
+
+  // An agent stopped cleanly leaves: it is shown left, not lost, once its process has gone too.
+  fleet.agent("alpha").Signal(SIGTERM);
+  EXPECT_TRUE(fleet.agent("alpha").Wait(seconds(30)).has_value());
+  auto left = page.WaitFor(RowOf("alpha") + "?.dataset.state === 'left'", seconds(30));
+  ASSERT_TRUE(left.ok()) << left.status();
+  EXPECT_EQ(*left, true) << fleet.agent("alpha").Output();
+  std::this_thread::sleep_for(seconds(3));  // past the lease its writer had
+  EXPECT_EQ(Shown(page, RowOf("alpha") + ".dataset.state"), "left");
+  EXPECT_EQ(Shown(page, RowOf("bravo") + ".dataset.state"), "lost");
 
   submaps->reset();
   fused->reset();

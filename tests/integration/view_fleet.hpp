@@ -22,14 +22,15 @@ namespace fleetmap::testing {
 inline const std::string kViewTestMap =
     std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml";
 
-// `fleetmap view --port 0` on `domain`; port() is read from the URL it prints.
+// `fleetmap view --port <port>` on `domain` (port 0: any free one); port() is read from the URL
+// it prints.
 class ViewProcess {
  public:
-  ViewProcess(int domain, std::vector<std::string> extra_args = {}) {
+  ViewProcess(int domain, std::vector<std::string> extra_args = {}, int port = 0) {
     std::vector<std::string> argv = {std::string(FLEETMAP_BINARY_DIR) + "/cli/fleetmap",
                                      "view",
                                      "--port",
-                                     "0",
+                                     std::to_string(port),
                                      "--domain",
                                      std::to_string(domain),
                                      "--localhost-only"};
@@ -51,7 +52,8 @@ class ViewProcess {
   int port_ = 0;
 };
 
-// A server and `robots` agents on the small house.
+// A server and `robots` agents on the small house, 1.5 m apart so that their dots do not hide
+// each other.
 class LiveFleet {
  public:
   LiveFleet(int domain, const std::vector<std::string>& robots)
@@ -60,9 +62,12 @@ class LiveFleet {
         std::vector<std::string>{kServerBinary, "--duration", "300", "--no-object-learning",
                                  "--no-extrapolation", "--map-period", "0.5"},
         env_);
-    for (const std::string& robot : robots) {
-      agents_[robot] = std::make_unique<process::Subprocess>(
-          std::vector<std::string>{kAgentBinary, "--robot-id", robot, "--map", kViewTestMap}, env_);
+    for (size_t i = 0; i < robots.size(); ++i) {
+      agents_[robots[i]] = std::make_unique<process::Subprocess>(
+          std::vector<std::string>{kAgentBinary, "--robot-id", robots[i], "--map", kViewTestMap,
+                                   "--pose", std::to_string(1.5 * static_cast<double>(i)), "0",
+                                   "0"},
+          env_);
     }
   }
   process::Subprocess& server() { return *server_; }

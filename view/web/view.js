@@ -11,19 +11,54 @@ const COLORS = {
   confirmed: '#2e9e4f',
   retracted: '#d03030',
   object: '#8e44ad',
-  path: '#1565c0',
   quarantine: '#c62828',  // the area a quarantined robot's map contradicts
-  robot: { live: '#1565c0', stale: '#ef8f00', lost: '#c62828', left: '#777777' },
+  // A robot's state is the ring around its dot; the dot, heading and path are the robot's own
+  // colour (robotColor).
+  robotState: { live: '#2e7d32', stale: '#ef8f00', lost: '#c62828', left: '#777777' },
 };
+
+// 32-bit FNV-1a of a string.
+function hashOf(text) {
+  let hash = 0x811c9dc5;
+  for (let i = 0; i < text.length; ++i) hash = Math.imul(hash ^ text.charCodeAt(i), 0x01000193);
+  return hash >>> 0;
+}
+
+// '#rrggbb' of a hue in degrees, saturation and lightness in [0, 1].
+function hslHex(hue, saturation, lightness) {
+  const a = saturation * Math.min(lightness, 1 - lightness);
+  const channel = (n) => {
+    const k = (n + hue / 30) % 12;
+    const value = lightness - a * Math.max(-1, Math.min(k - 3, 9 - k, 1));
+    return Math.round(255 * value).toString(16).padStart(2, '0');
+  };
+  return `#${channel(0)}${channel(8)}${channel(4)}`;
+}
+
+// A colour per robot, the same on every page and in every run: its hue comes from its id alone.
+// Ids that differ in a trailing number (robot1, robot2, ...) are a golden angle (137.5°) apart,
+// so neighbours never look alike; other ids are spread by a hash of the name. Dark enough to read
+// on white free space and on grey unknown space.
+const robotColors = new Map();
+function robotColor(id) {
+  if (!robotColors.has(id)) {
+    const numbered = /^(.*?)(\d{1,9})$/.exec(id);
+    const stem = numbered ? numbered[1] : id;
+    const number = numbered ? Number(numbered[2]) : 0;
+    const hue = ((hashOf(stem) % 360) + number * 137.508) % 360;
+    robotColors.set(id, hslHex(hue, 0.75, 0.4));
+  }
+  return robotColors.get(id);
+}
 
 const map = L.map('map', {
   crs: L.CRS.Simple, minZoom: -5, maxZoom: 8, zoomSnap: 0.25, zoomDelta: 0.5,
   attributionControl: false,
 });
 map.setView([0, 0], 2);
-// One canvas per layer kind keeps the drawing order: free space, sub-maps, obstacles, objects,
-// robots on top.
-const panes = ['free', 'submaps', 'obstacles', 'objects', 'robots'];
+// One canvas per layer kind keeps the drawing order: free space, unplaced robots' own maps,
+// sub-maps, obstacles, objects, robots on top.
+const panes = ['free', 'own', 'submaps', 'obstacles', 'objects', 'robots'];
 const renderers = {};
 panes.forEach((name, i) => {
   map.createPane(name).style.zIndex = 400 + 10 * i;
@@ -32,6 +67,7 @@ panes.forEach((name, i) => {
 const layers = {
   free: L.layerGroup().addTo(map),
   obstacles: L.layerGroup().addTo(map),
+  own: L.layerGroup().addTo(map),
   submaps: L.layerGroup().addTo(map),
   objects: L.layerGroup().addTo(map),
   robots: L.layerGroup().addTo(map),
@@ -42,6 +78,7 @@ L.control.layers(null, {
   'fused grid (rt/fleetmap/map)': gridLayer,
   'free space': layers.free,
   obstacles: layers.obstacles,
+  "unplaced robots' own maps": layers.own,
   'sub-maps': layers.submaps,
   objects: layers.objects,
   robots: layers.robots,
@@ -56,7 +93,7 @@ const ring = (flat) => {
 };
 
 // What is drawn, by key, so that a delta can replace or remove it.
-const drawn = { tiles: {}, robots: {}, submaps: {}, objects: {} };
+const drawn = { tiles: {}, ownTiles: {}, robots: {}, submaps: {}, objects: {} };
 let state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
 const PATH_POINTS = 200;  // as many as the view keeps
 let lastSeq = -1;
@@ -66,30 +103,59 @@ let fitted = false;
 const obstacleLines = new Set();
 const pixelsPerMetre = () => Math.pow(2, map.getZoom());
 const obstacleWeight = (halfWidth) => Math.max(1, 2 * halfWidth * pixelsPerMetre());
+// Free outlines pass through the centres of their boundary cells: the rasterizer fills a polygon
+// with its outline, so the free space is half a cell wider than the outline, and two neighbouring
+// tiles' outlines stop a cell apart at their shared border. Stroked one cell wide (half a cell
+// each side) they cover what they stand for and meet at the border at every zoom; the extra pixel
+// makes them overlap, so their anti-aliased edges leave no seam.
+const freeOutlines = new Set();
+const freeWeight = (resolution) => resolution * pixelsPerMetre() + 1;
 map.on('zoomend', () => {
   obstacleLines.forEach((line) => line.setStyle({ weight: obstacleWeight(line.halfWidth) }));
+  freeOutlines.forEach((free) => free.setStyle({ weight: freeWeight(free.resolution) }));
 });
 
-function removeTile(key) {
-  const tile = drawn.tiles[key];
-  if (!tile) return;
-  layers.free.removeLayer(tile.free);
-  tile.lines.forEach((line) => { layers.obstacles.removeLayer(line); obstacleLines.delete(line); });
-  delete drawn.tiles[key];
+// How a tile is drawn: the fused map's in black and white, seamless; an unplaced robot's own in
+// its colour, translucent, over the fused map (it is in the robot's own frame, not placed yet).
+function fusedLook() {
+  return {
+    freeGroup: layers.free, lineGroup: layers.obstacles, seamless: true,
+    free: { renderer: renderers.free, color: COLORS.free, fillColor: COLORS.free, fillOpacity: 1 },
+    line: { renderer: renderers.obstacles, color: COLORS.obstacle, opacity: 1 },
+  };
+}
+function ownLook(robot) {
+  const color = robotColor(robot);
+  return {
+    freeGroup: layers.own, lineGroup: layers.own, seamless: false,
+    free: { renderer: renderers.own, stroke: false, fillColor: color, fillOpacity: 0.15 },
+    line: { renderer: renderers.own, color, opacity: 0.7 },
+  };
 }
 
-function drawTile(key, tile) {
-  removeTile(key);
+function removeTileFrom(shapes, key, look) {
+  const tile = shapes[key];
+  if (!tile) return;
+  look.freeGroup.removeLayer(tile.free);
+  freeOutlines.delete(tile.free);
+  tile.lines.forEach((line) => { look.lineGroup.removeLayer(line); obstacleLines.delete(line); });
+  delete shapes[key];
+}
+
+function drawTileInto(shapes, key, tile, look) {
+  removeTileFrom(shapes, key, look);
   const polygons = tile.fr.map((rings) => rings.map(ring));
-  // A hairline of the same white covers the anti-aliased seam between neighbouring tiles.
+  const resolution = tile.res || 0.05;
+  // Mitred joins keep the cells' square corners where four tiles meet.
   const free = L.polygon(polygons, {
-    renderer: renderers.free, color: COLORS.free, weight: 1, opacity: 1, fillColor: COLORS.free,
-    fillOpacity: 1, interactive: false,
+    weight: freeWeight(resolution), opacity: 1, lineJoin: 'miter', interactive: false,
+    ...look.free,
   });
-  layers.free.addLayer(free);
+  free.resolution = resolution;
+  if (look.seamless) freeOutlines.add(free);
+  look.freeGroup.addLayer(free);
   // One polyline layer per half width (a tile has few distinct widths).
   const byWidth = new Map();
-  const points = [];
   tile.ob.forEach((obstacle) => {
     const halfWidth = obstacle[0];
     const line = ring(obstacle.slice(2));
@@ -97,22 +163,27 @@ function drawTile(key, tile) {
     if (line.length === 1) line.push(line[0]);  // a point obstacle: a round dot
     if (!byWidth.has(halfWidth)) byWidth.set(halfWidth, []);
     byWidth.get(halfWidth).push(line);
-    points.push(...line);
   });
   const lines = [];
   byWidth.forEach((paths, halfWidth) => {
     const line = L.polyline(paths, {
-      renderer: renderers.obstacles, color: COLORS.obstacle, weight: obstacleWeight(halfWidth),
-      opacity: 1, lineCap: 'round', lineJoin: 'round', interactive: false,
+      weight: obstacleWeight(halfWidth), lineCap: 'round', lineJoin: 'round', interactive: false,
+      ...look.line,
     });
     line.halfWidth = halfWidth;
     obstacleLines.add(line);
-    layers.obstacles.addLayer(line);
+    look.lineGroup.addLayer(line);
     lines.push(line);
   });
-  drawn.tiles[key] = { free, lines, bounds: [ll(tile.x * tile.size, tile.y * tile.size),
+  shapes[key] = { free, lines, bounds: [ll(tile.x * tile.size, tile.y * tile.size),
     ll((tile.x + 1) * tile.size, (tile.y + 1) * tile.size)] };
 }
+
+const removeTile = (key) => removeTileFrom(drawn.tiles, key, fusedLook());
+const drawTile = (key, tile) => drawTileInto(drawn.tiles, key, tile, fusedLook());
+// Own-frame tiles are keyed "robot/x,y".
+const removeOwnTile = (key) => removeTileFrom(drawn.ownTiles, key, ownLook(''));
+const drawOwnTile = (key, tile) => drawTileInto(drawn.ownTiles, key, tile, ownLook(tile.robot));
 
 function removeRobot(id) {
   const robot = drawn.robots[id];
@@ -121,22 +192,30 @@ function removeRobot(id) {
   delete drawn.robots[id];
 }
 
+// Whether this page hears its view process. While it does not, nothing it shows is current.
+let connected = false;
+// The state to show: what the view process says, except that a page which lost its view process
+// cannot vouch that anyone is live.
+const shownState = (robot) => (connected || robot.state !== 'live' ? robot.state : 'stale');
+
 function drawRobot(id, robot) {
   removeRobot(id);
   if (robot.x === undefined) return;
-  const color = COLORS.robot[robot.state] || COLORS.robot.left;
+  const shown = shownState(robot);
+  const color = robotColor(id);
   const here = ll(robot.x, robot.y);
   const ahead = ll(robot.x + 0.8 * Math.cos(robot.yaw), robot.y + 0.8 * Math.sin(robot.yaw));
+  // One polyline of several runs: no segment joins a pose before a placement to one after it.
   const path = L.polyline(state.paths[id] || [], {
-    renderer: renderers.robots, color: COLORS.path, weight: 1.5, opacity: 0.6, interactive: false,
+    renderer: renderers.robots, color, weight: 2, opacity: 0.75, interactive: false,
   });
   const heading = L.polyline([here, ahead], {
     renderer: renderers.robots, color, weight: 3, interactive: false,
   });
   const marker = L.circleMarker(here, {
-    renderer: renderers.robots, radius: 7, color: '#ffffff', weight: 2, fillColor: color,
-    fillOpacity: 1,
-  }).bindTooltip(`${id} (${robot.state})`, {
+    renderer: renderers.robots, radius: 7, color: COLORS.robotState[shown], weight: 3,
+    opacity: 1, fillColor: color, fillOpacity: shown === 'live' ? 1 : 0.4,
+  }).bindTooltip(`${id} (${shown})`, {
     permanent: true, direction: 'right', offset: [8, 0], className: 'robot-label',
   });
   drawn.robots[id] = [path, heading, marker];
@@ -213,19 +292,44 @@ function applySection(items, draw, remove, keep) {
 
 function clearAll() {
   Object.keys(drawn.tiles).forEach(removeTile);
+  Object.keys(drawn.ownTiles).forEach(removeOwnTile);
   Object.keys(drawn.robots).forEach(removeRobot);
   Object.keys(drawn.submaps).forEach(removeSubmap);
   Object.keys(drawn.objects).forEach(removeObject);
   state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
 }
 
-// Whole paths come with the whole state; deltas bring the points each path gained.
+// The newest `count` points of a path's runs, oldest run first.
+function newestPoints(runs, count) {
+  let excess = runs.reduce((n, run) => n + run.length, 0) - count;
+  const kept = [];
+  runs.forEach((run) => {
+    const dropped = Math.min(Math.max(excess, 0), run.length);
+    excess -= dropped;
+    if (dropped < run.length) kept.push(run.slice(dropped));
+  });
+  return kept;
+}
+
+// Whole paths come with the whole state; deltas bring the points each path gained. Both are
+// runs: a new run starts where the server placed or moved the robot's frame. Of a delta's runs
+// the first continues the newest run the page has, each further one is new.
 function applyPaths(paths, replace) {
   if (!paths) return;
-  Object.entries(paths).forEach(([id, flat]) => {
-    const points = ring(flat);
-    const path = replace ? points : (state.paths[id] || []).concat(points);
-    state.paths[id] = path.slice(-PATH_POINTS);
+  Object.entries(paths).forEach(([id, flatRuns]) => {
+    const runs = flatRuns.map(ring);
+    let path = runs;
+    if (!replace) {
+      const [continued, ...started] = runs;
+      path = (state.paths[id] || []).slice();
+      if (path.length > 0) {
+        path[path.length - 1] = path[path.length - 1].concat(continued);
+      } else if (continued.length > 0) {
+        path.push(continued);
+      }
+      path = path.concat(started);
+    }
+    state.paths[id] = newestPoints(path, PATH_POINTS);
     if (state.robots[id]) drawRobot(id, state.robots[id]);
   });
 }
@@ -233,11 +337,13 @@ function applyPaths(paths, replace) {
 function apply(event) {
   if (event.type === 'full') {
     clearAll();
+    connected = true;
   } else if (event.seq <= lastSeq) {
     return;  // already in the whole state this browser got
   }
   lastSeq = event.seq;
   applySection(event.tiles, drawTile, removeTile);
+  applySection(event.own_tiles, drawOwnTile, removeOwnTile);
   applySection(event.robots, drawRobot, removeRobot, state.robots);
   applyPaths(event.type === 'full' ? event.paths : event.path_points, event.type === 'full');
   applySection(event.submaps, drawSubmap, removeSubmap, state.submaps);
@@ -281,13 +387,20 @@ function renderTables() {
   const robots = document.querySelector('#robots tbody');
   robots.replaceChildren(...Object.keys(state.robots).sort().map((id) => {
     const r = state.robots[id];
+    const shown = shownState(r);
     const where = r.x === undefined ? '-' : `${r.x.toFixed(2)}, ${r.y.toFixed(2)}`;
     const standing = r.standing === 'trusted' ? 'fused' : r.standing;
-    return row([id, r.state, r.placement, standing, where, r.yaw === undefined ? '-' : degrees(r.yaw),
-      r.rev ?? '-', rate(r.bps), r.ups.toFixed(1),
+    const unheard = shown === r.state ? '' : `the view process does not answer: ${r.state} when last heard`;
+    const tr = row([id, shown, r.placement, standing, where,
+      r.yaw === undefined ? '-' : degrees(r.yaw), r.rev ?? '-', rate(r.bps), r.ups.toFixed(1),
       r.latency_ms === null ? '-' : `${r.latency_ms.toFixed(1)} ms`],
-    { 'data-robot': id, 'data-state': r.state, 'data-standing': r.standing,
-      title: r.standing_reason || r.waiting_reason || '' });
+    { 'data-robot': id, 'data-state': shown, 'data-standing': r.standing,
+      'data-color': robotColor(id), title: unheard || r.standing_reason || r.waiting_reason || '' });
+    const swatch = document.createElement('span');
+    swatch.className = 'swatch robot';
+    swatch.style.background = robotColor(id);
+    tr.cells[0].prepend(swatch);
+    return tr;
   }));
   const predictions = document.querySelector('#predictions tbody');
   predictions.replaceChildren(...Object.keys(state.submaps)
@@ -313,7 +426,7 @@ function renderStatus() {
   if (!s) return;
   setText('status-tiles', s.tiles);
   setText('status-robots', s.robots);
-  setText('status-live', s.live);
+  setText('status-live', connected ? s.live : 0);
   setText('status-lost', s.lost);
   setText('status-bytes', rate(s.bytes_per_s));
   setText('status-updates', s.updates_per_s.toFixed(1));
@@ -362,9 +475,20 @@ function connect() {
     connection.textContent = 'live';
   };
   events.onerror = () => {
-    // The browser reconnects by itself; the view then sends the whole state again.
+    // The browser reconnects by itself; the view then sends the whole state again. Until then
+    // nobody is shown live.
     connection.dataset.state = 'reconnecting';
     connection.textContent = 'reconnecting';
+    if (events.readyState === EventSource.CLOSED) {
+      // The browser gave up on this stream (an answer that was not one): try again, as it would.
+      events.close();
+      setTimeout(connect, 3000);
+    }
+    if (!connected) return;
+    connected = false;
+    Object.entries(state.robots).forEach(([id, robot]) => drawRobot(id, robot));
+    renderTables();
+    renderStatus();
   };
   events.onmessage = (message) => apply(JSON.parse(message.data));
 }

@@ -149,6 +149,8 @@ TEST(FleetViewModelTest, TheWholeStateHoldsEverythingSoFar) {
   // The tile's geometry, in metres: one obstacle [half width, closed, x0, y0, x1, y1].
   EXPECT_EQ(full["tiles"]["0,1"]["ob"][0], json({0.05, 0, 0.0, 10.0, 3.0, 10.0}));
   EXPECT_EQ(full["tiles"]["0,1"]["fr"][0][0].size(), 6u);
+  // The cell size, which the page widens the free outlines by (they pass through cell centres).
+  EXPECT_EQ(full["tiles"]["0,1"]["res"], 0.05);
 }
 
 TEST(FleetViewModelTest, RobotsAreShownInTheFleetFrameAndTurnStaleThenLost) {
@@ -166,8 +168,9 @@ TEST(FleetViewModelTest, RobotsAreShownInTheFleetFrameAndTurnStaleThenLost) {
   model.Tick(kStart + milliseconds(500));
   const json moved = Parse(model.TakeDelta());
   EXPECT_EQ(moved["robots"]["alpha"]["x"], 12.0);
-  EXPECT_EQ(moved["path_points"]["alpha"], json({12.0, 2.0}));
-  EXPECT_EQ(json::parse(model.FullEvent())["paths"]["alpha"], json({11.0, 2.0, 12.0, 2.0}));
+  EXPECT_EQ(moved["path_points"]["alpha"], json::parse("[[12.0, 2.0]]"));
+  EXPECT_EQ(json::parse(model.FullEvent())["paths"]["alpha"],
+            json::parse("[[11.0, 2.0, 12.0, 2.0]]"));
 
   // Silent past stale_after: stale; then DDS says lost.
   model.Tick(kStart + seconds(3));
@@ -180,6 +183,135 @@ TEST(FleetViewModelTest, RobotsAreShownInTheFleetFrameAndTurnStaleThenLost) {
   EXPECT_EQ(lost["robots"]["alpha"]["state"], "lost");
   EXPECT_EQ(lost["status"]["lost"], 1);
   EXPECT_EQ(lost["status"]["live"], 0);
+}
+
+transport::RobotEvent Gone(transport::RobotEvent::Kind kind, const std::string& robot) {
+  return transport::RobotEvent::Gone(kind, RobotId{robot}, "writer");
+}
+
+std::string StateOf(const FleetViewModel& model, const std::string& robot) {
+  return json::parse(model.FullEvent())["robots"][robot]["state"];
+}
+
+TEST(FleetViewModelTest, ARobotThatLeftStaysLeftWhenItsWriterGoesToo) {
+  FleetViewModel model;
+  model.OnRobotEvent(Status("polite", 1.0), kStart);
+  model.OnRobotEvent(Status("killed", 1.0), kStart);
+  model.Tick(kStart);
+  // A clean exit disposes the status (left), then the agent's writer goes, which DDS reports as
+  // well (lost); a killed agent's lease lapses (lost), and its writer is dropped later (lost).
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLeft, "polite"), kStart);
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLost, "polite"), kStart);
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLost, "killed"), kStart);
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLeft, "killed"), kStart);
+  model.Tick(kStart + seconds(5));
+  EXPECT_EQ(StateOf(model, "polite"), "left");
+  EXPECT_EQ(StateOf(model, "killed"), "lost");
+  EXPECT_EQ(json::parse(model.FullEvent())["status"]["lost"], 1);
+
+  // Back with a status: live again, and it can leave again.
+  model.OnRobotEvent(Status("polite", 1.5), kStart + seconds(6));
+  model.Tick(kStart + seconds(6));
+  EXPECT_EQ(StateOf(model, "polite"), "live");
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLeft, "polite"), kStart + seconds(6));
+  EXPECT_EQ(StateOf(model, "polite"), "left");
+}
+
+TEST(FleetViewModelTest, AStaleRobotCanStillLeave) {
+  FleetViewModel model;
+  model.OnRobotEvent(Status("alpha", 1.0), kStart);
+  model.Tick(kStart + seconds(2));
+  EXPECT_EQ(StateOf(model, "alpha"), "stale");
+  model.OnRobotEvent(Gone(transport::RobotEvent::Kind::kLeft, "alpha"), kStart + seconds(2));
+  model.Tick(kStart + seconds(3));
+  EXPECT_EQ(StateOf(model, "alpha"), "left") << "a left robot does not turn stale";
+}
+
+TEST(FleetViewModelTest, APlacementStartsANewPathRun) {
+  FleetViewModel model;
+  RobotStatus status;
+  status.robot = RobotId{"bravo"};
+  status.tiles_in_map_frame = true;
+  const auto at = [&](double x, Timestamp now) {
+    status.map_from_robot = Pose2{x, 0.0, 0.0};
+    model.OnRobotEvent(transport::RobotEvent::Alive(status), now);
+    model.Tick(now);
+  };
+  at(1.0, kStart);
+  at(2.0, kStart + milliseconds(100));
+  EXPECT_EQ(Parse(model.TakeDelta())["path_points"]["bravo"],
+            json::parse("[[], [1.0, 0.0, 2.0, 0.0]]"))
+      << "the first point starts the first run";
+
+  // Placed 5 m up: the next pose starts a new run; no segment joins (2, 0) to (3, 5).
+  transport::RobotFrameEvent frame;
+  frame.message.robot = RobotId{"bravo"};
+  frame.message.state = transport::RobotFrameMessage::State::kPlaced;
+  frame.message.fleet_from_map = Pose2{0.0, 5.0, 0.0};
+  model.OnRobotFrame(frame);
+  at(3.0, kStart + milliseconds(200));
+  at(4.0, kStart + milliseconds(300));
+  EXPECT_EQ(Parse(model.TakeDelta())["path_points"]["bravo"],
+            json::parse("[[], [3.0, 5.0, 4.0, 5.0]]"));
+
+  // The same placement again (its standing changed, say) continues the run; a revision that
+  // moves the frame starts another.
+  model.OnRobotFrame(frame);
+  at(5.0, kStart + milliseconds(400));
+  frame.message.state = transport::RobotFrameMessage::State::kRevised;
+  frame.message.fleet_from_map = Pose2{0.0, 6.0, 0.0};
+  model.OnRobotFrame(frame);
+  at(6.0, kStart + milliseconds(500));
+  EXPECT_EQ(Parse(model.TakeDelta())["path_points"]["bravo"],
+            json::parse("[[5.0, 5.0], [6.0, 6.0]]"));
+  EXPECT_EQ(json::parse(model.FullEvent())["paths"]["bravo"],
+            json::parse("[[1.0, 0.0, 2.0, 0.0], [3.0, 5.0, 4.0, 5.0, 5.0, 5.0], [6.0, 6.0]]"));
+}
+
+transport::TileEvent RobotTile(const std::string& robot, int x, int y) {
+  transport::TileEvent event = FusedTile(x, y, 1);
+  event.tile.robot_id = RobotId{robot};
+  return event;
+}
+
+TEST(FleetViewModelTest, AnUnplacedRobotsOwnTilesAreShownUntilItIsPlaced) {
+  FleetViewModel model;
+  RobotStatus unplaced;
+  unplaced.robot = RobotId{"bravo"};
+  unplaced.tiles_in_map_frame = true;
+  RobotStatus given;
+  given.robot = RobotId{"alpha"};
+
+  // A tile before the robot's first status is kept, not shown: nobody knows its frame yet.
+  model.OnRobotTile(RobotTile("bravo", 0, 0));
+  model.OnRobotTile(RobotTile("alpha", 0, 0));
+  model.Tick(kStart);
+  EXPECT_FALSE(Parse(model.TakeDelta()).contains("own_tiles"));
+  model.OnRobotEvent(transport::RobotEvent::Alive(unplaced), kStart);
+  model.OnRobotEvent(transport::RobotEvent::Alive(given), kStart);
+  model.OnRobotTile(RobotTile("bravo", 1, 0));
+  model.OnRobotTile(RobotTile("alpha", 1, 0));
+  model.Tick(kStart);
+  const json shown = Parse(model.TakeDelta())["own_tiles"];
+  ASSERT_EQ(shown.size(), 2u) << shown;
+  EXPECT_EQ(shown["bravo/0,0"]["robot"], "bravo");
+  EXPECT_EQ(shown["bravo/1,0"]["ob"][0], json({0.05, 0, 10.0, 0.0, 13.0, 0.0}));
+  EXPECT_EQ(json::parse(model.FullEvent())["own_tiles"].size(), 2u);
+
+  // A removed tile goes; once placed, the fused map holds them, and later ones are not kept.
+  transport::TileEvent removed = RobotTile("bravo", 1, 0);
+  removed.kind = transport::TileEvent::Kind::kRemoved;
+  model.OnRobotTile(removed);
+  model.Tick(kStart);
+  EXPECT_TRUE(Parse(model.TakeDelta())["own_tiles"]["bravo/1,0"].is_null());
+  transport::RobotFrameEvent frame;
+  frame.message.robot = RobotId{"bravo"};
+  frame.message.state = transport::RobotFrameMessage::State::kPlaced;
+  model.OnRobotFrame(frame);
+  model.OnRobotTile(RobotTile("bravo", 2, 0));
+  model.Tick(kStart);
+  EXPECT_EQ(Parse(model.TakeDelta())["own_tiles"], json::parse(R"({"bravo/0,0": null})"));
+  EXPECT_TRUE(json::parse(model.FullEvent())["own_tiles"].empty());
 }
 
 TEST(FleetViewModelTest, APlacementFromTheServerMovesTheRobot) {
