@@ -44,11 +44,6 @@ std::vector<std::pair<int, int>> ShiftsWithin(int radius) {
 
 }  // namespace
 
-Point2 GridTransform::Apply(const Point2& p) const {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  return {c * p.x() - s * p.y() + tx, s * p.x() + c * p.y() + ty};
-}
-
 GridTransform GridTransform::Inverse() const {
   const double c = std::cos(yaw), s = std::sin(yaw);
   return {-yaw, -(c * tx + s * ty), -(-s * tx + c * ty)};
