@@ -37,8 +37,12 @@ class ConfidenceCalibration {
   // Needs at least one sample.
   static ConfidenceCalibration Fit(std::vector<Sample> samples, int min_per_knot);
 
-  // The calibration Register uses (docs/registration.md, "Found, confidence, overlap").
+  // The calibration Register uses with the rigid verification, the default
+  // (docs/registration.md, "Found, confidence, overlap"), and the one it uses with the
+  // drift-tolerant verification (RegistrationOptions::max_drift_per_m > 0): each fitted on the
+  // scores its verification gives.
   static const ConfidenceCalibration& Default();
+  static const ConfidenceCalibration& DriftTolerant();
 
   // The probability at `score`: interpolated between knots, the end knots' beyond them.
   double Probability(double score) const;

@@ -166,7 +166,7 @@ PlacementVerifier::Verdict PlacementVerifier::Verify(const GridTransform& t) con
 }
 
 PlacementVerifier::Verdict PlacementVerifier::VerifyWithDrift(const GridTransform& t) const {
-  if (!(max_drift_per_m_ > 0.0) || max_drift_cells_ < 1) return Verify(t);
+  if (!(max_drift_per_m_ > 0.0) || max_drift_cells_ < 1) return Verify(t);  // rigid
   // The rigid fit is exact where the two maps agree and drift grows away from there: the centre
   // of the rigidly agreeing samples (A's grid metres) is where blocks may not move at all.
   Point2 anchor(0.0, 0.0);

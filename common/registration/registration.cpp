@@ -685,7 +685,10 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   const int needed_agreeing =
       std::max(options.min_agreeing_cells,
                static_cast<int>(std::ceil(options.min_agreeing_share * b_in_a.occupied_shared)));
-  result.confidence = ConfidenceCalibration::Default().Probability(result.score);
+  const bool drift_tolerant = options.max_drift_per_m > 0.0 && options.max_drift_cells > 0;
+  result.confidence =
+      (drift_tolerant ? ConfidenceCalibration::DriftTolerant() : ConfidenceCalibration::Default())
+          .Probability(result.score);
 
   if (result.overlap < options.min_overlap) {
     result.why_not = std::string("too little shared structure: ")

@@ -31,14 +31,16 @@ TEST(ConfidenceCalibrationTest, FitIsMonotoneAndMatchesTheRates) {
   EXPECT_LT(c.Probability(0.95), 1.0);  // finite data never claims certainty
 }
 
-TEST(ConfidenceCalibrationTest, DefaultIsAProbabilityThatGrowsWithTheScore) {
-  const ConfidenceCalibration& c = ConfidenceCalibration::Default();
-  double previous = 0.0;
-  for (double s = 0.0; s <= 1.0; s += 0.05) {
-    const double p = c.Probability(s);
-    EXPECT_GE(p, previous);
-    EXPECT_LE(p, 1.0);
-    previous = p;
+TEST(ConfidenceCalibrationTest, BothDefaultsAreProbabilitiesThatGrowWithTheScore) {
+  for (const ConfidenceCalibration* c :
+       {&ConfidenceCalibration::Default(), &ConfidenceCalibration::DriftTolerant()}) {
+    double previous = 0.0;
+    for (double s = 0.0; s <= 1.0; s += 0.05) {
+      const double p = c->Probability(s);
+      EXPECT_GE(p, previous);
+      EXPECT_LE(p, 1.0);
+      previous = p;
+    }
   }
 }
 
