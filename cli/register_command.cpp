@@ -155,7 +155,7 @@ void AddRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_option("--max-cells", options->max_cells, "Refuse images with more cells than this")
       ->check(CLI::PositiveNumber);
   // Read as text and checked here and in RunRegister, so that any bad value exits 2 with the
-  // option named (a CLI11 conversion error would exit with CLI11's own code).
+  // option and the range named; CLI11 would take an empty value as none.
   auto min_confidence = std::make_shared<std::string>();
   std::string help =
       "Least confidence (0..1) at which the placement is found: the placement bar, by default "
