@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/inputs/exit_codes.hpp"
+#include "common/grid/occupancy_grid.hpp"
 #include "common/metrics/map_quality.hpp"
 
 namespace fleetmap::cli {
@@ -26,7 +27,8 @@ std::string Geometry(const grid::OccupancyGrid& grid) {
 Status CheckSameGeometry(const CompareCommandOptions& options, const grid::OccupancyGrid& robot,
                          const grid::OccupancyGrid& truth) {
   if (robot.width() != truth.width() || robot.height() != truth.height() ||
-      robot.resolution() != truth.resolution() || !(robot.origin() == truth.origin())) {
+      !grid::SameResolution(robot.resolution(), truth.resolution()) ||
+      !(robot.origin() == truth.origin())) {
     return InvalidArgumentError("sizes do not match: " + options.robot_yaml + " is " +
                                 Geometry(robot) + ", " + options.truth_yaml + " is " +
                                 Geometry(truth));

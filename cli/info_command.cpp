@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/inputs/exit_codes.hpp"
+#include "common/core/number_format.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -41,12 +42,8 @@ Bounds FootprintBounds(const grid::OccupancyGrid& grid) {
   return bounds;
 }
 
-// Ten significant digits: enough for maps, without 9.200000000000003 noise.
-std::string Num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.10g", value);
-  return buffer;
-}
+// Metres to the millimetre: a bounds corner is 50 m, not 50.00000089 m.
+std::string Metres(double value) { return FixedNumber(value, 3); }
 
 std::string Percent(int64_t part, int64_t whole) {
   char buffer[32];
@@ -62,18 +59,18 @@ void PrintText(const std::string& yaml, const grid::LoadedMap& map, const Bounds
   out << "map:        " << yaml << "\n"
       << "image:      " << meta.image_path << "\n"
       << "size:       " << g.width() << " x " << g.height() << " cells (" << cells << ")\n"
-      << "resolution: " << Num(g.resolution()) << " m/cell\n"
-      << "origin:     x " << Num(g.origin().x) << " m, y " << Num(g.origin().y) << " m, yaw "
-      << Num(g.origin().yaw) << " rad\n"
-      << "bounds:     x [" << Num(bounds.min_x) << ", " << Num(bounds.max_x) << "] m, y ["
-      << Num(bounds.min_y) << ", " << Num(bounds.max_y) << "] m\n"
+      << "resolution: " << CleanNumber(g.resolution()) << " m/cell\n"
+      << "origin:     x " << Metres(g.origin().x) << " m, y " << Metres(g.origin().y) << " m, yaw "
+      << FixedNumber(g.origin().yaw, 4) << " rad\n"
+      << "bounds:     x [" << Metres(bounds.min_x) << ", " << Metres(bounds.max_x) << "] m, y ["
+      << Metres(bounds.min_y) << ", " << Metres(bounds.max_y) << "] m\n"
       << "occupied:   " << counts.occupied << " (" << Percent(counts.occupied, cells) << ")\n"
       << "free:       " << counts.free << " (" << Percent(counts.free, cells) << ")\n"
       << "unknown:    " << counts.unknown << " (" << Percent(counts.unknown, cells) << ")\n"
       << "mode:       " << grid::MapModeName(meta.mode) << "\n"
       << "negate:     " << (meta.negate ? 1 : 0) << "\n"
-      << "thresholds: occupied " << Num(meta.occupied_thresh) << ", free " << Num(meta.free_thresh)
-      << "\n";
+      << "thresholds: occupied " << CleanNumber(meta.occupied_thresh) << ", free "
+      << CleanNumber(meta.free_thresh) << "\n";
 }
 
 void PrintJson(const std::string& yaml, const grid::LoadedMap& map, const Bounds& bounds,
@@ -88,10 +85,12 @@ void PrintJson(const std::string& yaml, const grid::LoadedMap& map, const Bounds
   json["cells"] = g.cell_count();
   json["resolution"] = g.resolution();
   json["origin"] = {{"x", g.origin().x}, {"y", g.origin().y}, {"yaw", g.origin().yaw}};
-  json["bounds"] = {{"min_x", bounds.min_x},
-                    {"min_y", bounds.min_y},
-                    {"max_x", bounds.max_x},
-                    {"max_y", bounds.max_y}};
+  // Computed corners, to the micrometre: without float noise, exact enough for any use.
+  const auto corner = [](double value) { return RoundToDecimals(value, 6); };
+  json["bounds"] = {{"min_x", corner(bounds.min_x)},
+                    {"min_y", corner(bounds.min_y)},
+                    {"max_x", corner(bounds.max_x)},
+                    {"max_y", corner(bounds.max_y)}};
   json["counts"] = {
       {"occupied", counts.occupied}, {"free", counts.free}, {"unknown", counts.unknown}};
   json["mode"] = std::string(grid::MapModeName(meta.mode));

@@ -1,7 +1,6 @@
 #include "cli/register_command.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -11,6 +10,7 @@
 
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"
+#include "common/core/number_format.hpp"
 #include "common/registration/registration.hpp"
 
 namespace fleetmap::cli {
@@ -41,11 +41,10 @@ constexpr const char* kDescription =
     "Exit status 0 whether found or not, 2 on bad input (a map that cannot be read, "
     "--min-confidence outside 0..1).";
 
-std::string Num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
-  return buffer;
-}
+// Text output to the digits that mean something: metres to the millimetre, shares to a tenth of
+// a percent, yaw to a hundredth of a degree, milliseconds to a tenth.
+std::string Metres(double value) { return FixedNumber(value, 3); }
+std::string Share(double value) { return FixedNumber(value, 3); }
 
 // The map's cells as 100 / 0 / -1, read with the thresholds of its YAML.
 grid::OccupancyGrid Trinary(const grid::LoadedMap& map) {
@@ -68,7 +67,7 @@ grid::OccupancyGrid Trinary(const grid::LoadedMap& map) {
 
 int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream& err) {
   if (!(options.min_confidence >= 0.0 && options.min_confidence <= 1.0)) {
-    err << "fleetmap register: --min-confidence " << Num(options.min_confidence)
+    err << "fleetmap register: --min-confidence " << ShortNumber(options.min_confidence)
         << " must be in [0, 1] (the least confidence at which a placement is found)\n";
     return kExitBadInput;
   }
@@ -100,17 +99,20 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
   }
   const registration::Registration& r = *result;
   std::string best_guess = "x ";
-  best_guess.append(Num(r.a_from_b.x))
+  best_guess.append(Metres(r.a_from_b.x))
       .append(" m, y ")
-      .append(Num(r.a_from_b.y))
+      .append(Metres(r.a_from_b.y))
       .append(" m, yaw ")
-      .append(Num(r.a_from_b.yaw))
+      .append(FixedNumber(r.a_from_b.yaw, 4))
       .append(" rad (")
-      .append(Num(r.a_from_b.yaw * 180.0 / std::numbers::pi))
+      .append(FixedNumber(r.a_from_b.yaw * 180.0 / std::numbers::pi, 2))
       .append(" deg)");
   if (options.json) {
+    // To the micrometre and microradian: no float noise (0.0039999999999995595), and finer than
+    // any placement is right.
+    const auto micro = [](double value) { return RoundToDecimals(value, 6); };
     const nlohmann::ordered_json pose = {
-        {"x", r.a_from_b.x}, {"y", r.a_from_b.y}, {"yaw", r.a_from_b.yaw}};
+        {"x", micro(r.a_from_b.x)}, {"y", micro(r.a_from_b.y)}, {"yaw", micro(r.a_from_b.yaw)}};
     nlohmann::ordered_json json;
     json["found"] = r.found;
     json["min_confidence"] = options.min_confidence;
@@ -119,28 +121,28 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
     json["confidence"] = r.confidence;
     json["score"] = r.score;
     json["overlap"] = r.overlap;
-    json["drift_m"] = r.drift;
-    json["ms"] = ms;
+    json["drift_m"] = RoundToDecimals(r.drift, 3);
+    json["ms"] = RoundToDecimals(ms, 1);
     if (!r.found) json["why_not"] = r.why_not;
     out << json.dump() << "\n";
   } else {
     out << "a:          " << options.map_a_yaml << "\n"
         << "b:          " << options.map_b_yaml << "\n"
         << "found:      " << (r.found ? "yes" : "no") << " (placement bar: confidence "
-        << Num(options.min_confidence) << ")\n";
+        << ShortNumber(options.min_confidence) << ")\n";
     if (!r.found) out << "why not:    " << r.why_not << "\n";
     if (r.found) out << "a_from_b:   " << best_guess << "\n";
     out << "best guess: " << best_guess << "\n"
-        << "confidence: " << Num(r.confidence) << " (probability the placement is right)\n"
-        << "score:      " << Num(r.score) << " (consistency x distinctness)\n"
-        << "overlap:    " << Num(r.overlap) << " of B's known cells on A's\n"
+        << "confidence: " << Share(r.confidence) << " (probability the placement is right)\n"
+        << "score:      " << Share(r.score) << " (consistency x distinctness)\n"
+        << "overlap:    " << Share(r.overlap) << " of B's known cells on A's\n"
         << "evidence:   " << r.agreeing_cells << " of B's occupied cells agree, "
         << r.contradicting_cells
         << " occupied cells contradict, the best other placement verifies at "
-        << Num(100.0 * r.peak_ratio) << " % of the best\n"
-        << "drift:      " << Num(r.drift)
+        << FixedNumber(100.0 * r.peak_ratio, 1) << " % of the best\n"
+        << "drift:      " << FixedNumber(r.drift, 3)
         << " m, the largest shift a block of B took to verify (docs/registration.md)\n"
-        << "time:       " << Num(ms) << " ms\n";
+        << "time:       " << FixedNumber(ms, 1) << " ms\n";
   }
   out.flush();
   return out ? kExitOk : kExitBadInput;
@@ -156,12 +158,12 @@ void AddRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_option("--max-cells", options->max_cells, "Refuse images with more cells than this")
       ->check(CLI::PositiveNumber);
   // Read as text and checked here and in RunRegister, so that any bad value exits 2 with the
-  // option named (a CLI11 conversion error would exit with CLI11's own code).
+  // option and the range named; CLI11 would take an empty value as none.
   auto min_confidence = std::make_shared<std::string>();
   std::string help =
       "Least confidence (0..1) at which the placement is found: the placement bar, by default "
       "the server's (";
-  help.append(Num(registration::kPlacementConfidence)).append(")");
+  help.append(ShortNumber(registration::kPlacementConfidence)).append(")");
   CLI::Option* min_confidence_option =
       command->add_option("--min-confidence", *min_confidence, help);
   command->callback([options, min_confidence, min_confidence_option, exit_code]() {

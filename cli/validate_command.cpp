@@ -1,20 +1,15 @@
 #include "cli/validate_command.hpp"
 
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/inputs/exit_codes.hpp"
+#include "common/core/number_format.hpp"
+#include "common/grid/occupancy_grid.hpp"
 #include "common/vector_map/validator.hpp"
 
 namespace fleetmap::cli {
-namespace {
-
-// Same resolution up to float32 rounding (the .vmap stores it as a float).
-bool SameResolution(double grid, double vmap) { return std::abs(grid - vmap) <= 1e-6 * grid; }
-
-}  // namespace
 
 int RunValidate(const ValidateCommandOptions& options, std::ostream& out, std::ostream& err) {
   auto fail = [&err](const std::string& message) {
@@ -27,10 +22,10 @@ int RunValidate(const ValidateCommandOptions& options, std::ostream& out, std::o
   if (Status s = CheckAxisAligned(options.map_yaml, grid); !s.ok()) return fail(s.message());
   StatusOr<vector_map::TiledVectorMap> tiled = ReadVmapInput(options.vmap);
   if (!tiled.ok()) return fail(tiled.status().message());
-  if (!SameResolution(grid.resolution(), tiled->resolution)) {
+  if (!grid::SameResolution(grid.resolution(), tiled->resolution)) {
     return fail(options.vmap + ": made from a grid of resolution " +
-                std::to_string(tiled->resolution) + " m, but " + options.map_yaml + " has " +
-                std::to_string(grid.resolution()) + " m");
+                CleanNumber(tiled->resolution) + " m, but " + options.map_yaml + " has " +
+                CleanNumber(grid.resolution()) + " m");
   }
   if (!(tiled->epsilon > 0.0)) return fail(options.vmap + ": epsilon must be > 0");
 

@@ -1,7 +1,7 @@
 #pragma once
 
-// Exit codes shared by every `fleetmap` subcommand. Usage errors (unknown flag, missing argument)
-// exit with CLI11's own non-zero codes; --help exits 0.
+// Exit codes shared by every `fleetmap` subcommand. Usage errors (unknown flag, missing or bad
+// value) exit kExitBadInput too, and --help and --version exit 0 (common/config/command_line.hpp).
 
 namespace fleetmap::cli {
 

@@ -1,7 +1,14 @@
 #pragma once
 
-// One exit code for bad input on every program of the house: 2 (cli/inputs/exit_codes.hpp), also
-// for an option CLI11 refuses (it would exit with its own codes, 105, 106 and so on).
+// The command-line parse every program of the house shares (fleetmap-server, fleetmap-agent and
+// `fleetmap` with all its subcommands), so that all of them behave alike:
+// - `--help` prints the help and exits 0;
+// - `--version` prints VersionText (version.hpp) and exits 0;
+// - every option CLI11 refuses (unknown flag, bad or missing value, a check that fails) prints one
+//   line naming the command and the option, and exits 2, the exit code of bad input everywhere
+//   (cli/inputs/exit_codes.hpp). CLI11 would exit with its own codes (105, 106, 109...), and its
+//   PositiveNumber / NonNegativeNumber checks would print the largest double in full; they say
+//   "must be > 0, got -3" instead.
 
 #include <CLI/CLI.hpp>
 
@@ -11,15 +18,9 @@ namespace fleetmap::config {
 
 inline constexpr int kExitBadCommandLine = 2;
 
-// Parses the command line. Returns the code to exit with when the program should not run: 0
-// after --help, 2 after CLI11's message for a refused option; nullopt to go on.
-inline std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    return app.exit(error) == 0 ? 0 : kExitBadCommandLine;
-  }
-  return std::nullopt;
-}
+// Adds --version to `app`, then parses. Returns the code to exit with when the program should
+// not run: 0 after --help or --version, kExitBadCommandLine after a refused option; nullopt to go
+// on. argv[0] names the program in the messages.
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv);
 
 }  // namespace fleetmap::config

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "common/core/number_format.hpp"
 #include "common/gis/internal/geos_context.hpp"
 
 namespace fleetmap::gis {
@@ -239,6 +240,76 @@ Status FillByEvenOddRule(const GeosContext& geos, const std::vector<Ring>& outli
   return Status::Ok();
 }
 
+Point2 OnGrid(const Point2& p) {
+  return {RoundToDecimals(p.x(), kCoordinateDecimals), RoundToDecimals(p.y(), kCoordinateDecimals)};
+}
+
+// `ring` (closed: the last vertex repeats the first) with its vertices on the grid, consecutive
+// repeats dropped; none if fewer than four positions are left.
+std::optional<Ring> ClosedRingOnGrid(const Ring& ring) {
+  Ring out;
+  for (const Point2& p : ring) {
+    const Point2 snapped = OnGrid(p);
+    if (out.empty() || snapped != out.back()) out.push_back(snapped);
+  }
+  if (out.size() < 4 || out.front() != out.back()) return std::nullopt;
+  return out;
+}
+
+// `polygons` with every vertex on the grid, orientations kept, if GEOS finds the result still a
+// valid MultiPolygon: rounding moves a vertex by up to half a micrometre, which can make a sliver
+// a rounding error wide cross itself, or parts touching at a point overlap.
+std::optional<std::vector<SimplePolygon>> PolygonsOnGrid(
+    const GeosContext& geos, const std::vector<SimplePolygon>& polygons) {
+  GEOSContextHandle_t h = geos.handle();
+  std::vector<SimplePolygon> out;
+  std::vector<GEOSGeometry*> parts;
+  const auto release_parts = [&]() {
+    for (GEOSGeometry* part : parts) GEOSGeom_destroy_r(h, part);
+    return std::nullopt;
+  };
+  for (const SimplePolygon& polygon : polygons) {
+    SimplePolygon snapped;
+    std::vector<Ring> open_rings;  // PolygonOf closes them again
+    for (size_t k = 0; k <= polygon.holes.size(); ++k) {
+      const std::optional<Ring> ring =
+          ClosedRingOnGrid(k == 0 ? polygon.shell : polygon.holes[k - 1]);
+      if (!ring) return release_parts();
+      const Ring oriented = Oriented(*ring, k == 0);
+      (k == 0 ? snapped.shell : snapped.holes.emplace_back()) = oriented;
+      open_rings.emplace_back(oriented.begin(), oriented.end() - 1);
+    }
+    parts.push_back(PolygonOf(geos, open_rings).release());
+    out.push_back(std::move(snapped));
+  }
+  const Geometry multi = geos.Own(GEOSGeom_createCollection_r(h, GEOS_MULTIPOLYGON, parts.data(),
+                                                              static_cast<unsigned>(parts.size())));
+  if (!multi || GEOSisValid_r(h, multi.get()) != 1) return std::nullopt;
+  return out;
+}
+
+// Puts the polygons of `area` (valid) into `out`, with their vertices on the grid where that
+// keeps them valid; else with their vertices as they are (a valid feature with a few noisy digits
+// rather than a clean invalid one). GEOS's precision reduction would make them valid on the grid,
+// but by dropping the collapsed sliver, and with it the cells along it the area covers.
+void AppendPolygonsOnGrid(const GeosContext& geos, const GEOSGeometry* area, FilledArea* out) {
+  FilledArea exact;
+  AppendPolygons(geos, area, &exact);
+  std::optional<std::vector<SimplePolygon>> snapped = PolygonsOnGrid(geos, exact.polygons);
+  out->polygons = snapped ? std::move(*snapped) : std::move(exact.polygons);
+}
+
+// Lines keep their vertices on the grid unless rounding would collapse one to a point.
+void SnapLinesToGrid(FilledArea* out) {
+  for (Ring& line : out->lines) {
+    Ring snapped;
+    for (const Point2& p : line) {
+      if (snapped.empty() || OnGrid(p) != snapped.back()) snapped.push_back(OnGrid(p));
+    }
+    if (snapped.size() >= 2) line = std::move(snapped);
+  }
+}
+
 }  // namespace
 
 StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
@@ -273,9 +344,11 @@ StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
     GEOSFree_r(h, reason);
     return InternalError(std::move(message));
   }
-  if (area) AppendPolygons(geos, area.get(), &out);
+  if (area) AppendPolygonsOnGrid(geos, area.get(), &out);
   if (lines) AppendLines(geos, lines.get(), &out);
-  for (const Point2& p : points) {
+  SnapLinesToGrid(&out);
+  for (const Point2& vertex : points) {
+    const Point2 p = OnGrid(vertex);
     if (std::find(out.points.begin(), out.points.end(), p) != out.points.end()) continue;
     const Geometry point = geos.Own(GEOSGeom_createPointFromXY_r(h, p.x(), p.y()));
     const bool on_area = area && GEOSIntersects_r(h, area.get(), point.get()) == 1;

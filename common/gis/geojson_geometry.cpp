@@ -2,12 +2,16 @@
 
 #include <string>
 
+#include "common/core/number_format.hpp"
+
 namespace fleetmap::gis {
 namespace {
 
+// A FilledArea's positions as they are: already on the grid, or, where rounding would have made
+// a polygon invalid, deliberately not (filled_area.hpp); rounding them again could undo that.
 nlohmann::json Positions(const std::vector<Point2>& points) {
   nlohmann::json out = nlohmann::json::array();
-  for (const Point2& p : points) out.push_back(GeoJsonPosition(p));
+  for (const Point2& p : points) out.push_back(nlohmann::json::array({p.x(), p.y()}));
   return out;
 }
 
@@ -31,7 +35,11 @@ nlohmann::json GeoJsonCrs() {
   return {{"type", "name"}, {"properties", {{"name", kGeoJsonCrsName}}}};
 }
 
-nlohmann::json GeoJsonPosition(const Point2& p) { return nlohmann::json::array({p.x(), p.y()}); }
+double GeoJsonMetres(double value) { return RoundToDecimals(value, kCoordinateDecimals); }
+
+nlohmann::json GeoJsonPosition(const Point2& p) {
+  return nlohmann::json::array({GeoJsonMetres(p.x()), GeoJsonMetres(p.y())});
+}
 
 std::vector<nlohmann::json> GeoJsonGeometries(const FilledArea& area) {
   std::vector<nlohmann::json> out;

@@ -21,6 +21,12 @@ inline constexpr const char* kGeoJsonCrsName = "urn:ogc:def:crs:EPSG::3857";
 // {"type": "name", "properties": {"name": kGeoJsonCrsName}}: a FeatureCollection's "crs" member.
 nlohmann::json GeoJsonCrs();
 
+// A distance or coordinate in metres as the exports write it: rounded to the micrometre
+// (kCoordinateDecimals, the grid FilledArea is snapped to), so that a vertex on a 0.025 m lattice
+// is 42.175, not 42.175000000000004 (the float noise of i * quantum + origin).
+double GeoJsonMetres(double value);
+
+// [x, y], each GeoJsonMetres.
 nlohmann::json GeoJsonPosition(const Point2& p);
 
 // At most three geometries, in this order: a Polygon (MultiPolygon if the area has several

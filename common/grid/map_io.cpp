@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "common/core/file_io.hpp"
+#include "common/core/number_format.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/grid/image_header.hpp"
 #include "common/grid/pgm.hpp"
@@ -35,26 +35,19 @@ std::string ToLower(std::string text) {
   return text;
 }
 
-// Shortest decimal that reads back as the same double ("0.05", not "0.050000000000000003").
-std::string FormatDouble(double value) {
-  std::array<char, 64> buffer;
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
-
 Status ValidateThresholds(double occupied_thresh, double free_thresh, const std::string& name) {
   if (!std::isfinite(occupied_thresh) || occupied_thresh < 0.0 || occupied_thresh > 1.0) {
     return InvalidArgumentError(name + ": occupied_thresh must be in [0, 1], got " +
-                                FormatDouble(occupied_thresh));
+                                ExactNumber(occupied_thresh));
   }
   if (!std::isfinite(free_thresh) || free_thresh < 0.0 || free_thresh > 1.0) {
     return InvalidArgumentError(name + ": free_thresh must be in [0, 1], got " +
-                                FormatDouble(free_thresh));
+                                ExactNumber(free_thresh));
   }
   if (free_thresh >= occupied_thresh) {
-    return InvalidArgumentError(name + ": free_thresh (" + FormatDouble(free_thresh) +
-                                ") must be below occupied_thresh (" +
-                                FormatDouble(occupied_thresh) + ")");
+    return InvalidArgumentError(name + ": free_thresh (" + ExactNumber(free_thresh) +
+                                ") must be below occupied_thresh (" + ExactNumber(occupied_thresh) +
+                                ")");
   }
   return Status::Ok();
 }
@@ -62,7 +55,7 @@ Status ValidateThresholds(double occupied_thresh, double free_thresh, const std:
 Status ValidateMetadata(const MapMetadata& metadata, const std::string& name) {
   if (!std::isfinite(metadata.resolution) || metadata.resolution <= 0.0) {
     return InvalidArgumentError(name + ": resolution must be a finite number > 0, got " +
-                                FormatDouble(metadata.resolution));
+                                ExactNumber(metadata.resolution));
   }
   if (!std::isfinite(metadata.origin.x) || !std::isfinite(metadata.origin.y) ||
       !std::isfinite(metadata.origin.yaw)) {
@@ -270,8 +263,8 @@ Status CheckTrinaryReadBack(const OccupancyGrid& grid, const MapSaveOptions& opt
     const int8_t got = CellValueFromShade(shade / 255.0, true, read_back);
     if (got != value) {
       return InvalidArgumentError(name + ": with occupied_thresh " +
-                                  FormatDouble(options.occupied_thresh) + " and free_thresh " +
-                                  FormatDouble(options.free_thresh) + ", the trinary shade " +
+                                  ExactNumber(options.occupied_thresh) + " and free_thresh " +
+                                  ExactNumber(options.free_thresh) + ", the trinary shade " +
                                   std::to_string(shade) + " would read back as " +
                                   std::to_string(got) + " instead of " + std::to_string(value) +
                                   " (free_thresh must be in (1/255, 50/255], occupied_thresh in "
@@ -287,13 +280,14 @@ Status WriteYaml(const OccupancyGrid& grid, const std::string& yaml_path,
   out << YAML::BeginMap;
   out << YAML::Key << "image" << YAML::Value << image_name;
   out << YAML::Key << "mode" << YAML::Value << std::string(MapModeName(options.mode));
-  out << YAML::Key << "resolution" << YAML::Value << FormatDouble(grid.resolution());
+  // Clean numbers: the resolution the user gave ("0.05"), an origin without arithmetic's noise.
+  out << YAML::Key << "resolution" << YAML::Value << CleanNumber(grid.resolution());
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginSeq
-      << FormatDouble(grid.origin().x) << FormatDouble(grid.origin().y)
-      << FormatDouble(grid.origin().yaw) << YAML::EndSeq;
+      << CleanNumber(grid.origin().x) << CleanNumber(grid.origin().y)
+      << CleanNumber(grid.origin().yaw) << YAML::EndSeq;
   out << YAML::Key << "negate" << YAML::Value << 0;
-  out << YAML::Key << "occupied_thresh" << YAML::Value << FormatDouble(options.occupied_thresh);
-  out << YAML::Key << "free_thresh" << YAML::Value << FormatDouble(options.free_thresh);
+  out << YAML::Key << "occupied_thresh" << YAML::Value << CleanNumber(options.occupied_thresh);
+  out << YAML::Key << "free_thresh" << YAML::Value << CleanNumber(options.free_thresh);
   out << YAML::EndMap;
   if (!out.good()) return InternalError(yaml_path + ": YAML emitter failed: " + out.GetLastError());
   return WriteFileAtomically(yaml_path, std::string(out.c_str()) + "\n");
@@ -390,7 +384,7 @@ StatusOr<MapMetadata> ReadMapYaml(const std::string& yaml_path, const MapLoadOpt
   FLEETMAP_ASSIGN_OR_RETURN(metadata.resolution, reader.RequiredNumber("resolution"));
   if (metadata.resolution <= 0.0) {
     return reader.Error(*reader.Find("resolution"), "resolution must be > 0 metres per cell, got " +
-                                                        FormatDouble(metadata.resolution));
+                                                        ExactNumber(metadata.resolution));
   }
 
   const auto origin = reader.Find("origin");

@@ -98,9 +98,9 @@ struct MapSaveOptions {
 // writes 0 / 205 / 254, scale writes (100 - v) / 100 gray (unknown transparent), raw writes v
 // (unknown 255). Refuses (kInvalidArgument) an empty grid, bad thresholds, thresholds under which
 // the trinary shades would not read back as written, and a scale-mode PGM of a grid with unknown
-// cells (PGM has no alpha). The YAML's numbers are written in their shortest exact form. Each
-// file is written whole or not at all (WriteFileAtomically); the image goes first, so a YAML on
-// disk never names a missing image.
+// cells (PGM has no alpha). The YAML's numbers are clean (CleanNumber): the resolution the user
+// gave (0.05), origins without arithmetic's float noise. Each file is written whole or not at all
+// (WriteFileAtomically); the image goes first, so a YAML on disk never names a missing image.
 Status SaveMap(const OccupancyGrid& grid, const std::string& yaml_path,
                const MapSaveOptions& options = {});
 

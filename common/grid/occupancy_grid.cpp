@@ -1,10 +1,15 @@
 #include "common/grid/occupancy_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/core/check.hpp"
 
 namespace fleetmap::grid {
+
+bool SameResolution(double a, double b) {
+  return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b));
+}
 
 CellState StateOf(int8_t value, const StateThresholds& thresholds) {
   if (value < 0 || value > 100) return CellState::kUnknown;

@@ -31,6 +31,11 @@ struct StateThresholds {
 
 CellState StateOf(int8_t value, const StateThresholds& thresholds = {});
 
+// Whether two resolutions (metres per cell) are the same map resolution: equal within 1e-6 of
+// the larger. A resolution crosses float32 fields (DDS messages, .vmap files) and decimal text
+// (map YAML), and 0.05 must stay 0.05 through both; no two real map resolutions are this close.
+bool SameResolution(double a, double b);
+
 // Cell (x, y) with x along the grid's columns and y along its rows, (0, 0) at the origin.
 struct CellIndex {
   int x = 0;

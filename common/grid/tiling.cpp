@@ -105,8 +105,6 @@ std::optional<int64_t> LatticeOffset(double value, double reference, double reso
   return static_cast<int64_t>(rounded);
 }
 
-bool SameResolution(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); }
-
 void CopyTile(const OccupancyGrid& tile, int64_t x0, int64_t y0, OccupancyGrid* target) {
   if (tile.empty()) return;
   for (int y = 0; y < tile.height(); ++y) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/number_format.hpp"
 #include "common/registration/confidence_calibration.hpp"
 #include "common/registration/placement_verifier.hpp"
 
@@ -453,11 +454,11 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   if (Status s = CheckGrid(a, "map A"); !s.ok()) return s;
   if (Status s = CheckGrid(b, "map B"); !s.ok()) return s;
   const double res = a.resolution();
-  if (std::abs(a.resolution() - b.resolution()) > 1e-9 * res) {
+  if (!grid::SameResolution(a.resolution(), b.resolution())) {
     return InvalidArgumentError(std::string("map A's resolution ")
-                                    .append(Num(a.resolution()))
+                                    .append(CleanNumber(a.resolution()))
                                     .append(" m differs from map B's ")
-                                    .append(Num(b.resolution()))
+                                    .append(CleanNumber(b.resolution()))
                                     .append(" m; registration does not resample: resample one "
                                             "map first"));
   }

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "common/core/file_io.hpp"
+#include "common/core/number_format.hpp"
 #include "common/transport/internal/cdr_codec.hpp"
 #include "common/transport/internal/idl_shapes.hpp"
 #include "common/transport/internal/vector_tile_codec.hpp"
@@ -79,8 +80,9 @@ StatusOr<vector_map::TiledVectorMap> DecodeVmap(std::string_view bytes, const st
   vector_map::TiledVectorMap map;
   map.frame_id = message.frame_id();
   map.tile_size = message.tile_size();
-  map.epsilon = message.epsilon();
-  map.resolution = message.resolution();
+  // float32 in the file; the decimals the map was made with (0.05, not 0.05000000074505806).
+  map.epsilon = DoubleFromFloat(message.epsilon());
+  map.resolution = DoubleFromFloat(message.resolution());
   if (!std::isfinite(map.tile_size) || map.tile_size <= 0.0 || !std::isfinite(map.epsilon) ||
       map.epsilon < 0.0 || !std::isfinite(map.resolution) || map.resolution <= 0.0) {
     return InvalidArgumentError(name +

@@ -24,7 +24,8 @@ nlohmann::json ObstacleFeature(const Polyline& polyline) {
   // The half width is what the rasterizer paints around the line: a reader needs it to draw
   // the obstacle as the grid will have it.
   return {{"type", "Feature"},
-          {"properties", {{"kind", "obstacle"}, {"half_width", polyline.half_width}}},
+          {"properties",
+           {{"kind", "obstacle"}, {"half_width", gis::GeoJsonMetres(polyline.half_width)}}},
           {"geometry", std::move(geometry)}};
 }
 

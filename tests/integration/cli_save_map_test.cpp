@@ -24,7 +24,9 @@ namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
+using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // Bounds waits on a loaded 2-core CI machine; not an assertion about speed.
 constexpr seconds kDeadline{60};
@@ -37,6 +39,36 @@ int8_t Trinary(int8_t value, const grid::MapMetadata& saved) {
   if (value >= saved.occupied_thresh * 100.0) return 100;
   if (value <= saved.free_thresh * 100.0) return 0;
   return -1;
+}
+
+// Issue 33: a 0.05 map is saved as `resolution: 0.05` (nav2's map_saver writes a clean 0.05), not
+// the float32 of the DDS message widened (0.05000000074505806); no number in the YAML or the
+// GeoJSON carries float noise (a run of ten or more decimals).
+void ExpectCleanNumbers(const std::string& out, double fused_resolution) {
+  EXPECT_EQ(fused_resolution, 0.05);
+  const std::string yaml = testing::ReadFile(out + "/fused.yaml");
+  EXPECT_THAT(yaml, HasSubstr("resolution: 0.05\n"));
+  EXPECT_THAT(yaml, Not(ContainsRegex("[0-9]\\.[0-9]{10}")));
+  EXPECT_THAT(testing::ReadFile(out + "/fused.geojson"), Not(ContainsRegex("[0-9]\\.[0-9]{10}")));
+}
+
+// No output of the tool, fed back to the tool, is refused: the saved map registers on the robot's
+// map it was fused from (same resolution), and info, vectorize, validate and render read it and
+// the saved .vmap.
+void ExpectTheToolReadsWhatItWrote(const std::string& out) {
+  const std::string saved = out + "/fused.yaml";
+  const auto registered = testing::RunFleetmap({"register", saved, kMap});
+  EXPECT_EQ(registered.exit_code, 0) << registered.output();
+  EXPECT_THAT(registered.err, Not(HasSubstr("differs")));
+  const auto info = testing::RunFleetmap({"info", saved});
+  EXPECT_EQ(info.exit_code, 0) << info.output();
+  EXPECT_THAT(info.out, HasSubstr("resolution: 0.05 m/cell"));
+  const auto vectorized = testing::RunFleetmap({"vectorize", saved, "-o", out + "/again.vmap"});
+  EXPECT_EQ(vectorized.exit_code, 0) << vectorized.output();
+  const auto validated = testing::RunFleetmap({"validate", saved, out + "/again.vmap"});
+  EXPECT_EQ(validated.exit_code, 0) << validated.output();
+  const auto rendered = testing::RunFleetmap({"render", out + "/fused.vmap", "-o", out + "/f.svg"});
+  EXPECT_EQ(rendered.exit_code, 0) << rendered.output();
 }
 
 TEST(CliSaveMapTest, TheSavedMapIsTheFusedMapCellForCell) {
@@ -106,6 +138,9 @@ TEST(CliSaveMapTest, TheSavedMapIsTheFusedMapCellForCell) {
   EXPECT_GT(vmap->tiles.size(), 0u);
   EXPECT_GT(vmap->ObstacleVertexCount(), 0u);
   EXPECT_THAT(testing::ReadFile(out + "/fused.geojson"), HasSubstr("FeatureCollection"));
+
+  ExpectCleanNumbers(out, fused->resolution());
+  ExpectTheToolReadsWhatItWrote(out);
 
   maps->reset();
   std::filesystem::remove_all(out);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/core/number_format.hpp"
 namespace fleetmap::transport {
 builtin_interfaces::msg::dds_::Time_ ToIdl(Timestamp stamp) {
   const auto since_epoch =
@@ -102,7 +103,7 @@ StatusOr<MapMessage> FromIdl(const nav_msgs::msg::dds_::OccupancyGrid_& message)
   }
   MapMessage out;
   out.grid = grid::OccupancyGrid(static_cast<int>(info.width()), static_cast<int>(info.height()),
-                                 info.resolution(), *origin);
+                                 DoubleFromFloat(info.resolution()), *origin);
   out.grid.mutable_data() = message.data();
   out.frame_id = message.header().frame_id();
   out.stamp = FromIdl(message.header().stamp());
@@ -226,7 +227,7 @@ StatusOr<RobotStatus> FromIdl(const fleetmap_msgs::msg::dds_::RobotStatus_& stat
   out.map_topic = status.map_topic();
   out.map_width = status.map_width();
   out.map_height = status.map_height();
-  out.map_resolution = status.map_resolution();
+  out.map_resolution = DoubleFromFloat(status.map_resolution());
   out.map_revision = status.map_revision();
   out.maps_published = status.maps_published();
   out.tiles_published = status.tiles_published();

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "common/core/number_format.hpp"
 #include "common/transport/internal/conversions.hpp"
 
 namespace fleetmap::transport {
@@ -93,7 +94,7 @@ StatusOr<scene::Patch> PatchOf(const Sample& sample) {
   scene::Patch patch;
   patch.width = static_cast<int>(width);
   patch.height = static_cast<int>(height);
-  patch.resolution = resolution;
+  patch.resolution = DoubleFromFloat(resolution);
   patch.occupancy.reserve(data.size());
   for (const int8_t value : data) {
     if (value < 0 || value > 100) {
@@ -373,7 +374,7 @@ StatusOr<SubmapMessage> FromIdl(const Submap_& sample) {
   submap.map_from_submap = fleet_from_submap;
   submap.navigable =
       grid::OccupancyGrid(static_cast<int>(sample.width()), static_cast<int>(sample.height()),
-                          sample.resolution(), origin);
+                          DoubleFromFloat(sample.resolution()), origin);
   submap.navigable.mutable_data() = sample.data();
   if (!sample.source_entity().empty()) submap.entity_ids.push_back(sample.source_entity());
   message.state = static_cast<scene::SubmapState>(sample.state());

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/number_format.hpp"
 #include "common/transport/internal/conversions.hpp"
 #include "common/transport/internal/varint_stream.hpp"
 #include "common/transport/internal/zstd_frame.hpp"
@@ -469,8 +470,9 @@ StatusOr<VectorTileMessage> FromIdl(const VectorTile_& tile, const TileDecodeLim
   out.stamp = FromIdl(tile.stamp());
   out.tile_size = tile.tile_size_mm() / 1000.0;
   out.map.frame_id = "fleet";
-  out.map.epsilon = tile.epsilon();
-  out.map.resolution = tile.resolution();
+  // float32 on the wire; the decimals the sender's options gave.
+  out.map.epsilon = DoubleFromFloat(tile.epsilon());
+  out.map.resolution = DoubleFromFloat(tile.resolution());
   const size_t max_bytes = std::min(limits.max_geometry_bytes, kMaxGeometryBytes);
   std::vector<uint8_t> decompressed;
   if (tile.compression() == kZstd) {

@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "common/core/number_format.hpp"
 #include "common/grid/pgm.hpp"
+#include "tests/scratch_dir.hpp"
 #include "tests/unit/grid/crafted_png.hpp"
 
 namespace fleetmap::grid {
@@ -418,6 +420,26 @@ OccupancyGrid GridOfRows(const Rows& picture_rows, double resolution, Pose2 orig
     }
   }
   return grid;
+}
+
+// Issue 33: the YAML carries the numbers the map was made with, as nav2's map_saver does: a
+// resolution that crossed a float32 field (taken back as its decimal) is 0.05, and an origin
+// computed from tile indices (-3 * 12.8 = -38.400000000000006) is -38.4.
+TEST(MapIoTest, SavesCleanNumbers) {
+  const TempDir dir("map_io_save_clean");
+  const OccupancyGrid grid =
+      GridOfRows({{0, 100}}, DoubleFromFloat(0.05F), Pose2{-3 * 12.8, 1687 * 0.025, 1e-17});
+  const std::string yaml = dir.Path("clean.yaml");
+  ASSERT_TRUE(SaveMap(grid, yaml).ok());
+  const std::string text = fleetmap::testing::ReadFile(yaml);
+  EXPECT_THAT(text, HasSubstr("resolution: 0.05\n"));
+  EXPECT_THAT(text, HasSubstr("origin: [-38.4, 42.175, 0]\n"));
+  EXPECT_THAT(text, HasSubstr("occupied_thresh: 0.65\n"));
+  EXPECT_THAT(text, HasSubstr("free_thresh: 0.196\n"));
+  const StatusOr<LoadedMap> loaded = LoadMap(yaml);
+  ASSERT_TRUE(loaded.ok()) << loaded.status();
+  EXPECT_EQ(loaded->grid.resolution(), 0.05);
+  EXPECT_NEAR(loaded->grid.origin().x, grid.origin().x, 1e-12);
 }
 
 TEST(MapIoTest, SavesTrinaryWithNav2Shades) {

@@ -19,6 +19,16 @@ TEST(OccupancyGridTest, StateOfFollowsThresholds) {
   EXPECT_EQ(StateOf(50, {.occupied = 0.4, .free = 0.1}), CellState::kOccupied);
 }
 
+// A resolution that crossed a float32 field is the same resolution; a real other one is not.
+TEST(OccupancyGridTest, SameResolutionWithinAMillionth) {
+  EXPECT_TRUE(SameResolution(0.05, 0.05));
+  EXPECT_TRUE(SameResolution(0.05, static_cast<double>(0.05F)));  // 0.05000000074505806
+  EXPECT_TRUE(SameResolution(static_cast<double>(0.025F), 0.025));
+  EXPECT_FALSE(SameResolution(0.05, 0.0501));
+  EXPECT_FALSE(SameResolution(0.05, 0.025));
+  EXPECT_FALSE(SameResolution(0.05, 0.05 * (1.0 + 2e-6)));
+}
+
 TEST(OccupancyGridTest, CellCentreAndLookupAgree) {
   const OccupancyGrid grid(4, 3, 0.5, Pose2{-1.0, 2.0, 0.0});
   const Point2 centre = grid.CellCenter(2, 1);

@@ -192,6 +192,25 @@ TEST(RegistrationTest, RefusesBadInputWithAClearMessage) {
   EXPECT_FALSE(r.ok());
 }
 
+// Issue 33: a map whose resolution crossed a float32 field (a DDS message, a .vmap) registers on
+// the map it came from; a different resolution is refused with both printed cleanly.
+TEST(RegistrationTest, ComparesResolutionsWithARelativeTolerance) {
+  const grid::OccupancyGrid floor = Floor();
+  ASSERT_EQ(floor.resolution(), 0.05);
+  grid::OccupancyGrid widened(floor.width(), floor.height(), static_cast<double>(0.05F),
+                              floor.origin());
+  widened.mutable_data() = floor.data();
+  const StatusOr<Registration> same = Register(floor, widened, {});
+  ASSERT_TRUE(same.ok()) << same.status();
+  EXPECT_TRUE(same->found);
+
+  const grid::OccupancyGrid coarse(50, 50, 0.1, Pose2{}, grid::kOccupiedValue);
+  const StatusOr<Registration> different = Register(floor, coarse, {});
+  ASSERT_FALSE(different.ok());
+  EXPECT_THAT(different.status().message(),
+              ::testing::HasSubstr("map A's resolution 0.05 m differs from map B's 0.1 m"));
+}
+
 // found is the placement decision: a verified placement below the placement bar is refused,
 // with the confidence and the bar in why_not, and its best guess kept.
 TEST(RegistrationTest, FoundOnlyAtThePlacementBar) {

@@ -58,7 +58,9 @@ bool FreePolygonFills(const FreePolygon& polygon, const Point2& p, double tolera
 // and its exported features do not cover, or the other way round. Each polygon is exported and
 // compared on its own, over its bounding box grown by a cell.
 int CellCentresFilledDifferently(const VectorMap& map, const grid::OccupancyGrid& like) {
-  const double tolerance = 1e-6 * like.resolution();
+  // The export writes coordinates to the micrometre (gis::kCoordinateDecimals): a cell centre on
+  // an outline is covered to that precision.
+  const double tolerance = 1e-6;
   int differ = 0;
   for (const FreePolygon& polygon : map.free_space) {
     VectorMap one;
@@ -108,6 +110,22 @@ TEST(GeoJsonTest, WritesObstaclesAndFreeSpace) {
   EXPECT_EQ(free["geometry"]["coordinates"][1].size(), 4u);
   EXPECT_THAT(GeoJsonProblems(json), IsEmpty());
   EXPECT_EQ(nlohmann::json::parse(*ToGeoJsonString(testing::SmallVectorMap())), json);
+}
+
+// Issue 33: vertices on a 0.025 m lattice, computed as i * quantum (1687 * 0.025 is
+// 42.175000000000004), are written as the decimals they are, in the coordinates and the half
+// width alike.
+TEST(GeoJsonTest, WritesCoordinatesWithoutFloatNoise) {
+  VectorMap map;
+  map.epsilon = 0.07;
+  map.resolution = 0.05;
+  map.obstacles.push_back(
+      Polyline{{Point2(1687 * 0.025, -3 * 12.8), Point2(0.1 + 0.2, 1687 * 0.025)}, false, 0.035});
+  const StatusOr<std::string> text = ToGeoJsonString(map);
+  ASSERT_TRUE(text.ok()) << text.status();
+  EXPECT_THAT(*text, ::testing::HasSubstr("[[42.175,-38.4],[0.3,42.175]]"));
+  EXPECT_THAT(*text, ::testing::HasSubstr("\"half_width\":0.035"));
+  EXPECT_THAT(*text, ::testing::Not(::testing::ContainsRegex("[0-9]\\.[0-9]{10}")));
 }
 
 // Rings as the free-space extractor makes them, through cell centres of a 1 m grid: a lone free
