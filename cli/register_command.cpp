@@ -87,6 +87,7 @@ int RunRegister(const RegisterOptions& options, std::ostream& out, std::ostream&
   const grid::OccupancyGrid grid_b = Trinary(*b);
   registration::RegistrationOptions registration_options;
   registration_options.min_confidence = options.min_confidence;
+  registration_options.max_drift_per_m = options.max_drift_per_m;
   const auto start = std::chrono::steady_clock::now();
   const StatusOr<registration::Registration> result =
       registration::Register(grid_a, grid_b, registration_options);
@@ -157,6 +158,12 @@ void AddRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_flag("--json", options->json, "Print one JSON line instead of text");
   command->add_option("--max-cells", options->max_cells, "Refuse images with more cells than this")
       ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--max-drift-per-m", options->max_drift_per_m,
+                   "Verify allowing each 3 m block of B to shift by this much per metre from "
+                   "where the maps agree (drift; 0: rigid, the server's default; measured at 0.03)")
+      ->check(CLI::Range(0.0, 0.2))
+      ->capture_default_str();
   // Read as text and checked here and in RunRegister, so that any bad value exits 2 with the
   // option and the range named; CLI11 would take an empty value as none.
   auto min_confidence = std::make_shared<std::string>();

@@ -21,6 +21,9 @@ struct RegisterOptions {
   int64_t max_cells = 400'000'000;
   // The placement bar: found only at this confidence or above (the server's by default).
   double min_confidence = registration::kPlacementConfidence;
+  // The drift-tolerant verification's bound (docs/registration.md, Drift); 0, rigid, as the
+  // server's default.
+  double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;
 };
 
 // Loads both maps and registers B to A; prints the result to `out` (text, or one JSON line with

@@ -109,6 +109,12 @@ int main(int argc, char** argv) {
                  "least registration confidence that places a robot started with --unplaced")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_option("--placement-max-drift", options.map.placement.registration.max_drift_per_m,
+                 "verify placements allowing each 3 m block of a robot's map to shift by this "
+                 "much per metre from where the maps agree (SLAM drift; 0: rigid; "
+                 "docs/registration.md, Drift)")
+      ->check(CLI::Range(0.0, 0.2))
+      ->capture_default_str();
   double check_period_s = 5.0;
   app.add_option("--placement-check-period", check_period_s,
                  "a placed robot's placement is checked against the rest of the fleet at most "

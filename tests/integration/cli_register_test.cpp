@@ -108,6 +108,26 @@ TEST(CliRegisterTest, RefusesABadMinConfidenceWithExitTwo) {
   }
 }
 
+// The drift-tolerant verification (docs/registration.md, Drift): off by default; on, a map on
+// itself needs no block to move, and a bound outside [0, 0.2] is a usage error.
+TEST(CliRegisterTest, TakesTheDriftBoundAndReportsTheLargestShift) {
+  const std::string map = DataPath("real/aws_small_house.yaml");
+  process::CommandResult run = RunFleetmap({"register", map, map, "--json"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["drift_m"], 0.0);
+  run = RunFleetmap({"register", map, map, "--json", "--max-drift-per-m", "0.03"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["found"], true);
+  EXPECT_LE(json["drift_m"].get<double>(), 0.05 + 1e-9);  // at most a cell on itself
+  for (const char* bad : {"0.5", "-0.01", "x"}) {
+    SCOPED_TRACE(bad);
+    run = RunFleetmap({"register", map, map, "--max-drift-per-m", bad});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_THAT(run.err, HasSubstr("--max-drift-per-m"));
+  }
+}
+
 TEST(CliRegisterTest, BadInputExitsTwoNamingTheFile) {
   const std::string map = DataPath("real/strands_kth.yaml");
   process::CommandResult run = RunFleetmap({"register", map, DataPath("missing_image.yaml")});
