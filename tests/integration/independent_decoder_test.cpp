@@ -151,12 +151,18 @@ std::string Where(const TileId& tile) {
   return ::testing::AssertionSuccess();
 }
 
+// The header's float32 fields: the decoder widens the stored float to a double, ReadVmapFile
+// reads it as the decimal it stands for (0.05F as 0.05); both are the same float32.
+bool SameFloat32(const json& got, double want) {
+  return static_cast<float>(got.get<double>()) == static_cast<float>(want);
+}
+
 // The decoder's JSON against ReadVmapFile's map, field by field; the first difference fails.
 ::testing::AssertionResult DecodedAgrees(const json& got, const vector_map::TiledVectorMap& want) {
   if (got.at("format") != "fleetmap-vmap/5" || got.at("frame_id") != want.frame_id ||
-      got.at("tile_size").get<double>() != want.tile_size ||
-      got.at("epsilon").get<double>() != want.epsilon ||
-      got.at("resolution").get<double>() != want.resolution) {
+      !SameFloat32(got.at("tile_size"), want.tile_size) ||
+      !SameFloat32(got.at("epsilon"), want.epsilon) ||
+      !SameFloat32(got.at("resolution"), want.resolution)) {
     return ::testing::AssertionFailure()
            << "header: the decoder gives " << got.at("format") << " " << got.at("frame_id")
            << " tile_size " << got.at("tile_size") << " epsilon " << got.at("epsilon")
