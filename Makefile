@@ -29,7 +29,7 @@ build: configure
 VIEW_PORT ?= 8080
 run: build
 	$(BUILD_DIR)/cli/fleetmap sim --robots 4 --terrain office --size 40 --duration 40 --out out/demo \
-	  --view $(VIEW_PORT)
+	  --view $(VIEW_PORT) --params docs/config/fleet_params.yaml
 
 # A long run to watch in the browser: 6 robots map a 60 m office for 10 minutes.
 view-demo: build

@@ -20,7 +20,8 @@ StatusOr<transport::ParticipantOptions> FleetReaderOptions::Participant(
 
 FleetReaderFlags::FleetReaderFlags(CLI::App* command, FleetReaderOptions* options)
     : options_(options) {
-  command->add_option("--domain", *domain_, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)");
+  command->add_option("--domain", *domain_, "DDS domain id (default: $FLEETMAP_DOMAIN, else 0)")
+      ->default_str("0");  // what -1, "not given", ends as
   command->add_flag("--localhost-only", options->localhost_only,
                     "use UDP on 127.0.0.1 only (also $FLEETMAP_LOCALHOST_ONLY=1)");
   command->add_option("--discovery-server", options->discovery_server,

@@ -62,8 +62,11 @@ int main(int argc, char** argv) {
   fleetmap::bench::AddBenchRegisterCommand(app, &exit_code);
   fleetmap::cli::AddSecurityCommand(app, &exit_code);
   fleetmap::cli::AddSaveMapCommand(app, &exit_code);
-  fleetmap::cli::AddViewCommand(app, &exit_code);
+  const auto view_config = fleetmap::cli::AddViewCommand(app, &exit_code);
   fleetmap::cli::AddAdmitCommand(app, &exit_code);
-  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
+  if (const auto exit_now =
+          fleetmap::config::ParseCommandLine(app, argc, argv, {view_config.get()})) {
+    return *exit_now;
+  }
   return exit_code;
 }

@@ -81,7 +81,7 @@ int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
-void AddViewCommand(CLI::App& app, int* exit_code) {
+std::shared_ptr<config::ConfigurableCommand> AddViewCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* command =
       app.add_subcommand("view", "Serve a live web view of the fleet (map, robots, predictions)");
@@ -98,10 +98,18 @@ void AddViewCommand(CLI::App& app, int* exit_code) {
   command->add_option("--static-dir", options->static_dir,
                       "the page's folder (default: the installed one, or $FLEETMAP_VIEW_DIR)");
   auto fleet = std::make_shared<FleetReaderFlags>(command, &options->fleet);
-  command->callback([options, fleet, exit_code] {
+  auto config = std::make_shared<config::ConfigurableCommand>(
+      command, "fleetmap view", "fleetmap_view", config::DdsEnvironment());
+  command->callback([options, fleet, config, exit_code] {
+    if (config->print_requested()) {
+      config->Print(std::cout);
+      *exit_code = kExitOk;
+      return;
+    }
     fleet->ApplyDomain();
     *exit_code = RunView(*options, std::cout, std::cerr);
   });
+  return config;
 }
 
 }  // namespace fleetmap::cli

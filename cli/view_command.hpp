@@ -6,11 +6,13 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
 
 #include "cli/fleet_reader_options.hpp"
+#include "common/config/configurable_command.hpp"
 
 namespace fleetmap::cli {
 
@@ -27,6 +29,8 @@ struct ViewOptions {
 // kExitOk; kExitBadInput for a bad option, a folder without the page or an address it cannot bind.
 int RunView(const ViewOptions& options, std::ostream& out, std::ostream& err);
 
-void AddViewCommand(CLI::App& app, int* exit_code);
+// The view also takes its options from a config file (--config, ROS 2 node name fleetmap_view)
+// and the environment: pass the returned command to config::ParseCommandLine.
+std::shared_ptr<config::ConfigurableCommand> AddViewCommand(CLI::App& app, int* exit_code);
 
 }  // namespace fleetmap::cli

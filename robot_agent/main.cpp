@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <iostream>
 #include <vector>
 
 #include "common/config/command_line.hpp"
@@ -31,19 +32,23 @@ int main(int argc, char** argv) {
   std::vector<double> fleet_from_map = {0.0, 0.0, 0.0};
   std::vector<double> pose = {0.0, 0.0, 0.0};
   double duration_s = 0.0;
-  int domain = -1;
+  int domain = 0;  // $FLEETMAP_DOMAIN comes in as --domain (config::DdsEnvironment)
   bool localhost_only = false;
   app.add_option("--robot-id", options.robot.value, "robot name, e.g. alpha")->required();
-  app.add_option("--map", options.map_path,
-                 "ROS map_server YAML of the robot's map (re-read when it or its image changes)");
+  auto* map_option = app.add_option(
+      "--map", options.map_path,
+      "ROS map_server YAML of the robot's map (re-read when it or its image changes)");
   app.add_option("--max-cells", options.map_limits.max_cells,
                  "refuse --map images with more cells than this")
       ->capture_default_str();
   app.add_option("--max-decoded-bytes", options.map_limits.max_decoded_bytes,
                  "refuse --map images that decode to more bytes than this")
       ->capture_default_str();
-  app.add_option("--ros-topic", options.ros_topic,
-                 "DDS topic with the robot's nav_msgs/OccupancyGrid, e.g. rt/map");
+  // One map source: on the command line, it also drops another one a config file gives.
+  auto* topic_option = app.add_option("--ros-topic", options.ros_topic,
+                                      "DDS topic with the robot's nav_msgs/OccupancyGrid, e.g. "
+                                      "rt/map")
+                           ->excludes(map_option);
   app.add_option("--entities", options.entities_path,
                  "entities JSON (doors, stairs, people's tracks) to publish (re-read on change)");
   std::string wire = "tiles";
@@ -59,21 +64,28 @@ int main(int argc, char** argv) {
   std::string sim_kind;
   fleetmap::agent::SimOptions sim;
   app.add_option("--sim", sim_kind,
-                 "built-in robot exploring a terrain: office, maze, unstructured");
-  app.add_option("--sim-size", sim.size, "simulated terrain side, metres");
+                 "built-in robot exploring a terrain: office, maze, unstructured")
+      ->excludes(map_option)
+      ->excludes(topic_option);
+  app.add_option("--sim-size", sim.size, "simulated terrain side, metres")
+      ->check(CLI::PositiveNumber);
   app.add_option("--sim-seed", sim.seed, "simulated terrain seed (the same for the whole fleet)");
   app.add_option("--sim-robot-index", sim.robot_index, "this robot's start among the fleet's");
   app.add_option("--sim-robots", sim.robots, "robots in the simulated fleet");
-  app.add_option("--sim-rate", sim.scans_per_second, "simulated laser scans per second");
+  app.add_option("--sim-rate", sim.scans_per_second, "simulated laser scans per second")
+      ->check(CLI::PositiveNumber);
   std::vector<double> sim_frame = {0.0, 0.0, 0.0};
   app.add_option("--sim-frame", sim_frame,
                  "x y yaw of the simulated robot's map frame in the terrain's frame (a robot "
                  "started at an unknown pose; pair with --unplaced). Only the simulator uses it")
       ->expected(3);
-  app.add_option("--tile-size", options.tiles.tile_size, "tile side in metres (fleet frame)");
+  app.add_option("--tile-size", options.tiles.tile_size, "tile side in metres (fleet frame)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--epsilon", options.tiles.epsilon,
-                 "vector map error bound, metres (0: sqrt(2) res)");
-  app.add_option("--max-kbps", options.tiles.max_kbps, "bandwidth budget for tiles (0: none)");
+                 "vector map error bound, metres (0: sqrt(2) res)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-kbps", options.tiles.max_kbps, "bandwidth budget for tiles (0: none)")
+      ->check(CLI::NonNegativeNumber);
   auto* fleet_option = app.add_option("--fleet-from-map", fleet_from_map,
                                       "x y yaw of the map frame in the fleet frame")
                            ->expected(3);
@@ -107,7 +119,15 @@ int main(int argc, char** argv) {
   app.add_option("--discovery-server", options.dds.discovery_server,
                  "Fast DDS discovery servers to discover through, IP:PORT[;IP:PORT] (also "
                  "$ROS_DISCOVERY_SERVER; `fastdds discovery -i 0 -l IP -p PORT` starts one)");
-  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
+  fleetmap::config::ConfigurableCommand config(&app, "fleetmap-agent", "fleetmap_agent",
+                                               fleetmap::config::DdsEnvironment());
+  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv, {&config})) {
+    return *exit_now;
+  }
+  if (config.print_requested()) {
+    config.Print(std::cout);
+    return 0;
+  }
 
   options.wire = *fleetmap::WireFromName(wire);  // CLI11 checked the name
   if (!sim_kind.empty()) {
@@ -141,8 +161,8 @@ int main(int argc, char** argv) {
   options.claim_wait = std::chrono::milliseconds(static_cast<int64_t>(claim_wait_s * 1000.0));
   options.server_wait = std::chrono::milliseconds(static_cast<int64_t>(server_wait_s * 1000.0));
   options.duration = std::chrono::milliseconds(static_cast<int64_t>(duration_s * 1000.0));
-  if (domain >= 0) options.dds.domain_id = domain;
-  if (localhost_only) options.dds.localhost_only = true;
+  options.dds.domain_id = domain;
+  options.dds.localhost_only = localhost_only;
   if (!security_dir.empty()) {
     if (const auto secured = options.dds.UseSecurityFolder(security_dir, options.robot.value);
         !secured.ok()) {

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <iostream>
 
 #include "common/config/command_line.hpp"
 #include "common/config/fleet_transforms.hpp"
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
       "that move and predicts the space behind doors and up stairs"};
   fleetmap::server::ServerOptions options;
   double duration_s = 0.0;
-  int domain = -1;
+  int domain = 0;  // $FLEETMAP_DOMAIN comes in as --domain (config::DdsEnvironment)
   bool localhost_only = false;
   app.add_option("--duration", duration_s, "seconds to run (0: until Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
@@ -45,8 +46,10 @@ int main(int argc, char** argv) {
   std::string transforms_path;
   app.add_option("--transforms", transforms_path,
                  "YAML of known fleet_from_map transforms (robots: {name: [x, y, yaw]})");
-  app.add_option("--tile-size", options.map.fusion.tile_size, "fleet tile side, metres");
-  app.add_option("--resolution", options.map.fusion.resolution, "fused grid cell size, metres");
+  app.add_option("--tile-size", options.map.fusion.tile_size, "fleet tile side, metres")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--resolution", options.map.fusion.resolution, "fused grid cell size, metres")
+      ->check(CLI::PositiveNumber);
   double map_period_s = 1.0;
   app.add_option("--map-period", map_period_s,
                  "at most one fused grid on rt/fleetmap/map per this many seconds")
@@ -138,7 +141,15 @@ int main(int argc, char** argv) {
   app.add_option("--discovery-server", options.dds.discovery_server,
                  "Fast DDS discovery servers to discover through, IP:PORT[;IP:PORT] (also "
                  "$ROS_DISCOVERY_SERVER; `fastdds discovery -i 0 -l IP -p PORT` starts one)");
-  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv)) return *exit_now;
+  fleetmap::config::ConfigurableCommand config(&app, "fleetmap-server", "fleetmap_server",
+                                               fleetmap::config::DdsEnvironment());
+  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv, {&config})) {
+    return *exit_now;
+  }
+  if (config.print_requested()) {
+    config.Print(std::cout);
+    return 0;
+  }
 
   options.map.placement.check_period =
       std::chrono::milliseconds(static_cast<int64_t>(check_period_s * 1000.0));
@@ -153,7 +164,7 @@ int main(int argc, char** argv) {
       static_cast<uint64_t>(max_robot_mb * (1 << 20));
   options.worker.map_period =
       std::chrono::milliseconds(static_cast<int64_t>(map_period_s * 1000.0));
-  if (domain >= 0) options.dds.domain_id = domain;
+  options.dds.domain_id = domain;
   if (!transforms_path.empty()) {
     auto transforms = fleetmap::config::LoadFleetTransforms(transforms_path);
     if (!transforms.ok()) {
@@ -162,7 +173,7 @@ int main(int argc, char** argv) {
     }
     options.transforms = std::move(transforms).value();
   }
-  if (localhost_only) options.dds.localhost_only = true;
+  options.dds.localhost_only = localhost_only;
   if (!security_dir.empty()) {
     if (const auto secured = options.dds.UseSecurityFolder(security_dir, "server"); !secured.ok()) {
       spdlog::error("fleetmap-server: --security: {}", secured.message());

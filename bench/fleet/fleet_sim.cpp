@@ -61,6 +61,7 @@ class SimView {
                                      "--domain",
                                      std::to_string(domain),
                                      "--localhost-only"};
+    if (!options.params_file.empty()) argv.insert(argv.end(), {"--config", options.params_file});
     if (!options.security_dir.empty()) {
       argv.insert(argv.end(),
                   {"--security", options.security_dir, "--identity", kObserverIdentity});
@@ -216,6 +217,9 @@ Status FleetSimOptions::Validate() const {
   if (robots < 1 || robots > 64) return InvalidArgumentError("--robots must be in 1..64");
   if (duration.count() <= 0) return InvalidArgumentError("--duration must be > 0 seconds");
   if (!(scans_per_second > 0.0)) return InvalidArgumentError("--rate must be > 0 scans/s");
+  if (!params_file.empty() && !std::ifstream(params_file)) {
+    return InvalidArgumentError("--params " + params_file + ": cannot be read");
+  }
   if (hostile) {
     if (hostile->participants < 1 || hostile->participants > 16) {
       return InvalidArgumentError("--hostile-participants must be in 1..16");
@@ -309,6 +313,9 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   std::vector<std::string> server_argv = {binary("fleetmap-server", "server"), "--map-period",
                                           "0.5"};
   server_argv.insert(server_argv.end(), security_args.begin(), security_args.end());
+  std::vector<std::string> config_args;
+  if (!options.params_file.empty()) config_args = {"--config", options.params_file};
+  server_argv.insert(server_argv.end(), config_args.begin(), config_args.end());
   process::Subprocess server(std::move(server_argv), env);
   if (!server.started()) return UnavailableError("could not start fleetmap-server");
   if (!server.WaitForOutput("listening", std::chrono::seconds(20))) {
@@ -339,6 +346,7 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
                                      options.wire};
     if (options.measure_baselines) argv.push_back("--measure-baselines");
     argv.insert(argv.end(), security_args.begin(), security_args.end());
+    argv.insert(argv.end(), config_args.begin(), config_args.end());
     if (!options.sim_frames.empty()) {
       const Pose2& frame = options.sim_frames[i];
       argv.insert(argv.end(), {"--unplaced", "--sim-frame", fmt::format("{:.6f}", frame.x),

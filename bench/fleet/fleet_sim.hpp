@@ -59,6 +59,10 @@ struct FleetSimOptions {
   // `fleetmap sim --view PORT`: a `fleetmap view` process on the run's domain serves the live page
   // at http://127.0.0.1:PORT/ for as long as the run lasts (-1: none).
   int view_port = -1;
+  // `fleetmap sim --params FILE`: a ROS 2 params file with fleetmap_server, fleetmap_agent and
+  // fleetmap_view sections, given to each process as --config (docs/configuration.md). What the
+  // sim sets on the command line (robot ids, the domain, the terrain) wins over it. Empty: none.
+  std::string params_file;
 
   Status Validate() const;
 };

@@ -29,6 +29,7 @@ struct SimArgs {
   bool compare_known = false;
   bool secure = false;
   int view_port = -1;
+  std::string params_file;
 };
 
 int RunSim(const SimArgs& args) {
@@ -41,6 +42,7 @@ int RunSim(const SimArgs& args) {
   FleetSimOptions fleet = ScenarioFleetOptions(*kind, args.scenario);
   fleet.robots = args.robots;
   fleet.view_port = args.view_port;
+  fleet.params_file = args.params_file;
   if (args.unknown_poses) fleet.sim_frames = UnknownPoseFrames(fleet.seed, fleet.robots);
   if (const Status valid = fleet.Validate(); !valid.ok()) {
     std::cerr << "fleetmap sim: " << valid.message() << "\n";
@@ -188,6 +190,9 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                    "serve the live web view at http://127.0.0.1:PORT/ while the fleet runs "
                    "(fleetmap view; each run of the sim in turn)")
       ->check(CLI::Range(1, 65535));
+  command->add_option("--params", args->params_file,
+                      "a ROS 2 params file with fleetmap_server, fleetmap_agent and fleetmap_view "
+                      "sections, given to each process as --config (docs/configuration.md)");
   command->callback([args, exit_code] { *exit_code = RunSim(*args); });
 }
 

@@ -1,9 +1,11 @@
 #include "common/config/command_line.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -62,9 +64,37 @@ void RewordSignChecks(CLI::App& app) {
   }
 }
 
+// The arguments of `args` that belong to `command` (after the subcommand names that select it),
+// or nullopt when the command line does not select it.
+std::optional<std::vector<std::string>> ArgumentsOf(const CLI::App& app,
+                                                    const std::vector<std::string>& args,
+                                                    const CLI::App* command) {
+  const CLI::App* current = &app;
+  size_t next = 0;
+  while (current != command && next < args.size()) {
+    const std::vector<const CLI::App*> subcommands =
+        current->get_subcommands([](const CLI::App*) { return true; });
+    const auto named = std::find_if(
+        subcommands.begin(), subcommands.end(),
+        [&](const CLI::App* subcommand) { return subcommand->check_name(args[next]); });
+    if (named == subcommands.end()) break;
+    current = *named;
+    ++next;
+  }
+  if (current != command) return std::nullopt;
+  return std::vector<std::string>(args.begin() + static_cast<std::ptrdiff_t>(next), args.end());
+}
+
+bool AsksForHelpOrVersion(const std::vector<std::string>& args) {
+  return std::any_of(args.begin(), args.end(), [](const std::string& arg) {
+    return arg == "--help" || arg == "-h" || arg == "--help-all" || arg == "--version";
+  });
+}
+
 }  // namespace
 
-std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
+                                    const std::vector<ConfigurableCommand*>& configurable) {
   const std::string program =
       argc > 0 ? std::filesystem::path(argv[0]).filename().string() : std::string("fleetmap");
   app.set_version_flag("--version", VersionText(program),
@@ -74,8 +104,24 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
     const std::string command = CommandPath(*failed, program);
     return command + ": " + error.what() + "\n" + "(run " + command + " --help for its options)\n";
   });
+  if (app.get_name().empty() && argc > 0) app.name(argv[0]);  // as CLI11 does, for its usage line
+  std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
+  // --help and --version come before any file is read, whatever is wrong with the file.
+  if (!AsksForHelpOrVersion(args)) {
+    for (ConfigurableCommand* command : configurable) {
+      const auto own_arguments = ArgumentsOf(app, args, command->command());
+      if (!own_arguments) continue;
+      const auto layers = command->Layers(*own_arguments);
+      if (!layers.ok()) {
+        std::cerr << command->program() << ": " << layers.status().message() << "\n";
+        return kExitBadCommandLine;
+      }
+      args.insert(args.end(), layers->begin(), layers->end());
+    }
+  }
+  std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last first
   try {
-    app.parse(argc, argv);
+    app.parse(std::move(args));
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : kExitBadCommandLine;
   }

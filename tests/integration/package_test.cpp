@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "common/process/subprocess.hpp"
 #include "tests/scratch_dir.hpp"
@@ -48,7 +49,9 @@ TEST(PackageTest, TheDebHoldsTheProgramsThePageAndTheUnitsThatStartThem) {
         "./usr/lib/systemd/system/fleetmap-agent@.service",
         "./usr/lib/systemd/system/fleetmap-view.service", "./usr/share/fleetmap/view/index.html",
         "./usr/share/fleetmap/view/view.js", "./usr/share/fleetmap/view/leaflet/leaflet.js",
-        "./usr/share/doc/fleetmap/README.md", "./usr/share/doc/fleetmap/docs/topics.md"}) {
+        "./usr/share/doc/fleetmap/README.md", "./usr/share/doc/fleetmap/docs/topics.md",
+        "./etc/fleetmap/server.yaml", "./etc/fleetmap/agent.yaml", "./etc/fleetmap/view.yaml",
+        "./usr/share/doc/fleetmap/docs/config/fleet_params.yaml"}) {
     EXPECT_THAT(listing.out, HasSubstr(std::string(file) + "\n")) << file;
   }
 
@@ -63,14 +66,21 @@ TEST(PackageTest, TheDebHoldsTheProgramsThePageAndTheUnitsThatStartThem) {
   const process::CommandResult unpack =
       process::RunCommand({FLEETMAP_DPKG_DEB, "--extract", deb, root});
   ASSERT_EQ(unpack.exit_code, 0) << unpack.output();
-  for (const auto& [unit, program] :
-       {std::pair{"fleetmap-server.service", "/usr/bin/fleetmap-server"},
-        std::pair{"fleetmap-agent@.service", "/usr/bin/fleetmap-agent"},
-        std::pair{"fleetmap-view.service", "/usr/bin/fleetmap"}}) {
+  for (const auto& [unit, program, config] :
+       {std::tuple{"fleetmap-server.service", "/usr/bin/fleetmap-server", "server.yaml"},
+        std::tuple{"fleetmap-agent@.service", "/usr/bin/fleetmap-agent", "agent.yaml"},
+        std::tuple{"fleetmap-view.service", "/usr/bin/fleetmap", "view.yaml"}}) {
     const std::string text = ReadFile(root + "/usr/lib/systemd/system/" + unit);
     EXPECT_THAT(text, HasSubstr(std::string("ExecStart=") + program + " ")) << unit;
+    EXPECT_THAT(text, HasSubstr(std::string("--config /etc/fleetmap/") + config)) << unit;
     EXPECT_TRUE(std::filesystem::exists(root + program)) << program;
+    EXPECT_TRUE(std::filesystem::exists(root + "/etc/fleetmap/" + config)) << config;
   }
+  // The config files are conffiles: an upgrade keeps what the operator changed.
+  const process::CommandResult conffiles =
+      process::RunCommand({FLEETMAP_DPKG_DEB, "--info", deb, "conffiles"});
+  ASSERT_EQ(conffiles.exit_code, 0) << conffiles.output();
+  EXPECT_THAT(conffiles.out, HasSubstr("/etc/fleetmap/server.yaml"));
   const process::CommandResult version =
       process::RunCommand({root + "/usr/bin/fleetmap", "--version"});
   EXPECT_EQ(version.exit_code, 0) << version.output();
