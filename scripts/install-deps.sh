@@ -35,6 +35,9 @@ packages=(
   # The lossy-network test and `fleetmap bench loss` (network namespaces, nftables random drop;
   # they run as root only).
   iproute2 nftables
+  # The container image (scripts/build-image.sh, container_image_test): podman, runc (crun does
+  # not run on these VMs' hybrid cgroups) and debootstrap for a base image without a registry.
+  podman runc debootstrap
 )
 
 missing=()
