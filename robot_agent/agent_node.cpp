@@ -86,9 +86,6 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
         node->baseline_meter_,
         WireBaselineMeter::Create(o.robot, o.TilingFrame(), o.tiles.tile_size));
   }
-  FLEETMAP_ASSIGN_OR_RETURN(
-      node->fused_reader_,
-      transport::VectorTileReader::Create(*node->participant_, transport::kFusedTilesTopic));
   FLEETMAP_ASSIGN_OR_RETURN(node->frame_reader_,
                             transport::RobotFrameReader::Create(*node->participant_));
   if (!o.entities_path.empty()) {
@@ -164,15 +161,12 @@ void AgentNode::WatchIdClaims() {
   }
 }
 
-void AgentNode::DrainFusedTiles() {
-  // Counted, not decoded: the agent uses no fused tile, and decoding a flood's would hold up this
-  // loop, and with it the status that keeps the robot alive.
-  fused_tiles_received_ += fused_reader_->DrainCount();
-}
-
 void AgentNode::WatchServer(std::chrono::steady_clock::time_point now) {
-  const std::optional<std::string> said =
-      server_watch_->Update(fused_reader_->matched_writers(), now);
+  // A server is seen by its fused-tile writer, as discovery reports it: the agent uses no fused
+  // tile, so it does not read them (each of a large fleet's, or a flood's, would cost it CPU and
+  // the server a send).
+  const std::optional<std::string> said = server_watch_->Update(
+      static_cast<int>(participant_->RemoteWritersOf(transport::kFusedTilesTopic)), now);
   if (!said) return;
   if (server_watch_->missing()) {
     spdlog::warn("{}: {}", options_.robot.value, *said);
@@ -246,7 +240,6 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
       next_map_check = now + options_.map_check_period;
     }
     RefreshStatus();
-    DrainFusedTiles();
     WatchServer(now);
     DrainRobotFrames();
     WatchIdClaims();
@@ -255,8 +248,7 @@ Status AgentNode::Run(const std::atomic<bool>& stop) {
   }
 
   if (baseline_meter_ != nullptr) FinishBaselines();
-  spdlog::info("{}: leaving the fleet ({} fused tiles received)", options_.robot.value,
-               fused_tiles_received_);
+  spdlog::info("{}: leaving the fleet", options_.robot.value);
   heartbeat_->Stop();
   return status_writer_->Leave(options_.robot);
 }

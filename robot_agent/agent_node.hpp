@@ -15,7 +15,6 @@
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/robot_status_writer.hpp"
-#include "common/transport/vector_tile_reader.hpp"
 #include "robot_agent/entity_publisher.hpp"
 #include "robot_agent/grid_wire_publisher.hpp"
 #include "robot_agent/id_claim_watch.hpp"
@@ -72,7 +71,7 @@ struct AgentOptions {
 
 // fleetmap-agent's node: takes the robot's grid from its source, publishes the tiles that changed
 // (or, on a grid wire, the grid or its changed patches: GridWirePublisher), its RobotStatus twice
-// a second, follows the fused tiles,
+// a second, watches for a fleet server and for its own frame,
 // and leaves the fleet (disposes its status) when stopped. Run() on one thread; `stop` may be
 // set from any thread.
 class AgentNode {
@@ -88,7 +87,6 @@ class AgentNode {
   Status OnNewMap(const grid::OccupancyGrid& map);
   // Hands what the status says now (map, pose, byte accounting) to the heartbeat.
   void RefreshStatus();
-  void DrainFusedTiles();
   // Learns the robot's map frame from rt/fleetmap/robot_frames.
   void DrainRobotFrames();
   // Says when no fleet server has been in sight for options_.server_wait, and when one is again.
@@ -111,12 +109,10 @@ class AgentNode {
   std::unique_ptr<GridWirePublisher> grid_publisher_;  // a grid wire
   std::unique_ptr<TilePublisher> tile_publisher_;      // Wire::kTiles
   std::unique_ptr<WireBaselineMeter> baseline_meter_;  // with measure_baselines
-  std::unique_ptr<transport::VectorTileReader> fused_reader_;
   std::unique_ptr<transport::RobotFrameReader> frame_reader_;
   std::unique_ptr<EntityPublisher> entity_publisher_;  // with entities_path
   std::unique_ptr<IdClaimWatch> claim_watch_;
   std::optional<ServerWatch> server_watch_;  // from Run() on
-  uint64_t fused_tiles_received_ = 0;
   bool placed_ = false;  // with unplaced: the server has placed the robot's map frame
   bool handshake_reported_ = false;
 };

@@ -226,6 +226,10 @@ std::optional<std::string> Participant::HostOf(const std::string& writer_id) con
   return identities_->HostOf(writer_id);
 }
 
+size_t Participant::RemoteWritersOf(const std::string& topic_name) const {
+  return identities_->RemoteWritersOf(topic_name);
+}
+
 std::optional<double> Participant::SecondsToAuthenticate(const std::string& name) const {
   if (!secured_) return std::nullopt;
   return identities_->SecondsUntilAuthenticated(name);

@@ -91,6 +91,9 @@ class Participant {
   // The host (IPv4 address) of the participant that owns `writer_id`, as its discovery announced
   // it, or nullopt if not known (yet) or it announced shared memory only.
   std::optional<std::string> HostOf(const std::string& writer_id) const;
+  // How many writers of the topic `topic_name` (e.g. kFusedTilesTopic) other participants have,
+  // as discovery reports them: a peer's presence without reading its samples.
+  size_t RemoteWritersOf(const std::string& topic_name) const;
 
   // For transport's own readers and writers: the topic `name` of `type` (registering the type
   // on first use); each AcquireTopic is paired with one ReleaseTopic.

@@ -1,7 +1,10 @@
 #include "common/transport/internal/participant_identities.hpp"
 
 #include <fastdds/rtps/common/Locator.h>
+#include <fastdds/rtps/writer/WriterDiscoveryInfo.h>
 #include <fastrtps/utils/IPLocator.h>
+
+#include <sstream>
 
 #include "common/security/security_identity.hpp"
 #include "common/transport/internal/writer_id.hpp"
@@ -10,6 +13,7 @@ namespace fleetmap::transport {
 namespace {
 
 using eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+using eprosima::fastrtps::rtps::WriterDiscoveryInfo;
 
 std::string PrefixOf(const eprosima::fastrtps::rtps::GUID_t& guid) {
   eprosima::fastrtps::rtps::InstanceHandle_t handle;
@@ -57,6 +61,32 @@ std::optional<double> ParticipantIdentities::SecondsUntilAuthenticated(
     if (!first || seconds < *first) first = seconds;
   }
   return first;
+}
+
+size_t ParticipantIdentities::RemoteWritersOf(const std::string& topic_name) const {
+  std::lock_guard lock(mutex_);
+  const auto writers = writers_by_topic_.find(topic_name);
+  return writers == writers_by_topic_.end() ? 0 : writers->second.size();
+}
+
+void ParticipantIdentities::on_publisher_discovery(
+    eprosima::fastdds::dds::DomainParticipant* /*participant*/, WriterDiscoveryInfo&& info) {
+  std::ostringstream guid;
+  guid << info.info.guid();
+  const std::string topic = info.info.topicName().to_string();
+  std::lock_guard lock(mutex_);
+  switch (info.status) {
+    case WriterDiscoveryInfo::DISCOVERED_WRITER:
+    case WriterDiscoveryInfo::CHANGED_QOS_WRITER:
+      writers_by_topic_[topic].insert(guid.str());
+      break;
+    case WriterDiscoveryInfo::REMOVED_WRITER:
+      if (auto writers = writers_by_topic_.find(topic); writers != writers_by_topic_.end()) {
+        writers->second.erase(guid.str());
+        if (writers->second.empty()) writers_by_topic_.erase(writers);
+      }
+      break;
+  }
 }
 
 void ParticipantIdentities::onParticipantAuthentication(

@@ -14,6 +14,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace fleetmap::transport {
@@ -29,19 +30,24 @@ class ParticipantIdentities : public eprosima::fastdds::dds::DomainParticipantLi
   // Seconds from this listener's creation (its participant's) until the first participant named
   // `name` was authenticated (the DDS Security handshake done), or nullopt if none was yet.
   std::optional<double> SecondsUntilAuthenticated(const std::string& name) const;
+  // How many writers of the topic `topic_name` other participants have now, as discovered.
+  size_t RemoteWritersOf(const std::string& topic_name) const;
 
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
   void onParticipantAuthentication(
       eprosima::fastdds::dds::DomainParticipant* participant,
       eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
+  void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
 
  private:
   const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();
   mutable std::mutex mutex_;
   std::map<std::string, std::string> name_by_prefix_;
   std::map<std::string, std::string> host_by_prefix_;
-  std::map<std::string, double> authenticated_after_by_prefix_;  // seconds since created_
+  std::map<std::string, double> authenticated_after_by_prefix_;    // seconds since created_
+  std::map<std::string, std::set<std::string>> writers_by_topic_;  // writer GUIDs, as text
 };
 
 }  // namespace fleetmap::transport
