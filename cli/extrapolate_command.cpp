@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli/extrapolation_outputs.hpp"
+#include "cli/georef_option.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/extrapolation/door_detector.hpp"
@@ -35,6 +36,7 @@ std::string ThresholdName(double p_th) {
 // Writes everything for one threshold into `dir`; returns the summary line.
 StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map,
                                      const scene::Entities& entities, double p_th,
+                                     const std::optional<gis::GeoOrigin>& georef,
                                      const std::string& dir, std::ostream& err) {
   ex::ExtrapolationOptions options;
   options.p_th = p_th;
@@ -69,10 +71,11 @@ StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map,
                     {"predicted_free_m2", floor.predicted_free_cells * cell_area},
                     {"files", {"predicted_free.yaml", "extrapolated.yaml"}}};
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(dir + "/graph.json", graph.dump(2) + "\n"));
-  FLEETMAP_ASSIGN_OR_RETURN(const nlohmann::json predicted_free,
-                            PredictedFreeGeoJson(result, p_th));
-  FLEETMAP_RETURN_IF_ERROR(
-      WriteFileAtomically(dir + "/predicted_free.geojson", predicted_free.dump() + "\n"));
+  FLEETMAP_ASSIGN_OR_RETURN(nlohmann::json plane, PredictedFreeGeoJson(result, p_th));
+  const std::string geojson_path = dir + "/predicted_free.geojson";
+  StatusOr<nlohmann::json> predicted_free = GeoJsonToWrite(std::move(plane), georef);
+  if (!predicted_free.ok()) return predicted_free.status().WithContext(geojson_path);
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(geojson_path, predicted_free->dump() + "\n"));
   FLEETMAP_RETURN_IF_ERROR(WriteOverlayPng(result, floor, entities, dir + "/overlay.png"));
 
   std::ostringstream line;
@@ -155,8 +158,8 @@ int RunExtrapolate(const ExtrapolateCommandOptions& options, std::ostream& out, 
   out << "entities: " << entities.doors.size() << " doors, " << entities.stairs.size()
       << " stairs, " << entities.people.size() << " people\n";
   for (double p_th : options.p_th) {
-    StatusOr<std::string> line =
-        WriteThreshold(map, entities, p_th, options.out_dir + "/" + ThresholdName(p_th), err);
+    StatusOr<std::string> line = WriteThreshold(map, entities, p_th, options.georef,
+                                                options.out_dir + "/" + ThresholdName(p_th), err);
     if (!line.ok()) return fail(line.status().message());
     out << *line << "\n";
   }
@@ -181,6 +184,7 @@ void AddExtrapolateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   command->add_option("--max-points", options->max_points, "largest point cloud accepted")
       ->capture_default_str();
+  AddGeorefOption(command, "map", &options->georef);
   command->callback(
       [options, exit_code] { *exit_code = RunExtrapolate(*options, std::cout, std::cerr); });
 }

@@ -8,9 +8,12 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/georef_option.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/core/wake_up.hpp"
+#include "common/gis/georeference_file.hpp"
+#include "common/gis/georeferenced_geojson.hpp"
 #include "common/grid/map_io.hpp"
 #include "common/transport/occupancy_grid_reader.hpp"
 #include "common/transport/participant.hpp"
@@ -69,7 +72,7 @@ vector_map::TiledVectorMap Assemble(const std::map<TileId, transport::VectorTile
 
 Status WriteVectorOutputs(const SaveMapOptions& options,
                           const std::map<TileId, transport::VectorTileMessage>& tiles,
-                          std::ostream& out) {
+                          const gis::Georeference* georeference, std::ostream& out) {
   if (options.vmap_path.empty() && options.geojson_path.empty()) return Status::Ok();
   if (tiles.empty()) {
     return UnavailableError("no fused tiles arrived on " +
@@ -81,11 +84,27 @@ Status WriteVectorOutputs(const SaveMapOptions& options,
     out << options.vmap_path << ": " << map.tiles.size() << " fused tiles\n";
   }
   if (!options.geojson_path.empty()) {
-    FLEETMAP_ASSIGN_OR_RETURN(std::string geojson, vector_map::ToGeoJsonString(map.Merged()));
-    geojson.append("\n");
-    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.geojson_path, geojson));
-    out << options.geojson_path << ": the fused vector map, " << map.tiles.size() << " tiles\n";
+    FLEETMAP_ASSIGN_OR_RETURN(nlohmann::json geojson, vector_map::ToGeoJson(map.Merged()));
+    if (georeference != nullptr) {
+      StatusOr<nlohmann::json> placed = gis::GeoreferencedGeoJson(geojson, *georeference);
+      if (!placed.ok()) return placed.status().WithContext(options.geojson_path);
+      geojson = std::move(placed).value();
+    }
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.geojson_path, geojson.dump() + "\n"));
+    out << options.geojson_path << ": the fused vector map, " << map.tiles.size() << " tiles"
+        << (georeference != nullptr ? ", WGS84 longitude / latitude" : "") << "\n";
   }
+  return Status::Ok();
+}
+
+// NAME.georef.yaml beside the map YAML: where the fleet frame, the frame of the map's origin, is.
+Status WriteGeoreferenceFile(const std::string& yaml_path, const gis::Georeference& georeference,
+                             std::ostream& out) {
+  const std::string path = gis::GeoreferenceFilePath(yaml_path);
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(
+      path,
+      gis::GeoreferenceFileText(georeference, fs::path(yaml_path).filename().string(), "fleet")));
+  out << path << ": the fleet frame's georeference\n";
   return Status::Ok();
 }
 
@@ -105,6 +124,13 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
     if (const Status writable = CheckWritable(path, what); !writable.ok()) {
       return fail(writable, kExitBadInput);
     }
+  }
+  // Made before the wait, so that a georeference PROJ refuses is said at once.
+  std::optional<gis::Georeference> georeference;
+  if (options.georef) {
+    StatusOr<gis::Georeference> made = gis::Georeference::Create(*options.georef);
+    if (!made.ok()) return fail(made.status().WithContext("--georef"), kExitBadInput);
+    georeference = std::move(made).value();
   }
   auto dds = options.fleet.Participant("fleetmap-save-map");
   if (!dds.ok()) return fail(dds.status(), kExitBadInput);
@@ -188,7 +214,19 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
   }
   out << options.yaml_path << ": the fused map, " << newest->grid.width() << " x "
       << newest->grid.height() << " cells at " << newest->grid.resolution() << " m\n";
-  if (const Status written = WriteVectorOutputs(options, fused_tiles, out); !written.ok()) {
+  if (georeference) {
+    if (const Status written = WriteGeoreferenceFile(options.yaml_path, *georeference, out);
+        !written.ok()) {
+      return fail(written, kExitBadInput);
+    }
+  } else if (std::error_code error;
+             fs::exists(gis::GeoreferenceFilePath(options.yaml_path), error)) {
+    // Not ours to delete: the fleet frame a user surveyed is usually the same from save to save.
+    err << "fleetmap save-map: note: " << gis::GeoreferenceFilePath(options.yaml_path)
+        << " from an earlier save is left as it is (no --georef given)\n";
+  }
+  const gis::Georeference* placed = georeference ? &*georeference : nullptr;
+  if (const Status written = WriteVectorOutputs(options, fused_tiles, placed, out); !written.ok()) {
     return fail(written, kExitBadInput);
   }
   return kExitOk;
@@ -207,6 +245,10 @@ void AddSaveMapCommand(CLI::App& app, int* exit_code) {
   command->add_option("--free", options->free_thresh, "free threshold written to the YAML")
       ->capture_default_str();
   command->add_option("--geojson", options->geojson_path, "also the fused vector map as GeoJSON");
+  CLI::Option* georef = AddGeorefOption(command, "fleet", &options->georef);
+  georef->description(
+      georef->get_description() +
+      "; also write NAME.georef.yaml beside the map YAML (the map YAML is unchanged)");
   command->add_option("--vmap", options->vmap_path, "also the fused vector tiles as .vmap");
   command->add_option("--timeout", options->timeout_s, "seconds to wait for the fused map")
       ->check(CLI::PositiveNumber)

@@ -3,7 +3,9 @@
 // `fleetmap save-map -o fused.yaml`: the map saver. Joins the fleet as a reader (like nav2's
 // map_saver_cli subscribes to /map), waits for the fused map on rt/fleetmap/map, and writes it as
 // a map_server YAML + image with map_saver's conventions; optionally the fused vector tiles of
-// rt/fleetmap/fused_tiles as GeoJSON and .vmap.
+// rt/fleetmap/fused_tiles as GeoJSON and .vmap. With `--georef LAT LON YAW` (where the fleet frame
+// lies on Earth) the GeoJSON is WGS84 longitude / latitude and NAME.georef.yaml beside the map
+// YAML records the georeference (the map YAML itself is unchanged).
 
 #include <CLI/CLI.hpp>
 #include <optional>
@@ -11,6 +13,7 @@
 #include <string>
 
 #include "cli/fleet_reader_options.hpp"
+#include "common/gis/georeference.hpp"
 
 namespace fleetmap::cli {
 
@@ -21,8 +24,9 @@ struct SaveMapOptions {
   double free_thresh = 0.196;        // map_saver's --free (0.196: the 205 shade reads back unknown)
   std::string geojson_path;          // the fused vector map, merged (empty: none)
   std::string vmap_path;             // the fused vector tiles (empty: none)
-  double timeout_s = 30.0;           // for the first fused map
-  double settle_s = 2.0;             // then keep the newest map and tiles this long
+  std::optional<gis::GeoOrigin> georef;  // the fleet frame on Earth (none: GeoJSON in metres)
+  double timeout_s = 30.0;               // for the first fused map
+  double settle_s = 2.0;                 // then keep the newest map and tiles this long
   FleetReaderOptions fleet;
 };
 

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/georef_option.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/map_io.hpp"
@@ -36,10 +37,12 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
     return kExitBadInput;
   }
   if (!options.geojson.empty()) {
-    StatusOr<std::string> geojson = sim::TerrainToGeoJsonString(terrain, 1);
+    StatusOr<nlohmann::json> plane = sim::TerrainToGeoJson(terrain);
+    StatusOr<nlohmann::json> geojson =
+        plane.ok() ? GeoJsonToWrite(std::move(plane).value(), options.georef) : plane.status();
     const Status written = geojson.ok()
-                               ? WriteFileAtomically(options.geojson, geojson->append("\n"))
-                               : geojson.status();
+                               ? WriteFileAtomically(options.geojson, geojson->dump(1) + "\n")
+                               : geojson.status().WithContext(options.geojson);
     if (!written.ok()) {
       err << "fleetmap terrain: " << written.message() << "\n";
       return kExitBadInput;
@@ -65,7 +68,9 @@ void AddTerrainCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   command->add_option("-o,--output", options->output_yaml, "map YAML to write (PGM beside it)")
       ->required();
-  command->add_option("--geojson", options->geojson, "also write the exact geometry as GeoJSON");
+  CLI::Option* geojson = command->add_option("--geojson", options->geojson,
+                                             "also write the exact geometry as GeoJSON");
+  AddGeorefOption(command, "map", &options->georef)->needs(geojson);
   command->callback(
       [options, exit_code] { *exit_code = RunTerrain(*options, std::cout, std::cerr); });
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 
+#include "cli/georef_option.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/metrics/grid_sizes.hpp"
@@ -27,9 +28,10 @@ std::optional<vector_map::VectorizeMethod> MethodFromName(const std::string& nam
 Status WritePictures(const VectorizeCommandOptions& options, const vector_map::VectorMap& merged,
                      const grid::OccupancyGrid& grid) {
   if (!options.geojson_path.empty()) {
-    FLEETMAP_ASSIGN_OR_RETURN(std::string geojson, vector_map::ToGeoJsonString(merged));
-    geojson.append("\n");
-    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.geojson_path, geojson));
+    FLEETMAP_ASSIGN_OR_RETURN(nlohmann::json plane, vector_map::ToGeoJson(merged));
+    StatusOr<nlohmann::json> geojson = GeoJsonToWrite(std::move(plane), options.georef);
+    if (!geojson.ok()) return geojson.status().WithContext(options.geojson_path);
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.geojson_path, geojson->dump() + "\n"));
   }
   if (!options.svg_path.empty()) {
     FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(options.svg_path, vector_map::ToSvg(merged)));
@@ -140,7 +142,9 @@ void AddVectorizeCommand(CLI::App& app, int* exit_code) {
       "free / unknown borders, more bytes)");
   cmd->add_option("--method", options->method, "default (both constraints hold) or paper");
   cmd->add_option("--tile-size", options->tile_size, "Tile side in metres")->capture_default_str();
-  cmd->add_option("--geojson", options->geojson_path, "Also write GeoJSON here");
+  CLI::Option* geojson =
+      cmd->add_option("--geojson", options->geojson_path, "Also write GeoJSON here");
+  AddGeorefOption(cmd, "map", &options->georef)->needs(geojson);
   cmd->add_option("--svg", options->svg_path, "Also write an SVG picture here");
   cmd->add_option("--png", options->png_path, "Also write a PNG picture here");
   cmd->add_flag("--json", options->json, "Print one JSON line instead of text");

@@ -1,16 +1,18 @@
 #pragma once
 
 // `fleetmap vectorize MAP.yaml -o OUT.vmap [--epsilon E] [--free-epsilon F]
-// [--method default|paper] [--tile-size T] [--geojson F] [--svg F] [--png F] [--json]`: vectorizes
-// a grid tile by tile (fleet frame = map frame) and writes the .vmap, optionally GeoJSON / SVG /
-// PNG pictures of it.
+// [--method default|paper] [--tile-size T] [--geojson F [--georef LAT LON YAW]] [--svg F]
+// [--png F] [--json]`: vectorizes a grid tile by tile (fleet frame = map frame) and writes the
+// .vmap, optionally GeoJSON (frame metres, or WGS84 with --georef) / SVG / PNG pictures of it.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "cli/inputs/command_inputs.hpp"
+#include "common/gis/georeference.hpp"
 
 namespace fleetmap::cli {
 
@@ -26,6 +28,7 @@ struct VectorizeCommandOptions {
   std::string method = "default";
   double tile_size = 10.0;  // metres
   std::string geojson_path;
+  std::optional<gis::GeoOrigin> georef;  // the map frame on Earth: GeoJSON in WGS84
   std::string svg_path;
   std::string png_path;
   bool json = false;

@@ -30,6 +30,11 @@ packages=(
   libboost-dev
   # Valid simple features in the GeoJSON exports (GEOS C API, common/gis).
   libgeos-dev
+  # WGS84 GeoJSON (--georef): PROJ places a surveyed frame on Earth (common/gis). The tests check
+  # it against PROJ's own tools (geod, cct: proj-bin) and open the files with GDAL's ogrinfo
+  # (gdal-bin; with its Python bindings and numpy about 7 MB to download, 35 MB installed: GDAL's
+  # library itself already comes with OpenCV's imgcodecs).
+  libproj-dev proj-bin gdal-bin
   # The tests' hostile peer: a DDS participant of another vendor (Cyclone DDS and its idlc).
   cyclonedds-dev cyclonedds-tools
   # The lossy-network test and `fleetmap bench loss` (network namespaces, nftables random drop;

@@ -240,16 +240,16 @@ Status FillByEvenOddRule(const GeosContext& geos, const std::vector<Ring>& outli
   return Status::Ok();
 }
 
-Point2 OnGrid(const Point2& p) {
-  return {RoundToDecimals(p.x(), kCoordinateDecimals), RoundToDecimals(p.y(), kCoordinateDecimals)};
+Point2 OnGrid(const Point2& p, int decimals) {
+  return {RoundToDecimals(p.x(), decimals), RoundToDecimals(p.y(), decimals)};
 }
 
 // `ring` (closed: the last vertex repeats the first) with its vertices on the grid, consecutive
 // repeats dropped; none if fewer than four positions are left.
-std::optional<Ring> ClosedRingOnGrid(const Ring& ring) {
+std::optional<Ring> ClosedRingOnGrid(const Ring& ring, int decimals) {
   Ring out;
   for (const Point2& p : ring) {
-    const Point2 snapped = OnGrid(p);
+    const Point2 snapped = OnGrid(p, decimals);
     if (out.empty() || snapped != out.back()) out.push_back(snapped);
   }
   if (out.size() < 4 || out.front() != out.back()) return std::nullopt;
@@ -257,10 +257,11 @@ std::optional<Ring> ClosedRingOnGrid(const Ring& ring) {
 }
 
 // `polygons` with every vertex on the grid, orientations kept, if GEOS finds the result still a
-// valid MultiPolygon: rounding moves a vertex by up to half a micrometre, which can make a sliver
+// valid MultiPolygon: rounding moves a vertex by up to half a grid step, which can make a sliver
 // a rounding error wide cross itself, or parts touching at a point overlap.
-std::optional<std::vector<SimplePolygon>> PolygonsOnGrid(
-    const GeosContext& geos, const std::vector<SimplePolygon>& polygons) {
+std::optional<std::vector<SimplePolygon>> PolygonsOnGrid(const GeosContext& geos,
+                                                         const std::vector<SimplePolygon>& polygons,
+                                                         int decimals) {
   GEOSContextHandle_t h = geos.handle();
   std::vector<SimplePolygon> out;
   std::vector<GEOSGeometry*> parts;
@@ -273,7 +274,7 @@ std::optional<std::vector<SimplePolygon>> PolygonsOnGrid(
     std::vector<Ring> open_rings;  // PolygonOf closes them again
     for (size_t k = 0; k <= polygon.holes.size(); ++k) {
       const std::optional<Ring> ring =
-          ClosedRingOnGrid(k == 0 ? polygon.shell : polygon.holes[k - 1]);
+          ClosedRingOnGrid(k == 0 ? polygon.shell : polygon.holes[k - 1], decimals);
       if (!ring) return release_parts();
       const Ring oriented = Oriented(*ring, k == 0);
       (k == 0 ? snapped.shell : snapped.holes.emplace_back()) = oriented;
@@ -292,19 +293,22 @@ std::optional<std::vector<SimplePolygon>> PolygonsOnGrid(
 // keeps them valid; else with their vertices as they are (a valid feature with a few noisy digits
 // rather than a clean invalid one). GEOS's precision reduction would make them valid on the grid,
 // but by dropping the collapsed sliver, and with it the cells along it the area covers.
-void AppendPolygonsOnGrid(const GeosContext& geos, const GEOSGeometry* area, FilledArea* out) {
+void AppendPolygonsOnGrid(const GeosContext& geos, const GEOSGeometry* area, int decimals,
+                          FilledArea* out) {
   FilledArea exact;
   AppendPolygons(geos, area, &exact);
-  std::optional<std::vector<SimplePolygon>> snapped = PolygonsOnGrid(geos, exact.polygons);
+  std::optional<std::vector<SimplePolygon>> snapped =
+      PolygonsOnGrid(geos, exact.polygons, decimals);
   out->polygons = snapped ? std::move(*snapped) : std::move(exact.polygons);
 }
 
 // Lines keep their vertices on the grid unless rounding would collapse one to a point.
-void SnapLinesToGrid(FilledArea* out) {
+void SnapLinesToGrid(int decimals, FilledArea* out) {
   for (Ring& line : out->lines) {
     Ring snapped;
     for (const Point2& p : line) {
-      if (snapped.empty() || OnGrid(p) != snapped.back()) snapped.push_back(OnGrid(p));
+      const Point2 on_grid = OnGrid(p, decimals);
+      if (snapped.empty() || on_grid != snapped.back()) snapped.push_back(on_grid);
     }
     if (snapped.size() >= 2) line = std::move(snapped);
   }
@@ -312,7 +316,7 @@ void SnapLinesToGrid(FilledArea* out) {
 
 }  // namespace
 
-StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
+StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings, int decimals) {
   std::vector<Ring> outlines;  // two or more distinct vertices
   std::vector<Point2> points;  // one
   for (const Ring& ring : rings) {
@@ -344,11 +348,11 @@ StatusOr<FilledArea> FilledAreaOfRings(const std::vector<Ring>& rings) {
     GEOSFree_r(h, reason);
     return InternalError(std::move(message));
   }
-  if (area) AppendPolygonsOnGrid(geos, area.get(), &out);
+  if (area) AppendPolygonsOnGrid(geos, area.get(), decimals, &out);
   if (lines) AppendLines(geos, lines.get(), &out);
-  SnapLinesToGrid(&out);
+  SnapLinesToGrid(decimals, &out);
   for (const Point2& vertex : points) {
-    const Point2 p = OnGrid(vertex);
+    const Point2 p = OnGrid(vertex, decimals);
     if (std::find(out.points.begin(), out.points.end(), p) != out.points.end()) continue;
     const Geometry point = geos.Own(GEOSGeom_createPointFromXY_r(h, p.x(), p.y()));
     const bool on_area = area && GEOSIntersects_r(h, area.get(), point.get()) == 1;

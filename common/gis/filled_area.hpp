@@ -13,11 +13,11 @@
 //    the first), shells counter-clockwise and holes clockwise (RFC 7946), no repeated positions;
 //  - `lines`: outlines that bound no area (a line of cells, a one-cell-wide spike or corridor);
 //  - `points`: one-vertex rings not already on a polygon or line.
-// Every coordinate is the double nearest a decimal of kCoordinateDecimals places, as the GeoJSON
-// exports write it: a vertex on a 0.025 m lattice is 42.175, not the 42.175000000000004 binary
-// arithmetic makes of it. Where rounding would make a polygon invalid (a sliver a rounding error
-// wide crossing itself, a few in a thousand on real maps vectorized without a lattice), that
-// polygon keeps its vertices as they are: valid comes first.
+// Every coordinate is the double nearest a decimal of `decimals` places (kCoordinateDecimals for
+// frame metres), as the GeoJSON exports write it: a vertex on a 0.025 m lattice is 42.175, not the
+// 42.175000000000004 binary arithmetic makes of it. Where rounding would make a polygon invalid (a
+// sliver a rounding error wide crossing itself, a few in a thousand on real maps vectorized without
+// a lattice), that polygon keeps its vertices as they are: valid comes first.
 //
 // Thread-safety: stateless; concurrent calls are safe (each call has its own GEOS context).
 
@@ -44,8 +44,11 @@ struct FilledArea {
   bool empty() const { return polygons.empty() && lines.empty() && points.empty(); }
 };
 
-// Rings are not closed (the last vertex is not the first again); empty rings are ignored.
-// Errors (kInternal) only if GEOS fails on the geometry, with GEOS's message.
-StatusOr<FilledArea> FilledAreaOfRings(const std::vector<std::vector<Point2>>& rings);
+// Rings are not closed (the last vertex is not the first again); empty rings are ignored. The
+// rings may be in any plane coordinates: frame metres, or longitude and latitude in degrees with
+// `decimals` = kDegreeDecimals (georeferenced_geojson.hpp). Errors (kInternal) only if GEOS fails
+// on the geometry, with GEOS's message.
+StatusOr<FilledArea> FilledAreaOfRings(const std::vector<std::vector<Point2>>& rings,
+                                       int decimals = kCoordinateDecimals);
 
 }  // namespace fleetmap::gis

@@ -5,7 +5,8 @@
 //
 // Coordinates are frame metres (the map or fleet frame), not WGS84 degrees. The `crs` member names
 // EPSG:3857 (a projected CRS in metres), as nav2_route's graph files do, so that GIS tools read
-// the numbers as metres on a plane instead of as longitude and latitude.
+// the numbers as metres on a plane instead of as longitude and latitude. For a frame surveyed on
+// Earth, georeferenced_geojson.hpp turns such a collection into RFC 7946 longitude / latitude.
 
 #include <vector>
 

@@ -10,7 +10,7 @@
 // (Multi)Point features. Top-level "properties" carry epsilon, resolution and frame.
 //
 // The repair is the export's alone: the in-memory map keeps its rings as the rasterizer reads
-// them.
+// them. gis::GeoreferencedGeoJson places the result on Earth (WGS84) for `--georef`.
 
 #include <string>
 

@@ -4,6 +4,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <chrono>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "common/transport/vmap_file.hpp"
 #include "tests/integration/fleet_binaries.hpp"
 #include "tests/integration/fleetmap_cli.hpp"
+#include "tests/support/geojson_checks.hpp"
 
 namespace fleetmap {
 namespace {
@@ -69,6 +71,58 @@ void ExpectTheToolReadsWhatItWrote(const std::string& out) {
   EXPECT_EQ(validated.exit_code, 0) << validated.output();
   const auto rendered = testing::RunFleetmap({"render", out + "/fused.vmap", "-o", out + "/f.svg"});
   EXPECT_EQ(rendered.exit_code, 0) << rendered.output();
+}
+
+// Issue 33, GIS: `--georef` leaves the map YAML as it was (map_server's format, byte for byte),
+// writes NAME.georef.yaml beside it, and the GeoJSON in WGS84 with the plane export's area; the
+// tools read the saved map with the side file beside it. A later save without --georef leaves the
+// side file and says so.
+void ExpectGeoreferencedSave(const std::string& out, int domain) {
+  EXPECT_FALSE(std::filesystem::exists(out + "/fused.georef.yaml")) << "only with --georef";
+  const std::string geo = out + "/geo";
+  std::filesystem::create_directories(geo);
+  const std::vector<std::string> save = {"save-map",
+                                         "-o",
+                                         geo + "/fused.yaml",
+                                         "--vmap",
+                                         geo + "/fused.vmap",
+                                         "--geojson",
+                                         geo + "/fused.geojson",
+                                         "--domain",
+                                         std::to_string(domain),
+                                         "--localhost-only",
+                                         "--settle",
+                                         "1"};
+  std::vector<std::string> georeferenced = save;
+  georeferenced.insert(georeferenced.end(), {"--georef", "-33.45", "-70.66", "135"});
+  const auto saved = testing::RunFleetmap(georeferenced);
+  ASSERT_EQ(saved.exit_code, 0) << saved.output();
+  EXPECT_THAT(saved.out, HasSubstr(geo + "/fused.georef.yaml: the fleet frame's georeference"));
+  EXPECT_EQ(testing::ReadFile(geo + "/fused.yaml"), testing::ReadFile(out + "/fused.yaml"));
+
+  const YAML::Node side = YAML::LoadFile(geo + "/fused.georef.yaml");
+  EXPECT_EQ(side["map"].as<std::string>(), "fused.yaml");
+  EXPECT_EQ(side["frame"].as<std::string>(), "fleet");
+  EXPECT_EQ(side["crs"].as<std::string>(), "EPSG:4326");
+  EXPECT_EQ(side["latitude"].as<double>(), -33.45);
+  EXPECT_EQ(side["longitude"].as<double>(), -70.66);
+  EXPECT_EQ(side["yaw"].as<double>(), 135.0);
+
+  const nlohmann::json plane = nlohmann::json::parse(testing::ReadFile(out + "/fused.geojson"));
+  const nlohmann::json wgs84 = nlohmann::json::parse(testing::ReadFile(geo + "/fused.geojson"));
+  EXPECT_FALSE(wgs84.contains("crs"));
+  EXPECT_THAT(testing::GeoJsonProblems(wgs84, testing::GeoJsonCoordinates::kWgs84),
+              ::testing::IsEmpty());
+  const double plane_area = testing::PolygonArea(plane, testing::GeoJsonCoordinates::kFrameMetres);
+  EXPECT_GT(plane_area, 10.0);
+  EXPECT_NEAR(testing::PolygonArea(wgs84, testing::GeoJsonCoordinates::kWgs84), plane_area,
+              1e-3 * plane_area);
+  ExpectTheToolReadsWhatItWrote(geo);
+
+  const auto again = testing::RunFleetmap(save);
+  ASSERT_EQ(again.exit_code, 0) << again.output();
+  EXPECT_THAT(again.err, HasSubstr(geo + "/fused.georef.yaml from an earlier save is left"));
+  EXPECT_TRUE(std::filesystem::exists(geo + "/fused.georef.yaml"));
 }
 
 TEST(CliSaveMapTest, TheSavedMapIsTheFusedMapCellForCell) {
@@ -141,6 +195,7 @@ TEST(CliSaveMapTest, TheSavedMapIsTheFusedMapCellForCell) {
 
   ExpectCleanNumbers(out, fused->resolution());
   ExpectTheToolReadsWhatItWrote(out);
+  ExpectGeoreferencedSave(out, domain);
 
   maps->reset();
   std::filesystem::remove_all(out);

@@ -12,10 +12,24 @@
 
 namespace fleetmap::testing {
 
-// One line per problem, naming the feature: no "crs" member naming EPSG:3857 (metres); a geometry
-// GEOS cannot read or judges invalid (GEOSisValidReason: self-intersection, hole outside its shell,
-// ...); a polygon ring not closed or of fewer than four positions; repeated consecutive positions.
-std::vector<std::string> GeoJsonProblems(const nlohmann::json& collection);
+// What a collection's positions are: frame metres with the EPSG:3857 `crs` member (fleetmap's
+// default), or WGS84 longitude and latitude per RFC 7946 (`--georef`), which has no `crs` member.
+enum class GeoJsonCoordinates { kFrameMetres, kWgs84 };
+
+// One line per problem, naming the feature: for kFrameMetres no "crs" member naming EPSG:3857, for
+// kWgs84 a "crs" member at all or a position outside [-180, 180] x [-90, 90]; a geometry GEOS
+// cannot read or judges invalid (GEOSisValidReason: self-intersection, hole outside its shell,
+// ...); a polygon ring not closed or of fewer than four positions, or wound against RFC 7946
+// (shells counter-clockwise, holes clockwise); repeated consecutive positions.
+std::vector<std::string> GeoJsonProblems(
+    const nlohmann::json& collection,
+    GeoJsonCoordinates coordinates = GeoJsonCoordinates::kFrameMetres);
+
+// The area of a collection's Polygon and MultiPolygon features, holes taken out: in square metres
+// on the plane for frame metres (the shoelace formula), and on the WGS84 ellipsoid for longitude
+// and latitude (GeographicLib's geodesic polygon area, from PROJ's geodesic.h), so that the two
+// exports of one map can be compared without the code that made them.
+double PolygonArea(const nlohmann::json& collection, GeoJsonCoordinates coordinates);
 
 // Polygon and MultiPolygon features (the polygons GIS tools count).
 int PolygonFeatureCount(const nlohmann::json& collection);
