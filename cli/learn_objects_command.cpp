@@ -1,7 +1,5 @@
 #include "cli/learn_objects_command.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include "cli/inputs/exit_codes.hpp"
 #include "cli/learn_progress_printer.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/object_learning/object_learner.hpp"
 #include "common/object_learning/snapshot_extractor.hpp"
@@ -226,7 +225,7 @@ void AddLearnObjectsCommand(CLI::App& app, int* exit_code) {
                    "progress on stderr: -1 automatic (off with --json), 0 never, 1 always")
       ->capture_default_str();
   command->callback([options, exit_code] {
-    options->err_is_terminal = isatty(STDERR_FILENO) != 0;
+    options->err_is_terminal = ProgressLine::StderrIsTerminal();
     *exit_code = RunLearnObjects(*options, std::cout, std::cerr);
   });
 }

@@ -1,16 +1,17 @@
 #pragma once
 
-// Draws object learning's progress (LearnProgress) on a stream for `fleetmap learn-objects`:
-// on a terminal, one line redrawn in place at most every `terminal_interval`; otherwise (a log
-// file, a pipe) a new line at most every `log_interval`, and on every stage change, so a slow run
-// is told from a hung one either way. Stage changes always print; the last report ends the line.
+// Draws object learning's progress (LearnProgress) on a stream for `fleetmap learn-objects`, on
+// one ProgressLine: on a terminal, one line redrawn in place at most every `terminal_interval`;
+// otherwise (a log file, a pipe) a new line at most every `log_interval`, and on every stage
+// change, so a slow run is told from a hung one either way. Stage changes always print; the last
+// report ends the line.
 //
 // Thread-safety: call from one thread (the learner's progress callback runs on its thread).
 
 #include <chrono>
 #include <ostream>
-#include <string>
 
+#include "common/core/progress_line.hpp"
 #include "common/object_learning/learn_progress.hpp"
 
 namespace fleetmap::cli {
@@ -24,14 +25,9 @@ class LearnProgressPrinter {
   void Report(const object_learning::LearnProgress& progress);
 
  private:
-  std::ostream& out_;
-  bool terminal_;
-  std::chrono::milliseconds terminal_interval_;
-  std::chrono::milliseconds log_interval_;
-  std::chrono::steady_clock::time_point last_{};
-  bool printed_ = false;
+  ProgressLine line_;
+  bool reported_ = false;
   object_learning::LearnStage last_stage_ = object_learning::LearnStage::kExtracting;
-  size_t last_width_ = 0;  // of the line on the terminal, to blank what a shorter one leaves
 };
 
 }  // namespace fleetmap::cli

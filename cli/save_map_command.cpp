@@ -11,6 +11,7 @@
 #include "cli/georef_option.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/core/wake_up.hpp"
 #include "common/gis/georeference_file.hpp"
 #include "common/gis/georeferenced_geojson.hpp"
@@ -160,15 +161,21 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
   const auto seconds = [](double s) {
     return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
   };
+  const auto waited = [&start] {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  const auto waiting = [&] {
+    return fmt::format("waiting for the fused map on {} (DDS domain {}): {:.0f} / {:.0f} s",
+                       transport::kFleetMapTopic, (*participant)->domain_id(), waited(),
+                       options.timeout_s);
+  };
+  ProgressLine progress(err, {.terminal = options.err_is_terminal});
   while (true) {
     const auto now = Clock::now();
     if (settled_at && now >= *settled_at) break;
     if (!newest && now - start >= seconds(options.timeout_s)) break;
     if (!newest && now >= next_note) {
-      err << fmt::format("\rwaiting for the fused map on {} (DDS domain {}): {:.0f} / {:.0f} s",
-                         transport::kFleetMapTopic, (*participant)->domain_id(),
-                         std::chrono::duration<double>(now - start).count(), options.timeout_s)
-          << std::flush;
+      progress.Update(waiting());
       next_note += std::chrono::seconds(1);
     }
     wake_up->WaitFor(std::chrono::milliseconds(100));
@@ -178,7 +185,12 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
         continue;
       }
       newest = std::move(map).value();
-      if (!settled_at) settled_at = Clock::now() + seconds(options.settle_s);
+      if (!settled_at) {
+        settled_at = Clock::now() + seconds(options.settle_s);
+        progress.Finish(fmt::format("the fused map on {} (DDS domain {}) came after {:.1f} s",
+                                    transport::kFleetMapTopic, (*participant)->domain_id(),
+                                    waited()));
+      }
     }
     if (tiles != nullptr) {
       for (transport::TileEvent& event : tiles->Drain()) {
@@ -190,7 +202,7 @@ int RunSaveMap(const SaveMapOptions& options, std::ostream& out, std::ostream& e
       }
     }
   }
-  err << "\n";
+  if (!newest) progress.Finish(waiting());
   const int domain = (*participant)->domain_id();
   tiles.reset();
   maps.reset();
@@ -259,6 +271,7 @@ void AddSaveMapCommand(CLI::App& app, int* exit_code) {
   auto fleet = std::make_shared<FleetReaderFlags>(command, &options->fleet);
   command->callback([options, fleet, exit_code] {
     fleet->ApplyDomain();
+    options->err_is_terminal = ProgressLine::StderrIsTerminal();
     *exit_code = RunSaveMap(*options, std::cout, std::cerr);
   });
 }

@@ -28,6 +28,7 @@ struct SaveMapOptions {
   double timeout_s = 30.0;               // for the first fused map
   double settle_s = 2.0;                 // then keep the newest map and tiles this long
   FleetReaderOptions fleet;
+  bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)
 };
 
 // Runs the saver; progress and errors (naming the path or the domain and what is wrong) go to

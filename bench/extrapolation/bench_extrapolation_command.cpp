@@ -23,6 +23,7 @@
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/grid/map_io.hpp"
 
 namespace fleetmap::bench {
@@ -334,7 +335,9 @@ struct RealMapResults {
   std::vector<PerMap> maps;
 };
 
-StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options, std::ostream& err) {
+// `progress` (may be null) shows the room being scored.
+StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options,
+                                     ProgressLine* progress) {
   std::vector<std::filesystem::path> yamls;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(options.real_maps_dir, ec)) {
@@ -354,10 +357,9 @@ StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options, s
     per_map.rooms = static_cast<int>(segmentation.room_area.size());
     per_map.kept = static_cast<int>(segmentation.doorways.size());
     for (size_t d = 0; d < segmentation.doorways.size(); ++d) {
-      if (options.progress) {
-        err << "\r"
-            << "fleetmap bench extrapolation: " << per_map.name << " room " << d + 1 << "/"
-            << segmentation.doorways.size() << "   " << std::flush;
+      if (progress != nullptr) {
+        progress->Update(fmt::format("fleetmap bench extrapolation: {} room {}/{}", per_map.name,
+                                     d + 1, segmentation.doorways.size()));
       }
       const SegmentedDoorway& doorway = segmentation.doorways[d];
       FloorPlanExperimentOptions experiment;
@@ -381,7 +383,7 @@ StatusOr<RealMapResults> RunRealMaps(const BenchExtrapolationOptions& options, s
     }
     out.maps.push_back(per_map);
   }
-  if (options.progress) err << "\n";
+  if (progress != nullptr) progress->Finish();
   return out;
 }
 
@@ -553,10 +555,23 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     }
     return true;
   };
+  // Progress on `err`, one line per experiment (none with --no-progress).
+  std::optional<ProgressLine> progress_line;
+  if (options.progress) {
+    progress_line.emplace(err, ProgressLineOptions{.terminal = options.err_is_terminal});
+  }
+  ProgressLine* progress = progress_line ? &*progress_line : nullptr;
+  const auto show = [&](const std::string& text) {
+    if (progress != nullptr) progress->Update(text);
+  };
+  const auto end_line = [&] {
+    if (progress != nullptr) progress->Finish();
+  };
   if (!options.real_maps_dir.empty()) {
     const auto real_start = std::chrono::steady_clock::now();
-    StatusOr<RealMapResults> real = RunRealMaps(options, err);
+    StatusOr<RealMapResults> real = RunRealMaps(options, progress);
     if (!real.ok()) {
+      end_line();
       err << prefix << "--real-maps: " << real.status().message() << "\n";
       return cli::kExitBadInput;
     }
@@ -581,17 +596,16 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
       if (i == 0 && !options.out_dir.empty()) {
         plan.example_dir = options.out_dir + "/plan_" + std::to_string(plan.seed);
       }
-      if (options.progress) {
-        err << "\r" << prefix << "plan " << i + 1 << "/" << options.plans << std::flush;
-      }
+      show(fmt::format("{}plan {}/{}", prefix, i + 1, options.plans));
       StatusOr<std::vector<PlanDoorResult>> result = RunFloorPlanExperiment(plan);
       if (!result.ok()) {
-        err << "\n" << prefix << "plan " << plan.seed << ": " << result.status().message() << "\n";
+        end_line();
+        err << prefix << "plan " << plan.seed << ": " << result.status().message() << "\n";
         return cli::kExitBadInput;
       }
       for (PlanDoorResult& r : result.value()) plan_results.push_back(std::move(r));
     }
-    if (options.progress) err << "\n";
+    end_line();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - plans_start).count();
     const std::string report = PlanReport(options, plan_results, seconds);
@@ -613,17 +627,16 @@ int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream
     if (i == 0 && !options.out_dir.empty()) {
       scene.example_dir = options.out_dir + "/scene_" + std::to_string(scene.seed);
     }
-    if (options.progress) {
-      err << "\r" << prefix << "scene " << i + 1 << "/" << options.scenes << std::flush;
-    }
+    show(fmt::format("{}scene {}/{}", prefix, i + 1, options.scenes));
     StatusOr<ExtrapolationSceneResult> result = RunExtrapolationScene(scene);
     if (!result.ok()) {
-      err << "\n" << prefix << "seed " << scene.seed << ": " << result.status().message() << "\n";
+      end_line();
+      err << prefix << "seed " << scene.seed << ": " << result.status().message() << "\n";
       return cli::kExitBadInput;
     }
     results.push_back(std::move(result).value());
   }
-  if (options.progress) err << "\n";
+  end_line();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string report = Report(options, results, seconds);
@@ -652,8 +665,10 @@ void AddBenchExtrapolationCommand(CLI::App& app, int* exit_code) {
       ->delimiter(',')
       ->capture_default_str();
   command->add_flag("!--no-progress", options->progress, "no progress on stderr");
-  command->callback(
-      [options, exit_code] { *exit_code = RunBenchExtrapolation(*options, std::cout, std::cerr); });
+  command->callback([options, exit_code] {
+    options->err_is_terminal = ProgressLine::StderrIsTerminal();
+    *exit_code = RunBenchExtrapolation(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace fleetmap::bench

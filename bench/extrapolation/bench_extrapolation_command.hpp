@@ -33,6 +33,7 @@ struct BenchExtrapolationOptions {
   uint32_t seed = 1;
   std::vector<double> p_th = {0.5, 0.6, 0.7};
   bool progress = true;
+  bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)
 };
 
 int RunBenchExtrapolation(const BenchExtrapolationOptions& options, std::ostream& out,

@@ -16,6 +16,7 @@
 #include "bench/report/bench_command.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/sim/terrain_generator.hpp"
 
@@ -185,21 +186,18 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       options.robots = robots;
       options.wire = wire;
       options.measure_baselines = wire == "tiles";
+      ProgressLine progress = ProgressLine::OnStderr();
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
-        if (seconds < 0) {
-          std::cerr << fmt::format(
-                           "\r{} robots, {} wire: the agents finish measuring the grid "
-                           "wires   ",
-                           robots, wire)
-                    << std::flush;
-          return;
-        }
-        std::cerr << fmt::format("\r{} robots, {} wire: {:.0f} / {:.0f} s   ", robots, wire,
-                                 seconds, scenario.duration_s)
-                  << std::flush;
+        progress.Update(
+            seconds < 0
+                ? fmt::format("{} robots, {} wire: the agents finish measuring the grid wires",
+                              robots, wire)
+                : fmt::format("{} robots, {} wire: {:.0f} / {:.0f} s", robots, wire, seconds,
+                              scenario.duration_s));
       });
+      progress.Finish();
       if (!run.ok()) {
-        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        std::cerr << "fleetmap bench fleet: " << run.status().message() << "\n";
         return 1;
       }
       if (wire == "tiles") {
@@ -212,13 +210,14 @@ int RunBenchFleet(const BenchFleetArgs& args) {
       FleetSimOptions options = base;
       options.robots = robots;
       options.hostile = Attack(args);
+      ProgressLine progress = ProgressLine::OnStderr();
       StatusOr<FleetRunResult> run = RunFleet(options, [&](double seconds) {
-        std::cerr << fmt::format("\r{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s   ",
-                                 robots, seconds, scenario.duration_s)
-                  << std::flush;
+        progress.Update(fmt::format("{} robots, tiles wire, hostile flood: {:.0f} / {:.0f} s",
+                                    robots, seconds, scenario.duration_s));
       });
+      progress.Finish();
       if (!run.ok()) {
-        std::cerr << "\nfleetmap bench fleet: " << run.status().message() << "\n";
+        std::cerr << "fleetmap bench fleet: " << run.status().message() << "\n";
         return 1;
       }
       row.attacked = std::move(run).value();
@@ -227,7 +226,6 @@ int RunBenchFleet(const BenchFleetArgs& args) {
     if (quality.ok()) row.quality = *quality;
     rows.push_back(std::move(row));
   }
-  std::cerr << "\n";
 
   std::cout << fmt::format(
       "fleet benchmark: {} {} m, seed {}, {:.0f} s per run, {} scans/s per robot\n\n",
@@ -313,12 +311,13 @@ int RunBenchFleet(const BenchFleetArgs& args) {
     options.robots = 1;
     options.wire = "tiles";
     options.duration = base.duration * fleet.robots;
+    ProgressLine progress = ProgressLine::OnStderr();
     StatusOr<FleetRunResult> single = RunFleet(options, [&](double seconds) {
-      std::cerr << fmt::format("\r1 robot for {:.0f} s: {:.0f} s   ",
-                               std::chrono::duration<double>(options.duration).count(), seconds)
-                << std::flush;
+      progress.Update(fmt::format("1 robot for {:.0f} s: {:.0f} s",
+                                  std::chrono::duration<double>(options.duration).count(),
+                                  seconds));
     });
-    std::cerr << "\n";
+    progress.Finish();
     if (!single.ok()) {
       std::cerr << "fleetmap bench fleet: " << single.status().message() << "\n";
       return 1;

@@ -14,6 +14,7 @@
 #include "bench/report/bench_command.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/metrics/map_quality.hpp"
 #include "common/process/lossy_network_namespace.hpp"
 #include "common/sim/terrain_generator.hpp"
@@ -98,14 +99,15 @@ int RunBenchLoss(const BenchLossArgs& args) {
         std::cerr << "fleetmap bench loss: " << inside.status().message() << "\n";
         return 1;
       }
+      ProgressLine progress = ProgressLine::OnStderr();
       run = RunFleet(base, [&](double seconds) {
-        std::cerr << fmt::format("\r{} % loss: {:.0f} / {:.0f} s   ", loss, seconds,
-                                 scenario.duration_s)
-                  << std::flush;
+        progress.Update(
+            fmt::format("{} % loss: {:.0f} / {:.0f} s", loss, seconds, scenario.duration_s));
       });
+      progress.Finish();
     }
     if (!run.ok()) {
-      std::cerr << "\nfleetmap bench loss: " << run.status().message() << "\n";
+      std::cerr << "fleetmap bench loss: " << run.status().message() << "\n";
       return 1;
     }
     Row row;
@@ -119,7 +121,6 @@ int RunBenchLoss(const BenchLossArgs& args) {
     if (quality.ok()) row.quality = *quality;
     rows.push_back(std::move(row));
   }
-  std::cerr << "\n";
 
   const std::string machine = MachineDescription();
   std::cout << fmt::format(

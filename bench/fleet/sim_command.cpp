@@ -11,6 +11,7 @@
 #include "bench/fleet/fleet_sim_report.hpp"
 #include "bench/fleet/security_report.hpp"
 #include "cli/inputs/exit_codes.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/process/lossy_network_namespace.hpp"
 #include "common/sim/terrain_generator.hpp"
 
@@ -90,18 +91,17 @@ int RunSim(const SimArgs& args) {
       FLEETMAP_ASSIGN_OR_RETURN(network, process::LossyNetworkNamespace::Create(0));
       FLEETMAP_ASSIGN_OR_RETURN(inside, network->Enter());
     }
-    return RunFleet(options, [&](double seconds) {
-      if (seconds < 0) {
-        std::cerr << fmt::format("\r[{}] the agents finish measuring the grid wires", label)
-                  << std::flush;
-        return;
-      }
-      std::cerr << fmt::format("\r[{}] {:.0f} / {:.0f} s", label, seconds, args.scenario.duration_s)
-                << std::flush;
+    ProgressLine progress = ProgressLine::OnStderr();
+    StatusOr<FleetRunResult> result = RunFleet(options, [&](double seconds) {
+      progress.Update(
+          seconds < 0
+              ? fmt::format("[{}] the agents finish measuring the grid wires", label)
+              : fmt::format("[{}] {:.0f} / {:.0f} s", label, seconds, args.scenario.duration_s));
     });
+    progress.Finish();
+    return result;
   };
   StatusOr<FleetRunResult> tiles = run("tiles", fleet.sim_frames);
-  std::cerr << "\n";
   if (!tiles.ok()) {
     std::cerr << "fleetmap sim: " << tiles.status().message() << "\n";
     return 1;
@@ -109,7 +109,6 @@ int RunSim(const SimArgs& args) {
   std::optional<FleetRunResult> known_poses;
   if (args.unknown_poses && args.compare_known) {
     StatusOr<FleetRunResult> known_run = run("tiles", {});
-    std::cerr << "\n";
     if (!known_run.ok()) {
       std::cerr << "fleetmap sim: the known-pose run failed: " << known_run.status().message()
                 << "\n";
@@ -120,7 +119,6 @@ int RunSim(const SimArgs& args) {
   std::optional<std::string> security_table;
   if (args.secure) {
     StatusOr<FleetRunResult> plain = run("tiles", fleet.sim_frames, /*secured=*/false);
-    std::cerr << "\n";
     if (!plain.ok()) {
       std::cerr << "fleetmap sim: the run without security failed: " << plain.status().message()
                 << "\n";
@@ -136,7 +134,6 @@ int RunSim(const SimArgs& args) {
   std::optional<FleetRunResult> compared;
   if (args.compare && !args.unknown_poses && !args.secure) {
     StatusOr<FleetRunResult> compared_run = run(args.compare_wire, {});
-    std::cerr << "\n";
     if (!compared_run.ok()) {
       std::cerr << "fleetmap sim: the " << args.compare_wire
                 << " run failed: " << compared_run.status().message() << "\n";

@@ -18,6 +18,7 @@
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/sim/terrain_generator.hpp"
 
 namespace fleetmap::bench {
@@ -39,31 +40,28 @@ std::string Name(const PaperTerrainResult& r) {
   return std::string(sim::TerrainKindName(r.kind)) + " " + Fixed(r.size, 0) + " m";
 }
 
-// A one-line progress bar, rewritten in place.
+// A progress bar on one ProgressLine (rewritten in place on a terminal, a line every 10 s in a
+// log); nothing when disabled.
 class ProgressBar {
  public:
-  ProgressBar(std::ostream& err, int total, bool enabled)
-      : err_(err), total_(total), enabled_(enabled) {}
+  ProgressBar(std::ostream& err, int total, bool enabled, bool terminal) : total_(total) {
+    if (enabled) line_.emplace(err, ProgressLineOptions{.terminal = terminal});
+  }
 
   void Show(int done, const std::string& what) {
-    if (!enabled_) return;
+    if (!line_) return;
     constexpr int kWidth = 30;
     const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
-    std::string line = "\r[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] " +
-                       std::to_string(done) + "/" + std::to_string(total_) + " " + what;
-    if (line.size() < last_size_) line += std::string(last_size_ - line.size(), ' ');
-    last_size_ = line.size();
-    err_ << line << std::flush;
+    line_->Update("[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] " +
+                  std::to_string(done) + "/" + std::to_string(total_) + " " + what);
   }
   void Finish() {
-    if (enabled_) err_ << "\n";
+    if (line_) line_->Finish();
   }
 
  private:
-  std::ostream& err_;
   int total_;
-  bool enabled_;
-  size_t last_size_ = 0;
+  std::optional<ProgressLine> line_;
 };
 
 std::string ResultsCsv(const std::vector<PaperTerrainResult>& results) {
@@ -362,7 +360,7 @@ int RunBenchPaper(const BenchPaperOptions& options, std::ostream& out, std::ostr
 
   const auto start = std::chrono::steady_clock::now();
   const int total = static_cast<int>(options.sizes.size() * kinds.size());
-  ProgressBar bar(err, total, options.progress);
+  ProgressBar bar(err, total, options.progress, options.err_is_terminal);
   std::vector<PaperTerrainResult> results;
   for (double size : options.sizes) {
     for (sim::TerrainKind kind : kinds) {
@@ -429,8 +427,10 @@ void AddBenchPaperCommand(CLI::App& app, int* exit_code) {
   command->add_flag("!--no-line-refit", options->line_refit,
                     "vectorize without moving centre lines off the cell centres");
   command->add_flag("!--no-progress", options->progress, "no progress bar on stderr");
-  command->callback(
-      [options, exit_code] { *exit_code = RunBenchPaper(*options, std::cout, std::cerr); });
+  command->callback([options, exit_code] {
+    options->err_is_terminal = ProgressLine::StderrIsTerminal();
+    *exit_code = RunBenchPaper(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace fleetmap::bench

@@ -26,6 +26,7 @@ struct BenchPaperOptions {
   bool slam_error = true;
   bool line_refit = true;  // VectorizerOptions::refit_lines (off only to measure it)
   bool progress = true;
+  bool err_is_terminal = false;  // the bar redrawn in place (else a line every 10 s)
 };
 
 // Bad options (unknown kind, size out of bounds, resolution <= 0, a laser with no rays) print a

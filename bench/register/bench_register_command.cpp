@@ -15,6 +15,7 @@
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/registration/confidence_calibration.hpp"
 
 namespace fleetmap::bench {
@@ -117,7 +118,8 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   bench_options.run_mexplore = !options.skip_mexplore;
   bench_options.drift = !options.no_drift;
   bench_options.registration.max_drift_per_m = options.max_drift_per_m;
-  const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &err);
+  ProgressLine progress(err, {.terminal = options.err_is_terminal});
+  const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &progress);
   const std::vector<SummaryRow> rows = Summarize(run.pairs);
   const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
 
@@ -301,8 +303,10 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_option("--json", options->json_path, "write the summary, reliability and pairs");
   command->add_flag("--skip-mexplore", options->skip_mexplore,
                     "run fleetmap only (for the calibration fit)");
-  command->callback(
-      [options, exit_code] { *exit_code = RunBenchRegister(*options, std::cout, std::cerr); });
+  command->callback([options, exit_code] {
+    options->err_is_terminal = ProgressLine::StderrIsTerminal();
+    *exit_code = RunBenchRegister(*options, std::cout, std::cerr);
+  });
 }
 
 }  // namespace fleetmap::bench

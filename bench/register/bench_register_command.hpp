@@ -34,6 +34,7 @@ struct BenchRegisterOptions {
   // The registration's drift bound (RegistrationOptions::max_drift_per_m); 0 verifies rigidly,
   // the verification before issue 31's drift model, for a side-by-side figure.
   double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;
+  bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)
 };
 
 // Bad options or unreadable maps print a message naming them and return cli::kExitBadInput.

@@ -1,5 +1,7 @@
 #include "bench/register/register_experiment.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +11,7 @@
 #include "bench/register/mexplore_registration.hpp"
 #include "bench/register/repeated_terrain.hpp"
 #include "bench/report/report_format.hpp"
+#include "common/core/number_format.hpp"
 #include "common/sim/terrain_generator.hpp"
 #include "common/sim/terrain_rasterizer.hpp"
 
@@ -152,7 +155,7 @@ StatusOr<std::vector<SourceMap>> RepeatedSourceMaps(int count, uint32_t seed) {
 }
 
 RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
-                                  const RegisterBenchOptions& options, std::ostream* progress) {
+                                  const RegisterBenchOptions& options, ProgressLine* progress) {
   RegisterBenchRun run;
   const auto start = std::chrono::steady_clock::now();
   const size_t total = maps.size() * options.overlaps.size() *
@@ -174,8 +177,8 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
         if (!pair.ok()) {
           ++run.not_generated;
           if (progress != nullptr) {
-            *progress << "\nbench register: " << maps[m].name << " overlap " << options.overlaps[o]
-                      << ": " << pair.status().message() << "\n";
+            progress->Print(fmt::format("bench register: {} overlap {}: {}", maps[m].name,
+                                        ShortNumber(options.overlaps[o]), pair.status().message()));
           }
           continue;
         }
@@ -205,13 +208,13 @@ RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
           run.pairs.push_back(warped);
         }
         if (progress != nullptr) {
-          *progress << "bench register: " << done << "/" << total << " pairs, "
-                    << static_cast<int>(SecondsSince(start)) << " s elapsed\r" << std::flush;
+          progress->Update(fmt::format("bench register: {}/{} pairs, {} s elapsed", done, total,
+                                       static_cast<int>(SecondsSince(start))));
         }
       }
     }
   }
-  if (progress != nullptr) *progress << "\n";
+  if (progress != nullptr) progress->Finish();
   return run;
 }
 

@@ -8,11 +8,11 @@
 // of fleetmap's confidence. Used by `fleetmap bench register` and its tests.
 
 #include <cstdint>
-#include <ostream>
 #include <string>
 #include <vector>
 
 #include "bench/register/map_pair_generator.hpp"
+#include "common/core/progress_line.hpp"
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/registration/registration.hpp"
@@ -78,9 +78,10 @@ struct RegisterBenchRun {
   int not_generated = 0;  // pairs the generator could not make within its tolerance
 };
 
-// Runs the benchmark on every source map; `progress` (may be null) gets a line per pair.
+// Runs the benchmark on every source map; `progress` (may be null) shows the pairs done and
+// prints a line for each pair the generator could not make.
 RegisterBenchRun RunRegisterBench(const std::vector<SourceMap>& maps,
-                                  const RegisterBenchOptions& options, std::ostream* progress);
+                                  const RegisterBenchOptions& options, ProgressLine* progress);
 
 struct MethodSummary {
   int pairs = 0;

@@ -15,6 +15,7 @@ namespace fleetmap {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 using testing::RunFleetmap;
 
@@ -25,6 +26,9 @@ TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
                                    "--seed", "3", "--duration", "6", "--rate", "40", "--out", out});
   ASSERT_EQ(result.exit_code, 0) << result.output();
   EXPECT_THAT(result.out, HasSubstr("bytes than the smallest baseline, "));
+  // stderr is a pipe here, as in a CI log: each run's progress on lines of its own, no '\r'.
+  EXPECT_THAT(result.err, Not(HasSubstr("\r")));
+  EXPECT_THAT(result.err, HasSubstr("[tiles wire] 0 / 6 s\n"));
   EXPECT_TRUE(std::filesystem::exists(out + "/report.md"));
   EXPECT_TRUE(std::filesystem::exists(out + "/fused.png"));
 

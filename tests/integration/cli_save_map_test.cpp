@@ -8,7 +8,9 @@
 
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "common/core/wake_up.hpp"
 #include "common/grid/map_io.hpp"
@@ -28,6 +30,7 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 using ::testing::ContainsRegex;
 using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
 using ::testing::Not;
 
 // Bounds waits on a loaded 2-core CI machine; not an assertion about speed.
@@ -210,6 +213,31 @@ TEST(CliSaveMapTest, NoServerIsATimeoutNamingTheDomain) {
   EXPECT_THAT(saved.err, HasSubstr("no fused map"));
   EXPECT_THAT(saved.err, HasSubstr("domain " + std::to_string(domain)));
   EXPECT_FALSE(std::filesystem::exists(out + "/x.yaml"));
+  std::filesystem::remove_all(out);
+}
+
+// Issue 33: with stderr on a pipe (a CI log, the journal, `| tail`) the wait's progress comes as
+// whole lines, not '\r' updates running together into one: the first update and the final state,
+// each on a line of its own (the updates each second between are held back: a line at most every
+// 10 s), then the error on its own line.
+TEST(CliSaveMapTest, ProgressToAPipeIsWholeLinesWithoutCarriageReturns) {
+  const int domain = process::RandomDomainId();
+  const std::string out = testing::FreshTempDir("cli_save_map_progress");
+  const auto saved = testing::RunFleetmap({"save-map", "-o", out + "/x.yaml", "--timeout", "3",
+                                           "--domain", std::to_string(domain), "--localhost-only"});
+  EXPECT_EQ(saved.exit_code, 1) << saved.err;
+  EXPECT_THAT(saved.err, Not(HasSubstr("\r")));
+  std::vector<std::string> progress;
+  std::istringstream lines(saved.err);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("waiting for the fused map") != std::string::npos) progress.push_back(line);
+  }
+  const std::string waiting = "waiting for the fused map on rt/fleetmap/map \\(DDS domain " +
+                              std::to_string(domain) + "\\): ";
+  ASSERT_EQ(progress.size(), 2u) << saved.err;
+  EXPECT_THAT(progress[0], MatchesRegex(waiting + "0 / 3 s"));
+  EXPECT_THAT(progress[1], MatchesRegex(waiting + "[0-9]+ / 3 s"));
+  EXPECT_THAT(saved.err, HasSubstr(" / 3 s\nfleetmap save-map: no fused map"));
   std::filesystem::remove_all(out);
 }
 

@@ -20,6 +20,7 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::IsEmpty;
+using ::testing::Not;
 using testing::ReadFile;
 using testing::RunFleetmap;
 
@@ -79,7 +80,8 @@ TEST(CliSimTest, BenchPaperWritesReportCsvAndCharts) {
       {"bench", "paper", "--out", dir, "--sizes", "10", "--kinds", "office,maze", "--seed", "3"});
   ASSERT_EQ(run.exit_code, 0) << run.output();
   EXPECT_THAT(run.out, HasSubstr("| office 10 m |"));
-  EXPECT_THAT(run.err, HasSubstr("2/2"));  // the progress bar
+  EXPECT_THAT(run.err, HasSubstr("2/2"));      // the progress bar
+  EXPECT_THAT(run.err, Not(HasSubstr("\r")));  // stderr is a pipe: whole lines
   for (const char* file :
        {"report.md", "results.csv", "sizes.png", "quality_office_10.png", "quality_maze_10.png",
         "maps/office_10_robot.png", "maps/office_10_truth_vector.png", "maps/maze_10_robot.yaml"}) {
