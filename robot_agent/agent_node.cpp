@@ -86,8 +86,9 @@ StatusOr<std::unique_ptr<AgentNode>> AgentNode::Create(AgentOptions options) {
         node->baseline_meter_,
         WireBaselineMeter::Create(o.robot, o.TilingFrame(), o.tiles.tile_size));
   }
-  FLEETMAP_ASSIGN_OR_RETURN(node->frame_reader_,
-                            transport::RobotFrameReader::Create(*node->participant_));
+  // Its own frame only: a fleet's other robots' frames are no concern of this agent's.
+  FLEETMAP_ASSIGN_OR_RETURN(node->frame_reader_, transport::RobotFrameReader::CreateForRobot(
+                                                     *node->participant_, o.robot));
   if (!o.entities_path.empty()) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->entity_publisher_,

@@ -8,8 +8,8 @@ StatusOr<std::unique_ptr<IdClaimWatch>> IdClaimWatch::Create(transport::Particip
                                                              RobotId robot) {
   std::unique_ptr<IdClaimWatch> watch(new IdClaimWatch(std::move(robot), participant.id()));
   watch->domain_id_ = participant.domain_id();
-  FLEETMAP_ASSIGN_OR_RETURN(watch->reader_,
-                            transport::RobotStatusReader::Create(participant, watch->wake_up_));
+  FLEETMAP_ASSIGN_OR_RETURN(watch->reader_, transport::RobotStatusReader::CreateForRobot(
+                                                participant, watch->robot_, watch->wake_up_));
   return watch;
 }
 

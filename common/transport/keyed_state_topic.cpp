@@ -30,6 +30,7 @@ struct TopicTraits<EntityMessage> {
   using Sample = fleetmap_msgs::msg::dds_::Entity_;
   static constexpr const char* kTopic = kEntitiesTopic;
   static constexpr bool kServed = false;
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return EntityTypeSupport(); }
   static EntityMessage KeyOf(const EntityMessage& message) {
     scene::DoorEntity key_only;  // any alternative carries the id
@@ -50,6 +51,7 @@ struct TopicTraits<SubmapMessage> {
   using Sample = fleetmap_msgs::msg::dds_::Submap_;
   static constexpr const char* kTopic = kSubmapGraphTopic;
   static constexpr bool kServed = true;
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return SubmapTypeSupport(); }
   static SubmapMessage KeyOf(const SubmapMessage& message) {
     SubmapMessage key;
@@ -66,6 +68,7 @@ struct TopicTraits<ObjectTemplateMessage> {
   using Sample = fleetmap_msgs::msg::dds_::ObjectTemplate_;
   static constexpr const char* kTopic = kObjectTemplatesTopic;
   static constexpr bool kServed = true;
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return ObjectTemplateTypeSupport(); }
   static ObjectTemplateMessage KeyOf(const ObjectTemplateMessage& message) {
     ObjectTemplateMessage key;
@@ -82,6 +85,7 @@ struct TopicTraits<ObjectModelMessage> {
   using Sample = fleetmap_msgs::msg::dds_::ObjectModel_;
   static constexpr const char* kTopic = kObjectsTopic;
   static constexpr bool kServed = true;
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return ObjectModelTypeSupport(); }
   static ObjectModelMessage KeyOf(const ObjectModelMessage& message) {
     ObjectModelMessage key;
@@ -98,6 +102,7 @@ struct TopicTraits<RobotFrameMessage> {
   using Sample = fleetmap_msgs::msg::dds_::RobotFrame_;
   static constexpr const char* kTopic = kRobotFramesTopic;
   static constexpr bool kServed = true;
+  static constexpr bool kKeyedByRobotFirst = true;  // @key string robot_id, first
   static dds::TypeSupport Type() { return RobotFrameTypeSupport(); }
   static RobotFrameMessage KeyOf(const RobotFrameMessage& message) {
     RobotFrameMessage key;
@@ -114,6 +119,7 @@ struct TopicTraits<FleetServerMessage> {
   using Sample = fleetmap_msgs::msg::dds_::FleetServer_;
   static constexpr const char* kTopic = kServersTopic;
   static constexpr bool kServed = false;  // every server writes its own instance
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return FleetServerTypeSupport(); }
   static FleetServerMessage KeyOf(const FleetServerMessage& message) {
     FleetServerMessage key;
@@ -139,6 +145,7 @@ struct TopicTraits<RobotAdmissionMessage> {
   using Sample = fleetmap_msgs::msg::dds_::RobotAdmission_;
   static constexpr const char* kTopic = kAdmissionsTopic;
   static constexpr bool kServed = false;
+  static constexpr bool kKeyedByRobotFirst = false;
   static dds::TypeSupport Type() { return RobotAdmissionTypeSupport(); }
   static RobotAdmissionMessage KeyOf(const RobotAdmissionMessage& message) {
     RobotAdmissionMessage key;
@@ -273,6 +280,23 @@ StatusOr<std::unique_ptr<KeyedStateReader<Message>>> KeyedStateReader<Message>::
       self->endpoint_,
       ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
                              QosOf<Message>(participant).reader, self->listener_.get()));
+  return self;
+}
+
+template <typename Message>
+StatusOr<std::unique_ptr<KeyedStateReader<Message>>> KeyedStateReader<Message>::CreateForRobot(
+    Participant& participant, const RobotId& robot, std::shared_ptr<WakeUp> wake_up) {
+  using Traits = TopicTraits<Message>;
+  if constexpr (!Traits::kKeyedByRobotFirst) {
+    // The filter reads the sample's first field as the robot id; these topics start otherwise.
+    return InternalError(std::string(Traits::kTopic) + " is not keyed by a robot id first");
+  }
+  std::unique_ptr<KeyedStateReader> self(new KeyedStateReader());
+  self->listener_ = std::make_unique<Listener>(std::move(wake_up));
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
+                                                   QosOf<Message>(participant).reader,
+                                                   self->listener_.get(), robot.value));
   return self;
 }
 

@@ -58,6 +58,10 @@ class KeyedStateReader {
  public:
   static StatusOr<std::unique_ptr<KeyedStateReader>> Create(
       Participant& participant, std::shared_ptr<WakeUp> wake_up = nullptr);
+  // A reader of one robot's instance only, for the topics keyed by a robot id first (robot
+  // frames; others fail with kInternal): the writers send it no other robot's (a content filter).
+  static StatusOr<std::unique_ptr<KeyedStateReader>> CreateForRobot(
+      Participant& participant, const RobotId& robot, std::shared_ptr<WakeUp> wake_up = nullptr);
   ~KeyedStateReader();
 
   std::vector<KeyedEvent<Message>> Drain();

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "common/transport/internal/participant_identities.hpp"
+#include "common/transport/internal/robot_id_filter.hpp"
 #include "common/transport/internal/served_writers.hpp"
 #include "common/transport/internal/writer_id.hpp"
 
@@ -205,6 +206,11 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
     }
     return UnavailableError("could not create a DDS participant on domain " +
                             std::to_string(domain_id));
+  }
+  // The robot-id filter of agents' readers, evaluated by the writers of this participant too.
+  if (self->participant_->register_content_filter_factory(
+          kRobotIdFilterClass, &RobotIdFilterFactory()) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not register the robot id content filter");
   }
   self->publisher_ = self->participant_->create_publisher(publisher_qos);
   self->subscriber_ = self->participant_->create_subscriber(subscriber_qos);

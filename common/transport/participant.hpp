@@ -112,6 +112,7 @@ class Participant {
 
   eprosima::fastdds::dds::Publisher* publisher() const { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() const { return subscriber_; }
+  eprosima::fastdds::dds::DomainParticipant* dds_participant() const { return participant_; }
 
  private:
   Participant();

@@ -166,6 +166,17 @@ StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::Create(
   return self;
 }
 
+StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::CreateForRobot(
+    Participant& participant, const RobotId& robot, std::shared_ptr<WakeUp> wake_up) {
+  std::unique_ptr<RobotStatusReader> self(new RobotStatusReader());
+  self->listener_ = std::make_unique<Listener>(std::move(wake_up));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      ReaderEndpoint::Create(participant, kRobotStatusTopic, RobotStatusTypeSupport(),
+                             RobotStatusQos().reader, self->listener_.get(), robot.value));
+  return self;
+}
+
 RobotStatusReader::~RobotStatusReader() { endpoint_.reset(); }
 
 std::vector<RobotEvent> RobotStatusReader::Drain() { return listener_->Drain(); }

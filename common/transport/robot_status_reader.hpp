@@ -47,6 +47,10 @@ class RobotStatusReader {
  public:
   static StatusOr<std::unique_ptr<RobotStatusReader>> Create(
       Participant& participant, std::shared_ptr<WakeUp> wake_up = nullptr);
+  // A reader of one robot id's statuses only (an agent watching for another claim of its id):
+  // the writers send it no other robot's (a DDS content filter).
+  static StatusOr<std::unique_ptr<RobotStatusReader>> CreateForRobot(
+      Participant& participant, const RobotId& robot, std::shared_ptr<WakeUp> wake_up = nullptr);
   ~RobotStatusReader();
 
   std::vector<RobotEvent> Drain();

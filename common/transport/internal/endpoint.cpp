@@ -1,10 +1,14 @@
 #include "common/transport/internal/endpoint.hpp"
 
+#include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include <atomic>
+
 #include "common/transport/internal/last_samples.hpp"
+#include "common/transport/internal/robot_id_filter.hpp"
 #include "common/transport/internal/served_writers.hpp"
 
 namespace fleetmap::transport {
@@ -53,11 +57,26 @@ size_t WriterEndpoint::WriteAgain() {
 
 StatusOr<std::unique_ptr<ReaderEndpoint>> ReaderEndpoint::Create(
     Participant& participant, const std::string& topic_name, dds::TypeSupport type,
-    const dds::DataReaderQos& qos, dds::DataReaderListener* listener) {
+    const dds::DataReaderQos& qos, dds::DataReaderListener* listener,
+    const std::optional<std::string>& only_robot) {
   std::unique_ptr<ReaderEndpoint> self(new ReaderEndpoint(participant, topic_name));
   FLEETMAP_ASSIGN_OR_RETURN(self->topic_, participant.AcquireTopic(topic_name, type));
-  self->reader_ = participant.subscriber()->create_datareader(self->topic_, qos, listener,
-                                                              dds::StatusMask::all());
+  dds::TopicDescription* read_from = self->topic_;
+  if (only_robot) {
+    // A content-filtered topic's name is the participant's own business, unique within it.
+    static std::atomic<uint64_t> filtered_topics{0};
+    const std::string name =
+        topic_name + "/only_" + *only_robot + "_" + std::to_string(filtered_topics.fetch_add(1));
+    self->filtered_topic_ = participant.dds_participant()->create_contentfilteredtopic(
+        name, self->topic_, kRobotIdFilterExpression, {"'" + *only_robot + "'"},
+        kRobotIdFilterClass);
+    if (self->filtered_topic_ == nullptr) {
+      return UnavailableError("could not filter " + topic_name + " to robot " + *only_robot);
+    }
+    read_from = self->filtered_topic_;
+  }
+  self->reader_ =
+      participant.subscriber()->create_datareader(read_from, qos, listener, dds::StatusMask::all());
   if (self->reader_ == nullptr) {
     return UnavailableError("could not create a DDS reader on " + topic_name);
   }
@@ -68,6 +87,9 @@ ReaderEndpoint::~ReaderEndpoint() {
   if (reader_ != nullptr) {
     reader_->set_listener(nullptr);
     participant_.subscriber()->delete_datareader(reader_);
+  }
+  if (filtered_topic_ != nullptr) {
+    participant_.dds_participant()->delete_contentfilteredtopic(filtered_topic_);
   }
   if (topic_ != nullptr) participant_.ReleaseTopic(topic_);
 }

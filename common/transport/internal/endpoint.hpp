@@ -6,8 +6,10 @@
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "common/core/status.hpp"
@@ -50,11 +52,14 @@ class WriterEndpoint {
 
 class ReaderEndpoint {
  public:
-  // `listener` must outlive the endpoint; it is detached before the reader is deleted.
+  // `listener` must outlive the endpoint; it is detached before the reader is deleted. With
+  // `only_robot`, the reader takes the instances of that robot only (robot_id_filter.hpp; for
+  // topics whose first field is the robot id).
   static StatusOr<std::unique_ptr<ReaderEndpoint>> Create(
       Participant& participant, const std::string& topic_name,
       eprosima::fastdds::dds::TypeSupport type, const eprosima::fastdds::dds::DataReaderQos& qos,
-      eprosima::fastdds::dds::DataReaderListener* listener);
+      eprosima::fastdds::dds::DataReaderListener* listener,
+      const std::optional<std::string>& only_robot = std::nullopt);
   ~ReaderEndpoint();
   ReaderEndpoint(const ReaderEndpoint&) = delete;
   ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
@@ -69,6 +74,7 @@ class ReaderEndpoint {
   Participant& participant_;
   std::string topic_name_;
   eprosima::fastdds::dds::Topic* topic_ = nullptr;
+  eprosima::fastdds::dds::ContentFilteredTopic* filtered_topic_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
 };
 

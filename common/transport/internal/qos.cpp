@@ -1,5 +1,7 @@
 #include "common/transport/internal/qos.hpp"
 
+#include <type_traits>
+
 #include <algorithm>
 
 namespace fleetmap::transport {
@@ -47,6 +49,12 @@ void StateTopic(Qos& qos) {
   qos.resource_limits().max_samples = 0;
   qos.resource_limits().max_samples_per_instance = 1;
   qos.resource_limits().allocated_samples = 16;
+  if constexpr (std::is_same_v<Qos, dds::DataWriterQos>) {
+    // One content filter per filtered reader (an agent's, robot_id_filter.hpp), evaluated here on
+    // the writer's side: Fast DDS keeps 32 by default and sends unfiltered past them.
+    qos.writer_resource_limits().reader_filters_allocation =
+        eprosima::fastrtps::ResourceLimitedContainerConfig(0, 4096, 1);
+  }
 }
 
 }  // namespace
