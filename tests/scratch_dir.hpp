@@ -18,11 +18,10 @@ namespace fleetmap::testing {
 class ScratchDir {
  public:
   // <gtest temp dir>/<prefix>_<pid>_<test name>: the process id keeps parallel ctest runs and
-  // build trees apart.
+  // build trees apart. A parameterized test's name ("Case/param") stays one directory.
   explicit ScratchDir(const std::string& prefix)
       : path_(std::filesystem::path(::testing::TempDir()) /
-              (prefix + "_" + std::to_string(getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+              (prefix + "_" + std::to_string(getpid()) + "_" + TestName())) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -43,6 +42,12 @@ class ScratchDir {
   }
 
  private:
+  static std::string TestName() {
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    std::replace(name.begin(), name.end(), '/', '_');
+    return name;
+  }
+
   std::filesystem::path path_;
 };
 
