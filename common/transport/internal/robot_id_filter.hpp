@@ -11,8 +11,8 @@
 // The filter reads the serialized sample: the CDR string that starts it. A sample it cannot read
 // (a disposal carrying no payload) passes: the reader decides, as without a filter.
 
-#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 #include <fastdds/rtps/common/SerializedPayload.h>
+#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 
 #include <optional>
 #include <string>
