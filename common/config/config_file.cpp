@@ -98,7 +98,8 @@ NodeMatch MatchNode(std::string key, const std::string& ros_node) {
 // A ROS 2 params file: the wildcard sections first, then this node's own, so that its own
 // settings win over the wildcard's, as in ROS 2.
 StatusOr<std::vector<ConfigSetting>> ReadRosParams(const std::string& path, const YAML::Node& root,
-                                                   const std::string& ros_node) {
+                                                   const std::string& ros_node,
+                                                   std::string* note) {
   // Kept apart rather than sorted: assigning a YAML::Node writes into the node it refers to.
   std::vector<YAML::Node> every_node_sections;
   std::vector<YAML::Node> own_sections;
@@ -126,8 +127,11 @@ StatusOr<std::vector<ConfigSetting>> ReadRosParams(const std::string& path, cons
   if (every_node_sections.empty() && own_sections.empty()) {
     std::string listed;
     for (const std::string& node : nodes) listed += (listed.empty() ? "" : ", ") + node;
-    return InvalidArgumentError(path + ": a ROS 2 params file with no section for " + ros_node +
-                                " (nor /**); it has " + listed);
+    if (note != nullptr) {
+      *note = path + ": a ROS 2 params file with no section for " + ros_node +
+              " (nor /**), so no settings from it; it has " + listed;
+    }
+    return std::vector<ConfigSetting>{};
   }
   std::vector<ConfigSetting> settings;
   for (const bool for_every_node : {true, false}) {
@@ -144,7 +148,8 @@ StatusOr<std::vector<ConfigSetting>> ReadRosParams(const std::string& path, cons
 }  // namespace
 
 StatusOr<std::vector<ConfigSetting>> ReadConfigFile(const std::string& path,
-                                                    const std::string& ros_node) {
+                                                    const std::string& ros_node,
+                                                    std::string* note) {
   std::ifstream file(path);
   if (!file) {
     return InvalidArgumentError(path + ": cannot be read (" + std::strerror(errno) + ")");
@@ -164,7 +169,7 @@ StatusOr<std::vector<ConfigSetting>> ReadConfigFile(const std::string& path,
   }
   const bool ros_params = std::any_of(
       root.begin(), root.end(), [](const auto& entry) { return IsRosNodeSection(entry.second); });
-  if (ros_params) return ReadRosParams(path, root, ros_node);
+  if (ros_params) return ReadRosParams(path, root, ros_node, note);
   SectionReader reader(path, /*for_every_node=*/false);
   FLEETMAP_RETURN_IF_ERROR(reader.Read(root, ""));
   return reader.Take();

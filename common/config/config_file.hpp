@@ -43,10 +43,13 @@ struct ConfigSetting {
 
 // The settings of `path` for the program whose ROS 2 node name is `ros_node` ("fleetmap_server").
 // A key set to null (`key: ~`) is left out: the option keeps its default. An empty file is no
-// settings. Errors (kInvalidArgument) name the file and, where there is one, the line: the file
-// cannot be read, is not YAML, is not a map, a key is set twice, a value is a map inside a
-// sequence; a ROS 2 params file without a section for `ros_node` lists the nodes it has.
+// settings. A ROS 2 params file without a section for `ros_node` (nor /**) gives none either, as
+// ROS 2 gives such a node no parameters; `note`, if given, then says so and lists the nodes the
+// file has, for the program to warn. Errors (kInvalidArgument) name the file and, where there is
+// one, the line: the file cannot be read, is not YAML, is not a map, a key is set twice, a value
+// is a map inside a sequence.
 StatusOr<std::vector<ConfigSetting>> ReadConfigFile(const std::string& path,
-                                                    const std::string& ros_node);
+                                                    const std::string& ros_node,
+                                                    std::string* note = nullptr);
 
 }  // namespace fleetmap::config

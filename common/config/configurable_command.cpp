@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iostream>
 #include <set>
 #include <utility>
 
@@ -98,8 +99,10 @@ bool ConfigurableCommand::IsOwnOption(const CLI::Option* option) const {
 
 StatusOr<std::map<CLI::Option*, ConfigurableCommand::Layered>> ConfigurableCommand::FileSettings(
     const std::string& path) const {
+  std::string note;
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<ConfigSetting> settings,
-                            ReadConfigFile(path, ros_node_));
+                            ReadConfigFile(path, ros_node_, &note));
+  if (!note.empty()) std::cerr << program_ << ": warning: " << note << "\n";
   std::map<CLI::Option*, Layered> layered;
   for (const ConfigSetting& setting : settings) {
     CLI::Option* option = command_->get_option_no_throw("--" + setting.key);
