@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <csignal>
-#include <iostream>
 #include <vector>
 
 #include "common/config/command_line.hpp"
@@ -119,14 +118,9 @@ int main(int argc, char** argv) {
   app.add_option("--discovery-server", options.dds.discovery_server,
                  "Fast DDS discovery servers to discover through, IP:PORT[;IP:PORT] (also "
                  "$ROS_DISCOVERY_SERVER; `fastdds discovery -i 0 -l IP -p PORT` starts one)");
-  fleetmap::config::ConfigurableCommand config(&app, "fleetmap-agent", "fleetmap_agent",
-                                               fleetmap::config::DdsEnvironment());
-  if (const auto exit_now = fleetmap::config::ParseCommandLine(app, argc, argv, {&config})) {
+  if (const auto exit_now =
+          fleetmap::config::ParseFleetProgram(app, argc, argv, "fleetmap_agent")) {
     return *exit_now;
-  }
-  if (config.print_requested()) {
-    config.Print(std::cout);
-    return 0;
   }
 
   options.wire = *fleetmap::WireFromName(wire);  // CLI11 checked the name

@@ -128,4 +128,17 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
   return std::nullopt;
 }
 
+std::optional<int> ParseFleetProgram(CLI::App& app, int argc, char** argv,
+                                     const std::string& ros_node) {
+  const std::string program =
+      argc > 0 ? std::filesystem::path(argv[0]).filename().string() : std::string("fleetmap");
+  ConfigurableCommand config(&app, program, ros_node, DdsEnvironment());
+  if (const auto exit_now = ParseCommandLine(app, argc, argv, {&config})) return exit_now;
+  if (config.print_requested()) {
+    config.Print(std::cout);
+    return 0;
+  }
+  return std::nullopt;
+}
+
 }  // namespace fleetmap::config

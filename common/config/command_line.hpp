@@ -30,4 +30,10 @@ inline constexpr int kExitBadCommandLine = 2;
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
                                     const std::vector<ConfigurableCommand*>& configurable = {});
 
+// ParseCommandLine for a fleet program whose App is its whole command line (fleetmap-server,
+// fleetmap-agent): its options also come from --config (ROS 2 node name `ros_node`) and the DDS
+// environment (DdsEnvironment), and --print-config prints them and exits 0.
+std::optional<int> ParseFleetProgram(CLI::App& app, int argc, char** argv,
+                                     const std::string& ros_node);
+
 }  // namespace fleetmap::config

@@ -98,8 +98,7 @@ NodeMatch MatchNode(std::string key, const std::string& ros_node) {
 // A ROS 2 params file: the wildcard sections first, then this node's own, so that its own
 // settings win over the wildcard's, as in ROS 2.
 StatusOr<std::vector<ConfigSetting>> ReadRosParams(const std::string& path, const YAML::Node& root,
-                                                   const std::string& ros_node,
-                                                   std::string* note) {
+                                                   const std::string& ros_node, std::string* note) {
   // Kept apart rather than sorted: assigning a YAML::Node writes into the node it refers to.
   std::vector<YAML::Node> every_node_sections;
   std::vector<YAML::Node> own_sections;
