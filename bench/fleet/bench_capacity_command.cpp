@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "bench/fleet/fleet_sim.hpp"
+#include "bench/fleet/new_revisions.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -391,9 +392,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   uint64_t sent_at_start = 0;
   uint64_t fused_since = 0;
   std::vector<double> latencies;
-  // Each fused revision is timed once: a server that starts serving writes its state again
-  // (docs/standby.md), old stamps and all, and those copies are not new fusion.
-  std::map<TileId, uint32_t> newest_revision;
+  NewRevisions new_revisions;  // each fused revision is timed once
   const auto join_limit = seconds(60);
   // How many robots the server says joined: discovery and the status's claim, done.
   size_t joined_robots = 0;
@@ -409,9 +408,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
     for (const transport::TileEvent& event : fused->Drain()) {
       if (event.kind != transport::TileEvent::Kind::kTile) continue;
       buildings_waiting.erase(building_of(event.tile.tile));
-      uint32_t& newest = newest_revision[event.tile.tile];
-      if (event.tile.revision <= newest) continue;
-      newest = event.tile.revision;
+      if (!new_revisions.Take(event.tile.tile, event.tile.revision)) continue;
       if (measuring_since) {
         ++fused_since;
         latencies.push_back(

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "bench/fleet/bench_flood_command.hpp"
+#include "bench/fleet/new_revisions.hpp"
 #include "bench/fleet/placement_observer.hpp"
 #include "common/process/subprocess.hpp"
 #include "common/security/fleet_security.hpp"
@@ -159,6 +160,7 @@ class Observer {
       // before the robots started.
       if (event.tile.stamp < started_) continue;
       if (event.tile.tile.x >= hostile_first_tile_x_) continue;  // the hostile peer's
+      if (!new_revisions_.Take(event.tile.tile, event.tile.revision)) continue;
       result->latencies_ms.push_back(
           std::chrono::duration<double, std::milli>(event.received - event.tile.stamp).count());
       result->latency_at_s.push_back(now_s);
@@ -188,6 +190,7 @@ class Observer {
   std::unique_ptr<PlacementObserver> placements_;  // --unknown-poses
   Timestamp started_;
   int hostile_first_tile_x_ = INT32_MAX;
+  NewRevisions new_revisions_;
 };
 
 }  // namespace
