@@ -9,18 +9,33 @@
 
 namespace fleetmap::fuzz {
 
+namespace {
+
+// Never destroyed, so that the exit handler below may still read it.
+const std::filesystem::path* scratch_folder = nullptr;
+
+// libFuzzer ends a timed run with exit(): the folder goes with the process, not left in /tmp
+// once per run.
+void RemoveScratchFolder() {
+  std::error_code ignored;
+  std::filesystem::remove_all(*scratch_folder, ignored);
+}
+
+}  // namespace
+
 std::filesystem::path ScratchFolder() {
-  static const std::filesystem::path folder = [] {
+  if (scratch_folder == nullptr) {
     const char* tmp = std::getenv("TMPDIR");
-    std::filesystem::path path =
+    auto* path = new std::filesystem::path(
         std::filesystem::path(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") /
-        ("fleetmap-fuzz-" + std::to_string(::getpid()));
+        ("fleetmap-fuzz-" + std::to_string(::getpid())));
     std::error_code error;
-    std::filesystem::create_directories(path, error);
+    std::filesystem::create_directories(*path, error);
     FLEETMAP_CHECK(!error, "cannot make the fuzz scratch folder");
-    return path;
-  }();
-  return folder;
+    scratch_folder = path;
+    std::atexit(RemoveScratchFolder);
+  }
+  return *scratch_folder;
 }
 
 void WriteScratchFile(const std::filesystem::path& path, std::string_view bytes) {
