@@ -29,6 +29,14 @@ using eprosima::fastrtps::rtps::Locator_t;
 
 constexpr int kMaxDomainId = 232;  // the highest domain whose RTPS ports fit in 16 bits
 
+// Every writer of a participant's peers sends to one UDP port of it: on the server, every robot's
+// tiles, and a flood's, share one socket. Linux's default 208 KB receive buffer holds three 64 KB
+// fragments, and past it the kernel drops what arrives, an honest robot's tile as readily as a
+// flood's, to be repaired a heartbeat later (measured: about 20 000 drops in one 15 s flood of
+// `bench fleet --hostile`, honest p99 0.9-2.1 s). The kernel caps the request at
+// net.core.rmem_max / wmem_max (docs/fleet.md, "Socket buffers").
+constexpr uint32_t kSocketBufferBytes = 4u << 20;
+
 // Localhost-only discovery announces to the metatraffic port of participant ids 0..N-1 on
 // 127.0.0.1, port = 7400 + 250 domain + 10 + 2 id. 128 ids (what we had) reached 7664 + 250 domain:
 // the discovery ports of domain + 1 (its multicast port is id 120's, its participant 0 listens on
@@ -63,6 +71,8 @@ dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localh
                                   const std::string& discovery_server) {
   dds::DomainParticipantQos qos;
   qos.name(options.name);
+  qos.transport().listen_socket_buffer_size = kSocketBufferBytes;
+  qos.transport().send_socket_buffer_size = kSocketBufferBytes;
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
   discovery.leaseDuration = ToDuration(options.participant_lease);
   discovery.leaseDuration_announcementperiod = ToDuration(options.participant_lease / 4);
@@ -78,6 +88,8 @@ dds::DomainParticipantQos MakeQos(const ParticipantOptions& options, bool localh
     auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
     udp->interfaceWhiteList.emplace_back("127.0.0.1");
     udp->maxInitialPeersRange = LocalhostParticipantsPerDomain();
+    udp->receiveBufferSize = kSocketBufferBytes;
+    udp->sendBufferSize = kSocketBufferBytes;
     qos.transport().use_builtin_transports = false;
     qos.transport().user_transports.push_back(udp);
 

@@ -47,10 +47,11 @@ TEST(PackageTest, TheDebHoldsTheProgramsThePageAndTheUnitsThatStartThem) {
        {"./usr/bin/fleetmap", "./usr/bin/fleetmap-server", "./usr/bin/fleetmap-agent",
         "./usr/lib/systemd/system/fleetmap-server.service",
         "./usr/lib/systemd/system/fleetmap-agent@.service",
-        "./usr/lib/systemd/system/fleetmap-view.service", "./usr/share/fleetmap/view/index.html",
-        "./usr/share/fleetmap/view/view.js", "./usr/share/fleetmap/view/leaflet/leaflet.js",
-        "./usr/share/doc/fleetmap/README.md", "./usr/share/doc/fleetmap/docs/topics.md",
-        "./etc/fleetmap/server.yaml", "./etc/fleetmap/agent.yaml", "./etc/fleetmap/view.yaml",
+        "./usr/lib/systemd/system/fleetmap-view.service", "./usr/lib/sysctl.d/60-fleetmap.conf",
+        "./usr/share/fleetmap/view/index.html", "./usr/share/fleetmap/view/view.js",
+        "./usr/share/fleetmap/view/leaflet/leaflet.js", "./usr/share/doc/fleetmap/README.md",
+        "./usr/share/doc/fleetmap/docs/topics.md", "./etc/fleetmap/server.yaml",
+        "./etc/fleetmap/agent.yaml", "./etc/fleetmap/view.yaml",
         "./usr/share/doc/fleetmap/docs/config/fleet_params.yaml"}) {
     EXPECT_THAT(listing.out, HasSubstr(std::string(file) + "\n")) << file;
   }
