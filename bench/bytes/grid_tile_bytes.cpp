@@ -19,6 +19,8 @@ constexpr char kPatchFrameId[] = "map";
 constexpr int kZstdFast = 3;
 constexpr int kZstdSmall = 19;
 
+constexpr char kZstdDictionaryBaseline[] = "zstd -19 + dictionary";
+
 transport::MapUpdate Patch(const grid::OccupancyGrid& grid, const grid::CellRect& cells) {
   transport::MapUpdate patch;
   patch.x = cells.x0;
@@ -50,14 +52,17 @@ GridTileBytes& GridTileBytes::operator+=(const GridTileBytes& other) {
   zstd3 += other.zstd3;
   zstd19 += other.zstd19;
   lz4 += other.lz4;
+  zstd19_dict += other.zstd19_dict;
   return *this;
 }
 
 std::vector<NamedBytes> TileBaselines(const GridTileBytes& bytes) {
-  return {{"patch CDR", bytes.patch_cdr},
-          {"zstd -3", bytes.zstd3},
-          {"zstd -19", bytes.zstd19},
-          {"LZ4", bytes.lz4}};
+  std::vector<NamedBytes> baselines = {{"patch CDR", bytes.patch_cdr},
+                                       {"zstd -3", bytes.zstd3},
+                                       {"zstd -19", bytes.zstd19},
+                                       {"LZ4", bytes.lz4}};
+  if (bytes.zstd19_dict > 0) baselines.push_back({kZstdDictionaryBaseline, bytes.zstd19_dict});
+  return baselines;
 }
 
 NamedBytes SmallestTileBaseline(const GridTileBytes& bytes) {
@@ -68,7 +73,8 @@ NamedBytes SmallestTileBaseline(const GridTileBytes& bytes) {
 }
 
 StatusOr<GridTileBytes> MeasureGridTileBytes(const grid::OccupancyGrid& grid,
-                                             const grid::CellRect& cells) {
+                                             const grid::CellRect& cells,
+                                             const ZstdDictionary* dictionary) {
   FLEETMAP_CHECK(!cells.empty() && grid.Contains(cells.x0, cells.y0) &&
                      grid.Contains(cells.x0 + cells.width - 1, cells.y0 + cells.height - 1),
                  "a grid tile's cells must lie inside the grid");
@@ -85,20 +91,41 @@ StatusOr<GridTileBytes> MeasureGridTileBytes(const grid::OccupancyGrid& grid,
   bytes.zstd19 = zstd19.size();
   FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> lz4, CompressLz4(cell_bytes));
   bytes.lz4 = lz4.size();
+  if (dictionary != nullptr) {
+    FLEETMAP_ASSIGN_OR_RETURN(const std::vector<uint8_t> frame,
+                              dictionary->Compress(cell_bytes, kZstdSmall));
+    bytes.zstd19_dict = frame.size();
+  }
   return bytes;
 }
 
 StatusOr<TiledGridBytes> MeasureTiledGridBytes(const grid::OccupancyGrid& grid,
-                                               const Transform2& fleet_from_map, double tile_size) {
+                                               const Transform2& fleet_from_map, double tile_size,
+                                               const ZstdDictionary* dictionary) {
   FLEETMAP_ASSIGN_OR_RETURN(const auto rects, grid::TileCellRects(grid, fleet_from_map, tile_size));
   TiledGridBytes tiled;
   for (const auto& [tile, cells] : rects) {
     if (cells.empty() || AllUnknown(grid, cells)) continue;
-    FLEETMAP_ASSIGN_OR_RETURN(const GridTileBytes bytes, MeasureGridTileBytes(grid, cells));
+    FLEETMAP_ASSIGN_OR_RETURN(const GridTileBytes bytes,
+                              MeasureGridTileBytes(grid, cells, dictionary));
     tiled.bytes += bytes;
     ++tiled.tiles;
   }
   return tiled;
+}
+
+StatusOr<std::vector<std::vector<uint8_t>>> GridTileSamples(const grid::OccupancyGrid& grid,
+                                                            const Transform2& fleet_from_map,
+                                                            double tile_size) {
+  FLEETMAP_ASSIGN_OR_RETURN(const auto rects, grid::TileCellRects(grid, fleet_from_map, tile_size));
+  std::vector<std::vector<uint8_t>> samples;
+  for (const auto& [tile, cells] : rects) {
+    if (cells.empty() || AllUnknown(grid, cells)) continue;
+    const transport::MapUpdate patch = Patch(grid, cells);
+    const auto* first = reinterpret_cast<const uint8_t*>(patch.data.data());
+    samples.emplace_back(first, first + patch.data.size());
+  }
+  return samples;
 }
 
 }  // namespace fleetmap::bench

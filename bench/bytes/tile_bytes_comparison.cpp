@@ -36,9 +36,11 @@ double TileBytesComparison::RatioTo(size_t GridTileBytes::*baseline) const {
   return RatioOf(vector.payload, grid.bytes.*baseline);
 }
 
-std::vector<std::string> TileBaselineNames() {
+std::vector<std::string> TileBaselineNames(bool with_dictionary) {
+  GridTileBytes measured;
+  measured.zstd19_dict = with_dictionary ? 1 : 0;
   std::vector<std::string> names;
-  for (const NamedBytes& baseline : TileBaselines({})) names.push_back(baseline.name);
+  for (const NamedBytes& baseline : TileBaselines(measured)) names.push_back(baseline.name);
   return names;
 }
 

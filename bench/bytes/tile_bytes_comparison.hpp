@@ -32,8 +32,9 @@ struct TileBytesComparison {
   double RatioTo(size_t GridTileBytes::*baseline) const;
 };
 
-// The names of TileBaselines in report order, for column headers.
-std::vector<std::string> TileBaselineNames();
+// The names of TileBaselines in report order, for column headers; the dictionary baseline's last
+// when a report has it.
+std::vector<std::string> TileBaselineNames(bool with_dictionary = false);
 
 // Over several maps (or terrains): the summed vector bytes over the smallest summed baseline,
 // and the map whose ratio to its own smallest baseline is the largest.

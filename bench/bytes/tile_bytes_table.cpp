@@ -1,5 +1,7 @@
 #include "bench/bytes/tile_bytes_table.hpp"
 
+#include <algorithm>
+
 #include "bench/report/report_format.hpp"
 
 namespace fleetmap::bench {
@@ -15,13 +17,24 @@ std::string TilesText(const TileBytesComparison& c) {
   return text.append(std::to_string(c.vector.tiles));
 }
 
-void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold, std::ostream& out) {
+// `names`: the table's baseline columns; a baseline the row did not measure prints "-".
+void PrintRow(const std::string& name, const TileBytesComparison& c,
+              const std::vector<std::string>& names, bool bold, std::ostream& out) {
   const std::string mark = bold ? "**" : "";
+  const std::vector<NamedBytes> baselines = TileBaselines(c.grid.bytes);
+  const std::vector<NamedRatio> ratios = c.Ratios();
   out << "| " << name << " | " << TilesText(c);
-  for (const NamedBytes& baseline : TileBaselines(c.grid.bytes))
-    out << " | " << Kilobytes(baseline.bytes);
+  for (const std::string& column : names) {
+    const auto it = std::find_if(baselines.begin(), baselines.end(),
+                                 [&](const NamedBytes& b) { return b.name == column; });
+    out << " | " << (it == baselines.end() ? std::string("-") : Kilobytes(it->bytes));
+  }
   out << " | " << Kilobytes(c.vector.payload);
-  for (const NamedRatio& ratio : c.Ratios()) out << " | " << Ratio(ratio.ratio);
+  for (const std::string& column : names) {
+    const auto it = std::find_if(ratios.begin(), ratios.end(),
+                                 [&](const NamedRatio& r) { return r.baseline == column; });
+    out << " | " << (it == ratios.end() ? std::string("-") : Ratio(it->ratio));
+  }
   const NamedRatio smallest = c.RatioToSmallest();
   out << " | " << mark << Ratio(smallest.ratio) << mark << " (" << smallest.baseline << ") |\n";
 }
@@ -30,7 +43,10 @@ void PrintRow(const std::string& name, const TileBytesComparison& c, bool bold, 
 
 void PrintTileBytesTable(const std::vector<NamedComparison>& rows, const std::string& item,
                          std::ostream& out) {
-  const std::vector<std::string> names = TileBaselineNames();
+  const bool with_dictionary = std::any_of(rows.begin(), rows.end(), [](const NamedComparison& r) {
+    return r.bytes.grid.bytes.zstd19_dict > 0;
+  });
+  const std::vector<std::string> names = TileBaselineNames(with_dictionary);
   out << "| " << item << " | tiles";
   for (const std::string& name : names) out << " | grid " << name << " KB";
   out << " | vector tiles KB";
@@ -40,10 +56,10 @@ void PrintTileBytesTable(const std::vector<NamedComparison>& rows, const std::st
   out << "|\n";
   TileBytesComparison total;
   for (const NamedComparison& row : rows) {
-    PrintRow(row.name, row.bytes, false, out);
+    PrintRow(row.name, row.bytes, names, false, out);
     total += row.bytes;
   }
-  PrintRow("**sum**", total, true, out);
+  PrintRow("**sum**", total, names, true, out);
   out << "\n" << HeadlineText(HeadlineOf(rows), item) << "\n";
 }
 
@@ -57,18 +73,25 @@ std::string HeadlineText(const TileBytesHeadline& headline, const std::string& i
 
 std::string TileBytesCsvHeader() {
   return "grid_tiles,vector_tiles,grid_tile_raw,grid_tile_patch_cdr,grid_tile_zstd3,"
-         "grid_tile_zstd19,grid_tile_lz4,vector_tile_bytes,vector_over_patch_cdr,"
-         "vector_over_zstd3,vector_over_zstd19,vector_over_lz4,smallest_baseline,"
-         "vector_over_smallest";
+         "grid_tile_zstd19,grid_tile_lz4,grid_tile_zstd19_dict,vector_tile_bytes,"
+         "vector_over_patch_cdr,vector_over_zstd3,vector_over_zstd19,vector_over_lz4,"
+         "vector_over_zstd19_dict,smallest_baseline,vector_over_smallest";
 }
 
 std::vector<std::string> TileBytesCsvFields(const TileBytesComparison& c) {
+  const GridTileBytes& grid = c.grid.bytes;
   std::vector<std::string> fields = {
-      std::to_string(c.grid.tiles),       std::to_string(c.vector.tiles),
-      std::to_string(c.grid.bytes.raw),   std::to_string(c.grid.bytes.patch_cdr),
-      std::to_string(c.grid.bytes.zstd3), std::to_string(c.grid.bytes.zstd19),
-      std::to_string(c.grid.bytes.lz4),   std::to_string(c.vector.payload)};
-  for (const NamedRatio& ratio : c.Ratios()) fields.push_back(FormatDouble("%.4f", ratio.ratio));
+      std::to_string(c.grid.tiles),    std::to_string(c.vector.tiles),
+      std::to_string(grid.raw),        std::to_string(grid.patch_cdr),
+      std::to_string(grid.zstd3),      std::to_string(grid.zstd19),
+      std::to_string(grid.lz4),        std::to_string(grid.zstd19_dict),
+      std::to_string(c.vector.payload)};
+  // The dictionary's ratio stays empty when it was not measured.
+  for (size_t GridTileBytes::*baseline :
+       {&GridTileBytes::patch_cdr, &GridTileBytes::zstd3, &GridTileBytes::zstd19,
+        &GridTileBytes::lz4, &GridTileBytes::zstd19_dict}) {
+    fields.push_back(grid.*baseline > 0 ? FormatDouble("%.4f", c.RatioTo(baseline)) : "");
+  }
   const NamedRatio smallest = c.RatioToSmallest();
   fields.push_back(smallest.baseline);
   fields.push_back(FormatDouble("%.4f", smallest.ratio));

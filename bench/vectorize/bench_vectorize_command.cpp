@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <vector>
 
 #include <opencv2/core/utility.hpp>
 
+#include "bench/bytes/grid_tile_bytes.hpp"
+#include "bench/bytes/tile_compression.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/vectorize/vectorize_bench_report.hpp"
 #include "cli/inputs/command_inputs.hpp"
@@ -32,6 +35,39 @@ StatusOr<std::vector<std::string>> MapFiles(const std::string& dir) {
   return files;
 }
 
+// The dictionary baseline's dictionaries: for each map, one trained on the grid tiles of the
+// other maps, never on its own (a fleet ships its dictionary before it maps a new building).
+// Empty, with the reason on `err`, when they cannot be trained (one map, too few tiles): then no
+// map is measured against a dictionary, so that the sums compare like with like.
+std::map<std::string, ZstdDictionary> LeaveOneOutDictionaries(const std::vector<std::string>& files,
+                                                              const VectorizeBenchOptions& options,
+                                                              std::ostream& err) {
+  std::map<std::string, std::vector<std::vector<uint8_t>>> samples;
+  for (const std::string& file : files) {
+    StatusOr<grid::LoadedMap> loaded = cli::LoadGridInput(file, options.max_cells);
+    if (!loaded.ok() || !cli::CheckAxisAligned(file, loaded->grid).ok()) continue;  // named later
+    StatusOr<std::vector<std::vector<uint8_t>>> tiles =
+        GridTileSamples(loaded->grid, Transform2::Identity(), options.tile_size);
+    if (tiles.ok()) samples[file] = std::move(tiles).value();
+  }
+  std::map<std::string, ZstdDictionary> dictionaries;
+  for (const auto& [file, own] : samples) {
+    std::vector<std::vector<uint8_t>> others;
+    for (const auto& [other, tiles] : samples) {
+      if (other != file) others.insert(others.end(), tiles.begin(), tiles.end());
+    }
+    err << "training the grid dictionary for " << std::filesystem::path(file).stem().string()
+        << " on " << others.size() << " tiles of the other maps\n";
+    StatusOr<ZstdDictionary> dictionary = ZstdDictionary::Train(others);
+    if (!dictionary.ok()) {
+      err << "no dictionary baseline: " << dictionary.status().message() << "\n";
+      return {};
+    }
+    dictionaries.emplace(file, std::move(dictionary).value());
+  }
+  return dictionaries;
+}
+
 }  // namespace
 
 int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream& out,
@@ -54,11 +90,16 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
 
   // A map that cannot be measured (unreadable, corrupt, too large) is named and skipped: the
   // others are still measured and reported, and the exit code says that one was not.
+  const std::map<std::string, ZstdDictionary> dictionaries =
+      LeaveOneOutDictionaries(*files, options.bench, err);
   std::vector<VectorizeBenchRow> rows;
   size_t skipped = 0;
   for (const std::string& file : *files) {
     err << "measuring " << file << "\n";
-    StatusOr<VectorizeBenchRow> row = MeasureVectorizeBench(file, options.bench);
+    VectorizeBenchOptions bench = options.bench;
+    const auto dictionary = dictionaries.find(file);
+    bench.grid_dictionary = dictionary == dictionaries.end() ? nullptr : &dictionary->second;
+    StatusOr<VectorizeBenchRow> row = MeasureVectorizeBench(file, bench);
     if (!row.ok()) {
       fail(row.status().message() + " (skipped)");
       ++skipped;

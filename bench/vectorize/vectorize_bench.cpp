@@ -169,7 +169,8 @@ StatusOr<vector_map::TiledVectorMap> MeasureVmap(const grid::OccupancyGrid& grid
   row->vmap_zstd = full.zstd;
   FLEETMAP_ASSIGN_OR_RETURN(row->tile_bytes.vector, MeasureVectorTileBytes(tiled));
   FLEETMAP_ASSIGN_OR_RETURN(row->tile_bytes.grid,
-                            MeasureTiledGridBytes(grid, Transform2::Identity(), options.tile_size));
+                            MeasureTiledGridBytes(grid, Transform2::Identity(), options.tile_size,
+                                                  options.grid_dictionary));
 
   FLEETMAP_ASSIGN_OR_RETURN(const vector_map::TiledVectorMap decoded,
                             transport::DecodeVmap(bytes, row->name + ".vmap"));

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bench/bytes/tile_bytes_comparison.hpp"
+#include "bench/bytes/tile_compression.hpp"
 #include "bench/vectorize/vertex_breakdown.hpp"
 #include "common/core/ids.hpp"
 #include "common/core/status.hpp"
@@ -28,6 +29,8 @@ struct VectorizeBenchOptions {
   double tile_size = 10.0;  // metres, for the .vmap and the re-vectorized tile
   int64_t max_cells = 400'000'000;
   bool line_refit = true;  // VectorizerOptions::refit_lines of kDefault (off only to measure it)
+  // The dictionary of the "zstd -19 + dictionary" grid baseline (not owned); none: not measured.
+  const ZstdDictionary* grid_dictionary = nullptr;
 };
 
 // What the Validator found on one output.

@@ -119,7 +119,8 @@ nlohmann::ordered_json TileBytesJson(const TileBytesComparison& c) {
             {"patch_cdr", c.grid.bytes.patch_cdr},
             {"zstd3", c.grid.bytes.zstd3},
             {"zstd19", c.grid.bytes.zstd19},
-            {"lz4", c.grid.bytes.lz4}}},
+            {"lz4", c.grid.bytes.lz4},
+            {"zstd19_dict", c.grid.bytes.zstd19_dict}}},
           {"vector", c.vector.payload},
           {"vector_over", ratios},
           {"vector_over_smallest", RatioJson(c.RatioToSmallest())}};

@@ -63,6 +63,48 @@ TEST(GridTileBytesTest, NamesTheBaselinesAndFindsTheSmallest) {
   EXPECT_EQ(SmallestTileBaseline(bytes).name, "LZ4");
 }
 
+TEST(GridTileBytesTest, TheDictionaryBaselineIsNamedOnlyWhenMeasured) {
+  GridTileBytes bytes;
+  bytes.patch_cdr = 40040;
+  bytes.zstd3 = 900;
+  bytes.zstd19 = 700;
+  bytes.lz4 = 1500;
+  ASSERT_EQ(TileBaselines(bytes).size(), 4u);
+  bytes.zstd19_dict = 650;
+  const std::vector<NamedBytes> baselines = TileBaselines(bytes);
+  ASSERT_EQ(baselines.size(), 5u);
+  EXPECT_EQ(baselines[4].name, "zstd -19 + dictionary");
+  EXPECT_EQ(SmallestTileBaseline(bytes).name, "zstd -19 + dictionary");
+  bytes.zstd19_dict = 750;  // a dictionary can also cost more than none
+  EXPECT_EQ(SmallestTileBaseline(bytes).name, "zstd -19");
+}
+
+TEST(GridTileBytesTest, SamplesAreTheCountedTilesCellsAndFeedTheDictionaryBaseline) {
+  const grid::OccupancyGrid grid = RoomAndUnknown();
+  const StatusOr<std::vector<std::vector<uint8_t>>> samples =
+      GridTileSamples(grid, Transform2::Identity(), 10.0);
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  const StatusOr<TiledGridBytes> plain = MeasureTiledGridBytes(grid, Transform2::Identity(), 10.0);
+  ASSERT_TRUE(plain.ok()) << plain.status();
+  ASSERT_EQ(samples->size(), plain->tiles);
+  for (const std::vector<uint8_t>& sample : *samples) EXPECT_EQ(sample.size(), 200u * 200u);
+
+  // Trained on eight copies of the map's tiles, the dictionary knows them: each tile costs less.
+  std::vector<std::vector<uint8_t>> training;
+  for (int copy = 0; copy < 8; ++copy) {
+    training.insert(training.end(), samples->begin(), samples->end());
+  }
+  const StatusOr<ZstdDictionary> dictionary = ZstdDictionary::Train(training);
+  ASSERT_TRUE(dictionary.ok()) << dictionary.status();
+  const StatusOr<TiledGridBytes> with =
+      MeasureTiledGridBytes(grid, Transform2::Identity(), 10.0, &*dictionary);
+  ASSERT_TRUE(with.ok()) << with.status();
+  EXPECT_GT(with->bytes.zstd19_dict, 0u);
+  EXPECT_LT(with->bytes.zstd19_dict, with->bytes.zstd19);
+  EXPECT_EQ(with->bytes.zstd19, plain->bytes.zstd19);  // the other baselines are unchanged
+  EXPECT_EQ(plain->bytes.zstd19_dict, 0u);             // not measured without a dictionary
+}
+
 TEST(GridTileBytesTest, SumsTheKnownTilesOfAMapEachCompressedAlone) {
   const grid::OccupancyGrid grid = RoomAndUnknown();
   const StatusOr<TiledGridBytes> tiled = MeasureTiledGridBytes(grid, Transform2::Identity(), 10.0);

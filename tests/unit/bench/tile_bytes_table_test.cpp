@@ -54,5 +54,24 @@ TEST(TileBytesTableTest, CsvHasAFieldPerColumn) {
   EXPECT_EQ(fields.back(), "0.5000");
 }
 
+TEST(TileBytesTableTest, TheDictionaryColumnAppearsWhenARowHasItAndOthersShowADash) {
+  TileBytesComparison with = Comparison(1024, 2048, 2);
+  with.grid.bytes.zstd19_dict = 4096;
+  std::ostringstream out;
+  PrintTileBytesTable({{"lab", with}, {"house", Comparison(512, 1024, 1)}}, "map", out);
+  const std::string table = out.str();
+  EXPECT_THAT(table, HasSubstr("| grid zstd -19 + dictionary KB | vector tiles KB |"));
+  EXPECT_THAT(table, HasSubstr("| vector / zstd -19 + dictionary | vector / smallest |"));
+  EXPECT_THAT(table, HasSubstr("| lab | 2 | 4.0 | 3.0 | 2.0 | 3.4 | 4.0 | 1.0 |"));
+  EXPECT_THAT(table, HasSubstr("| house | 1 | 4.0 | 3.0 | 1.0 | 3.4 | - | 0.5 |"));
+  // The CSV keeps its columns either way; the ratio to an unmeasured baseline stays empty.
+  const std::vector<std::string> fields = TileBytesCsvFields(Comparison(1024, 2048, 2));
+  EXPECT_EQ(fields[7], "0");
+  EXPECT_EQ(fields[fields.size() - 3], "");
+  const std::vector<std::string> with_fields = TileBytesCsvFields(with);
+  EXPECT_EQ(with_fields[7], "4096");
+  EXPECT_EQ(with_fields[with_fields.size() - 3], "0.2500");
+}
+
 }  // namespace
 }  // namespace fleetmap::bench
