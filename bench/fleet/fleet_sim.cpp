@@ -109,8 +109,15 @@ class Observer {
       FLEETMAP_RETURN_IF_ERROR(options.UseSecurityFolder(fleet.security_dir, kObserverIdentity));
     }
     FLEETMAP_ASSIGN_OR_RETURN(observer->participant_, transport::Participant::Create(options));
-    FLEETMAP_ASSIGN_OR_RETURN(observer->status_, transport::RobotStatusReader::Create(
-                                                     *observer->participant_, observer->wake_up_));
+    // The fleet's statuses on a participant of their own, as the server takes them: a flood's
+    // thousands of ids must not queue on the socket where the fused tiles arrive, or the observer
+    // would time its own backlog (a Nav2 reading the map reads no statuses).
+    options.name = "fleetmap-sim-observer-status";
+    FLEETMAP_ASSIGN_OR_RETURN(observer->status_participant_,
+                              transport::Participant::Create(options));
+    FLEETMAP_ASSIGN_OR_RETURN(
+        observer->status_,
+        transport::RobotStatusReader::Create(*observer->status_participant_, observer->wake_up_));
     FLEETMAP_ASSIGN_OR_RETURN(
         observer->fused_tiles_,
         transport::VectorTileReader::Create(*observer->participant_, transport::kFusedTilesTopic,
@@ -183,7 +190,8 @@ class Observer {
   Observer() = default;
 
   std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();
-  std::unique_ptr<transport::Participant> participant_;
+  std::unique_ptr<transport::Participant> participant_;         // fused tiles and map, placements
+  std::unique_ptr<transport::Participant> status_participant_;  // robot statuses
   std::unique_ptr<transport::RobotStatusReader> status_;
   std::unique_ptr<transport::VectorTileReader> fused_tiles_;
   std::unique_ptr<transport::OccupancyGridReader> fused_grid_;
