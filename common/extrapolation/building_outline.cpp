@@ -118,6 +118,18 @@ BuildingOutline::BuildingOutline(const grid::OccupancyGrid& map,
   // d: the face's normal from the free side into the wall (outward if the wall is outer).
   const int directions[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (const auto& d : directions) {
+    // Per cell: observed free space anywhere beyond it along d (one sweep from the far side).
+    std::vector<uint8_t> beyond(state.size(), 0);
+    for (int line = 0; line < (d[1] != 0 ? w : h); ++line) {
+      uint8_t seen = 0;
+      const int steps = d[1] != 0 ? h : w;
+      for (int n = 0; n < steps; ++n) {
+        const int k = (d[0] + d[1] > 0) ? steps - 1 - n : n;  // from the far side back
+        const int i = d[1] != 0 ? line : k, j = d[1] != 0 ? k : line;
+        beyond[at(i, j)] = seen;
+        seen = seen || state[at(i, j)] == kFreeCell;
+      }
+    }
     const bool along_u = d[1] != 0;  // the face runs along u (on a row) when d is along v
     const int lines = along_u ? h : w;
     const int length = along_u ? w : h;
@@ -131,11 +143,8 @@ BuildingOutline::BuildingOutline(const grid::OccupancyGrid& map,
       };
       // Observed free space anywhere behind the face cell, along d.
       const auto free_behind = [&](int k) {
-        auto [i, j] = cell(k);
-        for (i += d[0], j += d[1]; inside(i, j); i += d[0], j += d[1]) {
-          if (state[at(i, j)] == kFreeCell) return true;
-        }
-        return false;
+        const auto [i, j] = cell(k);
+        return beyond[at(i, j)] != 0;
       };
       int k = 0;
       while (k < length) {
