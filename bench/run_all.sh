@@ -54,6 +54,17 @@ run extrapolation_1 "$fleetmap" bench extrapolation --out "$out/extrapolation_1"
   --seed 1 --no-progress
 run extrapolation_1001 "$fleetmap" bench extrapolation --out "$out/extrapolation_1001" \
   --scenes 100 --seed 1001 --no-progress
+# Issue 36: closed doors on plans with never-entered rooms and on the real maps (strict scoring).
+for seed in 1 1001; do
+  run "extrapolation_plans$seed" "$fleetmap" bench extrapolation --out "$out/extrapolation_plans$seed" \
+    --plans 100 --scenes 0 --seed "$seed" --no-progress
+done
+run extrapolation_real "$fleetmap" bench extrapolation --out "$out/extrapolation_real" \
+  --real-maps "$maps" --scenes 0 --no-progress
+for events in 2 5; do
+  run "objects_small$events" "$fleetmap" bench objects --small-pieces 20 --seed 1 \
+    --speck-events "$events" --out "$out/objects_small$events"
+done
 run register "$fleetmap" bench register --maps "$maps" --pairs-per-overlap 12 --seed 1 \
   --json "$out/register.json" --csv "$out/register.csv"
 run quarantine "$fleetmap" bench quarantine --runs 3 --out "$out/quarantine"

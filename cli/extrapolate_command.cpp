@@ -36,10 +36,13 @@ std::string ThresholdName(double p_th) {
 // Writes everything for one threshold into `dir`; returns the summary line.
 StatusOr<std::string> WriteThreshold(const grid::OccupancyGrid& map,
                                      const scene::Entities& entities, double p_th,
+                                     bool building_outline,
                                      const std::optional<gis::GeoOrigin>& georef,
                                      const std::string& dir, std::ostream& err) {
   ex::ExtrapolationOptions options;
   options.p_th = p_th;
+  options.door_building_outline = building_outline;
+  options.door_split_between_doors = building_outline;
   FLEETMAP_ASSIGN_OR_RETURN(const ex::ExtrapolationResult result,
                             ex::Extrapolate(map, entities, options));
   for (const std::string& warning : result.warnings) {
@@ -158,8 +161,9 @@ int RunExtrapolate(const ExtrapolateCommandOptions& options, std::ostream& out, 
   out << "entities: " << entities.doors.size() << " doors, " << entities.stairs.size()
       << " stairs, " << entities.people.size() << " people\n";
   for (double p_th : options.p_th) {
-    StatusOr<std::string> line = WriteThreshold(map, entities, p_th, options.georef,
-                                                options.out_dir + "/" + ThresholdName(p_th), err);
+    StatusOr<std::string> line =
+        WriteThreshold(map, entities, p_th, options.building_outline, options.georef,
+                       options.out_dir + "/" + ThresholdName(p_th), err);
     if (!line.ok()) return fail(line.status().message());
     out << *line << "\n";
   }
@@ -185,6 +189,9 @@ void AddExtrapolateCommand(CLI::App& app, int* exit_code) {
   command->add_option("--max-points", options->max_points, "largest point cloud accepted")
       ->capture_default_str();
   AddGeorefOption(command, "map", &options->georef);
+  command->add_flag("!--no-building-outline", options->building_outline,
+                    "door predictions without the building's outline and the other doors in "
+                    "their wall (before issue 36)");
   command->callback(
       [options, exit_code] { *exit_code = RunExtrapolate(*options, std::cout, std::cerr); });
 }

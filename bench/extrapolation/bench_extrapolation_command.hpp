@@ -1,6 +1,6 @@
 #pragma once
 
-// `fleetmap bench extrapolation [--out DIR] [--scenes N] [--plans M] [--seed S]
+// `fleetmap bench extrapolation [--out DIR] [--scenes N] [--plans M] [--unexplored P] [--seed S]
 // [--pth 0.5,0.6,0.7]`: the map extrapolation experiment (extrapolation_experiment.hpp) over N
 // simulated indoor scenes (seeds S .. S + N - 1), and the closed-door experiment on M floor plans
 // (floor_plan_experiment.hpp, plan seeds S .. S + M - 1; with --out also DIR/plans.csv, one row per
@@ -31,6 +31,12 @@ struct BenchExtrapolationOptions {
   // --scenes and --plans may both be 0 when set.
   std::string real_maps_dir;
   uint32_t seed = 1;
+  // Per floor-plan room: the robot never went in (floor_plan.hpp); 0 gives issue 21's plans.
+  double unexplored = 0.3;
+  // Door predictions bounded by the building's outline and the other closed doors in their wall
+  // (ExtrapolationOptions::door_building_outline, door_split_between_doors); off gives the
+  // algorithm of issue 21, the "before" of issue 36.
+  bool building_outline = true;
   std::vector<double> p_th = {0.5, 0.6, 0.7};
   bool progress = true;
   bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)

@@ -31,6 +31,12 @@ std::vector<std::pair<double, double>> SplitIntoRooms(double x0, double x1, doub
 }  // namespace
 
 StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t seed) {
+  if (!(options.outside_margin >= 0.0 && options.outside_margin <= 20.0) ||
+      !(options.unexplored_room_probability >= 0.0 && options.unexplored_room_probability <= 1.0)) {
+    return InvalidArgumentError(
+        "floor plan: outside margin outside [0, 20] m or unexplored room "
+        "probability outside [0, 1]");
+  }
   if (!(options.resolution >= 0.01 && options.resolution <= 0.2)) {
     return InvalidArgumentError("floor plan resolution " + std::to_string(options.resolution) +
                                 " m is outside [0.01, 0.2]");
@@ -154,11 +160,16 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
     }
   }
 
+  // Drawn after the layout so that the layout's random draws, hence the plans of a seed, do not
+  // depend on it.
+  plan.unexplored.assign(static_cast<size_t>(plan.rooms), 0);
+  for (uint8_t& u : plan.unexplored) u = random.Bernoulli(options.unexplored_room_probability);
   const double r = options.resolution;
-  const int width_cells = static_cast<int>(std::ceil((length + 2.0) / r));
-  const int height_cells = static_cast<int>(std::ceil((height + 2.0) / r));
-  plan.truth = grid::OccupancyGrid(width_cells, height_cells, r, Pose2{-1.0, -1.0, 0.0},
-                                   grid::kOccupiedValue);
+  const double m = options.outside_margin;
+  const int width_cells = static_cast<int>(std::ceil((length + 2.0 * m) / r));
+  const int height_cells = static_cast<int>(std::ceil((height + 2.0 * m) / r));
+  plan.truth =
+      grid::OccupancyGrid(width_cells, height_cells, r, Pose2{-m, -m, 0.0}, grid::kOccupiedValue);
   plan.labels.assign(static_cast<size_t>(plan.truth.cell_count()), kPlanOutside);
   for (int y = 0; y < height_cells; ++y) {
     for (int x = 0; x < width_cells; ++x) {
@@ -214,17 +225,37 @@ HiddenRoomScene HideRoom(const FloorPlan& plan, const PlanDoor& door, bool swap_
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const int32_t label = plan.labels[static_cast<size_t>(y) * w + x];
-      if (label >= kPlanCorridor && label != door.room) local.at(x, y) = grid::kFreeValue;
+      const bool unexplored = label >= 0 && static_cast<size_t>(label) < plan.unexplored.size() &&
+                              plan.unexplored[static_cast<size_t>(label)];
+      if (label >= kPlanCorridor && label != door.room && !unexplored) {
+        local.at(x, y) = grid::kFreeValue;
+      }
     }
   }
   std::vector<uint8_t> is_leaf(plan.labels.size(), 0);
   for (size_t i : door.leaf_cells) is_leaf[i] = 1;
+  // The unexplored rooms' doors are closed: their leaves are seen like walls.
+  std::vector<uint8_t> other_leaf(plan.labels.size(), 0);
+  for (const PlanDoor& other : plan.doors) {
+    if (other.room == door.room || static_cast<size_t>(other.room) >= plan.unexplored.size() ||
+        !plan.unexplored[static_cast<size_t>(other.room)]) {
+      continue;
+    }
+    for (size_t i : other.leaf_cells) other_leaf[i] = 1;
+    scene::DoorEntity entity;
+    entity.id = "door_room_" + std::to_string(other.room);
+    entity.hinge = other.jamb_a;
+    entity.latch = other.jamb_b;
+    entity.opening_direction = other.into_room;
+    entity.open = false;
+    hidden.other_doors.push_back(std::move(entity));
+  }
   // Walls are seen where the robot stood next to them.
   std::vector<size_t> faces;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const size_t i = static_cast<size_t>(y) * w + x;
-      if (plan.labels[i] != kPlanWall && !is_leaf[i]) continue;
+      if (plan.labels[i] != kPlanWall && !is_leaf[i] && !other_leaf[i]) continue;
       bool seen = false;
       for (int dy = -1; dy <= 1 && !seen; ++dy) {
         for (int dx = -1; dx <= 1 && !seen; ++dx) {

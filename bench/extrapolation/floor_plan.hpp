@@ -36,6 +36,9 @@ inline constexpr int32_t kPlanOutside = -3;
 // A real map's unknown cell (room_segmentation.hpp): nobody scanned it, so there is no ground truth
 // there; hidden like outside, and a prediction on it is neither right nor wrong (unscored).
 inline constexpr int32_t kPlanUnknown = -4;
+// A real map's unknown cell outside the building (room_segmentation.hpp, SegmentBuilding): no scan
+// there either, but no building: the strict score counts a prediction there wrong.
+inline constexpr int32_t kPlanUnknownOutside = -5;
 
 struct PlanDoor {
   // The ends of the closed leaf (map frame, metres), on one face of the wall.
@@ -56,6 +59,9 @@ struct FloorPlan {
   std::vector<PlanDoor> doors;  // one per room, onto the corridor, in room order
   int32_t rooms = 0;
   int32_t connecting_doorways = 0;
+  // Per room: 1 if the robot never went in (HideRoom leaves it unknown, its walls seen from the
+  // corridor only), so the hidden room's outer wall is often not seen next to it.
+  std::vector<uint8_t> unexplored;
 };
 
 struct FloorPlanOptions {
@@ -64,6 +70,11 @@ struct FloorPlanOptions {
   double connecting_doorway_probability = 0.3;  // per pair of neighbouring rooms
   double shallow_room_probability = 0.3;  // a room 2 m deep or more, short of the exterior wall
   double closet_probability = 0.25;       // per room at least 3 m wide and 3.5 m deep
+  // Outside space drawn around the building (metres; unknown to the robot, wrong if predicted).
+  double outside_margin = 3.0;
+  // Per room: the robot never went in (issue 36: rooms at the building's edge whose outer wall
+  // nobody saw from inside). 0 gives the plans of issue 21 (every other room observed).
+  double unexplored_room_probability = 0.3;
 };
 
 // Errors: a resolution outside [0.01, 0.2] m.
@@ -72,12 +83,15 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
 struct HiddenRoomScene {
   grid::OccupancyGrid local;  // the robot's map: the room behind the door unknown
   scene::DoorEntity door;     // the closed door, hinge at jamb_a (or jamb_b if swapped)
+  // The closed doors of the unexplored rooms, which the robot passed and saw (hinge at jamb_a).
+  std::vector<scene::DoorEntity> other_doors;
 };
 
-// The local map with `door`'s room hidden: its cells unknown, the door's leaf occupied, walls
-// occupied only where a cell the robot saw free touches them (8-neighbours), outside unknown;
-// then, per wall face cell, with probability `dropout` a laser dropout of 1-4 cells along the
-// face (a gap narrower than a person). `swap_hinge` gives jamb_b as the hinge.
+// The local map with `door`'s room hidden: its cells (and the unexplored rooms', whose doors are
+// closed, their leaves seen from the corridor and listed in `other_doors`) unknown, the door's leaf
+// occupied, walls occupied only where a cell the robot saw free touches them (8-neighbours),
+// outside unknown; then, per wall face cell, with probability `dropout` a laser dropout of 1-4
+// cells along the face (a gap narrower than a person). `swap_hinge` gives jamb_b as the hinge.
 HiddenRoomScene HideRoom(const FloorPlan& plan, const PlanDoor& door, bool swap_hinge,
                          double dropout, sim::Random* random);
 

@@ -1,5 +1,6 @@
 #include "bench/extrapolation/floor_plan_experiment.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "bench/extrapolation/floor_plan.hpp"
@@ -15,6 +16,7 @@ StatusOr<std::vector<PlanDoorResult>> RunFloorPlanExperiment(
     const FloorPlanExperimentOptions& options) {
   FloorPlanOptions plan_options;
   plan_options.resolution = options.resolution;
+  plan_options.unexplored_room_probability = options.unexplored_room_probability;
   FLEETMAP_ASSIGN_OR_RETURN(const FloorPlan plan, GenerateFloorPlan(plan_options, options.seed));
   return RunHiddenRoomExperiment(plan, options);
 }
@@ -46,6 +48,7 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
       }
       scene::Entities entities;
       entities.doors.push_back(hidden.door);
+      for (const scene::DoorEntity& other : hidden.other_doors) entities.doors.push_back(other);
       if (!options.example_dir.empty() && results.empty()) {
         const std::string& dir = options.example_dir;
         std::error_code ec;
@@ -64,7 +67,12 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
         PlanDoorScore score;
         score.near_room = near_room;
         for (const scene::Submap& s : predicted.graph.submaps) {
-          if (s.kind != scene::SubmapKind::kPredictedDoor) continue;
+          // The hidden door's prediction only (the other closed doors predict their own rooms).
+          if (s.kind != scene::SubmapKind::kPredictedDoor ||
+              std::find(s.entity_ids.begin(), s.entity_ids.end(), hidden.door.id) ==
+                  s.entity_ids.end()) {
+            continue;
+          }
           const grid::OccupancyGrid in_map = extrapolation::SubmapGridInMapFrame(s);
           for (int y = 0; y < in_map.height(); ++y) {
             for (int x = 0; x < in_map.width(); ++x) {
@@ -81,6 +89,8 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
                 ++score.unscored;
               } else {
                 ++score.false_free;
+                score.outside_building += label == kPlanOutside || label == kPlanUnknownOutside;
+                score.unknown_outside += label == kPlanUnknownOutside;
               }
               score.on_observed +=
                   cell && hidden.local.StateAt(cell->x, cell->y) == grid::CellState::kFree;

@@ -46,7 +46,83 @@ std::vector<double> Clearance(const grid::OccupancyGrid& map) {
   return dist;
 }
 
+// Chamfer distance (metres) from each cell to the nearest cell of `target` (row-major, w x h);
+// cells off the grid count as targets when `off_grid_is_target`.
+std::vector<double> DistanceTo(const std::vector<uint8_t>& target, int w, int h, double r,
+                               bool off_grid_is_target) {
+  const double d = r * std::sqrt(2.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> dist(target.size(), inf);
+  for (size_t i = 0; i < target.size(); ++i) {
+    if (target[i]) dist[i] = 0.0;
+  }
+  auto at = [&](int x, int y) {
+    if (x < 0 || y < 0 || x >= w || y >= h) return off_grid_is_target ? 0.0 : inf;
+    return dist[static_cast<size_t>(y) * w + x];
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double& v = dist[static_cast<size_t>(y) * w + x];
+      v = std::min(
+          {v, at(x - 1, y) + r, at(x, y - 1) + r, at(x - 1, y - 1) + d, at(x + 1, y - 1) + d});
+    }
+  }
+  for (int y = h - 1; y >= 0; --y) {
+    for (int x = w - 1; x >= 0; --x) {
+      double& v = dist[static_cast<size_t>(y) * w + x];
+      v = std::min(
+          {v, at(x + 1, y) + r, at(x, y + 1) + r, at(x + 1, y + 1) + d, at(x - 1, y + 1) + d});
+    }
+  }
+  return dist;
+}
+
 }  // namespace
+
+std::vector<uint8_t> SegmentBuilding(const grid::OccupancyGrid& map, double closing_radius) {
+  const int w = map.width(), h = map.height();
+  const double r = map.resolution();
+  std::vector<uint8_t> known(static_cast<size_t>(map.cell_count()), 0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      known[static_cast<size_t>(y) * w + x] = map.StateAt(x, y) != grid::CellState::kUnknown;
+    }
+  }
+  // Closing: grown by the radius, then shrunk by it (off the grid is not the building, so the
+  // shrinking starts at the grid's edge too); the known cells themselves always stay.
+  const std::vector<double> to_known = DistanceTo(known, w, h, r, false);
+  std::vector<uint8_t> outside_grown(known.size(), 0);
+  for (size_t i = 0; i < known.size(); ++i) outside_grown[i] = to_known[i] > closing_radius;
+  const std::vector<double> to_outside = DistanceTo(outside_grown, w, h, r, true);
+  std::vector<uint8_t> closed(known.size(), 0);
+  for (size_t i = 0; i < known.size(); ++i) {
+    closed[i] = known[i] || to_outside[i] > closing_radius;
+  }
+  // Holes filled: what the grid's edge reaches through cells off the closed set is outside.
+  std::vector<uint8_t> outside(known.size(), 0);
+  std::deque<size_t> queue;
+  const auto push = [&](int x, int y) {
+    const size_t i = static_cast<size_t>(y) * w + x;
+    if (!closed[i] && !outside[i]) {
+      outside[i] = 1;
+      queue.push_back(i);
+    }
+  };
+  for (int x = 0; x < w; ++x) push(x, 0), push(x, h - 1);
+  for (int y = 0; y < h; ++y) push(0, y), push(w - 1, y);
+  while (!queue.empty()) {
+    const size_t i = queue.front();
+    queue.pop_front();
+    const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+    for (int k = 0; k < 4; ++k) {
+      const int nx = x + kDx4[k], ny = y + kDy4[k];
+      if (nx >= 0 && ny >= 0 && nx < w && ny < h) push(nx, ny);
+    }
+  }
+  std::vector<uint8_t> inside(known.size(), 0);
+  for (size_t i = 0; i < known.size(); ++i) inside[i] = !outside[i];
+  return inside;
+}
 
 RoomSegmentation SegmentRooms(const grid::OccupancyGrid& map,
                               const RoomSegmentationOptions& options) {
@@ -168,7 +244,8 @@ RoomSegmentation SegmentRooms(const grid::OccupancyGrid& map,
 }
 
 FloorPlan PlanForRoom(const grid::OccupancyGrid& map, const RoomSegmentation& segmentation,
-                      const SegmentedDoorway& doorway, const RoomSegmentationOptions& options) {
+                      const SegmentedDoorway& doorway, const RoomSegmentationOptions& options,
+                      const std::vector<uint8_t>& building) {
   const int w = map.width(), h = map.height();
   const double r = map.resolution();
   int x0 = w, y0 = h, x1 = -1, y1 = -1;
@@ -206,7 +283,7 @@ FloorPlan PlanForRoom(const grid::OccupancyGrid& map, const RoomSegmentation& se
       } else if (state == grid::CellState::kOccupied) {
         label = kPlanWall;
       } else {
-        label = kPlanUnknown;
+        label = building.empty() || building[i] ? kPlanUnknown : kPlanUnknownOutside;
         plan.truth.at(x, y) = grid::kUnknownValue;
       }
       if (is_leaf[i]) leaf.push_back(j);

@@ -15,10 +15,17 @@
 // A room is kept as a scene when its area is in [min_room_area, max_room_area] and it touches
 // exactly one other room, through a doorway.
 //
+// `SegmentBuilding` says which cells are in the building: the known cells (free or occupied)
+// closed by a disc of `building_closing` radius, their holes filled; an unknown cell the grid's
+// edge reaches without crossing that set is outside. A scan that stopped short of a wall leaves
+// unknown cells inside (no truth there); space beyond the outer walls is outside.
+//
 // `PlanForRoom` turns one kept room into a `FloorPlan` (floor_plan.hpp) cropped around it, so the
 // floor-plan experiment's `HideRoom` and scoring run unchanged on it: the room is room 0, all
 // other free space is the corridor, occupied cells are walls, unknown cells are kPlanUnknown
-// (hidden as outside is, but with no ground truth: a prediction there is not scored), and the
+// inside the building (hidden as outside is, but with no ground truth: a prediction there is not
+// scored) and kPlanUnknownOutside outside it (no building there: strictly, a prediction there is
+// wrong), and the
 // door's leaf is the row of cells on the far side of the doorway.
 //
 // Thread-safety: stateless.
@@ -40,6 +47,9 @@ struct RoomSegmentationOptions {
   double min_room_area = 4.0;  // m2
   double max_room_area = 80.0;
   double crop_margin = 6.0;  // metres of map kept around a room's bounding box
+  // Metres: gaps in the known space narrower than twice this are inside the building (a scan's
+  // shadow behind furniture, a doorway nobody looked through).
+  double building_closing = 1.0;
 };
 
 struct SegmentedDoorway {
@@ -62,9 +72,14 @@ struct RoomSegmentation {
 RoomSegmentation SegmentRooms(const grid::OccupancyGrid& map,
                               const RoomSegmentationOptions& options);
 
+// Per cell (row-major): 1 inside the building, 0 outside (above).
+std::vector<uint8_t> SegmentBuilding(const grid::OccupancyGrid& map, double closing_radius);
+
 // The kept room of `doorway` as a one-door floor plan, cropped to its bounding box plus
-// `options.crop_margin`.
+// `options.crop_margin`. `building` (SegmentBuilding of `map`, or empty: all inside) splits the
+// unknown cells into kPlanUnknown and kPlanUnknownOutside.
 FloorPlan PlanForRoom(const grid::OccupancyGrid& map, const RoomSegmentation& segmentation,
-                      const SegmentedDoorway& doorway, const RoomSegmentationOptions& options);
+                      const SegmentedDoorway& doorway, const RoomSegmentationOptions& options,
+                      const std::vector<uint8_t>& building = {});
 
 }  // namespace fleetmap::bench

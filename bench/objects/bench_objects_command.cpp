@@ -13,6 +13,7 @@
 #include "bench/objects/object_experiment.hpp"
 #include "bench/objects/real_plan_experiment.hpp"
 #include "bench/objects/real_plan_series.hpp"
+#include "bench/objects/small_piece_experiment.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -247,6 +248,29 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
       return cli::kExitBadInput;
     }
   }
+  if (options.small_pieces > 0) {
+    SmallPieceOptions small;
+    small.seed = options.seed;
+    small.pairs = options.small_pieces;
+    small.speck_events_per_100m2 = options.speck_events;
+    small.snapshots.isolation_radius_m = options.isolation_radius;
+    small.small_in_one_map = options.small_in_one_map;
+    const StatusOr<SmallPieceResult> result = RunSmallPieceExperiment(small);
+    if (!result.ok()) {
+      err << "fleetmap bench objects: " << result.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    const std::string report = SmallPieceReport(small, *result);
+    out << report;
+    if (!options.out_dir.empty()) {
+      const Status written = WriteFileAtomically(options.out_dir + "/small_pieces.md", report);
+      if (!written.ok()) {
+        err << "fleetmap bench objects: " << written.message() << "\n";
+        return cli::kExitBadInput;
+      }
+    }
+    return cli::kExitOk;
+  }
   if (options.skip_sim)
     return options.floors.empty() ? cli::kExitOk : RunRealPlans(options, out, err);
   ObjectDatasetOptions dataset_options;
@@ -365,6 +389,20 @@ void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
   command->add_option("--height", options->plan_height, "real-plan map height (cells)")
       ->capture_default_str();
   command->add_flag("--no-sim", options->skip_sim, "skip the simulated lab (real plans only)");
+  command
+      ->add_option("--small-pieces", options->small_pieces,
+                   "map pairs of small objects against SLAM specks (only this benchmark)")
+      ->capture_default_str();
+  command
+      ->add_option("--speck-events", options->speck_events,
+                   "small pieces: speck events per 100 m2 per map")
+      ->capture_default_str();
+  command->add_flag("--small-in-one-map", options->small_in_one_map,
+                    "small pieces: every small piece in the first map of its pair only");
+  command
+      ->add_option("--isolation-radius", options->isolation_radius,
+                   "small pieces: isolation radius (m; 0: recurrence only)")
+      ->capture_default_str();
   command->add_option("--memory-budget", options->memory_budget_mb,
                       "the learner's memory budget on real plans, MB (0: default)");
   command->callback(

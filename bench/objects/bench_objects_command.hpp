@@ -13,6 +13,10 @@
 // (RealPlanSeries), learned on as `learn-objects` would, and scored against the drawn pieces
 // (precision / recall by position), with the learned (N, M), time and peak memory; written to
 // DIR/real_plans.json, DIR/real_plans.csv and the series' maps to DIR/real_plans/<floor>/.
+//
+// With `--small-pieces N` (and only that): small objects against SLAM specks on N map pairs
+// (small_piece_experiment.hpp): recall of pieces of 4-7 cells, precision, false objects per
+// 100 m2 of noise-only pairs; DIR/small_pieces.md.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -38,6 +42,12 @@ struct BenchObjectsOptions {
   int plan_height = 544;          // cells
   bool skip_sim = false;          // only the real-plan benchmark
   double memory_budget_mb = 0.0;  // the learner's budget (0: its default)
+  // Small objects against SLAM specks (small_piece_experiment.hpp): pairs to run; 0: not run.
+  // When set, only this benchmark runs.
+  int small_pieces = 0;
+  double speck_events = 5.0;      // per 100 m2 per map
+  double isolation_radius = 0.5;  // SnapshotOptions::isolation_radius_m
+  bool small_in_one_map = false;  // SmallPieceOptions::small_in_one_map
 };
 
 // Bad options print a message naming the option and return cli::kExitBadInput.

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <set>
 
+#include "common/extrapolation/building_outline.hpp"
 #include "common/extrapolation/door_space.hpp"
 #include "common/extrapolation/kernels.hpp"
 #include "common/extrapolation/map_queries.hpp"
@@ -67,6 +69,7 @@ class Extrapolator {
     result_.conditionally_free =
         grid::OccupancyGrid(map_.width(), map_.height(), map_.resolution(), map_.origin());
     for (const scene::PersonTrack& person : entities.people) AddPerson(person);
+    doors_ = &entities.doors;
     for (const scene::DoorEntity& door : entities.doors) AddDoor(door);
     for (const scene::StairsEntity& stairs : entities.stairs) AddStairs(stairs);
     AddObservedSubmaps();
@@ -345,6 +348,25 @@ class Extrapolator {
     space_options.wall_clearance = options_.door_wall_clearance;
     const DoorSpace space(map_, door, opening, window, space_options);
     std::vector<uint8_t> candidate = space.allowed();
+    if (options_.door_building_outline) {
+      if (!outline_) {
+        BuildingOutlineOptions outline_options;
+        outline_options.min_outer_wall = options_.door_min_outer_wall;
+        outline_options.max_face_gap = options_.door_min_passage_width;
+        outline_options.continuation_gap = options_.door_continuation_gap;
+        outline_.emplace(map_, outline_options);
+      }
+      const std::vector<uint8_t> in_building = outline_->AllowedFor(door, opening);
+      for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+          const int mx = window.x0 + x, my = window.y0 + y;
+          // Off the map: no outline known there, the other rules alone decide.
+          if (!map_.Contains(mx, my)) continue;
+          uint8_t& c = candidate[static_cast<size_t>(y) * window.width + x];
+          c = c && in_building[static_cast<size_t>(my) * map_.width() + mx];
+        }
+      }
+    }
     for (int y = 0; y < window.height; ++y) {
       for (int x = 0; x < window.width; ++x) {
         const Point2 c = map_.CellCenter(window.x0 + x, window.y0 + y);
@@ -353,6 +375,18 @@ class Extrapolator {
         const size_t i = static_cast<size_t>(y) * window.width + x;
         submap.confidence[i] = static_cast<float>(conf);
         candidate[i] = candidate[i] && conf > options_.p_th && d.norm() <= options_.door_max_range;
+      }
+    }
+    if (options_.door_split_between_doors) {
+      // Another closed door in the same wall, opening to the same side, leads to another room:
+      // the room behind this one ends, at the latest, halfway between the two doorways.
+      const std::vector<std::pair<double, double>> limits = NeighbourDoorLimits(door, opening);
+      for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+          const double s = kx.dot(map_.CellCenter(window.x0 + x, window.y0 + y) - centre);
+          uint8_t& c = candidate[static_cast<size_t>(y) * window.width + x];
+          for (const auto& [lo, hi] : limits) c = c && s > lo && s < hi;
+        }
       }
     }
     const std::vector<uint8_t> reached = space.ReachableFromDoorway(candidate);
@@ -420,8 +454,39 @@ class Extrapolator {
   // How far from a separator its sides are looked at (metres; at least four cells).
   static constexpr double kSideDepth = 0.3;
 
+  // The lateral limits (along the door line from its centre, x as in the kernel frame: opening
+  // turned clockwise) that the other closed doors in the same wall set: (-inf, s / 2) for one at
+  // lateral offset s > 0, (s / 2, inf) for one at s < 0. Same wall: parallel within 10 degrees,
+  // centres within 0.5 m across the wall, opening to the same side, doorways apart.
+  std::vector<std::pair<double, double>> NeighbourDoorLimits(const scene::DoorEntity& door,
+                                                             const Vector2& opening) const {
+    std::vector<std::pair<double, double>> limits;
+    const double inf = std::numeric_limits<double>::infinity();
+    const Vector2 kx(opening.y(), -opening.x());
+    const Point2 centre = door.center();
+    for (const scene::DoorEntity& other : *doors_) {
+      if (other.id == door.id || other.open || !Finite(other.hinge) || !Finite(other.latch) ||
+          !other.opening_direction.allFinite() || !(other.width() >= 0.2)) {
+        continue;
+      }
+      const Vector2 along = (other.latch - other.hinge) / other.width();
+      const Vector2 d = other.center() - centre;
+      if (std::abs(along.dot(kx)) < std::cos(10.0 * std::numbers::pi / 180.0) ||
+          std::abs(d.dot(opening)) > 0.5 || !(other.opening_direction.dot(opening) > 0.0)) {
+        continue;
+      }
+      const double s = d.dot(kx);
+      if (std::abs(s) <= 0.5 * (door.width() + other.width())) continue;
+      limits.emplace_back(s > 0.0 ? -inf : 0.5 * s, s > 0.0 ? 0.5 * s : inf);
+    }
+    return limits;
+  }
+
   const grid::OccupancyGrid& map_;
   const ExtrapolationOptions& options_;
+  // Made on the first closed door's prediction (the whole map is looked at once per call).
+  std::optional<BuildingOutline> outline_;
+  const std::vector<scene::DoorEntity>* doors_ = nullptr;  // every door of the call
   ExtrapolationResult result_;
   std::vector<Person> people_;
   // The person who claimed each conditionally free cell (-1: none; empty until one does).
@@ -461,6 +526,7 @@ Status ExtrapolationOptions::Validate() const {
       {"door_wall_clearance", o.door_wall_clearance},
       {"door_unseen_wall_thickness", o.door_unseen_wall_thickness},
       {"door_continuation_gap", o.door_continuation_gap},
+      {"door_min_outer_wall", o.door_min_outer_wall},
       {"stairs_edge_clearance", o.stairs_edge_clearance},
       {"person_skew_forward", o.person_skew_forward},
       {"person_skew_side", o.person_skew_side},
@@ -504,6 +570,9 @@ void ExtrapolationOptions::Describe(OptionsPrinter& out) const {
   out.Add("door_min_passage_width", door_min_passage_width);
   out.Add("door_min_continued_wall", door_min_continued_wall);
   out.Add("door_continuation_gap", door_continuation_gap);
+  out.Add("door_building_outline", door_building_outline);
+  out.Add("door_min_outer_wall", door_min_outer_wall);
+  out.Add("door_split_between_doors", door_split_between_doors);
   out.Add("person_sigma_forward", person_sigma_forward);
   out.Add("person_sigma_side", person_sigma_side);
   out.Add("person_skew_forward", person_skew_forward);

@@ -71,6 +71,14 @@ struct ExtrapolationOptions {
   double door_min_passage_width = 0.5;
   double door_min_continued_wall = 0.6;
   double door_continuation_gap = 0.6;
+  // The building's outline (BuildingOutline, docs/extrapolation.md): a prediction never crosses
+  // the continuation of an observed outer wall (a seen face at least door_min_outer_wall long,
+  // metres, with no observed free space behind it) nor lands beyond the outermost one.
+  bool door_building_outline = true;
+  double door_min_outer_wall = 1.0;
+  // Another closed door in the same wall, opening to the same side, leads to another room: a
+  // door's prediction stops halfway between the two doorways (along the wall).
+  bool door_split_between_doors = true;
 
   // People: a skew-normal personal-space kernel in the person's frame (x forward, y left):
   // sigma_forward / sigma_side (metres), skew alpha = (person_skew_forward,

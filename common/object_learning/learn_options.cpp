@@ -43,6 +43,9 @@ Status SnapshotOptions::Validate() const {
   if (o.small_region_cells < 0 || o.small_region_cells > o.min_region_cells) {
     return Bad("snapshots.small_region_cells", o.small_region_cells, "in [0, min_region_cells]");
   }
+  if (!(o.isolation_radius_m >= 0.0 && o.isolation_radius_m <= 5.0)) {
+    return Bad("snapshots.isolation_radius_m", o.isolation_radius_m, "in [0, 5]");
+  }
   if (!Positive(o.max_region_radius_m)) {
     return Bad("snapshots.max_region_radius_m", o.max_region_radius_m, "> 0");
   }
@@ -125,6 +128,7 @@ void SnapshotOptions::Describe(OptionsPrinter& out) const {
   out.Add("link_cells", link_cells);
   out.Add("min_region_cells", min_region_cells);
   out.Add("small_region_cells", small_region_cells);
+  out.Add("isolation_radius_m", isolation_radius_m);
   out.Add("max_region_cells", max_region_cells);
   out.Add("max_region_radius_m", max_region_radius_m);
   out.Add("margin_cells", margin_cells);

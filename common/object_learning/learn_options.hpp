@@ -36,6 +36,12 @@ struct SnapshotOptions {
   // another map: a bin of a few cells that moves recurs; lone speckle is dropped.
   // 0: never (the old behaviour). In [0, min_region_cells].
   int small_region_cells = 3;
+  // A small region that does not recur is kept too when it is compact (bounding box at most
+  // 3 x 3 cells and at least half filled: a bin, a table leg) and isolated: no other difference
+  // cell of its map, speckle the low-pass filter removed included, within isolation_radius_m of
+  // its bounding box. SLAM specks come scattered (several within half a metre) or as thin strands
+  // along a scan line; a piece of furniture stands alone. 0: never (recurrence only).
+  double isolation_radius_m = 0.5;  // metres, in [0, 5]
   // Larger regions (a row of desks, furniture against furniture) are split into objects: first
   // into the parts that are apart at all (8-connected), then at their narrow necks (the cells
   // left by erosion seed a geodesic watershed), and a part that is still too large is cut into

@@ -138,6 +138,42 @@ std::vector<Region> GrowRegions(Mask mask, int width, int height, int link) {
   return regions;
 }
 
+// Fewer cells than this are never an object for being alone (a 3-cell blob is what a leg seen in
+// one scan, or a speck of noise, leaves); they may still recur.
+constexpr int kMinLoneCells = 4;
+
+// Whether a small region is compact: its bounding box at most 3 cells a side and at least half
+// filled (a bin, a leg), not a strand along a scan line or a scatter of specks region growing
+// linked.
+bool Compact(const std::vector<grid::CellIndex>& cells) {
+  int x0 = cells[0].x, x1 = x0, y0 = cells[0].y, y1 = y0;
+  for (const grid::CellIndex& c : cells) {
+    x0 = std::min(x0, c.x), x1 = std::max(x1, c.x);
+    y0 = std::min(y0, c.y), y1 = std::max(y1, c.y);
+  }
+  const int w = x1 - x0 + 1, h = y1 - y0 + 1;
+  return w <= 3 && h <= 3 && 2 * static_cast<int>(cells.size()) >= w * h;
+}
+
+// Whether a region is alone: no cell of `raw` (the map's difference cells before filtering)
+// within `radius` cells of its bounding box, except within `own` cells of it (the region's own
+// cells the filter trimmed).
+bool Lone(const std::vector<grid::CellIndex>& cells, const Mask& raw, int width, int height,
+          int own, int radius) {
+  int x0 = cells[0].x, x1 = x0, y0 = cells[0].y, y1 = y0;
+  for (const grid::CellIndex& c : cells) {
+    x0 = std::min(x0, c.x), x1 = std::max(x1, c.x);
+    y0 = std::min(y0, c.y), y1 = std::max(y1, c.y);
+  }
+  for (int y = std::max(0, y0 - radius); y <= std::min(height - 1, y1 + radius); ++y) {
+    for (int x = std::max(0, x0 - radius); x <= std::min(width - 1, x1 + radius); ++x) {
+      const bool near_own = x >= x0 - own && x <= x1 + own && y >= y0 - own && y <= y1 + own;
+      if (!near_own && raw[static_cast<size_t>(y) * width + x]) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string GeometryMismatch(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b) {
@@ -202,8 +238,10 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
     int map_index;
     Region region;
     grid::CellIndex centre;
-    double radius;  // cells, farthest region cell from the centre cell
-    bool small;     // below min_region_cells: kept only if it recurs in another map
+    double radius;         // cells, farthest region cell from the centre cell
+    bool small;            // below min_region_cells: kept only if it recurs in another map, or
+    bool compact = false;  // and it is compact,
+    bool lone = false;     // or compact, of kMinLoneCells or more, and alone (isolation_radius_m)
     bool drop = false;
   };
   std::vector<Found> found;
@@ -223,6 +261,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
         diff[i] = u != t && clear[u][i];
       }
     }
+    const Mask raw = diff;  // before the filter: speckle counts against a small piece's isolation
     diff = LowPass(diff, width, height, options.filter_radius, options.filter_threshold);
     int split = 0, parts = 0;
     bool sliced = false;
@@ -253,8 +292,14 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
         for (const grid::CellIndex& c : region.cells) {
           radius = std::max(radius, std::hypot(c.x - centre.x, c.y - centre.y));
         }
+        const bool small = n < options.min_region_cells;
+        const bool compact = small && Compact(region.cells);
+        const bool lone =
+            compact && n >= kMinLoneCells && options.isolation_radius_m > 0.0 &&
+            Lone(region.cells, raw, width, height, std::max(1, options.filter_radius),
+                 static_cast<int>(std::ceil(options.isolation_radius_m / maps[0].resolution())));
         found.push_back(
-            {static_cast<int>(t), std::move(region), centre, radius, n < options.min_region_cells});
+            {static_cast<int>(t), std::move(region), centre, radius, small, compact, lone});
       }
     }
     if (split > 0) {
@@ -295,7 +340,7 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
       return true;
     };
     std::vector<Found> kept;
-    int recurring = 0;
+    int recurring = 0, lone = 0;
     // Sorted extents of a region's bounding box: a moved object keeps them (up to a turn).
     auto extents = [](const Region& region) {
       int x0 = region.cells[0].x, x1 = x0, y0 = region.cells[0].y, y1 = y0;
@@ -320,8 +365,9 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
         const auto [b0, b1] = extents(found[j].region);
         recurs = m <= 1.5 * n && n <= 1.5 * m && std::abs(a0 - b0) <= 1 && std::abs(a1 - b1) <= 1;
       }
-      found[i].drop = !recurs;
-      if (recurs) ++recurring;
+      found[i].drop = !found[i].compact || (!recurs && !found[i].lone);
+      if (found[i].compact && recurs) ++recurring;
+      if (!recurs && found[i].lone) ++lone;
     }
     for (Found& f : found) {
       if (!f.drop) kept.push_back(std::move(f));
@@ -333,6 +379,14 @@ StatusOr<SnapshotSet> ExtractSnapshots(const std::vector<grid::OccupancyGrid>& m
                                 " cells were kept because regions of their size recur in other "
                                 "maps (small_region_cells " +
                                 std::to_string(options.small_region_cells) + ")");
+    }
+    if (lone > 0) {
+      result.warnings.push_back(std::to_string(lone) + " small region(s) of fewer than " +
+                                std::to_string(options.min_region_cells) +
+                                " cells were kept because they are compact and nothing else "
+                                "changed within " +
+                                Number(options.isolation_radius_m) +
+                                " m of them (isolation_radius_m)");
     }
   }
   for (const Found& f : found) ++result.per_map[f.map_index];

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "bench/extrapolation/floor_plan.hpp"
 #include "bench/extrapolation/floor_plan_experiment.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -160,6 +162,77 @@ TEST(RoomSegmentationTest, PredictionsOnCellsTheMapNeverSawAreUnscored) {
     }
   }
   EXPECT_GT(unscored, 0) << "the prediction reaches more than 0.8 m into the room";
+}
+
+// A 4 x 3 m room A and, east of it through a 1.15 m doorway, a room B 1.6 m wide whose east wall
+// the scans never reached, in a map with 2 m of unknown all round: the building's edge is B's east
+// side.
+grid::OccupancyGrid RoomAtTheEdge() {
+  grid::OccupancyGrid map(248, 144, kResolution, Pose2{-2.0, -2.0, 0.0}, grid::kUnknownValue);
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      const Point2 c = map.CellCenter(x, y);
+      const bool walls = c.x() > 0.0 && c.x() < 5.85 && c.y() > 0.0 && c.y() < 3.2;
+      const bool in_rows = c.y() > 0.1 && c.y() < 3.1;
+      const bool room_a = c.x() > 0.1 && c.x() < 4.1;
+      const bool room_b = c.x() > 4.25 && c.x() < 5.85;
+      const bool doorway = c.x() >= 4.1 && c.x() <= 4.25 && c.y() > 0.95 && c.y() < 2.1;
+      if (walls) map.at(x, y) = grid::kOccupiedValue;
+      if ((in_rows && (room_a || room_b)) || doorway) map.at(x, y) = grid::kFreeValue;
+    }
+  }
+  return map;
+}
+
+TEST(RoomSegmentationTest, BuildingIsTheKnownSpaceWithItsHolesFilled) {
+  grid::OccupancyGrid map = RoomAtTheEdge();
+  const std::optional<grid::CellIndex> hole = map.CellAt(Point2(2.0, 1.5));
+  ASSERT_TRUE(hole.has_value());
+  map.at(hole->x, hole->y) = grid::kUnknownValue;  // unscanned, inside room A
+  const std::vector<uint8_t> building = SegmentBuilding(map, 1.0);
+  const auto inside = [&](double x, double y) {
+    const std::optional<grid::CellIndex> c = map.CellAt(Point2(x, y));
+    return building[static_cast<size_t>(c->y) * map.width() + c->x] != 0;
+  };
+  EXPECT_TRUE(inside(2.0, 1.5));   // the hole
+  EXPECT_TRUE(inside(5.0, 1.5));   // room B
+  EXPECT_FALSE(inside(6.0, 1.5));  // beyond B's unseen east wall
+  EXPECT_FALSE(inside(-1.0, 1.5));
+  EXPECT_FALSE(inside(3.0, 4.0));
+}
+
+// Strict scoring: a prediction on a cell the map never saw is wrong outside the building (and
+// still unscored inside it).
+TEST(RoomSegmentationTest, StrictScoringCountsPredictionsOutsideTheBuildingWrong) {
+  const grid::OccupancyGrid map = RoomAtTheEdge();
+  const RoomSegmentationOptions options;
+  const RoomSegmentation seg = SegmentRooms(map, options);
+  const auto door = std::find_if(seg.doorways.begin(), seg.doorways.end(),
+                                 [](const SegmentedDoorway& d) { return d.into_room.x() > 0.5; });
+  ASSERT_NE(door, seg.doorways.end()) << "room B, behind the doorway from A";
+  const std::vector<uint8_t> building = SegmentBuilding(map, options.building_closing);
+  const FloorPlan strict = PlanForRoom(map, seg, *door, options, building);
+  const FloorPlan lenient = PlanForRoom(map, seg, *door, options);
+  FloorPlanExperimentOptions experiment;
+  experiment.dropout = 0.0;
+  const auto strict_scores = RunHiddenRoomExperiment(strict, experiment);
+  const auto lenient_scores = RunHiddenRoomExperiment(lenient, experiment);
+  ASSERT_TRUE(strict_scores.ok() && lenient_scores.ok());
+  ASSERT_EQ(strict_scores->size(), lenient_scores->size());
+  int64_t outside = 0;
+  for (size_t r = 0; r < strict_scores->size(); ++r) {
+    for (size_t k = 0; k < experiment.p_th.size(); ++k) {
+      const PlanDoorScore& a = (*strict_scores)[r].scores[k];
+      const PlanDoorScore& b = (*lenient_scores)[r].scores[k];
+      EXPECT_EQ(a.true_free, b.true_free);
+      EXPECT_EQ(b.unknown_outside, 0);
+      EXPECT_EQ(a.false_free, b.false_free + a.unknown_outside);
+      EXPECT_EQ(a.unscored + a.unknown_outside, b.unscored);
+      EXPECT_LE(a.unknown_outside, a.outside_building);
+      outside += a.unknown_outside;
+    }
+  }
+  EXPECT_GT(outside, 0) << "the prediction runs past B's unseen east wall";
 }
 
 }  // namespace

@@ -311,6 +311,40 @@ TEST(ExtrapolatorTest, KnownWallStopsTheDoorPrediction) {
   EXPECT_EQ(beyond_wall(walled->graph.submaps[1]), 0);
 }
 
+// Two closed doors in the corridor's wall lead to two rooms: each door's prediction stops halfway
+// between the doorways (x = 5.575 here), and a door in another wall does not cut it.
+TEST(ExtrapolatorTest, NextClosedDoorInTheSameWallBoundsThePrediction) {
+  const grid::OccupancyGrid map = Corridor();
+  scene::Entities alone;
+  alone.doors.push_back(Door());  // x in [4, 5]
+  scene::Entities two = alone;
+  two.doors.push_back(DoorAt("door_2", 6.2, 7.1, 2.075, false));
+  const auto past_midpoint = [](const scene::Submap& s) {
+    int n = 0;
+    for (const Point2& p : FreeCellsInMap(s)) n += p.x() > 5.575 + 0.5 * kRes;
+    return n;
+  };
+  const auto one = Extrapolate(map, alone);
+  const auto both = Extrapolate(map, two);
+  ASSERT_TRUE(one.ok() && both.ok());
+  const auto door_1 = [](const ExtrapolationResult& r) {
+    return *std::find_if(r.graph.submaps.begin(), r.graph.submaps.end(), [](const auto& s) {
+      return s.kind == scene::SubmapKind::kPredictedDoor && s.entity_ids.front() == "door_1";
+    });
+  };
+  EXPECT_GT(past_midpoint(door_1(*one)), 0);  // the test can fail
+  EXPECT_EQ(past_midpoint(door_1(*both)), 0);
+  EXPECT_GT(FreeCellsInMap(door_1(*both)).size(), 200u);
+  // A door on the corridor's other wall (opening the other way) is another wall's door.
+  scene::Entities across = alone;
+  scene::DoorEntity facing = DoorAt("door_3", 6.2, 7.1, 0.075, false);
+  facing.opening_direction = Vector2(0, -1);
+  across.doors.push_back(facing);
+  const auto with_facing = Extrapolate(map, across);
+  ASSERT_TRUE(with_facing.ok());
+  EXPECT_EQ(FreeCellsInMap(door_1(*with_facing)).size(), FreeCellsInMap(door_1(*one)).size());
+}
+
 // A hidden room (x in [1.5, 4.7), y in [2.15, 5), unknown) above Corridor(), behind a closed door
 // at x in [3.7, 4.6), with a second, open doorway (y in [3, 3.9)) in its 0.3 m right wall into a
 // neighbour room the robot mapped (x in [5, 8)): it saw that room, the recess of the doorway and
