@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <queue>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -219,6 +220,106 @@ int CountComponents(size_t node_count, const std::vector<RouteEdge>& edges) {
   return components;
 }
 
+// Straight edges between nodes within `radius` of each other that see each other with the edge
+// clearance, where the graph's way between them is more than `ratio` times longer: across rooms
+// and open space, where the skeleton goes round by the middle. Decided on the graph as it was
+// before any shortcut, so the result does not depend on the order nodes are looked at.
+void AddShortcuts(const ClearanceMap& clearance, double required, double radius, double ratio,
+                  Assembly* assembly) {
+  const std::vector<RouteNode>& nodes = assembly->nodes();
+  std::vector<std::vector<std::pair<int, double>>> adjacency(nodes.size());
+  for (const RouteEdge& edge : assembly->edges()) {
+    adjacency[edge.start].push_back({static_cast<int>(edge.end), edge.length});
+    adjacency[edge.end].push_back({static_cast<int>(edge.start), edge.length});
+  }
+  std::map<std::pair<int64_t, int64_t>, std::vector<int>> bins;
+  auto bin_of = [radius](const Point2& p) {
+    return std::make_pair(static_cast<int64_t>(std::floor(p.x() / radius)),
+                          static_cast<int64_t>(std::floor(p.y() / radius)));
+  };
+  for (size_t i = 0; i < nodes.size(); ++i) bins[bin_of(nodes[i].position)].push_back(int(i));
+  std::vector<std::pair<int, int>> shortcuts;
+  std::map<int, double> distance;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    // The graph's distances from node i, as far as a shortcut could matter.
+    distance.clear();
+    const double bound = ratio * radius;
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+    distance[int(i)] = 0.0;
+    open.push({0.0, int(i)});
+    while (!open.empty()) {
+      const auto [d, node] = open.top();
+      open.pop();
+      if (d > distance[node]) continue;
+      for (const auto& [next, length] : adjacency[node]) {
+        const double through = d + length;
+        if (through > bound) continue;
+        const auto found = distance.find(next);
+        if (found != distance.end() && found->second <= through) continue;
+        distance[next] = through;
+        open.push({through, next});
+      }
+    }
+    const auto [bx, by] = bin_of(nodes[i].position);
+    for (int64_t dy = -1; dy <= 1; ++dy) {
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        const auto bin = bins.find({bx + dx, by + dy});
+        if (bin == bins.end()) continue;
+        for (const int j : bin->second) {
+          if (j <= int(i)) continue;
+          const double straight = (nodes[j].position - nodes[i].position).norm();
+          if (straight > radius || straight < 1e-9) continue;
+          const auto found = distance.find(j);
+          if (found != distance.end() && found->second <= ratio * straight) continue;
+          if (!clearance.SegmentKeeps(nodes[i].position, nodes[j].position, required)) continue;
+          shortcuts.push_back({int(i), j});
+        }
+      }
+    }
+  }
+  for (const auto& [a, b] : shortcuts) assembly->AddEdge(a, b);
+}
+
+// Removes the parts of the graph a robot can move less than `min_length` in: their edges' length
+// plus the widest circle its centre can move in around a node (twice the node's clearance beyond
+// `node_clearance`). Pockets of free space the robot just fits in go; a room that shrank to its
+// middle node stays. Indices are renumbered.
+void DropSmallParts(double min_length, double node_clearance, std::vector<RouteNode>* nodes,
+                    std::vector<RouteEdge>* edges) {
+  std::vector<size_t> parent(nodes->size());
+  std::iota(parent.begin(), parent.end(), size_t{0});
+  auto find = [&parent](size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const RouteEdge& edge : *edges) parent[find(edge.start)] = find(edge.end);
+  std::vector<double> length(nodes->size(), 0.0);
+  for (const RouteEdge& edge : *edges) length[find(edge.start)] += edge.length;
+  std::vector<double> extent(nodes->size(), 0.0);
+  for (size_t i = 0; i < nodes->size(); ++i) {
+    const size_t root = find(i);
+    extent[root] = std::max(extent[root], 2.0 * ((*nodes)[i].clearance - node_clearance));
+  }
+  for (size_t i = 0; i < nodes->size(); ++i) length[i] += extent[i];
+  std::vector<int> index(nodes->size(), -1);
+  std::vector<RouteNode> kept_nodes;
+  for (size_t i = 0; i < nodes->size(); ++i) {
+    if (length[find(i)] < min_length) continue;
+    index[i] = static_cast<int>(kept_nodes.size());
+    kept_nodes.push_back((*nodes)[i]);
+  }
+  std::vector<RouteEdge> kept_edges;
+  for (RouteEdge edge : *edges) {
+    if (index[edge.start] < 0) continue;
+    edge.start = static_cast<uint32_t>(index[edge.start]);
+    edge.end = static_cast<uint32_t>(index[edge.end]);
+    kept_edges.push_back(edge);
+  }
+  *nodes = std::move(kept_nodes);
+  *edges = std::move(kept_edges);
+}
+
 }  // namespace
 
 Status RouteGraphOptions::Validate() const {
@@ -237,6 +338,15 @@ Status RouteGraphOptions::Validate() const {
   if (!(doorway_ratio > 0.0 && doorway_ratio <= 1.0)) return bad("doorway_ratio must be in (0, 1]");
   if (!PositiveFinite(doorway_window)) return bad("doorway_window must be > 0");
   if (!PositiveFinite(tile_size)) return bad("tile_size must be > 0");
+  if (!std::isfinite(shortcut_radius) || shortcut_radius < 0.0) {
+    return bad("shortcut_radius must be >= 0");
+  }
+  if (!(shortcut_ratio >= 1.0) || !std::isfinite(shortcut_ratio)) {
+    return bad("shortcut_ratio must be >= 1");
+  }
+  if (!std::isfinite(min_part_length) || min_part_length < 0.0) {
+    return bad("min_part_length must be >= 0");
+  }
   if (!std::isfinite(clearance_cap) || clearance_cap <= robot_radius + clearance_margin) {
     return bad("clearance_cap must be more than robot_radius + clearance_margin");
   }
@@ -254,6 +364,9 @@ void RouteGraphOptions::Describe(OptionsPrinter& out) const {
   out.Add("doorway_window", doorway_window);
   out.Add("clearance_cap", clearance_cap);
   out.Add("tile_size", tile_size);
+  out.Add("shortcut_radius", shortcut_radius);
+  out.Add("shortcut_ratio", shortcut_ratio);
+  out.Add("min_part_length", min_part_length);
   out.Add("frame", frame);
   out.Nested("thresholds", thresholds);
 }
@@ -425,6 +538,10 @@ RouteGraph RouteGraphBuilder::Extract() {
       ++joined;
     }
   }
+  if (options_.shortcut_radius > 0.0) {
+    AddShortcuts(clearance_, EdgeClearance(), options_.shortcut_radius, options_.shortcut_ratio,
+                 &assembly);
+  }
   // Junctions and dead ends by what the straightened graph has at them.
   std::vector<int> degree(assembly.nodes().size(), 0);
   for (const RouteEdge& edge : assembly.edges()) {
@@ -443,6 +560,7 @@ RouteGraph RouteGraphBuilder::Extract() {
   graph.clearance_margin = std::max(options_.clearance_margin, resolution_);
   graph.nodes = std::move(assembly.nodes());
   graph.edges = std::move(assembly.edges());
+  DropSmallParts(options_.min_part_length, NodeClearance(), &graph.nodes, &graph.edges);
   std::ostringstream message;
   if (graph.nodes.empty()) {
     const float widest =
@@ -451,8 +569,13 @@ RouteGraph RouteGraphBuilder::Extract() {
             : *std::max_element(clearance_.values().begin(), clearance_.values().end());
     message << "empty route graph: a robot of radius " << options_.robot_radius << " m needs "
             << NodeClearance() << " m of clearance (radius + margin) and the widest free space "
-            << "of the map has " << std::max(0.0F, widest)
-            << " m: the robot fits nowhere (no doorway or corridor is wide enough)";
+            << "of the map has " << std::max(0.0F, widest) << " m: ";
+    if (widest < NodeClearance()) {
+      message << "the robot fits nowhere (no doorway or corridor is wide enough)";
+    } else {
+      message << "the robot fits only in pockets with less than " << options_.min_part_length
+              << " m of route in them";
+    }
   } else {
     const int parts = CountComponents(graph.nodes.size(), graph.edges);
     if (parts > 1) {
