@@ -207,6 +207,7 @@ StatusOr<RouteGraphBenchRow> MeasureRouteGraphBench(const std::string& yaml_path
   const GridPlanner grid_planner(clearance, builder.NodeClearance());
   const std::vector<grid::CellIndex> cells = grid_planner.TraversableCells();
   std::vector<double> ratios;
+  std::vector<double> nearest_ratios;
   if (!cells.empty()) {
     std::uniform_int_distribution<size_t> pick(0, cells.size() - 1);
     for (int attempt = 0; attempt < 20 * options.cell_pairs && row.cell_pairs < options.cell_pairs;
@@ -224,14 +225,20 @@ StatusOr<RouteGraphBenchRow> MeasureRouteGraphBench(const std::string& yaml_path
       if (row.length_pairs >= options.length_pairs) continue;
       const std::optional<double> grid_length = grid_planner.PathLength(a, b);
       if (!grid_length || *grid_length < 1.0) continue;  // a metre at least, or ratios mean little
-      const std::optional<route_graph::Route> route = planner.Plan(*entry_a, *entry_b);
-      const double graph_length = (graph.FindNode(*entry_a)->position - pa).norm() + route->length +
-                                  (graph.FindNode(*entry_b)->position - pb).norm();
-      ratios.push_back(graph_length / *grid_length);
+      const std::optional<double> graph_length =
+          planner.ShortestWay(pa, pb, clearance, builder.EdgeClearance());
+      if (!graph_length) continue;
+      const std::optional<route_graph::Route> nearest = planner.Plan(*entry_a, *entry_b);
+      const double nearest_length = (graph.FindNode(*entry_a)->position - pa).norm() +
+                                    nearest->length +
+                                    (graph.FindNode(*entry_b)->position - pb).norm();
+      nearest_ratios.push_back(nearest_length / *grid_length);
+      ratios.push_back(*graph_length / *grid_length);
       ++row.length_pairs;
     }
   }
   row.median_length_ratio = Median(ratios);
+  row.median_nearest_ratio = Median(nearest_ratios);
 
   // One tile changed: a box put down at its most open cell, then taken away; each update timed.
   const std::optional<TileChange> change = PickTileChange(grid, clearance, graph_options.tile_size);
@@ -277,8 +284,9 @@ std::vector<RouteGraphTarget> EvaluateRouteGraphTargets(
                      "worst " + Fixed(worst_clear, 1) + " %", worst_clear >= 100.0});
   targets.push_back({"grid-connected cell pairs connected in the graph >= 98 % on every map",
                      "worst " + Fixed(worst_connected, 1) + " %", worst_connected >= 98.0});
-  targets.push_back({"graph route / A* route <= 1.2 on median, on every map",
-                     "worst " + Fixed(worst_ratio, 3), worst_ratio <= 1.2});
+  targets.push_back(
+      {"graph route / A* route <= 1.2 on median, on every map (joined at the best of 4 nodes)",
+       "worst " + Fixed(worst_ratio, 3), worst_ratio <= 1.2});
   const double density = Median(densities);
   targets.push_back(
       {"nodes per 5 m^2 of free space <= 1, median over maps", Fixed(density, 3), density <= 1.0});
@@ -295,9 +303,10 @@ void PrintRouteGraphBench(const std::vector<RouteGraphBenchRow>& rows,
   out << "Route graph (radius " << options.robot_radius
       << " m) against A* on the inflated grid\n\n";
   out << "| map | size (m) | free (m^2) | nodes | edges | parts | nodes / 5 m^2 | routes clear | "
-         "cell pairs connected | median length / A* | build (ms) | per 100x100 m at 0.05 m (ms) | "
+         "cell pairs connected | median length / A* | via nearest node | build (ms) | per 100x100 "
+         "m at 0.05 m (ms) | "
          "one-tile update (ms) |\n";
-  out << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  out << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const RouteGraphBenchRow& row : rows) {
     out << "| " << row.map << " | " << Fixed(row.width_m, 1) << " x " << Fixed(row.height_m, 1)
         << " | " << Fixed(row.free_m2, 0) << " | " << row.nodes << " | " << row.edges << " | "
@@ -305,8 +314,9 @@ void PrintRouteGraphBench(const std::vector<RouteGraphBenchRow>& rows,
         << " / " << row.routes << " (" << Fixed(row.routes_clear_percent(), 1) << " %) | "
         << row.cell_pairs_connected << " / " << row.cell_pairs << " ("
         << Fixed(row.connected_percent(), 1) << " %) | " << Fixed(row.median_length_ratio, 3)
-        << " (" << row.length_pairs << ") | " << Fixed(row.build_ms, 1) << " | "
-        << Fixed(row.build_ms_per_hectare, 0) << " | " << Fixed(row.update_ms, 1) << " |\n";
+        << " (" << row.length_pairs << ") | " << Fixed(row.median_nearest_ratio, 3) << " | "
+        << Fixed(row.build_ms, 1) << " | " << Fixed(row.build_ms_per_hectare, 0) << " | "
+        << Fixed(row.update_ms, 1) << " |\n";
   }
   out << "\nTargets (issue 37):\n\n| target | actual | |\n|---|---|---|\n";
   for (const RouteGraphTarget& target : targets) {
@@ -336,6 +346,7 @@ nlohmann::ordered_json RouteGraphBenchJson(const std::vector<RouteGraphBenchRow>
                     {"cell_pairs_connected", row.cell_pairs_connected},
                     {"length_pairs", row.length_pairs},
                     {"median_length_ratio", row.median_length_ratio},
+                    {"median_length_ratio_via_nearest_node", row.median_nearest_ratio},
                     {"build_ms", row.build_ms},
                     {"build_ms_per_100x100m", row.build_ms_per_hectare},
                     {"one_tile_update_ms", row.update_ms}});
@@ -357,15 +368,17 @@ nlohmann::ordered_json RouteGraphBenchJson(const std::vector<RouteGraphBenchRow>
 std::string RouteGraphBenchCsv(const std::vector<RouteGraphBenchRow>& rows) {
   std::ostringstream csv;
   csv << "map,width_m,height_m,free_m2,nodes,edges,graph_parts,nodes_per_5m2,routes,routes_clear,"
-         "cell_pairs,cell_pairs_connected,median_length_ratio,build_ms,build_ms_per_100x100m,"
+         "cell_pairs,cell_pairs_connected,median_length_ratio,median_length_ratio_via_nearest_node,"
+         "build_ms,build_ms_per_100x100m,"
          "one_tile_update_ms\n";
   for (const RouteGraphBenchRow& row : rows) {
     csv << row.map << "," << Fixed(row.width_m, 2) << "," << Fixed(row.height_m, 2) << ","
         << Fixed(row.free_m2, 1) << "," << row.nodes << "," << row.edges << "," << row.graph_parts
         << "," << Fixed(row.nodes_per_5m2, 4) << "," << row.routes << "," << row.routes_clear << ","
         << row.cell_pairs << "," << row.cell_pairs_connected << ","
-        << Fixed(row.median_length_ratio, 4) << "," << Fixed(row.build_ms, 2) << ","
-        << Fixed(row.build_ms_per_hectare, 1) << "," << Fixed(row.update_ms, 2) << "\n";
+        << Fixed(row.median_length_ratio, 4) << "," << Fixed(row.median_nearest_ratio, 4) << ","
+        << Fixed(row.build_ms, 2) << "," << Fixed(row.build_ms_per_hectare, 1) << ","
+        << Fixed(row.update_ms, 2) << "\n";
   }
   return csv.str();
 }

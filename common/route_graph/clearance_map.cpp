@@ -78,13 +78,19 @@ double ClearanceMap::PointBound(const Point2& point, double enough) const {
   // bounds the point. The best of the 3 x 3 cells around the point's cell.
   const grid::CellIndex cell = CellOf(point);
   double best = -1.0;
+  // The point's own cell first: in open space it alone is enough.
+  if (Contains(cell.x, cell.y) && at(cell.x, cell.y) > 0.0F) {
+    best = at(cell.x, cell.y) - (point - CellCenter(cell.x, cell.y)).norm();
+    if (best >= enough) return best;
+  }
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       const int x = cell.x + dx;
       const int y = cell.y + dy;
-      if (!Contains(x, y)) continue;
+      if ((dx == 0 && dy == 0) || !Contains(x, y)) continue;
       const float value = at(x, y);
-      if (value <= 0.0F) continue;
+      // A neighbour's centre is at least half a cell from the point.
+      if (value <= 0.0F || value - 0.5 * resolution_ <= best) continue;
       best = std::max(best, value - (point - CellCenter(x, y)).norm());
       if (best >= enough) return best;
     }

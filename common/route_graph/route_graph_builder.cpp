@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/core/check.hpp"
+#include "common/core/number_format.hpp"
 #include "common/route_graph/internal/skeleton_graph.hpp"
 
 namespace fleetmap::route_graph {
@@ -172,36 +173,40 @@ std::vector<Cut> CutPoints(const std::vector<int>& cells, int width, const Clear
   return cuts;
 }
 
-// The indices of `cells` in [first, last] kept as corners: each segment between two corners keeps
-// `required`; split at the cell farthest from the chord until it does.
+// The indices of `points` in [first, last] kept as corners: each segment between two corners
+// keeps `required`. Greedy: from each corner, the farthest point ahead it sees, found by doubling
+// the step and then halving it (the neighbouring point is always seen: adjacent skeleton cells).
 std::vector<size_t> Straighten(const std::vector<Point2>& points, size_t first, size_t last,
                                const ClearanceMap& clearance, double required) {
   std::vector<size_t> corners = {first};
-  std::vector<std::pair<size_t, size_t>> stack = {{first, last}};
-  while (!stack.empty()) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    if (b <= a + 1 || clearance.SegmentKeeps(points[a], points[b], required)) {
-      corners.push_back(b);
-      continue;
+  size_t from = first;
+  auto sees = [&](size_t to) { return clearance.SegmentKeeps(points[from], points[to], required); };
+  while (from < last) {
+    if (sees(last)) {
+      corners.push_back(last);
+      break;
     }
-    const Vector2 chord = points[b] - points[a];
-    const double chord_length = chord.norm();
-    size_t split = (a + b) / 2;
-    if (chord_length > 1e-9) {
-      double farthest = -1.0;
-      for (size_t i = a + 1; i < b; ++i) {
-        const Vector2 offset = points[i] - points[a];
-        const double distance =
-            std::abs(chord.x() * offset.y() - chord.y() * offset.x()) / chord_length;
-        if (distance > farthest) {
-          farthest = distance;
-          split = i;
-        }
+    size_t good = from + 1;
+    size_t step = 1;
+    size_t bad = last;
+    while (good + step < last) {
+      if (!sees(good + step)) {
+        bad = good + step;
+        break;
+      }
+      good += step;
+      step *= 2;
+    }
+    while (bad > good + 1) {
+      const size_t middle = good + (bad - good) / 2;
+      if (sees(middle)) {
+        good = middle;
+      } else {
+        bad = middle;
       }
     }
-    stack.push_back({split, b});
-    stack.push_back({a, split});
+    corners.push_back(good);
+    from = good;
   }
   return corners;
 }
@@ -567,21 +572,22 @@ RouteGraph RouteGraphBuilder::Extract() {
         clearance_.values().empty()
             ? 0.0F
             : *std::max_element(clearance_.values().begin(), clearance_.values().end());
-    message << "empty route graph: a robot of radius " << options_.robot_radius << " m needs "
-            << NodeClearance() << " m of clearance (radius + margin) and the widest free space "
-            << "of the map has " << std::max(0.0F, widest) << " m: ";
+    message << "empty route graph: a robot of radius " << ShortNumber(options_.robot_radius)
+            << " m needs " << FixedNumber(NodeClearance(), 3)
+            << " m of clearance (radius + margin) and the widest free space of the map has "
+            << FixedNumber(std::max(0.0F, widest), 2) << " m: ";
     if (widest < NodeClearance()) {
       message << "the robot fits nowhere (no doorway or corridor is wide enough)";
     } else {
-      message << "the robot fits only in pockets with less than " << options_.min_part_length
-              << " m of route in them";
+      message << "the robot fits only in pockets with less than "
+              << ShortNumber(options_.min_part_length) << " m of route in them";
     }
   } else {
     const int parts = CountComponents(graph.nodes.size(), graph.edges);
     if (parts > 1) {
       message << "the route graph has " << parts
-              << " parts not connected to each other: a robot of radius " << options_.robot_radius
-              << " m (" << NodeClearance()
+              << " parts not connected to each other: a robot of radius "
+              << ShortNumber(options_.robot_radius) << " m (" << FixedNumber(NodeClearance(), 3)
               << " m of clearance) does not fit through what joins them, or the map does not "
                  "join them";
     }

@@ -34,16 +34,16 @@ struct RouteGraphOptions {
   // grid's discretisation); the margin used is at least one cell, so edges always keep the radius.
   double clearance_margin = 0.05;
   double lane_spacing = 5.0;     // a straight edge longer than this is cut into equal lanes
-  double merge_distance = 0.6;   // junctions closer than this along a corridor become one
-  double min_spur_length = 1.0;  // dead ends shorter than this (beyond a wall's bump) are noise
-  double doorway_ratio = 0.7;    // a clearance minimum below this share of both sides' is a door
+  double merge_distance = 1.5;   // junctions closer than this along a corridor become one
+  double min_spur_length = 1.5;  // dead ends shorter than this (beyond a wall's bump) are noise
+  double doorway_ratio = 0.6;    // a clearance minimum below this share of both sides' is a door
   double doorway_window = 2.0;   // metres looked at on each side of a doorway candidate
   double clearance_cap = 3.0;    // clearances are exact up to this, metres
-  double tile_size = 10.0;       // curves are cut at these tile borders, so changes stay local
+  double tile_size = 20.0;       // curves are cut at these tile borders, so changes stay local
   // Nodes this close that see each other get a straight edge when the graph's way round is more
   // than `shortcut_ratio` times longer (0: none).
-  double shortcut_radius = 5.0;
-  double shortcut_ratio = 1.1;
+  double shortcut_radius = 6.0;
+  double shortcut_ratio = 1.05;
   // Parts of the graph a robot moves less than this in (edge length plus the widest circle its
   // centre moves in at a node) are dropped: pockets of free space going nowhere.
   double min_part_length = 1.0;

@@ -74,20 +74,46 @@ std::optional<Route> RoutePlanner::Plan(uint32_t from, uint32_t to) const {
   return route;
 }
 
-std::optional<uint32_t> RoutePlanner::Entry(const Point2& point, const ClearanceMap& clearance,
-                                            double required, int tries) const {
+std::vector<uint32_t> RoutePlanner::Entries(const Point2& point, const ClearanceMap& clearance,
+                                            double required, int tries, int count) const {
   std::vector<std::pair<double, size_t>> nearest;
   nearest.reserve(graph_.nodes.size());
   for (size_t i = 0; i < graph_.nodes.size(); ++i) {
     nearest.push_back({(graph_.nodes[i].position - point).squaredNorm(), i});
   }
-  const size_t count = std::min(nearest.size(), static_cast<size_t>(std::max(tries, 0)));
-  std::partial_sort(nearest.begin(), nearest.begin() + count, nearest.end());
-  for (size_t k = 0; k < count; ++k) {
+  const size_t considered = std::min(nearest.size(), static_cast<size_t>(std::max(tries, 0)));
+  std::partial_sort(nearest.begin(), nearest.begin() + considered, nearest.end());
+  std::vector<uint32_t> entries;
+  for (size_t k = 0; k < considered && static_cast<int>(entries.size()) < count; ++k) {
     const RouteNode& node = graph_.nodes[nearest[k].second];
-    if (clearance.SegmentKeeps(point, node.position, required)) return node.id;
+    if (clearance.SegmentKeeps(point, node.position, required)) entries.push_back(node.id);
   }
-  return std::nullopt;
+  return entries;
+}
+
+std::optional<uint32_t> RoutePlanner::Entry(const Point2& point, const ClearanceMap& clearance,
+                                            double required, int tries) const {
+  const std::vector<uint32_t> entries = Entries(point, clearance, required, tries, 1);
+  if (entries.empty()) return std::nullopt;
+  return entries.front();
+}
+
+std::optional<double> RoutePlanner::ShortestWay(const Point2& from, const Point2& to,
+                                                const ClearanceMap& clearance,
+                                                double required) const {
+  const std::vector<uint32_t> starts = Entries(from, clearance, required);
+  const std::vector<uint32_t> goals = Entries(to, clearance, required);
+  std::optional<double> best;
+  for (const uint32_t start : starts) {
+    for (const uint32_t goal : goals) {
+      const std::optional<Route> route = Plan(start, goal);
+      if (!route) continue;
+      const double length = (graph_.FindNode(start)->position - from).norm() + route->length +
+                            (graph_.FindNode(goal)->position - to).norm();
+      if (!best || length < *best) best = length;
+    }
+  }
+  return best;
 }
 
 }  // namespace fleetmap::route_graph

@@ -34,6 +34,13 @@ class RoutePlanner {
   // `required` on `clearance`, among the `tries` nearest nodes; nothing if none does.
   std::optional<uint32_t> Entry(const Point2& point, const ClearanceMap& clearance, double required,
                                 int tries = 16) const;
+  // Up to `count` such nodes, nearest first: where a planner may join the graph.
+  std::vector<uint32_t> Entries(const Point2& point, const ClearanceMap& clearance, double required,
+                                int tries = 16, int count = 4) const;
+  // The shortest way from `from` to `to` through the graph: a straight leg to one of the entries
+  // of `from`, a route, a straight leg from one of the entries of `to`; nothing if none connects.
+  std::optional<double> ShortestWay(const Point2& from, const Point2& to,
+                                    const ClearanceMap& clearance, double required) const;
 
  private:
   const RouteGraph& graph_;
