@@ -1,8 +1,8 @@
 #pragma once
 
 // The route graph builder's stages on the skeleton's cells (private to common/route_graph): the
-// skeleton as a graph of curves between nodes, its spurs pruned and near junctions merged, then
-// each curve cut at doorways and tile borders into pieces. Cells are linear indices y * width + x.
+// skeleton as a graph of curves between nodes, its spurs pruned and near junctions merged. Cells
+// are linear indices y * width + x.
 
 #include <cstdint>
 #include <vector>
