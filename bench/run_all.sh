@@ -67,6 +67,8 @@ for events in 2 5; do
 done
 run register "$fleetmap" bench register --maps "$maps" --pairs-per-overlap 12 --seed 1 \
   --json "$out/register.json" --csv "$out/register.csv"
+run route_graph "$fleetmap" bench route-graph --maps "$maps" --runs 5 \
+  --json "$out/route_graph.json" --csv "$out/route_graph.csv"
 run quarantine "$fleetmap" bench quarantine --runs 3 --out "$out/quarantine"
 run failover "$fleetmap" bench failover --robots 8 --runs 10 --out "$out/failover"
 run capacity "$fleetmap" bench capacity --robots 8 16 32 64 128 256 --out "$out/capacity"

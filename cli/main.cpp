@@ -15,6 +15,7 @@
 #include "bench/objects/bench_objects_command.hpp"
 #include "bench/paper/bench_paper_command.hpp"
 #include "bench/register/bench_register_command.hpp"
+#include "bench/route_graph/bench_route_graph_command.hpp"
 #include "bench/vectorize/bench_vectorize_command.hpp"
 #include "cli/admit_command.hpp"
 #include "cli/compare_command.hpp"
@@ -25,6 +26,7 @@
 #include "cli/rasterize_command.hpp"
 #include "cli/register_command.hpp"
 #include "cli/render_command.hpp"
+#include "cli/route_graph_command.hpp"
 #include "cli/save_map_command.hpp"
 #include "cli/security_command.hpp"
 #include "cli/terrain_command.hpp"
@@ -64,6 +66,8 @@ int main(int argc, char** argv) {
   fleetmap::cli::AddSaveMapCommand(app, &exit_code);
   const auto view_config = fleetmap::cli::AddViewCommand(app, &exit_code);
   fleetmap::cli::AddAdmitCommand(app, &exit_code);
+  fleetmap::cli::AddRouteGraphCommand(app, &exit_code);
+  fleetmap::bench::AddBenchRouteGraphCommand(app, &exit_code);
   if (const auto exit_now =
           fleetmap::config::ParseCommandLine(app, argc, argv, {view_config.get()})) {
     return *exit_now;

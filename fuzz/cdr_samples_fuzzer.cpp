@@ -26,6 +26,7 @@
 #include "fleetmap_msgs/msg/ObjectTemplatePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/RouteGraphPubSubTypes.h"
 #include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
 #include "map_msgs/msg/OccupancyGridUpdatePubSubTypes.h"
@@ -63,7 +64,7 @@ void Receive(const CdrShape& shape, std::span<const uint8_t> bytes, Convert conv
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const std::span<const uint8_t> bytes(data + 1, size - 1);
-  switch (data[0] % 11) {
+  switch (data[0] % 12) {
     case 0:
       Receive<fleetmap_msgs::msg::dds_::VectorTile_PubSubType>(
           VectorTileShape(), bytes, [](const auto& sample) { (void)FromIdl(sample); });
@@ -106,6 +107,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     case 9:
       Receive<fleetmap_msgs::msg::dds_::RobotFrame_PubSubType>(
           RobotFrameShape(), bytes, [](const auto& sample) { (void)FromIdl(sample); });
+      break;
+    case 10:
+      Receive<fleetmap_msgs::msg::dds_::RouteGraph_PubSubType>(
+          RouteGraphShape(), bytes, [](const auto& sample) { (void)FromIdl(sample); });
       break;
     default:
       Receive<tf2_msgs::msg::dds_::TFMessage_PubSubType>(

@@ -31,6 +31,7 @@
 #include "fleetmap_msgs/msg/ObjectModel.h"
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotFrame.h"
+#include "fleetmap_msgs/msg/RouteGraph.h"
 #include "fleetmap_msgs/msg/Submap.h"
 #include "tf2_msgs/msg/TFMessage.h"
 
@@ -182,7 +183,22 @@ void WriteSampleSeeds(SeedWriter& seeds) {
   tf.transforms().resize(2);
   tf.transforms()[0].header().frame_id("fleet");
   tf.transforms()[0].child_frame_id("alpha/map");
-  WriteSample(seeds, 10, "tf", tf);
+  fleetmap_msgs::msg::dds_::RouteGraph_ route_graph;
+  route_graph.graph_id("fleet");
+  route_graph.frame("map");
+  route_graph.node_id({1, 2});
+  route_graph.node_x({0.0, 2.0});
+  route_graph.node_y({0.0, 1.0});
+  route_graph.node_kind({1, 1});
+  route_graph.node_clearance({0.4F, 0.4F});
+  route_graph.edge_id({3});
+  route_graph.edge_reverse_id({4});
+  route_graph.edge_start({1});
+  route_graph.edge_end({2});
+  route_graph.edge_length({2.2F});
+  route_graph.edge_clearance({0.35F});
+  WriteSample(seeds, 10, "route_graph", route_graph);
+  WriteSample(seeds, 11, "tf", tf);
 }
 
 void WritePlySeeds(const fs::path& out) {

@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
                  "extrapolation threshold on the peak-normalised kernels, in (0, 1)");
   app.add_option("--confirm-precision", options.prediction.confirm_precision,
                  "a judged prediction is confirmed at this observed precision, else retracted");
+  app.add_flag("--route-graph", options.route_graph.enabled,
+               "publish the fused map as a route graph on rt/fleetmap/route_graph "
+               "(docs/route-graph.md)");
+  app.add_option("--route-graph-radius", options.route_graph.graph.robot_radius,
+                 "the robots' radius the route graph is built for, metres")
+      ->capture_default_str();
   app.add_option("--max-tiles-per-robot", options.map.admission.max_tiles_per_robot,
                  "distinct tiles one robot id may hold (about 250 KB of server memory each)")
       ->check(CLI::PositiveNumber);

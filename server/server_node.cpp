@@ -46,6 +46,7 @@ Status ServerOptions::Validate() const {
   if (prediction.enabled) {
     FLEETMAP_RETURN_IF_ERROR(prediction.Validate().WithContext("map extrapolation"));
   }
+  if (route_graph.enabled) FLEETMAP_RETURN_IF_ERROR(route_graph.Validate());
   return Status::Ok();
 }
 
@@ -92,11 +93,18 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
     FLEETMAP_ASSIGN_OR_RETURN(node->entity_reader_,
                               transport::EntityReader::Create(*node->participant_, node->wake_up_));
   }
+  if (node->options_.route_graph.enabled) {
+    FLEETMAP_ASSIGN_OR_RETURN(
+        node->route_graph_worker_,
+        RouteGraphWorker::Create(*node->participant_, node->options_.route_graph));
+  }
   ObjectLearningWorker* learning = node->learning_worker_.get();
   PredictionWorker* prediction = node->prediction_worker_.get();
+  RouteGraphWorker* route_graph = node->route_graph_worker_.get();
   node->fusion_worker_->SetListeners(
-      [prediction](const grid::OccupancyGrid& fused) {
+      [prediction, route_graph](const grid::OccupancyGrid& fused) {
         if (prediction != nullptr) prediction->SubmitMap(fused);
+        if (route_graph != nullptr) route_graph->SubmitMap(fused);
       },
       [learning](std::vector<MappingSession> finished) {
         if (learning != nullptr) learning->Submit(std::move(finished));
@@ -116,6 +124,7 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
                participant_->localhost_only() ? " (localhost only)" : "");
   if (learning_worker_) learning_worker_->Start();
   if (prediction_worker_) prediction_worker_->Start();
+  if (route_graph_worker_) route_graph_worker_->Start();
   // It serves once it has listened for a stronger server (FleetPresence).
   fusion_worker_->SetServing(false);
   fusion_worker_->Start();
@@ -136,11 +145,13 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
   presence_.reset();
   fusion_worker_->Stop();
   if (prediction_worker_) prediction_worker_->Stop();
+  if (route_graph_worker_) route_graph_worker_->Stop();
   if (learning_worker_) learning_worker_->Stop();
   PrintSummary(fusion_worker_->stats());
   // Readers and writers go before the participant that owns their topics.
   fusion_worker_.reset();
   prediction_worker_.reset();
+  route_graph_worker_.reset();
   learning_worker_.reset();
   entity_reader_.reset();
   for (auto& [robot, record] : robots_) record.map_feed.reset();
@@ -502,6 +513,7 @@ void ServerOptions::Describe(OptionsPrinter& out) const {
   out.Nested("worker", worker);
   out.Nested("learning", learning);
   out.Nested("prediction", prediction);
+  out.Nested("route_graph", route_graph);
   out.Add("transforms", transforms);
   out.Add("max_robots_per_participant", max_robots_per_participant);
   out.Add("name", name);

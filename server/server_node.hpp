@@ -21,6 +21,7 @@
 #include "server/refusal_log.hpp"
 #include "server/robot_map_feed.hpp"
 #include "server/robot_registry.hpp"
+#include "server/route_graph_worker.hpp"
 
 namespace fleetmap::server {
 
@@ -31,6 +32,7 @@ struct ServerOptions {
   FusionWorkerOptions worker;   // how the fusion worker keeps, publishes and waits
   ObjectLearningOptions learning;
   extrapolation::PredictionOptions prediction;
+  RouteGraphServiceOptions route_graph;  // the fused map as a route graph (off by default)
   // Known fleet_from_map per robot (--transforms): used for grid-wire robots instead of what
   // their status says; a tile-wire robot whose status disagrees is reported.
   std::map<RobotId, Pose2> transforms;
@@ -117,6 +119,7 @@ class ServerNode {
   std::unique_ptr<FusionWorker> fusion_worker_;
   std::unique_ptr<ObjectLearningWorker> learning_worker_;   // null when disabled
   std::unique_ptr<PredictionWorker> prediction_worker_;     // null when disabled
+  std::unique_ptr<RouteGraphWorker> route_graph_worker_;    // null when disabled
   std::unique_ptr<transport::EntityReader> entity_reader_;  // null when prediction is disabled
   // Entities of robots whose status (and so fleet_from_map) has not arrived yet, by robot, with
   // the writer that sent each: only the owner's are used once a status claims the robot.

@@ -81,6 +81,23 @@ struct TopicTraits<ObjectTemplateMessage> {
 };
 
 template <>
+struct TopicTraits<RouteGraphMessage> {
+  using Sample = fleetmap_msgs::msg::dds_::RouteGraph_;
+  static constexpr const char* kTopic = kRouteGraphTopic;
+  static constexpr bool kServed = true;
+  static constexpr bool kKeyedByRobotFirst = false;
+  static dds::TypeSupport Type() { return RouteGraphTypeSupport(); }
+  static RouteGraphMessage KeyOf(const RouteGraphMessage& message) {
+    RouteGraphMessage key;
+    key.graph_id = message.graph_id;
+    return key;
+  }
+  static std::string Sender(const Sample& sample) {
+    return "route graph " + sample.graph_id().substr(0, 64);
+  }
+};
+
+template <>
 struct TopicTraits<ObjectModelMessage> {
   using Sample = fleetmap_msgs::msg::dds_::ObjectModel_;
   static constexpr const char* kTopic = kObjectsTopic;
@@ -323,6 +340,8 @@ template class KeyedStateWriter<ObjectTemplateMessage>;
 template class KeyedStateReader<ObjectTemplateMessage>;
 template class KeyedStateWriter<ObjectModelMessage>;
 template class KeyedStateReader<ObjectModelMessage>;
+template class KeyedStateWriter<RouteGraphMessage>;
+template class KeyedStateReader<RouteGraphMessage>;
 template class KeyedStateWriter<RobotFrameMessage>;
 template class KeyedStateReader<RobotFrameMessage>;
 template class KeyedStateWriter<RobotAdmissionMessage>;

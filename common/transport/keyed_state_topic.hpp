@@ -2,7 +2,8 @@
 
 // Readers and writers of the keyed state topics that carry one instance per thing: the entities
 // agents recognise (rt/fleetmap/entities), the sub-map graph (rt/fleetmap/submap_graph) and the
-// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects), the robots' map
+// learned object models (rt/fleetmap/object_templates, rt/fleetmap/objects), the route graph
+// (rt/fleetmap/route_graph), the robots' map
 // frames (rt/fleetmap/robot_frames), operators' admissions (rt/fleetmap/admissions) and the
 // servers (rt/fleetmap/servers). All share one QoS (KeyedStateQos: reliable, transient local, keep
 // last 1 per instance), with exclusive ownership on those a server serves (served_state.hpp), and
@@ -88,6 +89,9 @@ using ObjectTemplateReader = KeyedStateReader<ObjectTemplateMessage>;
 using ObjectModelEvent = KeyedEvent<ObjectModelMessage>;
 using ObjectModelWriter = KeyedStateWriter<ObjectModelMessage>;
 using ObjectModelReader = KeyedStateReader<ObjectModelMessage>;
+using RouteGraphEvent = KeyedEvent<RouteGraphMessage>;
+using RouteGraphWriter = KeyedStateWriter<RouteGraphMessage>;
+using RouteGraphReader = KeyedStateReader<RouteGraphMessage>;
 using RobotFrameEvent = KeyedEvent<RobotFrameMessage>;
 using RobotFrameWriter = KeyedStateWriter<RobotFrameMessage>;
 using RobotFrameReader = KeyedStateReader<RobotFrameMessage>;

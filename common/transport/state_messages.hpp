@@ -11,6 +11,7 @@
 #include "common/core/robot_frame.hpp"
 #include "common/core/robot_status.hpp"
 #include "common/core/types.hpp"
+#include "common/route_graph/route_graph.hpp"
 #include "common/scene/entities.hpp"
 #include "common/scene/patch.hpp"
 #include "common/scene/submap_graph.hpp"
@@ -32,6 +33,15 @@ struct EntityMessage {
 // One node of the sub-map graph (rt/fleetmap/submap_graph): the plain node the prediction tracker
 // makes, under the name the other topics' messages share.
 using SubmapMessage = scene::SubmapNode;
+
+// The fleet map as a route graph (rt/fleetmap/route_graph), one instance per graph_id ("fleet"
+// for the fused map's): the graph and its revision, which grows by one at each change.
+struct RouteGraphMessage {
+  std::string graph_id = "fleet";
+  uint64_t revision = 0;
+  route_graph::RouteGraph graph;
+  Timestamp stamp{};
+};
 
 // A learned class of movable objects (rt/fleetmap/object_templates).
 struct ObjectTemplateMessage {

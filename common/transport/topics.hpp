@@ -20,6 +20,7 @@ inline constexpr char kObjectsTopic[] = "rt/fleetmap/objects";
 inline constexpr char kRobotFramesTopic[] = "rt/fleetmap/robot_frames";
 inline constexpr char kAdmissionsTopic[] = "rt/fleetmap/admissions";
 inline constexpr char kServersTopic[] = "rt/fleetmap/servers";
+inline constexpr char kRouteGraphTopic[] = "rt/fleetmap/route_graph";
 // ROS 2's transform tree (/tf): the server publishes fleet -> <robot>/map there.
 inline constexpr char kTfTopic[] = "rt/tf";
 

@@ -51,11 +51,11 @@ std::vector<Command> AllCommands() {
   std::vector<Command> commands = {{testing::kServerBinary, {}}, {testing::kAgentBinary, {}}};
   for (const char* name :
        {"info", "sim", "terrain", "vectorize", "validate", "rasterize", "compare", "render",
-        "extrapolate", "learn-objects", "register", "save-map", "view", "admit"}) {
+        "extrapolate", "learn-objects", "register", "save-map", "view", "admit", "route-graph"}) {
     commands.push_back({kFleetmapBinary, {name}});
   }
   for (const char* name : {"fleet", "loss", "quarantine", "failover", "capacity", "flood", "paper",
-                           "vectorize", "extrapolation", "objects", "register"}) {
+                           "vectorize", "extrapolation", "objects", "register", "route-graph"}) {
     commands.push_back({kFleetmapBinary, {"bench", name}});
   }
   for (const char* name : {"init", "enroll", "revoke", "show"}) {

@@ -9,6 +9,7 @@
 #include "fleetmap_msgs/msg/RobotAdmissionPubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotFramePubSubTypes.h"
 #include "fleetmap_msgs/msg/RobotStatusPubSubTypes.h"
+#include "fleetmap_msgs/msg/RouteGraphPubSubTypes.h"
 #include "fleetmap_msgs/msg/SubmapPubSubTypes.h"
 #include "fleetmap_msgs/msg/VectorTilePubSubTypes.h"
 #include "map_msgs/msg/OccupancyGridUpdatePubSubTypes.h"
@@ -92,6 +93,11 @@ eprosima::fastdds::dds::TypeSupport RobotAdmissionTypeSupport() {
 eprosima::fastdds::dds::TypeSupport FleetServerTypeSupport() {
   return eprosima::fastdds::dds::TypeSupport(
       new CheckedPubSubType<fleetmap_msgs::msg::dds_::FleetServer_PubSubType>(FleetServerShape()));
+}
+
+eprosima::fastdds::dds::TypeSupport RouteGraphTypeSupport() {
+  return eprosima::fastdds::dds::TypeSupport(
+      new CheckedPubSubType<fleetmap_msgs::msg::dds_::RouteGraph_PubSubType>(RouteGraphShape()));
 }
 
 eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport() {

@@ -163,6 +163,7 @@ eprosima::fastdds::dds::TypeSupport ObjectModelTypeSupport();
 eprosima::fastdds::dds::TypeSupport RobotFrameTypeSupport();
 eprosima::fastdds::dds::TypeSupport RobotAdmissionTypeSupport();
 eprosima::fastdds::dds::TypeSupport FleetServerTypeSupport();
+eprosima::fastdds::dds::TypeSupport RouteGraphTypeSupport();
 eprosima::fastdds::dds::TypeSupport TfMessageTypeSupport();
 
 }  // namespace fleetmap::transport

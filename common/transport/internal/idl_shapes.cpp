@@ -204,6 +204,28 @@ const CdrShape& FleetServerShape() {
   return shape;
 }
 
+const CdrShape& RouteGraphShape() {
+  static const CdrShape shape = {String("graph_id"),
+                                 Struct("stamp", TimeShape()),
+                                 Primitive("revision", 8),
+                                 String("frame"),
+                                 Primitive("robot_radius", 8),
+                                 Primitive("clearance_margin", 8),
+                                 Sequence("node_id", 4),
+                                 Sequence("node_x", 8),
+                                 Sequence("node_y", 8),
+                                 Sequence("node_kind", 1),
+                                 Sequence("node_clearance", 4),
+                                 Sequence("edge_id", 4),
+                                 Sequence("edge_reverse_id", 4),
+                                 Sequence("edge_start", 4),
+                                 Sequence("edge_end", 4),
+                                 Sequence("edge_length", 4),
+                                 Sequence("edge_clearance", 4),
+                                 String("note")};
+  return shape;
+}
+
 const CdrShape& TfMessageShape() {
   static const CdrShape vector3 = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8)};
   static const CdrShape quaternion = {Primitive("x", 8), Primitive("y", 8), Primitive("z", 8),

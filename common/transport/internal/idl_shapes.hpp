@@ -25,6 +25,7 @@ const CdrShape& ObjectModelShape();
 const CdrShape& RobotFrameShape();
 const CdrShape& RobotAdmissionShape();
 const CdrShape& FleetServerShape();
+const CdrShape& RouteGraphShape();
 const CdrShape& TfMessageShape();
 
 }  // namespace fleetmap::transport

@@ -17,6 +17,7 @@ using fleetmap_msgs::msg::dds_::ObjectModel_;
 using fleetmap_msgs::msg::dds_::ObjectTemplate_;
 using fleetmap_msgs::msg::dds_::RobotAdmission_;
 using fleetmap_msgs::msg::dds_::RobotFrame_;
+using fleetmap_msgs::msg::dds_::RouteGraph_;
 using fleetmap_msgs::msg::dds_::Submap_;
 
 // Ids are names a log can print: bounded, printable, no spaces.
@@ -458,6 +459,121 @@ StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
          Pose2{sample.sighting_x()[k], sample.sighting_y()[k], sample.sighting_theta()[k]}});
   }
   message.stamp = FromIdl(sample.stamp());
+  return message;
+}
+
+// A route graph on the wire: bounded, ids unique across nodes and edges, edges between its nodes.
+constexpr size_t kMaxRouteGraphElements = 1'000'000;
+
+StatusOr<RouteGraph_> ToIdl(const RouteGraphMessage& message) {
+  FLEETMAP_RETURN_IF_ERROR(CheckId(message.graph_id, "RouteGraph graph_id"));
+  const route_graph::RouteGraph& graph = message.graph;
+  if (graph.nodes.size() + graph.edges.size() > kMaxRouteGraphElements) {
+    return InvalidArgumentError("route graph " + message.graph_id + " has more than " +
+                                std::to_string(kMaxRouteGraphElements) + " nodes and edges");
+  }
+  RouteGraph_ sample;
+  sample.graph_id(message.graph_id);
+  sample.stamp(ToIdl(message.stamp));
+  sample.revision(message.revision);
+  sample.frame(graph.frame);
+  sample.robot_radius(graph.robot_radius);
+  sample.clearance_margin(graph.clearance_margin);
+  for (const route_graph::RouteNode& node : graph.nodes) {
+    sample.node_id().push_back(node.id);
+    sample.node_x().push_back(node.position.x());
+    sample.node_y().push_back(node.position.y());
+    sample.node_kind().push_back(static_cast<uint8_t>(node.kind));
+    sample.node_clearance().push_back(static_cast<float>(node.clearance));
+  }
+  for (const route_graph::RouteEdge& edge : graph.edges) {
+    sample.edge_id().push_back(edge.id);
+    sample.edge_reverse_id().push_back(edge.reverse_id);
+    sample.edge_start().push_back(edge.start);
+    sample.edge_end().push_back(edge.end);
+    sample.edge_length().push_back(static_cast<float>(edge.length));
+    sample.edge_clearance().push_back(static_cast<float>(edge.clearance));
+  }
+  sample.note(graph.message.substr(0, kMaxReasonLength));
+  return sample;
+}
+
+StatusOr<RouteGraphMessage> FromIdl(const RouteGraph_& sample) {
+  FLEETMAP_RETURN_IF_ERROR(CheckId(sample.graph_id(), "RouteGraph graph_id"));
+  const std::string name = "route graph " + sample.graph_id();
+  const size_t nodes = sample.node_id().size();
+  const size_t edges = sample.edge_id().size();
+  if (sample.node_x().size() != nodes || sample.node_y().size() != nodes ||
+      sample.node_kind().size() != nodes || sample.node_clearance().size() != nodes) {
+    return InvalidArgumentError(name + ": node arrays of different lengths");
+  }
+  if (sample.edge_reverse_id().size() != edges || sample.edge_start().size() != edges ||
+      sample.edge_end().size() != edges || sample.edge_length().size() != edges ||
+      sample.edge_clearance().size() != edges) {
+    return InvalidArgumentError(name + ": edge arrays of different lengths");
+  }
+  if (nodes + edges > kMaxRouteGraphElements) {
+    return InvalidArgumentError(name + ": too many nodes and edges");
+  }
+  if (!AllFinite(sample.node_x()) || !AllFinite(sample.node_y()) ||
+      !std::isfinite(sample.robot_radius()) || !std::isfinite(sample.clearance_margin())) {
+    return InvalidArgumentError(name + ": a position or radius is not finite");
+  }
+  if (sample.frame().empty() || sample.frame().size() > kMaxIdLength) {
+    return InvalidArgumentError(name + ": bad frame");
+  }
+  if (sample.note().size() > kMaxReasonLength) {
+    return InvalidArgumentError(name + ": note longer than " + std::to_string(kMaxReasonLength));
+  }
+  RouteGraphMessage message;
+  message.graph_id = sample.graph_id();
+  message.revision = sample.revision();
+  message.stamp = FromIdl(sample.stamp());
+  route_graph::RouteGraph& graph = message.graph;
+  graph.frame = sample.frame();
+  graph.robot_radius = sample.robot_radius();
+  graph.clearance_margin = sample.clearance_margin();
+  graph.message = sample.note();
+  std::vector<uint32_t> ids;
+  for (size_t k = 0; k < nodes; ++k) {
+    if (sample.node_kind()[k] > static_cast<uint8_t>(route_graph::RouteNodeKind::kLane)) {
+      return InvalidArgumentError(name + ": node " + std::to_string(sample.node_id()[k]) +
+                                  " has an unknown kind");
+    }
+    route_graph::RouteNode node;
+    node.id = sample.node_id()[k];
+    node.position = Point2(sample.node_x()[k], sample.node_y()[k]);
+    node.kind = static_cast<route_graph::RouteNodeKind>(sample.node_kind()[k]);
+    node.clearance = sample.node_clearance()[k];
+    graph.nodes.push_back(node);
+    ids.push_back(node.id);
+  }
+  std::sort(
+      graph.nodes.begin(), graph.nodes.end(),
+      [](const route_graph::RouteNode& a, const route_graph::RouteNode& b) { return a.id < b.id; });
+  for (size_t k = 0; k < edges; ++k) {
+    route_graph::RouteEdge edge;
+    edge.id = sample.edge_id()[k];
+    edge.reverse_id = sample.edge_reverse_id()[k];
+    edge.start = sample.edge_start()[k];
+    edge.end = sample.edge_end()[k];
+    edge.length = sample.edge_length()[k];
+    edge.clearance = sample.edge_clearance()[k];
+    if (!graph.FindNode(edge.start) || !graph.FindNode(edge.end)) {
+      return InvalidArgumentError(name + ": edge " + std::to_string(edge.id) +
+                                  " joins a node it does not have");
+    }
+    graph.edges.push_back(edge);
+    ids.push_back(edge.id);
+    ids.push_back(edge.reverse_id);
+  }
+  std::sort(
+      graph.edges.begin(), graph.edges.end(),
+      [](const route_graph::RouteEdge& a, const route_graph::RouteEdge& b) { return a.id < b.id; });
+  std::sort(ids.begin(), ids.end());
+  if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) {
+    return InvalidArgumentError(name + ": an id names two nodes or edges");
+  }
   return message;
 }
 

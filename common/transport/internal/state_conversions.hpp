@@ -13,6 +13,7 @@
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotAdmission.h"
 #include "fleetmap_msgs/msg/RobotFrame.h"
+#include "fleetmap_msgs/msg/RouteGraph.h"
 #include "fleetmap_msgs/msg/Submap.h"
 
 namespace fleetmap::transport {
@@ -33,6 +34,8 @@ StatusOr<ObjectTemplateMessage> FromIdl(const fleetmap_msgs::msg::dds_::ObjectTe
 
 StatusOr<fleetmap_msgs::msg::dds_::ObjectModel_> ToIdl(const ObjectModelMessage& message);
 StatusOr<ObjectModelMessage> FromIdl(const fleetmap_msgs::msg::dds_::ObjectModel_& sample);
+StatusOr<fleetmap_msgs::msg::dds_::RouteGraph_> ToIdl(const RouteGraphMessage& message);
+StatusOr<RouteGraphMessage> FromIdl(const fleetmap_msgs::msg::dds_::RouteGraph_& sample);
 
 StatusOr<fleetmap_msgs::msg::dds_::RobotFrame_> ToIdl(const RobotFrameMessage& message);
 StatusOr<RobotFrameMessage> FromIdl(const fleetmap_msgs::msg::dds_::RobotFrame_& sample);

@@ -12,6 +12,7 @@
 #include "fleetmap_msgs/msg/ObjectTemplate.h"
 #include "fleetmap_msgs/msg/RobotFrame.h"
 #include "fleetmap_msgs/msg/RobotStatus.h"
+#include "fleetmap_msgs/msg/RouteGraph.h"
 #include "fleetmap_msgs/msg/Submap.h"
 #include "fleetmap_msgs/msg/VectorMap.h"
 #include "map_msgs/msg/OccupancyGridUpdate.h"
@@ -160,6 +161,28 @@ TEST(IdlShapesTest, SubmapShapeMatchesGeneratedCode) {
   submap.edge_theta({0.25});
   submap.edge_entity({"alpha/door_1"});
   ExpectShapeMatches(submap, SubmapShape());
+}
+
+TEST(IdlShapesTest, RouteGraphShapeMatchesGeneratedCode) {
+  fleetmap_msgs::msg::dds_::RouteGraph_ graph;
+  graph.graph_id("fleet");
+  graph.revision(3);
+  graph.frame("map");
+  graph.robot_radius(0.3);
+  graph.clearance_margin(0.05);
+  graph.node_id({1, 2});
+  graph.node_x({0.5, 1.5});
+  graph.node_y({-1.0, 2.0});
+  graph.node_kind({0, 4});
+  graph.node_clearance({0.4F, 0.5F});
+  graph.edge_id({3});
+  graph.edge_reverse_id({4});
+  graph.edge_start({1});
+  graph.edge_end({2});
+  graph.edge_length({3.2F});
+  graph.edge_clearance({0.35F});
+  graph.note("two parts");
+  ExpectShapeMatches(graph, RouteGraphShape());
 }
 
 TEST(IdlShapesTest, ObjectShapesMatchGeneratedCode) {

@@ -208,6 +208,41 @@ TEST(StateConversionsTest, ObjectModelRoundTripsAsPercent) {
   EXPECT_FALSE(FromIdl(sample).ok());
 }
 
+TEST(StateConversionsTest, RouteGraphRoundTripsAndRefusesEdgesToNowhereAndSharedIds) {
+  RouteGraphMessage message;
+  message.revision = 7;
+  message.graph.robot_radius = 0.3;
+  message.graph.clearance_margin = 0.05;
+  message.graph.nodes = {{1, Point2(0.5, -1.0), route_graph::RouteNodeKind::kDoorway, 0.4},
+                         {2, Point2(3.5, 2.0), route_graph::RouteNodeKind::kJunction, 0.8}};
+  message.graph.edges = {{3, 4, 1, 2, 5.0, 0.38}};
+  message.graph.message = "a note";
+  StatusOr<RouteGraphMessage> back = FromIdl(*ToIdl(message));
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->graph_id, "fleet");
+  EXPECT_EQ(back->revision, 7u);
+  ASSERT_EQ(back->graph.nodes.size(), 2u);
+  EXPECT_EQ(back->graph.nodes[0].kind, route_graph::RouteNodeKind::kDoorway);
+  EXPECT_EQ(back->graph.nodes[1].position, Point2(3.5, 2.0));
+  ASSERT_EQ(back->graph.edges.size(), 1u);
+  EXPECT_EQ(back->graph.edges[0].reverse_id, 4u);
+  EXPECT_FLOAT_EQ(static_cast<float>(back->graph.edges[0].length), 5.0F);
+  EXPECT_EQ(back->graph.message, "a note");
+
+  auto sample = *ToIdl(message);
+  sample.edge_end({9});
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample = *ToIdl(message);
+  sample.edge_id({2});  // a node's id
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample = *ToIdl(message);
+  sample.node_kind({0, 9});
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample = *ToIdl(message);
+  sample.node_x({0.5});
+  EXPECT_FALSE(FromIdl(sample).ok());
+}
+
 TEST(StateConversionsTest, RobotFrameRoundTripsAndRefusesWhatAReaderCannotUse) {
   RobotFrameMessage frame;
   frame.robot = RobotId{"beta"};

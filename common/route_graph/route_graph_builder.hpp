@@ -1,0 +1,99 @@
+#pragma once
+
+// Builds the route graph of an occupancy grid (the fused map) and keeps it current: Build() makes
+// it from a whole grid, Update() after some cells changed recomputes only a window around them
+// and stitches it to the rest. Ids are kept across builds for every node whose position and every
+// edge whose two nodes did not change (a fleet manager keys tasks on them); new ones get fresh ids.
+//
+// The method (docs/route-graph.md): the distance transform of free space (unknown cells are not
+// free); the cells where the robot fits with its margin; their homotopic skeleton (Skeleton);
+// its curves between junctions and dead ends, spurs pruned and near junctions merged; each curve
+// cut at doorways (the narrowest point between two wider spaces) and tile borders, then
+// straightened into segments proven to keep the clearance, long ones cut into lanes.
+//
+// Thread-safety: one thread uses a builder; the graphs it returns are values.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "common/core/options_printer.hpp"
+#include "common/core/status.hpp"
+#include "common/grid/cell_rect.hpp"
+#include "common/grid/occupancy_grid.hpp"
+#include "common/route_graph/clearance_map.hpp"
+#include "common/route_graph/route_graph.hpp"
+#include "common/route_graph/skeleton.hpp"
+#include "common/scene/submap_graph.hpp"
+
+namespace fleetmap::route_graph {
+
+struct RouteGraphOptions {
+  double robot_radius = 0.3;  // metres
+  // Nodes keep radius + margin from every non-free cell, edges radius + margin - one cell (the
+  // grid's discretisation); the margin used is at least one cell, so edges always keep the radius.
+  double clearance_margin = 0.05;
+  double lane_spacing = 5.0;     // a straight edge longer than this is cut into equal lanes
+  double merge_distance = 1.5;   // junctions closer than this along a corridor become one
+  double min_spur_length = 1.5;  // dead ends shorter than this (beyond a wall's bump) are noise
+  double doorway_ratio = 0.6;    // a clearance minimum below this share of both sides' is a door
+  double doorway_window = 2.0;   // metres looked at on each side of a doorway candidate
+  double clearance_cap = 3.0;    // clearances are exact up to this, metres
+  double tile_size = 20.0;       // curves are cut at these tile borders, so changes stay local
+  // Nodes this close that see each other get a straight edge when the graph's way round is more
+  // than `shortcut_ratio` times longer (0: none).
+  double shortcut_radius = 6.0;
+  double shortcut_ratio = 1.05;
+  // Parts of the graph a robot moves less than this in (edge length plus the widest circle its
+  // centre moves in at a node) are dropped: pockets of free space going nowhere.
+  double min_part_length = 1.0;
+  std::string frame = "map";
+  grid::StateThresholds thresholds;
+
+  Status Validate() const;
+  void Describe(OptionsPrinter& out) const;
+};
+
+class RouteGraphBuilder {
+ public:
+  // `options` must be valid (Validate()).
+  explicit RouteGraphBuilder(RouteGraphOptions options);
+
+  // The graph of `grid` (yaw 0; kInvalidArgument otherwise, or for an empty grid). Rooms of
+  // `rooms` (observed sub-maps, in the grid's frame) get a room-centre node. Ids carry over from
+  // the previous graph where the geometry is the same.
+  StatusOr<RouteGraph> Build(const grid::OccupancyGrid& grid,
+                             const scene::SubmapGraph* rooms = nullptr);
+
+  // The graph after the cells in `changed` (rectangles of the grid, e.g. changed tiles) changed:
+  // `grid` has the geometry of the last Build. Only a window around the cells of `changed` whose
+  // state (free or not) differs from the last build's is recomputed; none, and the graph is the
+  // same, ids and all.
+  // kInvalidArgument before any Build or for a grid of another geometry.
+  StatusOr<RouteGraph> Update(const grid::OccupancyGrid& grid,
+                              const std::vector<grid::CellRect>& changed);
+
+  const RouteGraphOptions& options() const { return options_; }
+  // The clearances of the last build (for checks and planners on the same grid).
+  const ClearanceMap& clearance() const { return clearance_; }
+  // The clearance a node needs (radius + margin) and an edge keeps everywhere, on this grid.
+  double NodeClearance() const;
+  double EdgeClearance() const;
+
+ private:
+  RouteGraph Extract();
+  void AssignIds(RouteGraph* graph);
+
+  RouteGraphOptions options_;
+  double resolution_ = 0.0;
+  Point2 origin_ = Point2::Zero();
+  // Per cell of the last grid built from: 1 where free. What Update compares with.
+  std::vector<uint8_t> free_;
+  ClearanceMap clearance_;
+  Skeleton skeleton_;
+  std::vector<Point2> room_centres_;
+  std::optional<RouteGraph> previous_;
+  uint32_t next_id_ = 0;
+};
+
+}  // namespace fleetmap::route_graph

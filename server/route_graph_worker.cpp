@@ -1,0 +1,136 @@
+#include "server/route_graph_worker.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace fleetmap::server {
+namespace {
+
+// The fused map's tiles are 10 m: the update is handed the grid's cells in rectangles of that
+// size, and looks for what changed in each.
+constexpr double kTileSize = 10.0;
+
+bool SameGeometry(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b) {
+  return a.width() == b.width() && a.height() == b.height() &&
+         grid::SameResolution(a.resolution(), b.resolution()) && a.origin() == b.origin();
+}
+
+bool SameGraph(const route_graph::RouteGraph& a, const route_graph::RouteGraph& b) {
+  if (a.nodes.size() != b.nodes.size() || a.edges.size() != b.edges.size() ||
+      a.message != b.message) {
+    return false;
+  }
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    if (a.nodes[i].id != b.nodes[i].id || a.nodes[i].position != b.nodes[i].position ||
+        a.nodes[i].kind != b.nodes[i].kind) {
+      return false;
+    }
+  }
+  for (size_t i = 0; i < a.edges.size(); ++i) {
+    if (a.edges[i].id != b.edges[i].id || a.edges[i].start != b.edges[i].start ||
+        a.edges[i].end != b.edges[i].end) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<grid::CellRect> TileRects(const grid::OccupancyGrid& grid) {
+  const int cells = std::max(1, static_cast<int>(std::lround(kTileSize / grid.resolution())));
+  std::vector<grid::CellRect> rects;
+  for (int y = 0; y < grid.height(); y += cells) {
+    for (int x = 0; x < grid.width(); x += cells) {
+      rects.push_back(
+          {x, y, std::min(cells, grid.width() - x), std::min(cells, grid.height() - y)});
+    }
+  }
+  return rects;
+}
+
+}  // namespace
+
+Status RouteGraphServiceOptions::Validate() const {
+  return graph.Validate().WithContext("route graph");
+}
+
+void RouteGraphServiceOptions::Describe(OptionsPrinter& out) const {
+  out.Add("enabled", enabled);
+  out.Nested("graph", graph);
+}
+
+StatusOr<std::unique_ptr<RouteGraphWorker>> RouteGraphWorker::Create(
+    transport::Participant& participant, const RouteGraphServiceOptions& options) {
+  FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  std::unique_ptr<RouteGraphWorker> worker(new RouteGraphWorker(options));
+  FLEETMAP_ASSIGN_OR_RETURN(worker->writer_, transport::RouteGraphWriter::Create(participant));
+  return worker;
+}
+
+RouteGraphWorker::~RouteGraphWorker() {
+  Stop();
+  writer_.reset();
+}
+
+void RouteGraphWorker::Start() {
+  thread_.Start([this] {
+    HandleMap();
+    return false;
+  });
+}
+
+void RouteGraphWorker::Stop() { thread_.Stop(); }
+
+void RouteGraphWorker::SubmitMap(grid::OccupancyGrid map) {
+  {
+    std::lock_guard lock(mutex_);
+    if (pending_) ++stats_.grids_replaced;
+    pending_ = std::move(map);
+  }
+  thread_.Wake();
+}
+
+RouteGraphStats RouteGraphWorker::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+void RouteGraphWorker::HandleMap() {
+  std::optional<grid::OccupancyGrid> map;
+  {
+    std::lock_guard lock(mutex_);
+    map.swap(pending_);
+  }
+  if (!map || map->empty()) return;
+  const bool update = last_ && SameGeometry(*last_, *map);
+  StatusOr<route_graph::RouteGraph> graph =
+      update ? builder_.Update(*map, TileRects(*map)) : builder_.Build(*map);
+  if (!graph.ok()) {
+    spdlog::warn("server: route graph: {}", graph.status().message());
+    return;
+  }
+  last_ = std::move(map);
+  {
+    std::lock_guard lock(mutex_);
+    ++(update ? stats_.updates : stats_.builds);
+  }
+  if (sent_ && SameGraph(*sent_, *graph)) return;
+  transport::RouteGraphMessage message;
+  message.revision = revision_ + 1;
+  message.graph = *graph;
+  message.stamp = Clock::now();
+  if (StatusOr<size_t> written = writer_->Write(message); !written.ok()) {
+    spdlog::warn("server: route graph: {}", written.status().message());
+    return;
+  }
+  revision_ = message.revision;
+  sent_ = std::move(graph).value();
+  std::lock_guard lock(mutex_);
+  stats_.revision = revision_;
+  stats_.nodes = sent_->nodes.size();
+  stats_.edges = sent_->edges.size();
+}
+
+}  // namespace fleetmap::server
