@@ -352,11 +352,13 @@ Status RouteGraphOptions::Validate() const {
   if (!std::isfinite(min_part_length) || min_part_length < 0.0) {
     return bad("min_part_length must be >= 0");
   }
-  if (!std::isfinite(clearance_cap) || clearance_cap <= robot_radius + clearance_margin) {
-    return bad("clearance_cap must be more than robot_radius + clearance_margin");
-  }
+  if (!PositiveFinite(clearance_cap)) return bad("clearance_cap must be > 0");
   if (frame.empty()) return bad("frame must not be empty");
   return Status::Ok();
+}
+
+double RouteGraphOptions::ExactClearanceUpTo() const {
+  return std::max(clearance_cap, robot_radius + clearance_margin + 1.0);
 }
 
 void RouteGraphOptions::Describe(OptionsPrinter& out) const {
@@ -396,7 +398,7 @@ StatusOr<RouteGraph> RouteGraphBuilder::Build(const grid::OccupancyGrid& grid,
   }
   resolution_ = grid.resolution();
   origin_ = Point2(grid.origin().x, grid.origin().y);
-  clearance_ = ClearanceMap(grid, options_.clearance_cap, options_.thresholds);
+  clearance_ = ClearanceMap(grid, options_.ExactClearanceUpTo(), options_.thresholds);
   skeleton_ = Skeleton(clearance_, NodeClearance());
   free_.assign(static_cast<size_t>(grid.cell_count()), 0);
   for (int y = 0; y < grid.height(); ++y) {
@@ -465,7 +467,7 @@ StatusOr<RouteGraph> RouteGraphBuilder::Update(const grid::OccupancyGrid& grid,
     if (x1 >= x0) boxes.push_back({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
   }
   if (boxes.empty()) return *previous_;
-  const int reach = static_cast<int>(std::ceil(options_.clearance_cap / resolution_)) + 1;
+  const int reach = static_cast<int>(std::ceil(options_.ExactClearanceUpTo() / resolution_)) + 1;
   for (const grid::CellRect& box : boxes) clearance_.Update(grid, Dilate(box, reach));
   // The fitting cells change within the node clearance of a changed cell; a metre more lets the
   // skeleton find the middle of what changed again.

@@ -38,8 +38,10 @@ struct RouteGraphOptions {
   double min_spur_length = 1.5;  // dead ends shorter than this (beyond a wall's bump) are noise
   double doorway_ratio = 0.6;    // a clearance minimum below this share of both sides' is a door
   double doorway_window = 2.0;   // metres looked at on each side of a doorway candidate
-  double clearance_cap = 3.0;    // clearances are exact up to this, metres
-  double tile_size = 20.0;       // curves are cut at these tile borders, so changes stay local
+  // Clearances are exact up to this, metres, and at least a metre past radius + margin (a large
+  // robot raises it: ExactClearanceUpTo()).
+  double clearance_cap = 3.0;
+  double tile_size = 20.0;  // curves are cut at these tile borders, so changes stay local
   // Nodes this close that see each other get a straight edge when the graph's way round is more
   // than `shortcut_ratio` times longer (0: none).
   double shortcut_radius = 6.0;
@@ -50,6 +52,9 @@ struct RouteGraphOptions {
   std::string frame = "map";
   grid::StateThresholds thresholds;
 
+  // The clearance the distance transform computes exactly: clearance_cap, or a metre past what
+  // the robot needs when that is more.
+  double ExactClearanceUpTo() const;
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
 };

@@ -170,6 +170,13 @@ TEST(RouteGraphBuilderTest, RobotWiderThanEveryPassageGivesAnEmptyGraphWithAMess
   EXPECT_THAT(graph->message, ::testing::HasSubstr("empty route graph"));
   EXPECT_THAT(graph->message, ::testing::HasSubstr("radius 0.55 m"));
   EXPECT_THAT(graph->message, ::testing::HasSubstr("fits nowhere"));
+
+  // Larger than the default exact clearance (3 m): still an empty graph saying why, not an error.
+  RouteGraphBuilder huge(Options(5.0));
+  const StatusOr<RouteGraph> none = huge.Build(grid);
+  ASSERT_TRUE(none.ok()) << none.status();
+  EXPECT_TRUE(none->nodes.empty());
+  EXPECT_THAT(none->message, ::testing::HasSubstr("radius 5 m"));
 }
 
 TEST(RouteGraphBuilderTest, RobotWiderThanTheDoorLeavesTheRoomsApart) {
@@ -221,8 +228,13 @@ TEST(RouteGraphBuilderTest, OptionsAreValidated) {
   options.robot_radius = -1.0;
   EXPECT_FALSE(options.Validate().ok());
   options = RouteGraphOptions{};
-  options.clearance_cap = 0.2;
+  options.clearance_cap = 0.0;
   EXPECT_FALSE(options.Validate().ok());
+  // A robot larger than the cap raises the exact clearance with it rather than being refused.
+  options = RouteGraphOptions{};
+  options.robot_radius = 5.0;
+  EXPECT_TRUE(options.Validate().ok());
+  EXPECT_GE(options.ExactClearanceUpTo(), 6.05);
   options = RouteGraphOptions{};
   options.doorway_ratio = 1.5;
   EXPECT_FALSE(options.Validate().ok());
