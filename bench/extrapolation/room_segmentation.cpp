@@ -14,38 +14,6 @@ namespace {
 constexpr int kDx4[4] = {1, -1, 0, 0};
 constexpr int kDy4[4] = {0, 0, 1, -1};
 
-// Chamfer distance (metres) from each free cell to the nearest cell that is not free; 0 elsewhere.
-std::vector<double> Clearance(const grid::OccupancyGrid& map) {
-  const int w = map.width(), h = map.height();
-  const double r = map.resolution(), d = r * std::sqrt(2.0);
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> dist(static_cast<size_t>(map.cell_count()), inf);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (map.StateAt(x, y) != grid::CellState::kFree) dist[static_cast<size_t>(y) * w + x] = 0.0;
-    }
-  }
-  // Off the map counts as not free, so a room cut by the map's edge is not mistaken for open.
-  auto at = [&](int x, int y) {
-    return map.Contains(x, y) ? dist[static_cast<size_t>(y) * w + x] : 0.0;
-  };
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      double& v = dist[static_cast<size_t>(y) * w + x];
-      v = std::min(
-          {v, at(x - 1, y) + r, at(x, y - 1) + r, at(x - 1, y - 1) + d, at(x + 1, y - 1) + d});
-    }
-  }
-  for (int y = h - 1; y >= 0; --y) {
-    for (int x = w - 1; x >= 0; --x) {
-      double& v = dist[static_cast<size_t>(y) * w + x];
-      v = std::min(
-          {v, at(x + 1, y) + r, at(x, y + 1) + r, at(x + 1, y + 1) + d, at(x - 1, y + 1) + d});
-    }
-  }
-  return dist;
-}
-
 // Chamfer distance (metres) from each cell to the nearest cell of `target` (row-major, w x h);
 // cells off the grid count as targets when `off_grid_is_target`.
 std::vector<double> DistanceTo(const std::vector<uint8_t>& target, int w, int h, double r,
@@ -75,6 +43,19 @@ std::vector<double> DistanceTo(const std::vector<uint8_t>& target, int w, int h,
     }
   }
   return dist;
+}
+
+// Chamfer distance (metres) from each free cell to the nearest cell that is not free; 0 elsewhere.
+// Off the map counts as not free, so a room cut by the map's edge is not mistaken for open.
+std::vector<double> Clearance(const grid::OccupancyGrid& map) {
+  std::vector<uint8_t> not_free(static_cast<size_t>(map.cell_count()), 0);
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) {
+      not_free[static_cast<size_t>(y) * map.width() + x] =
+          map.StateAt(x, y) != grid::CellState::kFree ? 1 : 0;
+    }
+  }
+  return DistanceTo(not_free, map.width(), map.height(), map.resolution(), true);
 }
 
 }  // namespace
