@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "bench/report/report_format.hpp"
+#include "bench/route_graph/clearance_judge.hpp"
 #include "cli/inputs/command_inputs.hpp"
 #include "common/route_graph/grid_planner.hpp"
 #include "common/route_graph/route_graph_builder.hpp"
@@ -30,37 +31,9 @@ double Milliseconds(std::chrono::steady_clock::duration duration) {
   return std::chrono::duration<double, std::milli>(duration).count();
 }
 
-// The exact distance from `point` to the nearest cell that is not free (or the grid's outside),
-// up to `reach`: the judge of the routes, sharing no code with the builder's ClearanceMap.
-double ExactClearance(const grid::OccupancyGrid& grid, const Point2& point, double reach) {
-  const double resolution = grid.resolution();
-  const Point2 local = point - Point2(grid.origin().x, grid.origin().y);
-  const int cx = static_cast<int>(std::floor(local.x() / resolution));
-  const int cy = static_cast<int>(std::floor(local.y() / resolution));
-  const int cells = static_cast<int>(std::ceil(reach / resolution)) + 1;
-  double best = reach;
-  for (int y = cy - cells; y <= cy + cells; ++y) {
-    for (int x = cx - cells; x <= cx + cells; ++x) {
-      if (grid.Contains(x, y) && grid.StateAt(x, y) == grid::CellState::kFree) continue;
-      const double dx =
-          std::max({x * resolution - local.x(), 0.0, local.x() - (x + 1) * resolution});
-      const double dy =
-          std::max({y * resolution - local.y(), 0.0, local.y() - (y + 1) * resolution});
-      best = std::min(best, std::hypot(dx, dy));
-    }
-  }
-  return best;
-}
-
 bool SegmentKeepsRadius(const grid::OccupancyGrid& grid, const Point2& a, const Point2& b,
                         double radius) {
-  const double step = grid.resolution() / 8.0;
-  const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-  for (int i = 0; i <= steps; ++i) {
-    const Point2 point = a + (b - a) * (static_cast<double>(i) / steps);
-    if (ExactClearance(grid, point, radius + grid.resolution()) < radius) return false;
-  }
-  return true;
+  return SegmentExactClearance(grid, a, b, radius + grid.resolution()) >= radius;
 }
 
 // One tile of the grid (10 m) with the most free cells, and a 0.5 m box at its most open cell:
