@@ -10,31 +10,13 @@
 #include <opencv2/core/utility.hpp>
 
 #include "bench/report/bench_command.hpp"
+#include "bench/report/map_files.hpp"
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"
 #include "common/core/file_io.hpp"
 #include "common/core/progress_line.hpp"
 
 namespace fleetmap::bench {
-namespace {
-
-StatusOr<std::vector<std::string>> MapFiles(const std::string& dir) {
-  std::error_code error;
-  if (!std::filesystem::is_directory(dir, error)) {
-    return NotFoundError(dir + ": no such directory");
-  }
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  }
-  if (error) return NotFoundError(dir + ": " + error.message());
-  if (files.empty()) return NotFoundError(dir + ": no *.yaml map files");
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-}  // namespace
-
 int RunBenchRouteGraph(const BenchRouteGraphCommandOptions& options, std::ostream& out,
                        std::ostream& err) {
   auto fail = [&err](const std::string& message) {
@@ -48,7 +30,7 @@ int RunBenchRouteGraph(const BenchRouteGraphCommandOptions& options, std::ostrea
   if (options.bench.route_pairs < 1 || options.bench.cell_pairs < 1) {
     return fail("--route-pairs and --cell-pairs must be >= 1");
   }
-  StatusOr<std::vector<std::string>> files = MapFiles(options.maps_dir);
+  StatusOr<std::vector<std::string>> files = MapFilesIn(options.maps_dir);
   if (!files.ok()) return fail(files.status().message());
   // One thread: figures are per core, and OpenCV would otherwise use its pool.
   cv::setNumThreads(1);

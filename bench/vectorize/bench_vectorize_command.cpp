@@ -12,6 +12,7 @@
 #include "bench/bytes/grid_tile_bytes.hpp"
 #include "bench/bytes/tile_compression.hpp"
 #include "bench/report/bench_command.hpp"
+#include "bench/report/map_files.hpp"
 #include "bench/vectorize/vectorize_bench_report.hpp"
 #include "cli/inputs/command_inputs.hpp"
 #include "cli/inputs/exit_codes.hpp"
@@ -19,21 +20,6 @@
 
 namespace fleetmap::bench {
 namespace {
-
-StatusOr<std::vector<std::string>> MapFiles(const std::string& dir) {
-  std::error_code error;
-  if (!std::filesystem::is_directory(dir, error)) {
-    return NotFoundError(dir + ": no such directory");
-  }
-  std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-  }
-  if (error) return NotFoundError(dir + ": " + error.message());
-  if (files.empty()) return NotFoundError(dir + ": no *.yaml map files");
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // The dictionary baseline's dictionaries: for each map, one trained on the grid tiles of the
 // other maps, never on its own (a fleet ships its dictionary before it maps a new building).
@@ -83,7 +69,7 @@ int RunBenchVectorize(const BenchVectorizeCommandOptions& options, std::ostream&
   if (Status s = cli::CheckPositiveFinite("--tile-size", options.bench.tile_size); !s.ok()) {
     return fail(s.message());
   }
-  StatusOr<std::vector<std::string>> files = MapFiles(options.maps_dir);
+  StatusOr<std::vector<std::string>> files = MapFilesIn(options.maps_dir);
   if (!files.ok()) return fail(files.status().message());
   // One thread: the comparison is per core, and OpenCV would otherwise use its pool.
   cv::setNumThreads(1);

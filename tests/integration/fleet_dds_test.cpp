@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -58,11 +59,36 @@ std::string WriteMap(const std::string& name, int width, int height) {
   return path;
 }
 
+// Removes a map WriteMap wrote: its YAML and the image beside it.
+void RemoveMap(const std::string& yaml_path) {
+  std::error_code ignored;
+  std::filesystem::remove(yaml_path, ignored);
+  std::filesystem::remove(std::filesystem::path(yaml_path).replace_extension(".pgm"), ignored);
+}
+
+// A map for one test, removed when the test ends (ctest runs each case in a process of its own,
+// so the maps were left in the temp directory once per case and run).
+class TestMap {
+ public:
+  TestMap(const std::string& name, int width, int height) : path_(WriteMap(name, width, height)) {}
+  ~TestMap() { RemoveMap(path_); }
+  TestMap(const TestMap&) = delete;
+  TestMap& operator=(const TestMap&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
 class FleetDdsTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     map_path_ = WriteMap("small", 384, 384);
     tall_map_path_ = WriteMap("tall", 260, 781);
+  }
+  static void TearDownTestSuite() {
+    RemoveMap(map_path_);
+    RemoveMap(tall_map_path_);
   }
 
   void SetUp() override {
@@ -365,8 +391,10 @@ double OccupiedShare(const grid::OccupancyGrid& source, const Pose2& fleet_from_
 // patches of the tiles that change (raw on one robot, zstd on the other); the server applies
 // them to each robot's grid and the fused map shows the change.
 TEST_F(FleetDdsTest, PatchWiresCarryMapChangesIntoTheFusedMap) {
-  const std::string alpha_path = WriteMap("patch_alpha", 384, 384);
-  const std::string beta_path = WriteMap("patch_beta", 384, 384);
+  const TestMap alpha_map("patch_alpha", 384, 384);
+  const TestMap beta_map("patch_beta", 384, 384);
+  const std::string& alpha_path = alpha_map.path();
+  const std::string& beta_path = beta_map.path();
   Subprocess server({kServer, "--duration", "90", "--map-period", "0.2"}, env_);
   auto alpha = StartAgent("alpha", alpha_path, {"--wire", "grid-updates"});
   auto beta = StartAgent("beta", beta_path,
