@@ -39,6 +39,10 @@ std::filesystem::path ScratchFolder() {
 }
 
 void WriteScratchFile(const std::filesystem::path& path, std::string_view bytes) {
+  // A temp cleaner (or a person) may have removed the folder during a long run: that is not a
+  // finding of the reader under test.
+  std::error_code ignored;
+  std::filesystem::create_directories(path.parent_path(), ignored);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
