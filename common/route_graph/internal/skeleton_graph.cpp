@@ -25,6 +25,19 @@ int NeighbourCount(const Skeleton& skeleton, int x, int y) {
   return count;
 }
 
+// Calls visit(n, k) for each skeleton cell n around `cell` (row-major on `width`), k its place in
+// the ring (even: a straight step).
+template <typename Visit>
+void ForEachSkeletonNeighbour(const Skeleton& skeleton, int cell, int width, Visit&& visit) {
+  const int cx = cell % width;
+  const int cy = cell / width;
+  for (int k = 0; k < 8; ++k) {
+    const int nx = cx + kRingX[k];
+    const int ny = cy + kRingY[k];
+    if (skeleton.at(nx, ny)) visit(ny * width + nx, k);
+  }
+}
+
 double StepLength(int a, int b, int width) {
   const int dx = std::abs(a % width - b % width);
   const int dy = std::abs(a / width - b / width);
@@ -144,17 +157,11 @@ SkeletonGraph TraceSkeleton(const Skeleton& skeleton, const ClearanceMap& cleara
     std::vector<int> cluster = {cell};
     node_of[cell] = node;
     for (size_t i = 0; i < cluster.size(); ++i) {
-      const int cx = cluster[i] % width;
-      const int cy = cluster[i] / width;
-      for (int k = 0; k < 8; ++k) {
-        const int nx = cx + kRingX[k];
-        const int ny = cy + kRingY[k];
-        if (!skeleton.at(nx, ny)) continue;
-        const int n = ny * width + nx;
-        if (!is_node_cell(n) || node_of.count(n) != 0) continue;
+      ForEachSkeletonNeighbour(skeleton, cluster[i], width, [&](int n, int /*k*/) {
+        if (!is_node_cell(n) || node_of.count(n) != 0) return;
         node_of[n] = node;
         cluster.push_back(n);
-      }
+      });
     }
     int best = cluster.front();
     for (const int member : cluster) {
@@ -170,20 +177,14 @@ SkeletonGraph TraceSkeleton(const Skeleton& skeleton, const ClearanceMap& cleara
     toward_node[best] = best;
     std::vector<int> frontier = {best};
     for (size_t i = 0; i < frontier.size(); ++i) {
-      const int cx = frontier[i] % width;
-      const int cy = frontier[i] / width;
-      for (int k = 0; k < 8; ++k) {
-        const int nx = cx + kRingX[k];
-        const int ny = cy + kRingY[k];
-        if (!skeleton.at(nx, ny)) continue;
-        const int n = ny * width + nx;
+      ForEachSkeletonNeighbour(skeleton, frontier[i], width, [&](int n, int /*k*/) {
         const auto member = node_of.find(n);
         if (member == node_of.end() || member->second != node || toward_node.count(n) != 0) {
-          continue;
+          return;
         }
         toward_node[n] = frontier[i];
         frontier.push_back(n);
-      }
+      });
     }
     members.push_back(std::move(cluster));
   }
@@ -202,36 +203,30 @@ SkeletonGraph TraceSkeleton(const Skeleton& skeleton, const ClearanceMap& cleara
     int previous = start;
     int current = first;
     while (true) {
-      const int cx = current % width;
-      const int cy = current / width;
       int next_node_cell = -1;  // of another node (or of the start node, closing a loop)
       bool next_node_other = false;
       int next_cell = -1;
       bool next_straight = false;
-      for (int k = 0; k < 8; ++k) {
-        const int nx = cx + kRingX[k];
-        const int ny = cy + kRingY[k];
-        if (!skeleton.at(nx, ny)) continue;
-        const int n = ny * width + nx;
-        if (n == previous) continue;
+      ForEachSkeletonNeighbour(skeleton, current, width, [&](int n, int k) {
+        if (n == previous) return;
         const auto found = node_of.find(n);
         if (found != node_of.end()) {
           const bool other = found->second != node;
           // Leaving the start node: its other cells are not where this curve goes.
-          if (!other && branch.cells.size() < 3) continue;
+          if (!other && branch.cells.size() < 3) return;
           if (next_node_cell < 0 || (other && !next_node_other)) {
             next_node_cell = n;
             next_node_other = other;
           }
-          continue;
+          return;
         }
-        if (visited.count(n) != 0) continue;
+        if (visited.count(n) != 0) return;
         const bool straight = k % 2 == 0;
         if (next_cell < 0 || (straight && !next_straight)) {
           next_cell = n;
           next_straight = straight;
         }
-      }
+      });
       // Back to the start node only when the curve goes nowhere else.
       if (next_node_cell >= 0 && !next_node_other && next_cell >= 0) next_node_cell = -1;
       if (next_node_cell >= 0) {
@@ -258,25 +253,19 @@ SkeletonGraph TraceSkeleton(const Skeleton& skeleton, const ClearanceMap& cleara
   std::unordered_set<int64_t> direct_pairs;
   for (size_t node = 0; node < members.size(); ++node) {
     for (const int cell : members[node]) {
-      const int cx = cell % width;
-      const int cy = cell / width;
-      for (int k = 0; k < 8; ++k) {
-        const int nx = cx + kRingX[k];
-        const int ny = cy + kRingY[k];
-        if (!skeleton.at(nx, ny)) continue;
-        const int n = ny * width + nx;
+      ForEachSkeletonNeighbour(skeleton, cell, width, [&](int n, int /*k*/) {
         const auto found = node_of.find(n);
         if (found != node_of.end()) {
-          if (found->second == static_cast<int>(node)) continue;
+          if (found->second == static_cast<int>(node)) return;
           const int64_t lo = std::min<int64_t>(found->second, static_cast<int64_t>(node));
           const int64_t hi = std::max<int64_t>(found->second, static_cast<int64_t>(node));
-          if (!direct_pairs.insert(lo * (int64_t{1} << 32) + hi).second) continue;
+          if (!direct_pairs.insert(lo * (int64_t{1} << 32) + hi).second) return;
           trace(static_cast<int>(node), cell, n);
-          continue;
+          return;
         }
-        if (visited.count(n) != 0) continue;
+        if (visited.count(n) != 0) return;
         trace(static_cast<int>(node), cell, n);
-      }
+      });
     }
   }
   // Closed loops with no node on them: one node each, traced round to itself.
@@ -285,16 +274,10 @@ SkeletonGraph TraceSkeleton(const Skeleton& skeleton, const ClearanceMap& cleara
     const int node = static_cast<int>(graph.nodes.size());
     graph.nodes.push_back({cell, RouteNodeKind::kLane, true});
     node_of[cell] = node;
-    const int cx = cell % width;
-    const int cy = cell / width;
-    for (int k = 0; k < 8; ++k) {
-      const int nx = cx + kRingX[k];
-      const int ny = cy + kRingY[k];
-      if (!skeleton.at(nx, ny)) continue;
-      const int n = ny * width + nx;
-      if (visited.count(n) != 0 || node_of.count(n) != 0) continue;
+    ForEachSkeletonNeighbour(skeleton, cell, width, [&](int n, int /*k*/) {
+      if (visited.count(n) != 0 || node_of.count(n) != 0) return;
       trace(node, cell, n);
-    }
+    });
   }
   return graph;
 }
