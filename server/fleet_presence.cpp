@@ -24,7 +24,7 @@ FleetPresence::FleetPresence(transport::Participant& served, Identity identity, 
     : served_(served),
       identity_(std::move(identity)),
       started_(Clock::now()),
-      role_(identity_.server_id, identity_.strength, started) {}
+      role_(identity_.server_id, identity_.strength, started, identity_.shard) {}
 
 FleetPresence::~FleetPresence() {
   if (!writer_) return;  // Create() failed before it could say anything
@@ -54,6 +54,7 @@ void FleetPresence::SayAlive(SteadyTime now, uint32_t robots) {
   message.started = started_;
   message.stamp = Clock::now();
   message.robots = robots;
+  message.shard = identity_.shard;
   if (StatusOr<size_t> written = writer_->Write(message); !written.ok()) {
     // Said once: a server that cannot say it is alive is taken for dead by its standbys.
     if (!write_failure_reported_) spdlog::error("server: {}", written.status().message());

@@ -28,6 +28,7 @@ class FleetPresence {
     std::string server_id;  // the served participant's id (Participant::id())
     std::string name;       // for people
     int32_t strength = 0;
+    std::string shard;  // a shard's server (docs/shards.md); empty: unsharded
   };
 
   // Heartbeats go on `heartbeats` (a participant a flood of tiles cannot delay); the served state

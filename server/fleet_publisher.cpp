@@ -11,8 +11,8 @@ StatusOr<std::unique_ptr<FleetPublisher>> FleetPublisher::Create(
   std::unique_ptr<FleetPublisher> self(new FleetPublisher(options));
   FLEETMAP_ASSIGN_OR_RETURN(self->fused_writer_, transport::VectorTileWriter::Create(
                                                      participant, transport::kFusedTilesTopic));
-  FLEETMAP_ASSIGN_OR_RETURN(self->map_writer_, transport::OccupancyGridWriter::Create(
-                                                   participant, transport::kFleetMapTopic));
+  FLEETMAP_ASSIGN_OR_RETURN(self->map_writer_,
+                            transport::OccupancyGridWriter::Create(participant, options.map_topic));
   FLEETMAP_ASSIGN_OR_RETURN(self->frame_writer_, transport::RobotFrameWriter::Create(participant));
   FLEETMAP_ASSIGN_OR_RETURN(self->tf_writer_, transport::TfWriter::Create(participant));
   return self;

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "common/core/robot_frame.hpp"
@@ -15,6 +16,7 @@
 #include "common/transport/occupancy_grid_writer.hpp"
 #include "common/transport/participant.hpp"
 #include "common/transport/tf_topic.hpp"
+#include "common/transport/topics.hpp"
 #include "common/transport/vector_tile_writer.hpp"
 
 namespace fleetmap::server {
@@ -31,6 +33,8 @@ class FleetPublisher {
     int64_t max_grid_cells = 0;  // for the warning when the map leaves tiles out
     std::chrono::milliseconds map_period{1000};
     std::chrono::milliseconds tf_period{500};
+    // rt/fleetmap/map; a shard's server writes its region's grid on rt/fleetmap/<shard>/map.
+    std::string map_topic = transport::kFleetMapTopic;
   };
   // Called with every fused grid published on rt/fleetmap/map.
   using MapListener = std::function<void(const grid::OccupancyGrid& fused)>;

@@ -4,6 +4,7 @@
 
 #include <malloc.h>
 
+#include "common/transport/topics.hpp"
 #include "server/fleet_map_log.hpp"
 
 namespace fleetmap::server {
@@ -34,11 +35,17 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
           participant, map.admission, options.unclaimed_wait, self.registry_,
           self.thread_.wake_up(),
           [&self](const RobotId& robot, fusion::Refusal reason, const std::string& detail,
-                  const std::string& sender) { self.Refuse(robot, reason, detail, sender); }));
+                  const std::string& sender) { self.Refuse(robot, reason, detail, sender); },
+          options.shard
+              ? std::optional<ShardTileScope>(ShardTileScope(*options.shard, map.fusion.tile_size))
+              : std::nullopt));
   FLEETMAP_ASSIGN_OR_RETURN(
       self.publisher_,
-      FleetPublisher::Create(participant, {map.fusion.tile_size, map.fusion.max_grid_cells,
-                                           options.map_period, map.placement.tf_period}));
+      FleetPublisher::Create(participant,
+                             {map.fusion.tile_size, map.fusion.max_grid_cells, options.map_period,
+                              map.placement.tf_period,
+                              options.shard ? transport::ShardMapTopic(options.shard->name)
+                                            : transport::kFleetMapTopic}));
   FLEETMAP_ASSIGN_OR_RETURN(self.admission_reader_, transport::RobotAdmissionReader::Create(
                                                         participant, self.thread_.wake_up()));
   self.registrations_ =
@@ -132,6 +139,8 @@ bool FusionWorker::Round() {
       stats_.store_pending = store_->pending();
     }
     stats_.sessions_finished = sessions_->finished_count();
+    stats_.tiles_on_no_shard = intake_->tiles_on_no_shard();
+    stats_.tiles_of_other_shards = intake_->tiles_of_other_shards();
   }
   // A backlog (fused or still to admit): the next round starts without waiting.
   return map_.HasQueued() || intake_->queued() > 0;
@@ -281,6 +290,7 @@ void FusionWorkerOptions::Describe(OptionsPrinter& out) const {
   out.Add("map_period", map_period);
   out.Add("unclaimed_wait", unclaimed_wait);
   out.Add("sessions_in_memory", sessions_in_memory);
+  if (shard) out.Add("shard", shard->name);
 }
 
 }  // namespace fleetmap::server

@@ -13,6 +13,7 @@
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_frame.hpp"
 #include "common/core/sample_queue.hpp"
+#include "common/core/shard_regions.hpp"
 #include "common/core/status.hpp"
 #include "common/core/worker_thread.hpp"
 #include "common/fusion/fleet_map.hpp"
@@ -48,6 +49,9 @@ struct FusionWorkerOptions {
   // Finished mapping sessions kept in memory for the object learner (the newest; the store keeps
   // them all).
   size_t sessions_in_memory = 12;
+  // A shard's server (docs/shards.md): it reads its region's robot tiles only and publishes its
+  // grid on rt/fleetmap/<shard>/map; the fleet map fuses the region's tiles (FleetMapOptions).
+  std::optional<ShardAssignment> shard;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
@@ -72,7 +76,11 @@ struct FusionStats {
   // next attempt (once a second). Back to false when it caught up.
   bool store_behind = false;
   size_t store_pending = 0;
-  size_t sessions_finished = 0;  // mapping sessions archived (restored ones included)
+  size_t sessions_finished = 0;
+  // A shard's server (docs/shards.md): robot tiles on no shard's region, and tiles of other
+  // shards that writers which do not filter (another vendor's) sent it.
+  uint64_t tiles_on_no_shard = 0;
+  uint64_t tiles_of_other_shards = 0;  // mapping sessions archived (restored ones included)
   // Dropped because a queue was full (the worker fell behind): tile events from the reader,
   // grids from grid-wire robots, robot state changes for the store.
   uint64_t tile_events_dropped = 0;

@@ -8,6 +8,8 @@
 
 #include "common/config/command_line.hpp"
 #include "common/config/fleet_transforms.hpp"
+#include "common/config/shard_file.hpp"
+#include "server/map_aggregator.hpp"
 #include "server/server_node.hpp"
 
 namespace {
@@ -15,6 +17,27 @@ namespace {
 std::atomic<bool> g_stop{false};
 
 void OnSignal(int /*signal*/) { g_stop.store(true); }
+
+// `--aggregate`: joins the shards' grids into rt/fleetmap/map (docs/shards.md).
+int RunAggregator(const fleetmap::server::ServerOptions& options, const fleetmap::ShardPlan& plan) {
+  fleetmap::transport::ParticipantOptions dds = options.dds;
+  dds.name = "fleetmap-aggregator";
+  auto participant = fleetmap::transport::Participant::Create(dds);
+  if (!participant.ok()) {
+    spdlog::error("fleetmap-server: {}", participant.status().message());
+    return 1;
+  }
+  auto aggregator = fleetmap::server::MapAggregator::Create(
+      **participant, plan, {options.worker.map_period, options.map.fusion.max_grid_cells});
+  if (!aggregator.ok()) {
+    spdlog::error("fleetmap-server: {}", aggregator.status().message());
+    return 1;
+  }
+  const fleetmap::Status run = (*aggregator)->Run(g_stop, options.duration);
+  aggregator->reset();  // the readers go before their participant
+  participant->reset();
+  return run.ok() ? 0 : 1;
+}
 
 }  // namespace
 
@@ -137,6 +160,22 @@ int main(int argc, char** argv) {
   app.add_option("--name", options.name,
                  "how other servers, the web view and the log name this server (default: "
                  "host:pid)");
+  std::string shard_name;
+  app.add_option("--shard", shard_name,
+                 "fuse one shard of the fleet map: this shard's region only (--region, or its "
+                 "entry in --shards); its grid goes on rt/fleetmap/<shard>/map (docs/shards.md)");
+  std::vector<double> region;
+  app.add_option("--region", region,
+                 "the shard's region: X0 Y0 X1 Y1, metres in the fleet frame (a tile is the "
+                 "shard's when its centre lies inside)")
+      ->expected(4);
+  std::string shards_path;
+  app.add_option("--shards", shards_path,
+                 "YAML of every shard's region (shards: {name: [X0, Y0, X1, Y1]}): with --shard, "
+                 "tiles on no shard's region are reported; with --aggregate, the shards to join");
+  bool aggregate = false;
+  app.add_flag("--aggregate", aggregate,
+               "join the shards' grids (--shards) into rt/fleetmap/map; fuses nothing itself");
   std::string security_dir;
   app.add_option("--security", security_dir,
                  "DDS Security folder (fleetmap security init): join the secured fleet as "
@@ -173,6 +212,39 @@ int main(int argc, char** argv) {
     }
     options.transforms = std::move(transforms).value();
   }
+  const auto fail = [](const std::string& message) {
+    spdlog::error("fleetmap-server: {}", message);
+    return 2;
+  };
+  std::optional<fleetmap::ShardPlan> shard_plan;
+  if (!shards_path.empty()) {
+    auto plan = fleetmap::config::LoadShardPlan(shards_path);
+    if (!plan.ok()) return fail("--shards " + plan.status().message());
+    shard_plan = std::move(plan).value();
+  }
+  if (!region.empty()) {
+    if (shard_name.empty()) return fail("--region needs --shard NAME (docs/shards.md)");
+    if (shard_plan) return fail("give a shard's region by --region or in --shards, not both");
+    auto plan = fleetmap::ShardPlan::Create(
+        {fleetmap::ShardRegion{shard_name, region[0], region[1], region[2], region[3]}});
+    if (!plan.ok()) return fail("--region: " + plan.status().message());
+    shard_plan = std::move(plan).value();
+  }
+  if (aggregate && (!shard_plan || !shard_name.empty() || !region.empty())) {
+    return fail("--aggregate needs --shards FILE (and no --shard or --region)");
+  }
+  if (!shard_name.empty()) {
+    if (!shard_plan)
+      return fail("--shard " + shard_name + " needs --region X0 Y0 X1 Y1 or --shards FILE");
+    if (shard_plan->Find(shard_name) == nullptr) {
+      std::string listed;
+      for (const auto& entry : shard_plan->regions())
+        listed += (listed.empty() ? "" : ", ") + entry.name;
+      return fail("--shard " + shard_name + " is not in " + shards_path + " (it lists " + listed +
+                  ")");
+    }
+    options.shard = fleetmap::ShardAssignment{*shard_plan, shard_name};
+  }
   options.dds.localhost_only = localhost_only;
   if (!security_dir.empty()) {
     if (const auto secured = options.dds.UseSecurityFolder(security_dir, "server"); !secured.ok()) {
@@ -186,6 +258,7 @@ int main(int argc, char** argv) {
 
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
+  if (aggregate) return RunAggregator(options, *shard_plan);
 
   spdlog::info("fleetmap-server: options\n{}", fleetmap::DescribeOptions(options));
   auto node = fleetmap::server::ServerNode::Create(std::move(options));

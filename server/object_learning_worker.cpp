@@ -27,9 +27,10 @@ Status ObjectLearningOptions::Validate() const {
 
 StatusOr<std::unique_ptr<ObjectLearningWorker>> ObjectLearningWorker::Create(
     transport::Participant& participant, const ObjectLearningOptions& options,
-    const fusion::FusionOptions& fusion) {
+    const fusion::FusionOptions& fusion, PublishedIds ids) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate().WithContext("object learning"));
   std::unique_ptr<ObjectLearningWorker> worker(new ObjectLearningWorker(options, fusion));
+  worker->ids_ = std::move(ids);
   FLEETMAP_ASSIGN_OR_RETURN(worker->template_writer_,
                             transport::ObjectTemplateWriter::Create(participant));
   FLEETMAP_ASSIGN_OR_RETURN(worker->object_writer_,
@@ -146,7 +147,7 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
   }
   for (size_t m = 0; m < model.templates.size(); ++m) {
     transport::ObjectTemplateMessage message;
-    message.template_id = static_cast<uint32_t>(m);
+    message.template_id = ids_(static_cast<uint32_t>(m));
     message.learning_run = learning_run_;
     message.object_count = object_count[m];
     message.patch = model.templates[m];
@@ -155,11 +156,11 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
   }
   for (size_t n = 0; n < model.objects.size(); ++n) {
     transport::ObjectModelMessage message;
-    message.object_id = static_cast<uint32_t>(n);
+    message.object_id = ids_(static_cast<uint32_t>(n));
     message.learning_run = learning_run_;
-    message.template_id = n < model.object_template.size()
-                              ? static_cast<uint32_t>(std::max(0, model.object_template[n]))
-                              : 0;
+    message.template_id = ids_(n < model.object_template.size()
+                                   ? static_cast<uint32_t>(std::max(0, model.object_template[n]))
+                                   : 0);
     message.patch = model.objects[n];
     message.stamp = now;
     for (const object_learning::SnapshotAssignment& snapshot : model.snapshots) {
@@ -174,12 +175,12 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
   // What the previous run had and this one has not.
   for (uint32_t m = static_cast<uint32_t>(model.templates.size()); m < published_templates_; ++m) {
     transport::ObjectTemplateMessage key;
-    key.template_id = m;
+    key.template_id = ids_(m);
     FLEETMAP_RETURN_IF_ERROR(template_writer_->Dispose(key));
   }
   for (uint32_t n = static_cast<uint32_t>(model.objects.size()); n < published_objects_; ++n) {
     transport::ObjectModelMessage key;
-    key.object_id = n;
+    key.object_id = ids_(n);
     FLEETMAP_RETURN_IF_ERROR(object_writer_->Dispose(key));
   }
   published_templates_ = static_cast<uint32_t>(model.templates.size());

@@ -14,6 +14,7 @@
 #include "common/object_learning/object_learner.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
+#include "server/published_ids.hpp"
 #include "server/session_archive.hpp"
 
 namespace fleetmap::server {
@@ -59,7 +60,7 @@ class ObjectLearningWorker {
  public:
   static StatusOr<std::unique_ptr<ObjectLearningWorker>> Create(
       transport::Participant& participant, const ObjectLearningOptions& options,
-      const fusion::FusionOptions& fusion);
+      const fusion::FusionOptions& fusion, PublishedIds ids = {});
   ~ObjectLearningWorker();
 
   void Start();
@@ -83,9 +84,10 @@ class ObjectLearningWorker {
   const fusion::FusionOptions fusion_;
   std::unique_ptr<transport::ObjectTemplateWriter> template_writer_;  // worker thread
   std::unique_ptr<transport::ObjectModelWriter> object_writer_;       // worker thread
-  uint32_t learning_run_ = 0;                                         // worker thread
-  uint32_t published_templates_ = 0;                                  // worker thread
-  uint32_t published_objects_ = 0;                                    // worker thread
+  PublishedIds ids_;                  // the template and object ids it writes
+  uint32_t learning_run_ = 0;         // worker thread
+  uint32_t published_templates_ = 0;  // worker thread
+  uint32_t published_objects_ = 0;    // worker thread
 
   mutable std::mutex mutex_;
   std::optional<std::vector<MappingSession>> pending_;  // guarded by mutex_

@@ -7,11 +7,13 @@
 namespace fleetmap::server {
 
 StatusOr<std::unique_ptr<PredictionWorker>> PredictionWorker::Create(
-    transport::Participant& participant, const extrapolation::PredictionOptions& options) {
+    transport::Participant& participant, const extrapolation::PredictionOptions& options,
+    PublishedIds ids) {
   StatusOr<extrapolation::PredictionTracker> tracker =
       extrapolation::PredictionTracker::Create(options);
   if (!tracker.ok()) return tracker.status().WithContext("map extrapolation");
   std::unique_ptr<PredictionWorker> worker(new PredictionWorker(std::move(tracker).value()));
+  worker->ids_ = std::move(ids);
   FLEETMAP_ASSIGN_OR_RETURN(worker->writer_, transport::SubmapWriter::Create(participant));
   return worker;
 }
@@ -72,15 +74,21 @@ void PredictionWorker::HandleInputs() {
 }
 
 void PredictionWorker::Apply(const extrapolation::SubmapChange& change) {
+  scene::SubmapNode node = change.node;
+  node.submap.id = ids_(node.submap.id);
+  for (scene::SubmapEdge& edge : node.edges) {
+    edge.from = ids_(edge.from);
+    edge.to = ids_(edge.to);
+  }
   if (change.kind == extrapolation::SubmapChange::Kind::kWithdraw) {
-    if (Status disposed = writer_->Dispose(change.node); !disposed.ok()) {
+    if (Status disposed = writer_->Dispose(node); !disposed.ok()) {
       spdlog::warn("server: {}", disposed.message());
     }
     return;
   }
-  StatusOr<size_t> written = writer_->Write(change.node);
+  StatusOr<size_t> written = writer_->Write(node);
   if (!written.ok()) {
-    spdlog::warn("server: sub-map {}: {}", change.node.submap.id, written.status().message());
+    spdlog::warn("server: sub-map {}: {}", node.submap.id, written.status().message());
     return;
   }
   std::lock_guard lock(stats_mutex_);

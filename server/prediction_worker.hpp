@@ -14,6 +14,7 @@
 #include "common/grid/occupancy_grid.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
+#include "server/published_ids.hpp"
 
 namespace fleetmap::server {
 
@@ -35,7 +36,8 @@ struct PredictionStats {
 class PredictionWorker {
  public:
   static StatusOr<std::unique_ptr<PredictionWorker>> Create(
-      transport::Participant& participant, const extrapolation::PredictionOptions& options);
+      transport::Participant& participant, const extrapolation::PredictionOptions& options,
+      PublishedIds ids = {});
   ~PredictionWorker();
 
   void Start();
@@ -58,6 +60,7 @@ class PredictionWorker {
   void Apply(const extrapolation::SubmapChange& change);
 
   extrapolation::PredictionTracker tracker_;  // worker thread only
+  PublishedIds ids_;                          // the sub-map ids it writes
   std::unique_ptr<transport::SubmapWriter> writer_;
   SampleQueue<extrapolation::TrackerInput> inputs_{4096};
 

@@ -73,4 +73,9 @@ bool RobotRegistry::TilesInMapFrame(const RobotId& robot) const {
   return tiles_in_map_frame_.count(robot) > 0;
 }
 
+std::set<RobotId> RobotRegistry::MapFrameRobots() const {
+  std::lock_guard lock(mutex_);
+  return tiles_in_map_frame_;
+}
+
 }  // namespace fleetmap::server

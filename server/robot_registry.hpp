@@ -59,6 +59,8 @@ class RobotRegistry {
   std::string OwnerOf(const RobotId& robot) const;
   // Whether the robot's tiles come in its own map frame (as its last new claim said).
   bool TilesInMapFrame(const RobotId& robot) const;
+  // Every robot whose tiles come in its own map frame.
+  std::set<RobotId> MapFrameRobots() const;
 
   static std::string ParticipantOf(const std::string& writer) { return writer.substr(0, 24); }
 

@@ -62,9 +62,11 @@ void RouteGraphServiceOptions::Describe(OptionsPrinter& out) const {
 }
 
 StatusOr<std::unique_ptr<RouteGraphWorker>> RouteGraphWorker::Create(
-    transport::Participant& participant, const RouteGraphServiceOptions& options) {
+    transport::Participant& participant, const RouteGraphServiceOptions& options,
+    PublishedIds ids) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   std::unique_ptr<RouteGraphWorker> worker(new RouteGraphWorker(options));
+  worker->ids_ = std::move(ids);
   FLEETMAP_ASSIGN_OR_RETURN(worker->writer_, transport::RouteGraphWriter::Create(participant));
   return worker;
 }
@@ -118,6 +120,7 @@ void RouteGraphWorker::HandleMap() {
   }
   if (sent_ && SameGraph(*sent_, *graph)) return;
   transport::RouteGraphMessage message;
+  message.graph_id = ids_.graph_id;
   message.revision = revision_ + 1;
   message.graph = *graph;
   message.stamp = Clock::now();

@@ -13,6 +13,7 @@
 #include "common/route_graph/route_graph_builder.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
+#include "server/published_ids.hpp"
 
 namespace fleetmap::server {
 
@@ -43,8 +44,9 @@ struct RouteGraphStats {
 // SubmitMap() and stats() may be called from any thread; Start() and Stop() from the owner's.
 class RouteGraphWorker {
  public:
-  static StatusOr<std::unique_ptr<RouteGraphWorker>> Create(
-      transport::Participant& participant, const RouteGraphServiceOptions& options);
+  static StatusOr<std::unique_ptr<RouteGraphWorker>> Create(transport::Participant& participant,
+                                                            const RouteGraphServiceOptions& options,
+                                                            PublishedIds ids = {});
   ~RouteGraphWorker();
 
   void Start();
@@ -65,6 +67,7 @@ class RouteGraphWorker {
   std::optional<route_graph::RouteGraph> sent_;  // worker thread only
   uint64_t revision_ = 0;                        // worker thread only
   std::unique_ptr<transport::RouteGraphWriter> writer_;
+  PublishedIds ids_;  // the graph's name
 
   mutable std::mutex mutex_;
   std::optional<grid::OccupancyGrid> pending_;  // guarded by mutex_

@@ -37,6 +37,14 @@ Status ServerOptions::Validate() const {
     return InvalidArgumentError("--max-robots-per-participant must be >= 1");
   }
   if (ownership_strength < 0) return InvalidArgumentError("--ownership-strength must be >= 0");
+  if (shard && shard->plan.Find(shard->name) == nullptr) {
+    return InvalidArgumentError("--shard " + shard->name + " is not in the shard plan");
+  }
+  if (shard && shard->region().Tiles(map.fusion.tile_size).empty()) {
+    return InvalidArgumentError("--shard " + shard->name +
+                                ": its region holds no tile's centre (tiles of " +
+                                std::to_string(map.fusion.tile_size) + " m)");
+  }
   FLEETMAP_RETURN_IF_ERROR(map.Validate());
   FLEETMAP_RETURN_IF_ERROR(worker.Validate());
   // A part that is switched off is not made, so its options are not checked.
@@ -52,6 +60,10 @@ Status ServerOptions::Validate() const {
 
 StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
+  if (options.shard) {
+    options.map.region = options.shard->region().Tiles(options.map.fusion.tile_size);
+    options.worker.shard = options.shard;
+  }
   std::unique_ptr<ServerNode> node(new ServerNode(std::move(options)));
   node->registry_ = std::make_shared<RobotRegistry>(node->options_.max_robots_per_participant);
   transport::ParticipantOptions dds = node->options_.dds;
@@ -71,10 +83,12 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
                                                       *node->status_participant_, node->wake_up_));
   FLEETMAP_ASSIGN_OR_RETURN(
       node->presence_,
-      FleetPresence::Create(*node->status_participant_, *node->participant_,
-                            FleetPresence::Identity{node->participant_->id(), node->ServerName(),
-                                                    node->options_.ownership_strength},
-                            node->wake_up_));
+      FleetPresence::Create(
+          *node->status_participant_, *node->participant_,
+          FleetPresence::Identity{
+              node->participant_->id(), node->ServerName(), node->options_.ownership_strength,
+              node->options_.shard ? node->options_.shard->name : std::string()},
+          node->wake_up_));
   // The sessions in memory are the learner's input: as many as it reads.
   node->options_.worker.sessions_in_memory = node->options_.learning.max_sessions;
   FLEETMAP_ASSIGN_OR_RETURN(node->fusion_worker_,
@@ -84,19 +98,22 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
     FLEETMAP_ASSIGN_OR_RETURN(
         node->learning_worker_,
         ObjectLearningWorker::Create(*node->participant_, node->options_.learning,
-                                     node->options_.map.fusion));
+                                     node->options_.map.fusion,
+                                     PublishedIds::For(node->options_.shard)));
   }
   if (node->options_.prediction.enabled) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->prediction_worker_,
-        PredictionWorker::Create(*node->participant_, node->options_.prediction));
+        PredictionWorker::Create(*node->participant_, node->options_.prediction,
+                                 PublishedIds::For(node->options_.shard)));
     FLEETMAP_ASSIGN_OR_RETURN(node->entity_reader_,
                               transport::EntityReader::Create(*node->participant_, node->wake_up_));
   }
   if (node->options_.route_graph.enabled) {
     FLEETMAP_ASSIGN_OR_RETURN(
         node->route_graph_worker_,
-        RouteGraphWorker::Create(*node->participant_, node->options_.route_graph));
+        RouteGraphWorker::Create(*node->participant_, node->options_.route_graph,
+                                 PublishedIds::For(node->options_.shard)));
   }
   ObjectLearningWorker* learning = node->learning_worker_.get();
   PredictionWorker* prediction = node->prediction_worker_.get();
@@ -447,9 +464,17 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
   }
   fmt::print(
       "fused map: {} tiles; published {} fused tile revisions ({} bytes) and {} grids on "
-      "rt/fleetmap/map; {} samples rejected before they named a robot\n",
+      "{}; {} samples rejected before they named a robot\n",
       fusion.fused_tiles, fusion.fused_tiles_published, fusion.fused_bytes_published,
-      fusion.maps_published, fusion.rejected_unattributed);
+      fusion.maps_published,
+      options_.shard ? transport::ShardMapTopic(options_.shard->name) : transport::kFleetMapTopic,
+      fusion.rejected_unattributed);
+  if (options_.shard) {
+    fmt::print(
+        "shard {}: {} robot tiles on no shard's region (not fused anywhere), {} tiles of other "
+        "shards received (from writers that do not filter)\n",
+        options_.shard->name, fusion.tiles_on_no_shard, fusion.tiles_of_other_shards);
+  }
   if (fusion.quarantines > 0 || !fusion.standings.empty()) {
     std::string now;
     for (const auto& [robot, report] : fusion.standings) {
@@ -518,6 +543,7 @@ void ServerOptions::Describe(OptionsPrinter& out) const {
   out.Add("max_robots_per_participant", max_robots_per_participant);
   out.Add("name", name);
   out.Add("ownership_strength", ownership_strength);
+  if (shard) out.Add("shard", shard->name);
 }
 
 }  // namespace fleetmap::server

@@ -4,10 +4,12 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_status.hpp"
+#include "common/core/shard_regions.hpp"
 #include "common/core/status.hpp"
 #include "common/core/wake_up.hpp"
 #include "common/transport/keyed_state_topic.hpp"
@@ -43,6 +45,9 @@ struct ServerOptions {
   // Of the live servers on the domain, the strongest serves the fleet (docs/standby.md); a hot
   // standby gets a lower strength.
   int32_t ownership_strength = 100;
+  // A shard's server (--shard, docs/shards.md): it fuses its region's tiles, and ranks among
+  // its shard's servers only.
+  std::optional<ShardAssignment> shard;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;

@@ -13,11 +13,14 @@ bool Ahead(int32_t strength_a, const std::string& id_a, int32_t strength_b,
 
 }  // namespace
 
-ServerRole::ServerRole(std::string own_id, int32_t strength, SteadyTime started)
-    : own_id_(std::move(own_id)), strength_(strength), started_(started) {}
+ServerRole::ServerRole(std::string own_id, int32_t strength, SteadyTime started, std::string shard)
+    : own_id_(std::move(own_id)),
+      strength_(strength),
+      shard_(std::move(shard)),
+      started_(started) {}
 
 void ServerRole::Heard(const transport::FleetServerMessage& server, SteadyTime now) {
-  if (server.server_id == own_id_) return;
+  if (server.server_id == own_id_ || server.shard != shard_) return;
   peers_[server.server_id] = Peer{server, now};
 }
 

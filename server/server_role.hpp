@@ -22,9 +22,11 @@ class ServerRole {
  public:
   using SteadyTime = std::chrono::steady_clock::time_point;
 
-  ServerRole(std::string own_id, int32_t strength, SteadyTime started);
+  // `shard`: a shard's servers rank among themselves only (docs/shards.md); empty: unsharded.
+  ServerRole(std::string own_id, int32_t strength, SteadyTime started, std::string shard = {});
 
-  // A server's sample, received at `now`; this server's own samples are ignored.
+  // A server's sample, received at `now`; this server's own samples, and other shards', are
+  // ignored.
   void Heard(const transport::FleetServerMessage& server, SteadyTime now);
   // The server withdrew (it stopped).
   void Withdrew(const std::string& server_id);
@@ -52,6 +54,7 @@ class ServerRole {
 
   std::string own_id_;
   int32_t strength_;
+  std::string shard_;
   SteadyTime started_;
   Role role_ = Role::kListening;
   std::map<std::string, Peer> peers_;  // live ones, by server id

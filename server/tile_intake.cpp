@@ -1,17 +1,16 @@
 #include "server/tile_intake.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "common/transport/topics.hpp"
 
 namespace fleetmap::server {
 
-StatusOr<std::unique_ptr<TileIntake>> TileIntake::Create(transport::Participant& participant,
-                                                         const fusion::AdmissionOptions& admission,
-                                                         std::chrono::milliseconds unclaimed_wait,
-                                                         std::shared_ptr<RobotRegistry> registry,
-                                                         std::shared_ptr<WakeUp> wake_up,
-                                                         RefusalSink refused) {
+StatusOr<std::unique_ptr<TileIntake>> TileIntake::Create(
+    transport::Participant& participant, const fusion::AdmissionOptions& admission,
+    std::chrono::milliseconds unclaimed_wait, std::shared_ptr<RobotRegistry> registry,
+    std::shared_ptr<WakeUp> wake_up, RefusalSink refused, std::optional<ShardTileScope> shard) {
   HeldTiles::Limits held;
   held.max_tiles_per_robot = admission.max_tiles_per_robot;
   // One robot's worth for all the ids of a participant together: an agent's status reaches the
@@ -21,9 +20,13 @@ StatusOr<std::unique_ptr<TileIntake>> TileIntake::Create(transport::Participant&
   held.wait = unclaimed_wait;
   std::unique_ptr<TileIntake> self(new TileIntake(std::move(registry), held, std::move(refused)));
   self->unclaimed_wait_ = unclaimed_wait;
-  FLEETMAP_ASSIGN_OR_RETURN(self->reader_, transport::VectorTileReader::Create(
-                                               participant, transport::kRobotTilesTopic,
-                                               std::move(wake_up), admission.DecodeLimits()));
+  std::optional<transport::TileRegionSelection> region;
+  if (shard) region = shard->Selection({});
+  self->shard_ = std::move(shard);
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->reader_,
+      transport::VectorTileReader::Create(participant, transport::kRobotTilesTopic,
+                                          std::move(wake_up), admission.DecodeLimits(), region));
   return self;
 }
 
@@ -33,6 +36,7 @@ TileIntake::~TileIntake() = default;
 void TileIntake::Drain(fusion::FleetMap& map) {
   const Timestamp now = Clock::now();
   const auto steady = std::chrono::steady_clock::now();
+  if (shard_) FollowMapFrameRobots();
   for (transport::TileEvent& event : reader_->Drain(kEventsPerDrain)) {
     Offer(std::move(event), map, now, steady);
   }
@@ -90,9 +94,32 @@ void TileIntake::Offer(transport::TileEvent event, fusion::FleetMap& map, Timest
   }
   const fusion::TileOrigin origin{
       {robot, participant, event.host}, event.serialized_bytes, registry_->TilesInMapFrame(robot)};
+  if (shard_ && !origin.in_map_frame && !shard_->Owns(event.tile.tile)) {
+    const ShardTileScope::Outside outside = shard_->NoteOutside(robot, event.tile.tile, steady);
+    if (outside.report_now) {
+      const ShardRegion& own = shard_->shard().region();
+      refuse(fusion::Refusal::kOutsideRegion,
+             fmt::format("tile ({}, {}) of robot {} lies on no shard's region, so no server fuses "
+                         "it (this shard, {}: [{}, {}] x [{}, {}] m; reported once a minute per "
+                         "robot; docs/shards.md)",
+                         event.tile.tile.x, event.tile.tile.y, robot.value, own.name, own.min_x,
+                         own.max_x, own.min_y, own.max_y));
+    }
+    return;
+  }
   if (auto refused = map.Offer(std::move(event.tile), origin, now, steady)) {
     refuse(refused->reason, refused->detail);
   }
+}
+
+void TileIntake::FollowMapFrameRobots() {
+  std::set<RobotId> whole = registry_->MapFrameRobots();
+  if (whole == whole_robots_) return;
+  if (const Status changed = reader_->SetRegion(shard_->Selection(whole)); !changed.ok()) {
+    spdlog::warn("server: {}", changed.message());
+    return;
+  }
+  whole_robots_ = std::move(whole);
 }
 
 void TileIntake::ReleaseHeld(fusion::FleetMap& map, std::chrono::steady_clock::time_point steady) {

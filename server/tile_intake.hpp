@@ -3,6 +3,8 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <set>
 #include <string>
 
 #include "common/core/ids.hpp"
@@ -13,6 +15,7 @@
 #include "common/transport/vector_tile_reader.hpp"
 #include "server/held_tiles.hpp"
 #include "server/robot_registry.hpp"
+#include "server/shard_tile_scope.hpp"
 
 namespace fleetmap::server {
 
@@ -27,13 +30,11 @@ class TileIntake {
                                          const std::string& detail, const std::string& sender)>;
 
   // `registry` says who owns each id and in which frame its tiles come; `wake_up` is woken when
-  // a sample arrives.
-  static StatusOr<std::unique_ptr<TileIntake>> Create(transport::Participant& participant,
-                                                      const fusion::AdmissionOptions& admission,
-                                                      std::chrono::milliseconds unclaimed_wait,
-                                                      std::shared_ptr<RobotRegistry> registry,
-                                                      std::shared_ptr<WakeUp> wake_up,
-                                                      RefusalSink refused);
+  // a sample arrives. A shard's server reads what `shard` selects (docs/shards.md).
+  static StatusOr<std::unique_ptr<TileIntake>> Create(
+      transport::Participant& participant, const fusion::AdmissionOptions& admission,
+      std::chrono::milliseconds unclaimed_wait, std::shared_ptr<RobotRegistry> registry,
+      std::shared_ptr<WakeUp> wake_up, RefusalSink refused, std::optional<ShardTileScope> shard);
   ~TileIntake();
 
   // Offers a bounded share of what arrived (participants in turn) to `map`, and the held tiles
@@ -43,6 +44,8 @@ class TileIntake {
 
   size_t queued() const { return reader_->queued(); }
   size_t dropped() const { return reader_->dropped(); }
+  uint64_t tiles_on_no_shard() const { return shard_ ? shard_->orphan_tiles() : 0; }
+  uint64_t tiles_of_other_shards() const { return shard_ ? shard_->other_shards_tiles() : 0; }
 
   static constexpr size_t kEventsPerDrain = 512;
 
@@ -54,12 +57,17 @@ class TileIntake {
   void Offer(transport::TileEvent event, fusion::FleetMap& map, Timestamp now,
              std::chrono::steady_clock::time_point steady);
   void ReleaseHeld(fusion::FleetMap& map, std::chrono::steady_clock::time_point steady);
+  // A shard reads the tiles of the robots that send in their own map frame whole: its filter
+  // follows them as they join.
+  void FollowMapFrameRobots();
 
   std::shared_ptr<RobotRegistry> registry_;
   HeldTiles held_;  // tiles whose robot's status has not come yet
   RefusalSink refused_;
   std::chrono::milliseconds unclaimed_wait_{};
   std::unique_ptr<transport::VectorTileReader> reader_;
+  std::optional<ShardTileScope> shard_;
+  std::set<RobotId> whole_robots_;  // what the shard's filter takes whole now
 };
 
 }  // namespace fleetmap::server

@@ -38,6 +38,10 @@ void FleetMapOptions::Describe(OptionsPrinter& out) const {
   out.Nested("fusion", fusion);
   out.Nested("admission", admission);
   out.Nested("placement", placement);
+  if (region) {
+    out.Add("region_tiles", fmt::format("({}, {})..({}, {})", region->min_x, region->min_y,
+                                        region->max_x, region->max_y));
+  }
 }
 
 StatusOr<FleetMap> FleetMap::Create(const FleetMapOptions& options) {
@@ -60,6 +64,13 @@ void FleetMap::Say(Notice::Level level, std::string text) {
 std::optional<TileAdmission::Refused> FleetMap::Offer(
     vector_map::VectorTile tile, const TileOrigin& origin, Timestamp now,
     std::chrono::steady_clock::time_point steady_now) {
+  if (!origin.in_map_frame && !InRegion(tile.tile)) {
+    return TileAdmission::Refused{
+        Refusal::kOutsideRegion,
+        fmt::format("tile ({}, {}) of robot {} lies outside this shard's tiles ({}, {})..({}, {})",
+                    tile.tile.x, tile.tile.y, tile.robot_id.value, options_.region->min_x,
+                    options_.region->min_y, options_.region->max_x, options_.region->max_y)};
+  }
   TileAdmission::Verdict verdict =
       admission_.Admit(tile, origin.wire_bytes, origin.source, now, steady_now);
   if (auto* refused = std::get_if<TileAdmission::Refused>(&verdict)) return std::move(*refused);
@@ -161,6 +172,7 @@ void FleetMap::FuseMapFrameTilesAgain(const RobotId& robot, const std::set<TileI
 
 void FleetMap::UpdateContribution(const RobotId& robot, const TileId& tile,
                                   const vector_map::VectorMap& map, Timestamp stamp) {
+  if (!InRegion(tile)) return;  // another shard's part of the robot's map
   if (const Status updated = fusion_.UpdateRobotTile(robot, tile, map, stamp); !updated.ok()) {
     // Placed beyond the fleet map's range: that part of the robot's map is not fused.
     Say(Notice::Level::kWarning, fmt::format("robot {}: {}", robot.value, updated.message()));
@@ -233,8 +245,9 @@ std::optional<registration::PlacementJob> FleetMap::NextRegistration(
     std::chrono::steady_clock::time_point now) {
   if (placer_.Busy()) return std::nullopt;
   const std::vector<RobotId> robots = map_frames_.robots();
-  // With no frame known yet, the first robot with a map anchors the fleet frame.
-  if (!placer_.AnyPlaced() && fusion_.contribution_count() == 0) {
+  // With no frame known yet, the first robot with a map anchors the fleet frame; never on a
+  // shard's map: the shards' regions are drawn in a fleet frame that exists already.
+  if (!options_.region && !placer_.AnyPlaced() && fusion_.contribution_count() == 0) {
     for (const RobotId& robot : robots) {
       if (map_frames_.tile_count(robot) == 0) continue;
       MoveMapFrame(robot, placer_.Anchor(robot).fleet_from_map);

@@ -13,6 +13,7 @@
 #include "common/core/notice.hpp"
 #include "common/core/options_printer.hpp"
 #include "common/core/robot_frame.hpp"
+#include "common/core/shard_regions.hpp"
 #include "common/core/status.hpp"
 #include "common/fusion/fair_tile_queue.hpp"
 #include "common/fusion/fusion_options.hpp"
@@ -31,6 +32,9 @@ struct FleetMapOptions {
   AdmissionOptions admission;
   // How robots whose tiles come in their own map frame are placed.
   registration::PlacementOptions placement;
+  // A shard's server (docs/shards.md): only these fleet tiles are fused; robot tiles elsewhere
+  // are refused (kOutsideRegion), and what map-frame robots carry elsewhere is left out.
+  std::optional<TileBox> region;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
@@ -185,6 +189,9 @@ class FleetMap {
   // frames table.
   void FuseChanged();
   void Say(Notice::Level level, std::string text);
+  bool InRegion(const TileId& tile) const {
+    return !options_.region || options_.region->Contains(tile);
+  }
 
   // The registration due for `robot`, if any: its own map on the fleet map, its group's merged
   // map on the fleet map (the group's root only), or its map on another unplaced robot's.

@@ -32,6 +32,8 @@ const char* RefusalName(Refusal refusal) {
       return "memory budget";
     case Refusal::kPaintRate:
       return "paint rate";
+    case Refusal::kOutsideRegion:
+      return "outside the shard's region";
   }
   return "unknown";
 }

@@ -18,6 +18,7 @@ enum class Refusal {
   kDecodedSize,       // a tile, or a robot's tiles, decode to more vertices, rings or cells
   kMemoryBudget,      // the memory of a robot, its participant, its host or all robots is spent
   kPaintRate,         // the participant asks to paint more cells a second than its quota
+  kOutsideRegion,     // a shard's server: the tile lies outside the shard's region
 };
 
 const char* RefusalName(Refusal refusal);

@@ -310,10 +310,11 @@ StatusOr<std::unique_ptr<KeyedStateReader<Message>>> KeyedStateReader<Message>::
   }
   std::unique_ptr<KeyedStateReader> self(new KeyedStateReader());
   self->listener_ = std::make_unique<Listener>(std::move(wake_up));
-  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
-                            ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
-                                                   QosOf<Message>(participant).reader,
-                                                   self->listener_.get(), robot.value));
+  FLEETMAP_ASSIGN_OR_RETURN(
+      self->endpoint_,
+      ReaderEndpoint::Create(participant, Traits::kTopic, Traits::Type(),
+                             QosOf<Message>(participant).reader, self->listener_.get(),
+                             ContentFilter::OnlyRobot(robot.value)));
   return self;
 }
 

@@ -18,6 +18,7 @@
 #include "common/transport/internal/participant_identities.hpp"
 #include "common/transport/internal/robot_id_filter.hpp"
 #include "common/transport/internal/served_writers.hpp"
+#include "common/transport/internal/tile_region_filter.hpp"
 #include "common/transport/internal/writer_id.hpp"
 
 namespace fleetmap::transport {
@@ -223,6 +224,11 @@ StatusOr<std::unique_ptr<Participant>> Participant::Create(const ParticipantOpti
   if (self->participant_->register_content_filter_factory(
           kRobotIdFilterClass, &RobotIdFilterFactory()) != ReturnCode_t::RETCODE_OK) {
     return UnavailableError("could not register the robot id content filter");
+  }
+  // The tile-region filter of shards' readers (docs/shards.md), evaluated here too.
+  if (self->participant_->register_content_filter_factory(
+          kTileRegionFilterClass, &TileRegionFilterFactory()) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not register the tile region content filter");
   }
   self->publisher_ = self->participant_->create_publisher(publisher_qos);
   self->subscriber_ = self->participant_->create_subscriber(subscriber_qos);

@@ -173,7 +173,8 @@ StatusOr<std::unique_ptr<RobotStatusReader>> RobotStatusReader::CreateForRobot(
   FLEETMAP_ASSIGN_OR_RETURN(
       self->endpoint_,
       ReaderEndpoint::Create(participant, kRobotStatusTopic, RobotStatusTypeSupport(),
-                             RobotStatusQos().reader, self->listener_.get(), robot.value));
+                             RobotStatusQos().reader, self->listener_.get(),
+                             ContentFilter::OnlyRobot(robot.value)));
   return self;
 }
 

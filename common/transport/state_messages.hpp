@@ -89,6 +89,7 @@ struct FleetServerMessage {
   Timestamp started{};
   Timestamp stamp{};
   uint32_t robots = 0;
+  std::string shard;  // the shard it fuses (docs/shards.md); empty: the whole fleet map
 };
 
 }  // namespace fleetmap::transport

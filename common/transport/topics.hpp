@@ -21,6 +21,10 @@ inline constexpr char kRobotFramesTopic[] = "rt/fleetmap/robot_frames";
 inline constexpr char kAdmissionsTopic[] = "rt/fleetmap/admissions";
 inline constexpr char kServersTopic[] = "rt/fleetmap/servers";
 inline constexpr char kRouteGraphTopic[] = "rt/fleetmap/route_graph";
+// A shard's fused grid of its own region (docs/shards.md): /fleetmap/<shard>/map to ROS 2 tools.
+inline std::string ShardMapTopic(const std::string& shard) {
+  return "rt/fleetmap/" + shard + "/map";
+}
 // ROS 2's transform tree (/tf): the server publishes fleet -> <robot>/map there.
 inline constexpr char kTfTopic[] = "rt/tf";
 

@@ -151,14 +151,23 @@ class VectorTileReader::Listener : public dds::DataReaderListener, public Malfor
 
 StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
     Participant& participant, const std::string& topic_name, std::shared_ptr<WakeUp> wake_up,
-    const TileDecodeLimits& limits) {
+    const TileDecodeLimits& limits, const std::optional<TileRegionSelection>& region) {
   std::unique_ptr<VectorTileReader> self(new VectorTileReader());
   self->listener_ = std::make_unique<Listener>(participant, topic_name, std::move(wake_up), limits);
   const EndpointQos qos = topic_name == kFusedTilesTopic ? ServedStateQos() : VectorTileQos();
+  std::optional<ContentFilter> filter;
+  if (region) {
+    filter = ContentFilter{kTileRegionFilterClass, kTileRegionFilterExpression,
+                           region->ToParameters(), "a shard's tiles"};
+  }
   FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
                             ReaderEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
-                                                   qos.reader, self->listener_.get()));
+                                                   qos.reader, self->listener_.get(), filter));
   return self;
+}
+
+Status VectorTileReader::SetRegion(const TileRegionSelection& region) {
+  return endpoint_->SetFilterParameters(region.ToParameters());
 }
 
 VectorTileReader::~VectorTileReader() { endpoint_.reset(); }

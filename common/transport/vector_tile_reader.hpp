@@ -2,12 +2,14 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/core/status.hpp"
 #include "common/core/wake_up.hpp"
 #include "common/transport/participant.hpp"
+#include "common/transport/tile_region_selection.hpp"
 #include "common/transport/vector_tile_message.hpp"
 
 namespace fleetmap::transport {
@@ -37,11 +39,16 @@ struct TileEvent {
 class VectorTileReader {
  public:
   // Samples that would decode past `limits` are refused (kRejected) before they are decoded.
+  // With a `region` (a shard's server), the reader takes the tiles it passes only.
   // `participant` must outlive the reader.
   static StatusOr<std::unique_ptr<VectorTileReader>> Create(
       Participant& participant, const std::string& topic_name,
-      std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {});
+      std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {},
+      const std::optional<TileRegionSelection>& region = std::nullopt);
   ~VectorTileReader();
+  // A reader created with a region takes this one from now on (the writers learn it through
+  // discovery, so tiles already on their way may still come).
+  Status SetRegion(const TileRegionSelection& region);
 
   // At most `max_events`, the writers' participants served in turn (FairSampleQueue): what one
   // participant floods waits behind the others' tiles, not in front of them.

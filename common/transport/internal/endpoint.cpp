@@ -14,6 +14,7 @@
 namespace fleetmap::transport {
 
 namespace dds = eprosima::fastdds::dds;
+using ReturnCode_t = eprosima::fastrtps::types::ReturnCode_t;
 
 StatusOr<std::unique_ptr<WriterEndpoint>> WriterEndpoint::Create(Participant& participant,
                                                                  const std::string& topic_name,
@@ -58,20 +59,18 @@ size_t WriterEndpoint::WriteAgain() {
 StatusOr<std::unique_ptr<ReaderEndpoint>> ReaderEndpoint::Create(
     Participant& participant, const std::string& topic_name, dds::TypeSupport type,
     const dds::DataReaderQos& qos, dds::DataReaderListener* listener,
-    const std::optional<std::string>& only_robot) {
+    const std::optional<ContentFilter>& filter) {
   std::unique_ptr<ReaderEndpoint> self(new ReaderEndpoint(participant, topic_name));
   FLEETMAP_ASSIGN_OR_RETURN(self->topic_, participant.AcquireTopic(topic_name, type));
   dds::TopicDescription* read_from = self->topic_;
-  if (only_robot) {
+  if (filter) {
     // A content-filtered topic's name is the participant's own business, unique within it.
     static std::atomic<uint64_t> filtered_topics{0};
-    const std::string name =
-        topic_name + "/only_" + *only_robot + "_" + std::to_string(filtered_topics.fetch_add(1));
+    std::string name = topic_name + "/filtered_" + std::to_string(filtered_topics.fetch_add(1));
     self->filtered_topic_ = participant.dds_participant()->create_contentfilteredtopic(
-        name, self->topic_, kRobotIdFilterExpression, {"'" + *only_robot + "'"},
-        kRobotIdFilterClass);
+        name, self->topic_, filter->expression, filter->parameters, filter->class_name.c_str());
     if (self->filtered_topic_ == nullptr) {
-      return UnavailableError("could not filter " + topic_name + " to robot " + *only_robot);
+      return UnavailableError("could not filter " + topic_name + " to " + filter->label);
     }
     read_from = self->filtered_topic_;
   }
@@ -81,6 +80,19 @@ StatusOr<std::unique_ptr<ReaderEndpoint>> ReaderEndpoint::Create(
     return UnavailableError("could not create a DDS reader on " + topic_name);
   }
   return self;
+}
+
+Status ReaderEndpoint::SetFilterParameters(const std::vector<std::string>& parameters) {
+  if (filtered_topic_ == nullptr) return InternalError(topic_name_ + " is read without a filter");
+  if (filtered_topic_->set_expression_parameters(parameters) != ReturnCode_t::RETCODE_OK) {
+    return UnavailableError("could not change the filter of " + topic_name_);
+  }
+  return Status::Ok();
+}
+
+ContentFilter ContentFilter::OnlyRobot(const std::string& robot) {
+  return ContentFilter{
+      kRobotIdFilterClass, kRobotIdFilterExpression, {"'" + robot + "'"}, "robot " + robot};
 }
 
 ReaderEndpoint::~ReaderEndpoint() {

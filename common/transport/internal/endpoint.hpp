@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/core/status.hpp"
 #include "common/transport/participant.hpp"
@@ -50,22 +51,35 @@ class WriterEndpoint {
   std::unique_ptr<LastSamples> last_samples_;  // writers that serve state only
 };
 
+// A DDS content filter of one of the classes every Participant registers.
+struct ContentFilter {
+  std::string class_name;
+  std::string expression;
+  std::vector<std::string> parameters;
+  std::string label;  // for the filtered topic's name and errors: "robot alpha", "region west"
+
+  // The instances of one robot only (robot_id_filter.hpp; topics whose first field is the robot
+  // id).
+  static ContentFilter OnlyRobot(const std::string& robot);
+};
+
 class ReaderEndpoint {
  public:
-  // `listener` must outlive the endpoint; it is detached before the reader is deleted. With
-  // `only_robot`, the reader takes the instances of that robot only (robot_id_filter.hpp; for
-  // topics whose first field is the robot id).
+  // `listener` must outlive the endpoint; it is detached before the reader is deleted. With a
+  // `filter`, the reader takes what it passes (the writers evaluate it where they know the class).
   static StatusOr<std::unique_ptr<ReaderEndpoint>> Create(
       Participant& participant, const std::string& topic_name,
       eprosima::fastdds::dds::TypeSupport type, const eprosima::fastdds::dds::DataReaderQos& qos,
       eprosima::fastdds::dds::DataReaderListener* listener,
-      const std::optional<std::string>& only_robot = std::nullopt);
+      const std::optional<ContentFilter>& filter = std::nullopt);
   ~ReaderEndpoint();
   ReaderEndpoint(const ReaderEndpoint&) = delete;
   ReaderEndpoint& operator=(const ReaderEndpoint&) = delete;
 
   eprosima::fastdds::dds::DataReader* reader() const { return reader_; }
   const std::string& topic_name() const { return topic_name_; }
+  // New parameters for the reader's filter (the writers learn them through discovery).
+  Status SetFilterParameters(const std::vector<std::string>& parameters);
 
  private:
   ReaderEndpoint(Participant& participant, std::string topic_name)

@@ -683,6 +683,7 @@ StatusOr<FleetServer_> ToIdl(const FleetServerMessage& message) {
   sample.started(ToIdl(message.started));
   sample.stamp(ToIdl(message.stamp));
   sample.robots(message.robots);
+  sample.shard(message.shard);
   return sample;
 }
 
@@ -701,6 +702,11 @@ StatusOr<FleetServerMessage> FromIdl(const FleetServer_& sample) {
   message.started = FromIdl(sample.started());
   message.stamp = FromIdl(sample.stamp());
   message.robots = sample.robots();
+  if (!sample.shard().empty() && !IsValidRobotName(sample.shard())) {
+    return InvalidArgumentError("FleetServer " + sample.server_id() +
+                                " names a shard that is not a ROS name token");
+  }
+  message.shard = sample.shard();
   return message;
 }
 

@@ -263,3 +263,52 @@ TEST(FleetMapTest, ARotatedGivenFrameCarriesMapFrameTilesAtThatAngle) {
 
 }  // namespace
 }  // namespace fleetmap::fusion
+
+namespace fleetmap::fusion {
+namespace {
+
+// A shard's fleet map (docs/shards.md): its region's tiles only. A fleet-frame tile elsewhere is
+// refused naming the region; a map-frame robot's map is carried and only the region's part fused.
+TEST(FleetMapTest, AShardFusesItsRegionsTilesOnly) {
+  FleetMapOptions options = Options();
+  options.region = TileBox{0, 0, 1, 1};
+  FleetMap map = MakeMap(options);
+  Offer(map, Tile("alpha", {1, 1}), From("alpha", "p1"));
+  const auto refused = map.Offer(Tile("alpha", {2, 0}), From("alpha", "p1"), Clock::now(), kSteady);
+  ASSERT_TRUE(refused.has_value());
+  EXPECT_EQ(refused->reason, Refusal::kOutsideRegion);
+  EXPECT_NE(refused->detail.find("outside this shard's tiles (0, 0)..(1, 1)"), std::string::npos)
+      << refused->detail;
+
+  // beta's own frame is the fleet frame shifted 2 m east: its tile (0, 0) lands on fleet tile
+  // (1, 0), inside the region, its tile (1, 0) on (2, 0), outside.
+  map.Join(RobotId{"beta"}, Pose2{2.0, 0.0, 0.0});
+  Offer(map, Tile("beta", {0, 0}), From("beta", "p2", /*in_map_frame=*/true));
+  Offer(map, Tile("beta", {1, 0}), From("beta", "p2", /*in_map_frame=*/true));
+  FuseAll(map);
+  const FleetMapChanges changes = map.TakeChanged();
+  EXPECT_TRUE(HasContribution(changes, "beta", {1, 0}, true));
+  EXPECT_FALSE(HasContribution(changes, "beta", {2, 0}, true));
+  EXPECT_EQ(CellAt(map, 3.0, 1.0), grid::kOccupiedValue);
+  EXPECT_EQ(CellAt(map, 5.0, 1.0), grid::kUnknownValue);
+  for (const FusedTile& fused : changes.fused) {
+    EXPECT_TRUE(options.region->Contains(fused.tile)) << fused.tile.x << "," << fused.tile.y;
+  }
+}
+
+// The shards' regions are drawn in the fleet frame: a robot at an unknown pose is placed on the
+// shard's map by registration, never taken as the fleet frame itself.
+TEST(FleetMapTest, AShardNeverAnchorsTheFleetFrameOnARobot) {
+  FleetMapOptions options = Options();
+  options.region = TileBox{0, 0, 1, 1};
+  FleetMap map = MakeMap(options);
+  map.Join(RobotId{"alpha"}, std::nullopt);
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1", /*in_map_frame=*/true));
+  FuseAll(map);
+  map.NextRegistration(kSteady);
+  EXPECT_EQ(map.FrameOf(RobotId{"alpha"})->state, RobotFrame::State::kUnplaced);
+  EXPECT_EQ(map.fusion().contribution_count(), 0u);
+}
+
+}  // namespace
+}  // namespace fleetmap::fusion

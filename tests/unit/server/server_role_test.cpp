@@ -106,5 +106,28 @@ TEST(ServerRoleTest, ItsOwnSamplesAreNotAPeer) {
   EXPECT_TRUE(role.peers().empty());
 }
 
+// Shards (docs/shards.md): each shard's servers rank among themselves; a stronger server of
+// another shard serves its own region, not this one's.
+TEST(ServerRoleTest, AServerOfAnotherShardDoesNotOutrankIt) {
+  ServerRole east("b", 50, kStart, "east");
+  transport::FleetServerMessage west = Server("a", 100);
+  west.shard = "west";
+  transport::FleetServerMessage east_standby = Server("c", 10);
+  east_standby.shard = "east";
+  for (SteadyTime now = kStart; now <= kListened; now += milliseconds(500)) {
+    east.Heard(west, now);
+    east.Heard(east_standby, now);
+    east.Decide(now);
+  }
+  EXPECT_TRUE(east.serving());
+  ASSERT_EQ(east.peers().size(), 1u);
+  EXPECT_EQ(east.peers()[0].server_id, "c");
+  // An unsharded server ignores shards' servers too.
+  ServerRole whole("z", 1, kStart);
+  whole.Heard(west, kListened);
+  whole.Decide(kListened);
+  EXPECT_TRUE(whole.serving());
+}
+
 }  // namespace
 }  // namespace fleetmap::server
