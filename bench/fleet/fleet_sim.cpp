@@ -18,6 +18,7 @@
 #include "bench/fleet/bench_flood_command.hpp"
 #include "bench/fleet/new_revisions.hpp"
 #include "bench/fleet/placement_observer.hpp"
+#include "bench/fleet/sim_servers.hpp"
 #include "common/process/subprocess.hpp"
 #include "common/security/fleet_security.hpp"
 #include "common/sim/random.hpp"
@@ -126,6 +127,12 @@ class Observer {
         observer->fused_grid_,
         transport::OccupancyGridReader::Create(*observer->participant_, transport::kFleetMapTopic,
                                                observer->wake_up_));
+    if (fleet.shards >= 2) {
+      FLEETMAP_ASSIGN_OR_RETURN(observer->reference_grid_,
+                                transport::OccupancyGridReader::Create(
+                                    *observer->participant_,
+                                    transport::ShardMapTopic(kReferenceShard), observer->wake_up_));
+    }
     if (!fleet.sim_frames.empty()) {
       FLEETMAP_ASSIGN_OR_RETURN(
           observer->placements_,
@@ -140,6 +147,7 @@ class Observer {
     status_.reset();
     fused_tiles_.reset();
     fused_grid_.reset();
+    reference_grid_.reset();
   }
 
   // `now_s`: seconds since the run started.
@@ -175,6 +183,11 @@ class Observer {
     for (StatusOr<transport::MapMessage>& map : fused_grid_->Drain()) {
       if (map.ok()) result->fused = std::move(map->grid);
     }
+    if (reference_grid_ != nullptr) {
+      for (StatusOr<transport::MapMessage>& map : reference_grid_->Drain()) {
+        if (map.ok()) result->reference_fused = std::move(map->grid);
+      }
+    }
     if (placements_ != nullptr) placements_->Poll(now_s, result);
   }
 
@@ -195,7 +208,8 @@ class Observer {
   std::unique_ptr<transport::RobotStatusReader> status_;
   std::unique_ptr<transport::VectorTileReader> fused_tiles_;
   std::unique_ptr<transport::OccupancyGridReader> fused_grid_;
-  std::unique_ptr<PlacementObserver> placements_;  // --unknown-poses
+  std::unique_ptr<transport::OccupancyGridReader> reference_grid_;  // --shards
+  std::unique_ptr<PlacementObserver> placements_;                   // --unknown-poses
   Timestamp started_;
   int hostile_first_tile_x_ = INT32_MAX;
   NewRevisions new_revisions_;
@@ -230,6 +244,17 @@ Status FleetSimOptions::Validate() const {
   if (!(scans_per_second > 0.0)) return InvalidArgumentError("--rate must be > 0 scans/s");
   if (!params_file.empty() && !std::ifstream(params_file)) {
     return InvalidArgumentError("--params " + params_file + ": cannot be read");
+  }
+  if (shards != 0 && (shards < 2 || shards > 8)) {
+    return InvalidArgumentError("--shards must be in 2..8");
+  }
+  if (shards >= 2 && !sim_frames.empty()) {
+    return InvalidArgumentError(
+        "--shards needs known poses: a shard never takes a robot's frame as the fleet frame "
+        "(docs/shards.md)");
+  }
+  if (shards >= 2 && wire != "tiles") {
+    return InvalidArgumentError("--shards runs the tile wire only");
   }
   if (hostile) {
     if (hostile->participants < 1 || hostile->participants > 16) {
@@ -327,11 +352,9 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   std::vector<std::string> config_args;
   if (!options.params_file.empty()) config_args = {"--config", options.params_file};
   server_argv.insert(server_argv.end(), config_args.begin(), config_args.end());
-  process::Subprocess server(std::move(server_argv), env);
-  if (!server.started()) return UnavailableError("could not start fleetmap-server");
-  if (!server.WaitForOutput("listening", std::chrono::seconds(20))) {
-    return UnavailableError("fleetmap-server did not start: " + server.Output());
-  }
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<SimServers> servers,
+                            SimServers::Start(server_argv, env, options.size, options.shards));
+  result.shard_regions = servers->regions();
   const SimView view(options, domain);
   observer->MarkStart();
   const auto start = steady_clock::now();
@@ -428,8 +451,8 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     }
     observer->Poll(seconds_since_start(), &result);
     if (now >= next_rss) {
-      if (const auto usage = process::ReadUsage(server.pid())) {
-        result.server_rss.emplace_back(seconds_since_start(), usage->rss_bytes);
+      if (const int64_t rss = servers->RssBytes(); rss > 0) {
+        result.server_rss.emplace_back(seconds_since_start(), rss);
       }
       next_rss += std::chrono::seconds(1);
     }
@@ -443,15 +466,13 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
     result.loopback_bytes = *now - *loopback_at_start;
   }
   // The server's resources while it still runs, then an orderly end: robots leave first.
-  const std::string during_run = server.Output();
+  const std::string during_run = servers->Output();
   for (size_t at = during_run.find(" lost (no liveliness"); at != std::string::npos;
        at = during_run.find(" lost (no liveliness", at + 1)) {
     ++result.robots_reported_lost;
   }
-  if (const auto usage = process::ReadUsage(server.pid())) {
-    result.server_cpu_seconds = usage->cpu_seconds;
-    result.server_peak_rss_bytes = usage->peak_rss_bytes;
-  }
+  result.server_cpu_seconds = servers->CpuSeconds();
+  result.server_peak_rss_bytes = servers->PeakRssBytes();
   if (flood) stop_flood();
   for (auto& agent : agents) agent->Signal(SIGTERM);
   // Agents that measure the grid wires finish compressing first, still reporting (their
@@ -478,9 +499,8 @@ StatusOr<FleetRunResult> RunFleet(const FleetSimOptions& options,
   }
   const auto drain_until = steady_clock::now() + std::chrono::milliseconds(1500);
   while (steady_clock::now() < drain_until) observer->Poll(seconds_since_start(), &result);
-  server.Signal(SIGINT);
-  server.Wait(std::chrono::seconds(10));
-  result.server_output = server.Output();
+  servers->Stop();
+  result.server_output = servers->Output();
   result.seconds = std::chrono::duration<double>(steady_clock::now() - start).count();
   if (!options.sim_frames.empty()) {
     // The fused map is in the anchor's frame and each path in its robot's: the truth carries

@@ -14,6 +14,7 @@
 
 #include "bench/fleet/hostile_flood.hpp"
 #include "common/core/robot_status.hpp"
+#include "common/core/shard_regions.hpp"
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
 #include "common/grid/occupancy_grid.hpp"
@@ -63,6 +64,10 @@ struct FleetSimOptions {
   // fleetmap_view sections, given to each process as --config (docs/configuration.md). What the
   // sim sets on the command line (robot ids, the domain, the terrain) wins over it. Empty: none.
   std::string params_file;
+  // `fleetmap sim --shards K` (docs/shards.md): K shard servers, each fusing a strip of the
+  // terrain along x, and the aggregator; a reference server fuses every region in the same run
+  // (FleetRunResult::reference_fused). 0: one server.
+  int shards = 0;
 
   Status Validate() const;
 };
@@ -118,6 +123,10 @@ struct FleetRunResult {
                                      // (the honest robots' tiles only)
   std::vector<double> latency_at_s;  // when each of latencies_ms was received (run seconds)
   grid::OccupancyGrid fused;         // the last fused grid on rt/fleetmap/map (fleet frame)
+  // With shards: the regions, and the last grid of the reference server that fused them all in
+  // the same run.
+  std::vector<ShardRegion> shard_regions;
+  grid::OccupancyGrid reference_fused;
   // Takes terrain-frame points into the fleet frame: identity, or with sim_frames the inverse of
   // the anchor's true world_from_map (nullopt while no robot anchored the fleet).
   std::optional<Transform2> fleet_from_world = Transform2::Identity();

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bench/fleet/baseline_bytes.hpp"
+#include "bench/fleet/shard_comparison.hpp"
 #include "common/core/file_io.hpp"
 #include "common/grid/image_file.hpp"
 #include "common/metrics/map_quality.hpp"
@@ -16,6 +17,9 @@
 
 namespace fleetmap::bench {
 namespace {
+
+// The fleet tile side the simulated fleet's servers use (fleetmap-server's default).
+constexpr double kSimTileSize = 10.0;
 
 std::string Percent(const std::optional<double>& value) {
   return value ? fmt::format("{:.2f} %", *value) : std::string("undefined");
@@ -343,6 +347,12 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       Percent(quality.pearson_occupied), Percent(quality.occupied_picture_distance),
       Percent(quality.unoccupied_picture_distance));
   if (placements) md += placements->md;
+  std::optional<ShardComparison> shards;
+  if (options.shards >= 2) {
+    FLEETMAP_ASSIGN_OR_RETURN(shards, CompareShardedMap(tiles.fused, tiles.reference_fused,
+                                                        tiles.shard_regions, kSimTileSize));
+    md += shards->Markdown(options.shards);
+  }
   md += fmt::format(
       "## Server\n\nCPU {:.2f} s over {:.0f} s ({:.0f} % of one core), peak memory "
       "{:.1f} MB.\n\n",
@@ -391,6 +401,13 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
       json["per_robot"][name]["baselines"][baseline.key] = baseline.bytes;
     }
   }
+  if (shards) {
+    json["shards"] = {{"shards", options.shards},
+                      {"cells", shards->cells},
+                      {"differing", shards->differing},
+                      {"differing_near_border", shards->differing_near_border}};
+    FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/server.log", tiles.server_output));
+  }
   if (placements) {
     json["unknown_poses"] = placements->json;
     FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/placement.csv", placements->csv));
@@ -399,11 +416,17 @@ StatusOr<std::string> WriteFleetReport(const FleetSimOptions& options, const Fle
   }
   FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(out_dir + "/report.json", json.dump(2) + "\n"));
 
+  const std::string shard_summary =
+      shards ? fmt::format(
+                   "{} shards: {} of {} cells differ from one server's map in the same run "
+                   "({} near a border)\n",
+                   options.shards, shards->differing, shards->cells, shards->differing_near_border)
+             : std::string();
   return fmt::format(
-      "{}{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
+      "{}{}{} robots, {} {} m, {:.0f} s: {} bytes of vector tiles on the wire, {}; latency p50 {} "
       "p95 {} p99 {}; fused map MS {} OPDF {} UPDF {}; server {:.0f} % of a core, {:.0f} MB.\n"
       "Report: {}/report.md, image: {}",
-      placements ? placements->summary + "\n" : std::string(), options.robots,
+      placements ? placements->summary + "\n" : std::string(), shard_summary, options.robots,
       sim::TerrainKindName(options.kind), options.size, tiles.seconds, tiles.total_bytes, headline,
       Ms(p50), Ms(p95), Ms(p99), Percent(quality.map_score),
       Percent(quality.occupied_picture_distance), Percent(quality.unoccupied_picture_distance),

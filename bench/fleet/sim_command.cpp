@@ -31,6 +31,7 @@ struct SimArgs {
   bool secure = false;
   int view_port = -1;
   std::string params_file;
+  int shards = 0;
 };
 
 int RunSim(const SimArgs& args) {
@@ -44,6 +45,7 @@ int RunSim(const SimArgs& args) {
   fleet.robots = args.robots;
   fleet.view_port = args.view_port;
   fleet.params_file = args.params_file;
+  fleet.shards = args.shards;
   if (args.unknown_poses) fleet.sim_frames = UnknownPoseFrames(fleet.seed, fleet.robots);
   if (const Status valid = fleet.Validate(); !valid.ok()) {
     std::cerr << "fleetmap sim: " << valid.message() << "\n";
@@ -132,7 +134,7 @@ int RunSim(const SimArgs& args) {
     security_table = std::move(table).value();
   }
   std::optional<FleetRunResult> compared;
-  if (args.compare && !args.unknown_poses && !args.secure) {
+  if (args.compare && !args.unknown_poses && !args.secure && args.shards == 0) {
     StatusOr<FleetRunResult> compared_run = run(args.compare_wire, {});
     if (!compared_run.ok()) {
       std::cerr << "fleetmap sim: the " << args.compare_wire
@@ -187,6 +189,10 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                    "serve the live web view at http://127.0.0.1:PORT/ while the fleet runs "
                    "(fleetmap view; each run of the sim in turn)")
       ->check(CLI::Range(1, 65535));
+  command->add_option("--shards", args->shards,
+                      "fuse on K shard servers, each a strip of the terrain, joined by the "
+                      "aggregator, and compare with one server fusing everything in the same run "
+                      "(docs/shards.md; 2..8, tile wire, no grid-wire run)");
   command->add_option("--params", args->params_file,
                       "a ROS 2 params file with fleetmap_server, fleetmap_agent and fleetmap_view "
                       "sections, given to each process as --config (docs/configuration.md)");

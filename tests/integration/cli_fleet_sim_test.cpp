@@ -62,6 +62,30 @@ TEST(CliFleetSimTest, SmallFleetReportsBytesLatencyAndQuality) {
   std::filesystem::remove_all(out);
 }
 
+// `fleetmap sim --shards 2` (docs/shards.md): two shard servers and the aggregator, and a
+// reference server fusing everything in the same run; the joined map is the reference's.
+TEST(CliFleetSimTest, TwoShardsFuseTheMapOneServerFusesInTheSameRun) {
+  const std::string out = ::testing::TempDir() + "/fleet_sim_shards_" + std::to_string(getpid());
+  std::filesystem::remove_all(out);
+  const auto result =
+      RunFleetmap({"sim", "--robots", "2", "--terrain", "office", "--size", "30", "--seed", "3",
+                   "--duration", "8", "--rate", "40", "--shards", "2", "--out", out});
+  ASSERT_EQ(result.exit_code, 0) << result.output();
+  EXPECT_THAT(result.out, HasSubstr("2 shards: 0 of "));
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_GT(report["shards"]["cells"].get<int64_t>(), 0);
+  EXPECT_EQ(report["shards"]["differing"].get<int64_t>(), 0);
+  EXPECT_FALSE(report.contains("compared_run"));  // no grid-wire run with shards
+  // Both shards fused tiles: the terrain is cut at 15 m, and the robots map both halves.
+  std::ifstream log(out + "/server.log");
+  const std::string servers((std::istreambuf_iterator<char>(log)), {});
+  EXPECT_THAT(servers, HasSubstr("on rt/fleetmap/shard0/map"));
+  EXPECT_THAT(servers, HasSubstr("on rt/fleetmap/shard1/map"));
+  EXPECT_THAT(servers, Not(HasSubstr("fused map: 0 tiles")));
+  std::filesystem::remove_all(out);
+}
+
 TEST(CliFleetSimTest, BadOptionsExitTwoAndNameTheOption) {
   const auto robots = RunFleetmap({"sim", "--robots", "0", "--no-compare"});
   EXPECT_EQ(robots.exit_code, 2);
@@ -72,6 +96,12 @@ TEST(CliFleetSimTest, BadOptionsExitTwoAndNameTheOption) {
   const auto size = RunFleetmap({"sim", "--size", "-4"});
   EXPECT_EQ(size.exit_code, 2);
   EXPECT_THAT(size.err, HasSubstr("--size"));
+  const auto shards = RunFleetmap({"sim", "--shards", "9", "--no-compare"});
+  EXPECT_EQ(shards.exit_code, 2);
+  EXPECT_THAT(shards.err, HasSubstr("--shards must be in 2..8"));
+  const auto unknown = RunFleetmap({"sim", "--shards", "2", "--unknown-poses"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_THAT(unknown.err, HasSubstr("--shards needs known poses"));
   const auto wire = RunFleetmap({"sim", "--compare-wire", "carrier-pigeon"});
   EXPECT_NE(wire.exit_code, 0);
   EXPECT_THAT(wire.output(), HasSubstr("--compare-wire"));
