@@ -55,6 +55,7 @@ void FleetPresence::SayAlive(SteadyTime now, uint32_t robots) {
   message.stamp = Clock::now();
   message.robots = robots;
   message.shard = identity_.shard;
+  message.region = identity_.region;
   if (StatusOr<size_t> written = writer_->Write(message); !written.ok()) {
     // Said once: a server that cannot say it is alive is taken for dead by its standbys.
     if (!write_failure_reported_) spdlog::error("server: {}", written.status().message());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -28,7 +29,8 @@ class FleetPresence {
     std::string server_id;  // the served participant's id (Participant::id())
     std::string name;       // for people
     int32_t strength = 0;
-    std::string shard;  // a shard's server (docs/shards.md); empty: unsharded
+    std::string shard;               // a shard's server (docs/shards.md); empty: unsharded
+    std::array<double, 4> region{};  // the shard's region: min x, min y, max x, max y
   };
 
   // Heartbeats go on `heartbeats` (a participant a flood of tiles cannot delay); the served state

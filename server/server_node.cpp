@@ -83,12 +83,11 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
                                                       *node->status_participant_, node->wake_up_));
   FLEETMAP_ASSIGN_OR_RETURN(
       node->presence_,
-      FleetPresence::Create(
-          *node->status_participant_, *node->participant_,
-          FleetPresence::Identity{
-              node->participant_->id(), node->ServerName(), node->options_.ownership_strength,
-              node->options_.shard ? node->options_.shard->name : std::string()},
-          node->wake_up_));
+      FleetPresence::Create(*node->status_participant_, *node->participant_,
+                            FleetPresence::Identity{node->participant_->id(), node->ServerName(),
+                                                    node->options_.ownership_strength,
+                                                    node->ShardName(), node->ShardRegion()},
+                            node->wake_up_));
   // The sessions in memory are the learner's input: as many as it reads.
   node->options_.worker.sessions_in_memory = node->options_.learning.max_sessions;
   FLEETMAP_ASSIGN_OR_RETURN(node->fusion_worker_,
@@ -127,6 +126,16 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
         if (learning != nullptr) learning->Submit(std::move(finished));
       });
   return node;
+}
+
+std::string ServerNode::ShardName() const {
+  return options_.shard ? options_.shard->name : std::string();
+}
+
+std::array<double, 4> ServerNode::ShardRegion() const {
+  if (!options_.shard) return {};
+  const fleetmap::ShardRegion& region = options_.shard->region();
+  return {region.min_x, region.min_y, region.max_x, region.max_y};
 }
 
 std::string ServerNode::ServerName() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <map>
@@ -111,6 +112,9 @@ class ServerNode {
   void PrintSummary(const FusionStats& fusion) const;
   // options_.name, else host:pid.
   std::string ServerName() const;
+  // What rt/fleetmap/servers says of the shard it fuses (empty, zeros: unsharded).
+  std::string ShardName() const;
+  std::array<double, 4> ShardRegion() const;
 
   ServerOptions options_;
   std::shared_ptr<WakeUp> wake_up_ = std::make_shared<WakeUp>();

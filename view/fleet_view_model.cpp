@@ -313,9 +313,10 @@ void FleetViewModel::OnServer(const transport::FleetServerEvent& event, Timestam
   }
 }
 
-const FleetViewModel::Server* FleetViewModel::ServingServer() const {
+const FleetViewModel::Server* FleetViewModel::ServingServer(const std::string& shard) const {
   const Server* best = nullptr;
   for (const auto& [id, server] : servers_) {
+    if (server.last.shard != shard) continue;
     const auto rank = [](const Server& s) {
       return std::make_tuple(s.last.serving, s.last.ownership_strength);
     };
@@ -373,12 +374,40 @@ json FleetViewModel::StatusJson() const {
 }
 
 json FleetViewModel::ServerJson() const {
-  const Server* serving = ServingServer();
-  if (serving == nullptr) return nullptr;
-  return {{"name", serving->last.name},
-          {"strength", serving->last.ownership_strength},
-          {"robots", serving->last.robots},
-          {"standbys", servers_.size() - 1}};
+  const Server* serving = ServingServer("");
+  json shards = ShardsJson();
+  if (serving == nullptr && shards.empty()) return nullptr;
+  json server = json::object();
+  if (serving != nullptr) {
+    const size_t unsharded =
+        static_cast<size_t>(std::count_if(servers_.begin(), servers_.end(), [](const auto& s) {
+          return s.second.last.shard.empty();
+        }));
+    server = {{"name", serving->last.name},
+              {"strength", serving->last.ownership_strength},
+              {"robots", serving->last.robots},
+              {"standbys", unsharded - 1}};
+  }
+  if (!shards.empty()) server["shards"] = std::move(shards);
+  return server;
+}
+
+json FleetViewModel::ShardsJson() const {
+  std::map<std::string, size_t> servers_by_shard;
+  for (const auto& [id, server] : servers_) {
+    if (!server.last.shard.empty()) ++servers_by_shard[server.last.shard];
+  }
+  json shards = json::array();
+  for (const auto& [shard, count] : servers_by_shard) {
+    const Server* serving = ServingServer(shard);
+    const std::array<double, 4>& r = serving->last.region;
+    shards.push_back({{"name", shard},
+                      {"server", serving->last.name},
+                      {"robots", serving->last.robots},
+                      {"standbys", count - 1},
+                      {"region", {r[0], r[1], r[2], r[3]}}});
+  }
+  return shards;
 }
 
 std::string FleetViewModel::FullEvent() const {

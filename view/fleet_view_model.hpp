@@ -144,8 +144,11 @@ class FleetViewModel {
     transport::FleetServerMessage last;
     Timestamp heard;
   };
-  // The server that serves (or, while none says so, the strongest live one); nullptr when none.
-  const Server* ServingServer() const;
+  // Of the live servers of `shard` (empty: unsharded), the one that serves (or, while none says
+  // so, the strongest); nullptr when none.
+  const Server* ServingServer(const std::string& shard) const;
+  // One entry per shard whose servers are live (docs/shards.md): its name, region, server.
+  nlohmann::json ShardsJson() const;
   // Live servers by id; whether one was ever heard (no server is news only after one was).
   std::map<std::string, Server> servers_;
   bool server_seen_ = false;

@@ -3,6 +3,7 @@
 // fleetmap's own types for the entity, sub-map graph and object-model topics. Conversions to the
 // wire types are in conversions.hpp; the readers and writers in keyed_state_topic.hpp.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -90,6 +91,8 @@ struct FleetServerMessage {
   Timestamp stamp{};
   uint32_t robots = 0;
   std::string shard;  // the shard it fuses (docs/shards.md); empty: the whole fleet map
+  // The shard's region (fleet frame, metres): min x, min y, max x, max y; zeros without a shard.
+  std::array<double, 4> region{};
 };
 
 }  // namespace fleetmap::transport

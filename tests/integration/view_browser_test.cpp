@@ -339,5 +339,48 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   participant->reset();
 }
 
+// Shards (docs/shards.md): the status line names each shard and its server, and the map outlines
+// each shard's region with its name.
+TEST(ViewBrowserTest, ShowsEachShardAndItsRegion) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  const std::string server = std::string(FLEETMAP_BINARY_DIR) + "/server/fleetmap-server";
+  process::Subprocess west(
+      {server, "--duration", "120", "--shard", "west", "--region", "0", "0", "30", "20", "--name",
+       "west-server", "--no-object-learning", "--no-extrapolation"},
+      env);
+  process::Subprocess east(
+      {server, "--duration", "120", "--shard", "east", "--region", "30", "0", "60", "20", "--name",
+       "east-server", "--no-object-learning", "--no-extrapolation"},
+      env);
+  testing::ViewProcess view(domain);
+  ASSERT_GT(view.port(), 0) << view.process().Output();
+  auto browser = testing::HeadlessChromium::Open(view.url());
+  ASSERT_TRUE(browser.ok()) << browser.status();
+  testing::HeadlessChromium& page = **browser;
+
+  const std::string text = "document.getElementById('status-server').textContent";
+  auto named = page.WaitFor(text + ".startsWith('2 shards')", kDeadline);
+  ASSERT_TRUE(named.ok()) << named.status();
+  EXPECT_EQ(*named, true) << Shown(page, text) << west.Output() << east.Output();
+  EXPECT_EQ(Shown(page, text), "2 shards: east (server east-server), west (server west-server)");
+  EXPECT_EQ(Shown(page, "document.getElementById('status-server').dataset.state"), "serving");
+  // An outline and a name per shard, the outline on the shard's region.
+  EXPECT_EQ(Shown(page, "shardLayer.getLayers().length"), 4);
+  EXPECT_EQ(Shown(page,
+                  "[...document.querySelectorAll('.shard-label')].map((l) => l.textContent)"
+                  ".sort().join(' ')"),
+            "shard east shard west");
+  EXPECT_EQ(Shown(page,
+                  "(() => { const b = shardLayer.getLayers().find((l) => l.getBounds)"
+                  ".getBounds(); return [b.getWest(), b.getSouth(), b.getEast(), b.getNorth()]; "
+                  "})()"),
+            nlohmann::json::parse("[30, 0, 60, 20]"));
+  const std::string artifacts = std::string(FLEETMAP_BINARY_DIR) + "/test-artifacts";
+  std::filesystem::create_directories(artifacts);
+  EXPECT_TRUE(page.Screenshot(artifacts + "/view_shards.png").ok());
+}
+
 }  // namespace
 }  // namespace fleetmap

@@ -74,6 +74,8 @@ const layers = {
 };
 let gridOverlay = null;
 const gridLayer = L.layerGroup();  // off by default: the vectors are the map
+const shardLayer = L.layerGroup().addTo(map);  // the shards' regions (docs/shards.md)
+let drawnShards = '';
 L.control.layers(null, {
   'fused grid (rt/fleetmap/map)': gridLayer,
   'free space': layers.free,
@@ -82,6 +84,7 @@ L.control.layers(null, {
   'sub-maps': layers.submaps,
   objects: layers.objects,
   robots: layers.robots,
+  'shard regions': shardLayer,
 }, { collapsed: false }).addTo(map);
 L.control.scale({ metric: true, imperial: false }).addTo(map);
 
@@ -443,16 +446,50 @@ function renderStatus() {
   updateGrid(s.grid);
 }
 
-// Which fleetmap-server serves the fleet (docs/standby.md), or that none is alive.
+// Which fleetmap-server serves the fleet (docs/standby.md), or each shard's (docs/shards.md), or
+// that none is alive.
 function renderServer(server) {
   const element = document.getElementById('status-server');
   element.dataset.state = server ? 'serving' : 'none';
+  renderShards(server && server.shards ? server.shards : []);
   if (!server) {
     element.textContent = 'no fleet server';
     return;
   }
-  const standbys = server.standbys ? ` + ${server.standbys} standby` : '';
-  element.textContent = `server ${server.name}${standbys}`;
+  const standby = (n) => (n ? ` + ${n} standby` : '');
+  const parts = [];
+  if (server.name) parts.push(`server ${server.name}${standby(server.standbys)}`);
+  if (server.shards) {
+    parts.push(`${server.shards.length} shards: ` + server.shards
+      .map((s) => `${s.name} (server ${s.server}${standby(s.standbys)})`).join(', '));
+  }
+  element.textContent = parts.join('; ');
+}
+
+// Each shard's region, a dashed outline, named where the region meets the fused map (a region
+// may reach far beyond it); redrawn when the regions or the map's extent change.
+function renderShards(shards) {
+  const grid = state.status && state.status.grid;
+  const shown = grid ? [grid.ox, grid.oy, grid.ox + grid.w * grid.res, grid.oy + grid.h * grid.res]
+    : [-50, -50, 50, 50];
+  const key = JSON.stringify([shards.map((s) => [s.name, s.region]), shown]);
+  if (key === drawnShards) return;
+  drawnShards = key;
+  shardLayer.clearLayers();
+  const clamp = (v, lo, hi) => Math.min(Math.max(v, lo), hi);
+  for (const shard of shards) {
+    const [x0, y0, x1, y1] = shard.region;
+    shardLayer.addLayer(L.rectangle([ll(x0, y0), ll(x1, y1)], {
+      className: 'shard-region', color: '#6a1b9a', weight: 2, dashArray: '6 6', fill: false,
+      interactive: false,
+    }));
+    const x = clamp((Math.max(x0, shown[0]) + Math.min(x1, shown[2])) / 2, x0, x1);
+    const y = clamp((Math.max(y0, shown[1]) + Math.min(y1, shown[3])) / 2, y0, y1);
+    shardLayer.addLayer(L.marker(ll(x, y), {
+      interactive: false,
+      icon: L.divIcon({ className: 'shard-label', html: `<span>shard ${shard.name}</span>`, iconSize: null }),
+    }));
+  }
 }
 
 function updateGrid(grid) {

@@ -684,6 +684,10 @@ StatusOr<FleetServer_> ToIdl(const FleetServerMessage& message) {
   sample.stamp(ToIdl(message.stamp));
   sample.robots(message.robots);
   sample.shard(message.shard);
+  sample.region_min_x(message.region[0]);
+  sample.region_min_y(message.region[1]);
+  sample.region_max_x(message.region[2]);
+  sample.region_max_y(message.region[3]);
   return sample;
 }
 
@@ -707,6 +711,14 @@ StatusOr<FleetServerMessage> FromIdl(const FleetServer_& sample) {
                                 " names a shard that is not a ROS name token");
   }
   message.shard = sample.shard();
+  message.region = {sample.region_min_x(), sample.region_min_y(), sample.region_max_x(),
+                    sample.region_max_y()};
+  if (!std::all_of(message.region.begin(), message.region.end(),
+                   [](double v) { return std::isfinite(v); })) {
+    return InvalidArgumentError("FleetServer " + sample.server_id() +
+                                " has a region that is not "
+                                "finite");
+  }
   return message;
 }
 

@@ -89,6 +89,32 @@ TEST(FleetViewModelTest, TheStatusNamesTheServingServerAndSaysWhenNoneIsLeft) {
   EXPECT_EQ(full["robots"]["alpha"]["state"], "stale");
 }
 
+// Shards (docs/shards.md): each shard's serving server and region; no shard stands by for another.
+TEST(FleetViewModelTest, TheStatusNamesEachShardItsServerAndItsRegion) {
+  FleetViewModel model;
+  const auto shard = [](const std::string& name, const std::string& shard_name, int32_t strength,
+                        double min_x, double max_x) {
+    transport::FleetServerEvent event = Server(name, strength, true);
+    event.message.shard = shard_name;
+    event.message.region = {min_x, 0.0, max_x, 80.0};
+    return event;
+  };
+  model.OnServer(shard("west", "west", 100, 0.0, 60.0), kStart);
+  model.OnServer(shard("west-standby", "west", 50, 0.0, 60.0), kStart);
+  model.OnServer(shard("east", "east", 10, 60.0, 120.0), kStart);
+  model.Tick(kStart + milliseconds(100));
+  const json server = json::parse(model.FullEvent())["status"]["server"];
+  ASSERT_FALSE(server.is_null()) << "shards serve the fleet";
+  EXPECT_FALSE(server.contains("name")) << "no unsharded server";
+  ASSERT_EQ(server["shards"].size(), 2u);
+  EXPECT_EQ(server["shards"][0]["name"], "east");
+  EXPECT_EQ(server["shards"][0]["server"], "east");
+  EXPECT_EQ(server["shards"][0]["standbys"], 0);
+  EXPECT_EQ(server["shards"][1]["server"], "west");
+  EXPECT_EQ(server["shards"][1]["standbys"], 1);
+  EXPECT_EQ(server["shards"][1]["region"], json::parse("[0.0, 0.0, 60.0, 80.0]"));
+}
+
 TEST(FleetViewModelTest, AServerThatWithdrewIsGoneAtOnce) {
   FleetViewModel model;
   model.OnServer(Server("a", 100, true), kStart);
