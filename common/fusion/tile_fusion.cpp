@@ -56,7 +56,6 @@ TileFusion::TileState& TileFusion::StateOf(const TileId& tile) {
   const auto [it, created] = tiles_.try_emplace(tile);
   if (created) {
     it->second.fused = EmptyTileGrid(tile);
-    it->second.newest.emplace(it->second.fused);
     it->second.first_seen = ++tiles_created_;
   }
   return it->second;
@@ -89,12 +88,19 @@ std::vector<DatedCells> TileFusion::TrustedCells(const TileState& state) const {
   return out;
 }
 
-const NewestEvidence& TileFusion::FreshEvidence(TileState& state) const {
+const NewestEvidence* TileFusion::FreshEvidence(const TileId& tile, TileState& state) const {
+  const std::vector<DatedCells> trusted = TrustedCells(state);
+  if (trusted.size() < 2) {
+    state.newest.reset();
+    state.newest_stale = true;
+    return nullptr;
+  }
+  if (!state.newest) state.newest.emplace(EmptyTileGrid(tile));
   if (state.newest_stale) {
-    state.newest->Rebuild(TrustedCells(state));
+    state.newest->Rebuild(trusted);
     state.newest_stale = false;
   }
-  return *state.newest;
+  return &*state.newest;
 }
 
 uint32_t TileFusion::Deciseconds(Timestamp stamp) const {
@@ -123,7 +129,8 @@ Status TileFusion::UpdateRobotTile(const RobotId& robot, const TileId& tile,
   Contribution& contribution = ContributionOf(state, robot);
   const uint32_t now = Deciseconds(stamp);
   // The tile's newest evidence follows the cells that changed, unless it is built again anyway.
-  NewestEvidence* newest = Fused(robot) && !state.newest_stale ? &*state.newest : nullptr;
+  NewestEvidence* newest =
+      Fused(robot) && state.newest && !state.newest_stale ? &*state.newest : nullptr;
   const int8_t* values = cells.data().data();
   if (contribution.cells.empty()) {
     contribution.changed_at.assign(static_cast<size_t>(cells.cell_count()), now);
@@ -238,7 +245,10 @@ grid::OccupancyGrid TileFusion::FuseCells(const TileId& tile, const TileState& s
 
 bool TileFusion::FuseAgain(const TileId& tile, TileState* state) {
   const int cells = options_.CellsPerTile();
-  const grid::OccupancyGrid& fused = FreshEvidence(*state).cells();
+  const NewestEvidence* newest = FreshEvidence(tile, *state);
+  grid::OccupancyGrid alone;  // a tile of one trusted contribution keeps no NewestEvidence
+  if (newest == nullptr) alone = FuseCells(tile, *state, Evidence{});
+  const grid::OccupancyGrid& fused = newest != nullptr ? newest->cells() : alone;
   // Which borders the change reached decides which neighbours must be re-vectorized too.
   int min_x = cells, min_y = cells, max_x = -1, max_y = -1;
   for (int y = 0; y < cells; ++y) {
@@ -285,14 +295,17 @@ StatusOr<vector_map::VectorMap> TileFusion::VectorizeWithContext(const TileId& t
       const auto it = tiles_.find(TileId{tile.x + dx, tile.y + dy});
       if (it == tiles_.end() || it->second.fused.empty()) continue;
       const grid::OccupancyGrid& source = it->second.fused;
+      // The source's columns that fall in the window, row by row (this runs for every tile
+      // vectorized: cell by cell it was 4 % of the fusion's time).
+      const int x_begin = std::max(0, -(margin + dx * cells));
+      const int x_end = std::min(cells, side - (margin + dx * cells));
+      if (x_begin >= x_end) continue;
       for (int y = 0; y < cells; ++y) {
         const int wy = margin + dy * cells + y;
         if (wy < 0 || wy >= side) continue;
-        for (int x = 0; x < cells; ++x) {
-          const int wx = margin + dx * cells + x;
-          if (wx < 0 || wx >= side) continue;
-          window.at(wx, wy) = source.at(x, y);
-        }
+        std::memcpy(&window.at(margin + dx * cells + x_begin, wy),
+                    &source.data()[static_cast<size_t>(y) * cells + x_begin],
+                    static_cast<size_t>(x_end - x_begin));
       }
     }
   }
@@ -308,12 +321,11 @@ void TileFusion::SetRobotSource(const RobotId& robot, std::string source) {
   sources_[robot] = std::move(source);
 }
 
-TileFusion::TileReview TileFusion::MakeTileReview(TileState& state) const {
+TileFusion::TileReview TileFusion::MakeTileReview(const TileId& tile, TileState& state) const {
   TileReview review;
-  const NewestEvidence& trusted = FreshEvidence(state);
-  review.trusted = &trusted.cells();
-  review.trusted_dates = &trusted.dates();
-  const size_t cells = trusted.dates().size();
+  review.evidence = FreshEvidence(tile, state);
+  if (review.evidence == nullptr) review.alone = FuseCells(tile, state, {}, &review.alone_dates);
+  const size_t cells = review.trusted_dates().size();
   for (const auto& [other, contribution] : state.robots) {
     if (Fused(other)) continue;
     if (review.free_first.empty()) {
@@ -366,10 +378,9 @@ TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state
   std::optional<grid::OccupancyGrid> others;
   if (Fused(robot) || corroborated) {
     others.emplace();
-    if (TakesWholeTrusted(state, robot)) {
-      // The trusted cells without the robot's: fused again only where it held the newest.
-      FLEETMAP_CHECK(!state.newest_stale, "CountOn before the tile's review");
-      state.newest->Without(mine.slot, TrustedCells(state), &*others, &own_dates);
+    if (review.evidence != nullptr && TakesWholeTrusted(state, robot)) {
+      // The trusted cells without the robot's: its cells' runners-up.
+      review.evidence->Without(mine.slot, TrustedCells(state), &*others, &own_dates);
     } else {
       *others = FuseCells(tile, state,
                           Evidence{.without = &robot,
@@ -392,7 +403,7 @@ TileContradiction TileFusion::CountOn(const TileId& tile, const TileState& state
       static_cast<int>(std::lround(options_.quarantine.tolerance_m / options_.FusedResolution()));
   const EstablishedCells established =
       others ? EstablishedCells{&*others, &own_dates, &confirmed}
-             : EstablishedCells{review.trusted, review.trusted_dates, &confirmed};
+             : EstablishedCells{&review.trusted(), &review.trusted_dates(), &confirmed};
   TileContradiction counted =
       CountContradiction(mine.cells, mine.changed_at, established, tolerance);
   // What robots of other participants say of its walls: whether it is corroborated. Quarantined
@@ -460,7 +471,7 @@ void TileFusion::ReviewTrust() {
       } else {
         auto review = tile_reviews.find(tile);
         if (review == tile_reviews.end()) {
-          review = tile_reviews.emplace(tile, MakeTileReview(state->second)).first;
+          review = tile_reviews.emplace(tile, MakeTileReview(tile, state->second)).first;
         }
         trust_.Record(robot, tile, CountOn(tile, state->second, robot, review->second));
       }

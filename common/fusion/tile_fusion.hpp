@@ -126,7 +126,9 @@ class TileFusion {
     std::map<RobotId, Contribution> robots;
     grid::OccupancyGrid fused;  // 3-state
     // The trusted contributions' newest evidence, kept as they change (UpdateRobotTile); built
-    // again when `newest_stale` (a standing changed, a contribution left or was imported).
+    // again when `newest_stale` (a standing changed, a contribution left or was imported). Only
+    // where two or more trusted robots contribute: it takes 11 bytes a cell, and a tile of one
+    // robot (most tiles of a sparse fleet) is fused by a copy.
     std::optional<NewestEvidence> newest;
     bool newest_stale = true;
     Timestamp newest_input;   // the latest robot tile stamp received for this tile
@@ -142,8 +144,9 @@ class TileFusion {
   static Contribution& ContributionOf(TileState& state, const RobotId& robot);
   // The trusted contributions, as NewestEvidence reads them.
   std::vector<DatedCells> TrustedCells(const TileState& state) const;
-  // The tile's newest trusted evidence, built again first if stale.
-  const NewestEvidence& FreshEvidence(TileState& state) const;
+  // The tile's newest trusted evidence, built again first if stale; nullptr (and none kept)
+  // while fewer than two trusted robots contribute.
+  const NewestEvidence* FreshEvidence(const TileId& tile, TileState& state) const;
   uint32_t Deciseconds(Timestamp stamp) const;
   // Which trusted contributions FuseCells() takes (all of them by default).
   struct Evidence {
@@ -161,16 +164,23 @@ class TileFusion {
   bool Fused(const RobotId& robot) const { return !trust_.quarantined(robot); }
   const std::string& SourceOf(const RobotId& robot) const;
   // What every review of a tile in one pass shares: the trusted robots' cells (the tile's
-  // NewestEvidence, unchanged during the pass), and per cell the newest dates quarantined robots
-  // saw it free, from two different participants.
+  // NewestEvidence, unchanged during the pass, or fused here when it has none), and per cell the
+  // newest dates quarantined robots saw it free, from two different participants.
   struct TileReview {
-    const grid::OccupancyGrid* trusted = nullptr;
-    const std::vector<uint32_t>* trusted_dates = nullptr;
+    const NewestEvidence* evidence = nullptr;
+    grid::OccupancyGrid alone;  // the trusted cells where `evidence` is nullptr
+    std::vector<uint32_t> alone_dates;
+    const grid::OccupancyGrid& trusted() const {
+      return evidence != nullptr ? evidence->cells() : alone;
+    }
+    const std::vector<uint32_t>& trusted_dates() const {
+      return evidence != nullptr ? evidence->dates() : alone_dates;
+    }
     std::vector<uint32_t> free_first;  // empty: no quarantined robot on the tile
     std::vector<uint32_t> free_second;
     std::vector<const std::string*> free_first_source;
   };
-  TileReview MakeTileReview(TileState& state) const;
+  TileReview MakeTileReview(const TileId& tile, TileState& state) const;
   // Whether `robot` is weighed against every other trusted contribution of the tile, whole: no
   // robot of its participant there (they add walls only) and, if it is corroborated, no trusted
   // robot that is not. Then its "others" are the tile's newest evidence without it.
