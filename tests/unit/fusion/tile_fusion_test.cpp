@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <optional>
+#include <random>
+#include <set>
 
 #include "common/vector_map/tiled_vector_map.hpp"
 
@@ -333,6 +336,81 @@ TEST(TileFusionTest, ImportRefusesEvidenceThatDoesNotFitAndChangesNothing) {
   const Status refused = fusion->ImportContribution(RobotId{"alpha"}, {0, 0}, bad_value);
   EXPECT_THAT(refused.message(), ::testing::HasSubstr("cell 7 has value 42"));
   EXPECT_EQ(fusion->contribution_count(), 0u);
+}
+
+// The fusion keeps each tile's trusted evidence up to date contribution by contribution
+// (NewestEvidence). After every round of random revisions (dates that tie and go back, tiles
+// removed, robots of one participant, a robot that erases walls and is quarantined), its fused
+// cells equal a fusion built from scratch out of the trusted robots' exported evidence.
+TEST(TileFusionTest, IncrementalFusionEqualsTheFusionFromScratch) {
+  FusionOptions options = Options();
+  options.quarantine.min_contradicted_m = 0.5;
+  options.quarantine.max_contradicted_m = 1.0;
+  options.quarantine.tolerance_m = 0.1;
+  auto live = TileFusion::Create(options);
+  ASSERT_TRUE(live.ok());
+  const std::vector<std::string> robots = {"alpha", "beta", "gamma", "delta", "liar"};
+  live->SetRobotSource(RobotId{"gamma"}, "peer-1");
+  live->SetRobotSource(RobotId{"delta"}, "peer-1");
+  std::map<std::string, OccupancyGrid> grids;
+  for (const std::string& robot : robots) grids.emplace(robot, Grid(80, 80));
+  std::set<TileId> tiles_seen;
+  std::mt19937 random(3201);
+  bool quarantined_once = false;
+  for (int round = 0; round < 60; ++round) {
+    // Two robots revise their maps: a room seen free, a wall, or (the liar) free over walls.
+    for (int n = 0; n < 2; ++n) {
+      const std::string& robot = robots[random() % robots.size()];
+      OccupancyGrid& grid = grids.at(robot);
+      const int x = static_cast<int>(random() % 60);
+      const int y = static_cast<int>(random() % 60);
+      const int kind = static_cast<int>(random() % 4);
+      if (robot == "liar" && round > 20) {
+        Fill(&grid, 0, 0, 80, 80, kFreeValue);
+      } else if (kind == 0) {
+        Fill(&grid, x, y, x + 20, y + 1, kOccupiedValue);
+      } else if (kind == 1) {
+        Fill(&grid, x, y, x + 20, y + 20, kUnknownValue);
+      } else {
+        Fill(&grid, x, y, x + 20, y + 20, kFreeValue);
+      }
+      // Now and then an older stamp than the robot's last (a late revision).
+      const Timestamp at = kT0 + std::chrono::seconds(round * 10 - (random() % 5 == 0 ? 15 : 0));
+      Feed(&*live, robot, grid, at);
+      // A tile stays in the fusion once seen, even when its last contribution goes.
+      for (const auto& [contributor, tile] : live->contributions()) tiles_seen.insert(tile);
+    }
+    if (random() % 8 == 0) {
+      live->RemoveRobotTile(RobotId{robots[random() % robots.size()]},
+                            TileId{static_cast<int>(random() % 2), static_cast<int>(random() % 2)});
+    }
+    ASSERT_TRUE(live->FuseChanged().ok());
+
+    FusionOptions plain = options;
+    plain.quarantine.enabled = false;
+    auto scratch = TileFusion::Create(plain);
+    ASSERT_TRUE(scratch.ok());
+    // The same tiles, so that both grids cover the same window.
+    for (const TileId& tile : tiles_seen) {
+      ASSERT_TRUE(scratch
+                      ->ImportContribution(RobotId{"nobody"}, tile,
+                                           {std::vector<int8_t>(1600, kUnknownValue),
+                                            std::vector<uint32_t>(1600, 1), kT0})
+                      .ok());
+    }
+    for (const auto& [robot, tile] : live->contributions()) {
+      if (live->TrustOf(robot).standing == Standing::kQuarantined) {
+        quarantined_once = true;
+        continue;
+      }
+      std::optional<ContributionEvidence> evidence = live->ExportContribution(robot, tile);
+      ASSERT_TRUE(evidence.has_value());
+      ASSERT_TRUE(scratch->ImportContribution(robot, tile, std::move(*evidence)).ok());
+    }
+    ASSERT_TRUE(scratch->FuseChanged().ok());
+    ASSERT_EQ(live->FusedGrid().data(), scratch->FusedGrid().data()) << "round " << round;
+  }
+  EXPECT_TRUE(quarantined_once);
 }
 
 TEST(FusionOptionsTest, RejectsBadGeometry) {
