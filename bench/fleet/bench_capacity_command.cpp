@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -62,8 +63,16 @@ struct CapacityArgs {
   int server_core = 1;   // the server's core (taskset); -1: not pinned
   // "simple" (the default discovery), "server" (a Fast DDS discovery server), or "both".
   std::string discovery = "simple";
+  // Shard servers per stage (docs/shards.md), each fusing a strip of the buildings' columns,
+  // shard i pinned to core (server_core + i) mod cores; 1: one server.
+  std::vector<int> shards = {1};
   std::string out_dir = "out/bench-capacity";
 };
+
+constexpr int kBuildingsPerRow = 8;
+// The column a building takes in its row: consecutive buildings alternate between the halves
+// (and quarters) of the row, so that a fleet of a few buildings spreads over every shard's strip.
+constexpr int kColumnOfBuilding[kBuildingsPerRow] = {0, 4, 2, 6, 1, 5, 3, 7};
 
 // One building's exploration, recorded: at each step, the tiles that changed since the previous
 // step (fleet frame, the building at the origin).
@@ -191,6 +200,8 @@ struct StageOutcome {
   size_t latencies = 0;
   std::optional<double> joined_s;  // until the server followed every robot, and fused each building
   double server_cores = 0.0;       // CPU seconds per second over the measured window
+  int shards = 1;
+  std::vector<double> shard_cores;  // each shard server's share of server_cores
   double server_rss_mb = 0.0;
   double server_peak_mb = 0.0;
 };
@@ -242,8 +253,8 @@ class LoadGenerator {
   // Where robot `robot`'s building sits, in tiles.
   std::pair<int, int> BuildingOffset(int robot) const {
     const int building = robot / kRobotsPerBuilding;
-    const int per_row = 8;
-    return {(building % per_row) * stream_.tiles_wide, (building / per_row) * stream_.tiles_high};
+    return {kColumnOfBuilding[building % kBuildingsPerRow] * stream_.tiles_wide,
+            (building / kBuildingsPerRow) * stream_.tiles_high};
   }
 
   // Sends what is due at `now`: each robot one update every 1/rate s, staggered.
@@ -316,8 +327,26 @@ class LoadGenerator {
   uint64_t tiles_sent_ = 0;
 };
 
+// The shard file of a stage with `shards` servers: strips of whole building columns, the outer
+// ones reaching far beyond the buildings (no tile on no region).
+StatusOr<std::string> WriteShardFile(const CapacityArgs& args, const TileStream& stream,
+                                     int shards) {
+  const double column = stream.tiles_wide * kTileSize;
+  const int columns_per_shard = kBuildingsPerRow / shards;
+  constexpr double kBeyond = 1e6;
+  std::string yaml = "shards:\n";
+  for (int i = 0; i < shards; ++i) {
+    yaml += fmt::format("  shard{}: [{}, {}, {}, {}]\n", i,
+                        i == 0 ? -kBeyond : i * columns_per_shard * column, -kBeyond,
+                        i == shards - 1 ? kBeyond : (i + 1) * columns_per_shard * column, kBeyond);
+  }
+  const std::string path = fmt::format("{}/shards-{}.yaml", args.out_dir, shards);
+  FLEETMAP_RETURN_IF_ERROR(WriteFileAtomically(path, yaml));
+  return path;
+}
+
 StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const TileStream& stream,
-                                const std::string& bin, bool discovery_server) {
+                                const std::string& bin, bool discovery_server, int shards) {
   const auto binary = [&](const std::string& name, const std::string& subdir) {
     const std::string side_by_side = bin + name;
     return fs::exists(side_by_side) ? side_by_side : bin + subdir + "/" + name;
@@ -339,22 +368,51 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
     }
     env["ROS_DISCOVERY_SERVER"] = discovery_list;
   }
-  const std::string store = fmt::format("{}/server-{}-{}.db", args.out_dir, robots,
-                                        discovery_server ? "server" : "simple");
-  std::error_code error;
-  fs::remove(store, error);
-  std::vector<std::string> argv;
-  if (args.server_core >= 0) argv = {"/usr/bin/taskset", "-c", std::to_string(args.server_core)};
-  for (const std::string& arg :
-       {binary("fleetmap-server", "server"), std::string("--store"), store,
-        std::string("--no-object-learning"), std::string("--no-extrapolation"),
-        std::string("--max-robots-per-participant"), std::to_string(kRobotsPerParticipant)}) {
-    argv.push_back(arg);
+  std::string shard_file;
+  if (shards > 1) {
+    FLEETMAP_ASSIGN_OR_RETURN(shard_file, WriteShardFile(args, stream, shards));
   }
-  process::Subprocess server(std::move(argv), env);
-  if (!server.WaitForOutput("listening", seconds(30))) {
-    return UnavailableError("fleetmap-server did not start: " + server.Output());
+  const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+  std::vector<std::unique_ptr<process::Subprocess>> servers;
+  for (int shard = 0; shard < shards; ++shard) {
+    const std::string store =
+        fmt::format("{}/server-{}-{}-{}of{}.db", args.out_dir, robots,
+                    discovery_server ? "server" : "simple", shard + 1, shards);
+    std::error_code error;
+    fs::remove(store, error);
+    std::vector<std::string> argv;
+    if (args.server_core >= 0) {
+      argv = {"/usr/bin/taskset", "-c", std::to_string((args.server_core + shard) % cores)};
+    }
+    for (const std::string& arg :
+         {binary("fleetmap-server", "server"), std::string("--store"), store,
+          std::string("--no-object-learning"), std::string("--no-extrapolation"),
+          std::string("--max-robots-per-participant"), std::to_string(kRobotsPerParticipant)}) {
+      argv.push_back(arg);
+    }
+    if (shards > 1) {
+      for (const std::string& arg : {std::string("--shards"), shard_file, std::string("--shard"),
+                                     fmt::format("shard{}", shard)}) {
+        argv.push_back(arg);
+      }
+    }
+    servers.push_back(std::make_unique<process::Subprocess>(std::move(argv), env));
+    if (!servers.back()->WaitForOutput("listening", seconds(30))) {
+      return UnavailableError("fleetmap-server did not start: " + servers.back()->Output());
+    }
   }
+  // Every server follows every robot's status; a robot has joined once all of them say so.
+  const auto joined_everywhere = [&] {
+    size_t fewest = std::numeric_limits<size_t>::max();
+    for (const auto& server : servers)
+      fewest = std::min(fewest, CountOf(server->StdOut(), " joined ("));
+    return fewest;
+  };
+  const auto cpu_seconds = [&] {
+    std::vector<double> each;
+    for (const auto& server : servers) each.push_back(CpuSeconds(server->pid()).value_or(0.0));
+    return each;
+  };
 
   transport::ParticipantOptions options;
   options.domain_id = domain;
@@ -386,9 +444,10 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   StageOutcome outcome;
   outcome.robots = robots;
   outcome.discovery = discovery_server ? "server" : "simple";
+  outcome.shards = shards;
   const auto started = SteadyClock::now();
   std::optional<SteadyClock::time_point> measuring_since;
-  std::optional<double> cpu_at_start;
+  std::vector<double> cpu_at_start;
   uint64_t sent_at_start = 0;
   uint64_t fused_since = 0;
   std::vector<double> latencies;
@@ -402,7 +461,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
     generator->Tick(now);
     if (!measuring_since && now >= next_log_check) {
       next_log_check = now + milliseconds(250);
-      joined_robots = CountOf(server.StdOut(), " joined (");
+      joined_robots = joined_everywhere();
     }
     wake_up->WaitFor(milliseconds(5));
     for (const transport::TileEvent& event : fused->Drain()) {
@@ -427,10 +486,11 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
         now - started >= std::chrono::duration<double>(*outcome.joined_s + args.settle_s);
     if (!measuring_since && (settled || now - started > join_limit)) {
       measuring_since = now;
-      cpu_at_start = CpuSeconds(server.pid());
+      cpu_at_start = cpu_seconds();
       sent_at_start = generator->tiles_sent();
       std::cerr << fmt::format(
-          "  {} robots, {} discovery: {}; measuring {:.0f} s\n", robots, outcome.discovery,
+          "  {} robots, {} discovery, {} server(s): {}; measuring {:.0f} s\n", robots,
+          outcome.discovery, shards,
           outcome.joined_s ? fmt::format("all fused after {:.1f} s", *outcome.joined_s)
                            : fmt::format("{} of {} joined after 60 s", joined_robots, robots),
           args.stage_s);
@@ -446,16 +506,19 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   outcome.latencies = latencies.size();
   outcome.p50_ms = Percentile(latencies, 0.50);
   outcome.p99_ms = Percentile(latencies, 0.99);
-  if (const auto cpu = CpuSeconds(server.pid()); cpu && cpu_at_start) {
-    outcome.server_cores = (*cpu - *cpu_at_start) / window;
+  const std::vector<double> cpu_at_end = cpu_seconds();
+  for (size_t i = 0; i < servers.size(); ++i) {
+    const double cores_used = (cpu_at_end[i] - cpu_at_start.at(i)) / window;
+    outcome.shard_cores.push_back(cores_used);
+    outcome.server_cores += cores_used;
+    outcome.server_rss_mb += StatusMb(servers[i]->pid(), "VmRSS").value_or(0.0);
+    outcome.server_peak_mb += StatusMb(servers[i]->pid(), "VmHWM").value_or(0.0);
   }
-  outcome.server_rss_mb = StatusMb(server.pid(), "VmRSS").value_or(0.0);
-  outcome.server_peak_mb = StatusMb(server.pid(), "VmHWM").value_or(0.0);
   generator.reset();
   fused.reset();
   reader_participant.reset();
-  server.Signal(SIGINT);
-  server.Wait(seconds(60));
+  for (auto& server : servers) server->Signal(SIGINT);
+  for (auto& server : servers) server->Wait(seconds(60));
   if (discovery) discovery->Signal(SIGINT);
   return outcome;
 }
@@ -493,38 +556,50 @@ int RunBenchCapacity(const CapacityArgs& args) {
   std::vector<StageOutcome> outcomes;
   for (const int robots : args.robots) {
     for (const bool discovery_server : discovery_servers) {
-      std::cerr << fmt::format("{} robots at {} updates/s each, {} discovery\n", robots, args.rate,
-                               discovery_server ? "server" : "simple");
-      StatusOr<StageOutcome> outcome = RunStage(args, robots, *stream, *bin, discovery_server);
-      if (!outcome.ok()) return fail(outcome.status().message(), 1);
-      outcomes.push_back(*outcome);
+      for (const int shards : args.shards) {
+        std::cerr << fmt::format("{} robots at {} updates/s each, {} discovery, {} server(s)\n",
+                                 robots, args.rate, discovery_server ? "server" : "simple", shards);
+        StatusOr<StageOutcome> outcome =
+            RunStage(args, robots, *stream, *bin, discovery_server, shards);
+        if (!outcome.ok()) return fail(outcome.status().message(), 1);
+        outcomes.push_back(*outcome);
+      }
     }
   }
 
   nlohmann::json json = nlohmann::json::array();
   std::string csv =
-      "robots,discovery,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,latencies,joined_s,"
-      "join_mb,server_cores,server_rss_mb,server_peak_mb\n";
+      "robots,discovery,shards,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,latencies,"
+      "joined_s,join_mb,server_cores,shard_cores,server_rss_mb,server_peak_mb\n";
   fmt::print("\nfleet capacity of one server core{}: robots explore at {} updates/s each ({})\n",
              args.server_core >= 0 ? fmt::format(" (core {})", args.server_core) : "", args.rate,
              args.map_path.empty() ? fmt::format("a {:.0f} m simulated office", args.size)
                                    : args.map_path);
-  fmt::print("{:>7} {:>10} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>7} {:>8}\n", "robots",
-             "discovery", "offered/s", "fused/s", "p50 ms", "p99 ms", "joined s", "join MB",
-             "cores", "RSS MB", "peak MB");
-  std::map<std::string, int> largest;
+  fmt::print("{:>7} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>12} {:>7} {:>8}\n",
+             "robots", "discovery", "shards", "offered/s", "fused/s", "p50 ms", "p99 ms",
+             "joined s", "join MB", "cores", "per shard", "RSS MB", "peak MB");
+  std::map<std::pair<std::string, int>, int> largest;
   for (const StageOutcome& o : outcomes) {
-    fmt::print("{:>7} {:>10} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>7} {:>8}\n", o.robots,
-               o.discovery, Fixed(o.offered_per_s, 0), Fixed(o.fused_per_s, 0), Fixed(o.p50_ms, 1),
-               Fixed(o.p99_ms, 1), o.joined_s ? Fixed(*o.joined_s, 1) : "-",
-               o.join_mb ? Fixed(*o.join_mb, 1) : "-", Fixed(o.server_cores, 2),
-               Fixed(o.server_rss_mb, 0), Fixed(o.server_peak_mb, 0));
-    if (o.p99_ms <= kP99TargetMs && o.joined_s && o.latencies > 0) largest[o.discovery] = o.robots;
+    std::string per_shard;
+    for (const double cores : o.shard_cores) {
+      per_shard += (per_shard.empty() ? "" : "+") + Fixed(cores, 2);
+    }
+    fmt::print(
+        "{:>7} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>12} {:>7} {:>8}\n",
+        o.robots, o.discovery, o.shards, Fixed(o.offered_per_s, 0), Fixed(o.fused_per_s, 0),
+        Fixed(o.p50_ms, 1), Fixed(o.p99_ms, 1), o.joined_s ? Fixed(*o.joined_s, 1) : "-",
+        o.join_mb ? Fixed(*o.join_mb, 1) : "-", Fixed(o.server_cores, 2),
+        o.shards > 1 ? per_shard : "-", Fixed(o.server_rss_mb, 0), Fixed(o.server_peak_mb, 0));
+    if (o.p99_ms <= kP99TargetMs && o.joined_s && o.latencies > 0) {
+      largest[{o.discovery, o.shards}] = o.robots;
+    }
     const auto optional = [](const std::optional<double>& v) {
       return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     };
     json.push_back({{"robots", o.robots},
                     {"discovery", o.discovery},
+                    {"shards", o.shards},
+                    {"shard_cores", o.shard_cores},
                     {"offered_tiles_per_s", o.offered_per_s},
                     {"fused_tiles_per_s", o.fused_per_s},
                     {"p50_ms", o.p50_ms},
@@ -535,17 +610,20 @@ int RunBenchCapacity(const CapacityArgs& args) {
                     {"server_cores", o.server_cores},
                     {"server_rss_mb", o.server_rss_mb},
                     {"server_peak_mb", o.server_peak_mb}});
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", o.robots, o.discovery,
-                       Fixed(o.offered_per_s, 1), Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2),
-                       Fixed(o.p99_ms, 2), o.latencies, o.joined_s ? Fixed(*o.joined_s, 2) : "",
-                       o.join_mb ? Fixed(*o.join_mb, 2) : "", Fixed(o.server_cores, 3),
-                       Fixed(o.server_rss_mb, 1), Fixed(o.server_peak_mb, 1));
+    csv += fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.robots, o.discovery, o.shards,
+        Fixed(o.offered_per_s, 1), Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2), Fixed(o.p99_ms, 2),
+        o.latencies, o.joined_s ? Fixed(*o.joined_s, 2) : "", o.join_mb ? Fixed(*o.join_mb, 2) : "",
+        Fixed(o.server_cores, 3), per_shard, Fixed(o.server_rss_mb, 1), Fixed(o.server_peak_mb, 1));
   }
   for (const bool discovery_server : discovery_servers) {
     const std::string kind = discovery_server ? "server" : "simple";
-    const auto it = largest.find(kind);
-    fmt::print("largest fleet with fusion p99 <= {:.0f} ms ({} discovery): {}\n", kP99TargetMs,
-               kind, it != largest.end() ? std::to_string(it->second) + " robots" : "none");
+    for (const int shards : args.shards) {
+      const auto it = largest.find({kind, shards});
+      fmt::print("largest fleet with fusion p99 <= {:.0f} ms ({} discovery, {} server(s)): {}\n",
+                 kP99TargetMs, kind, shards,
+                 it != largest.end() ? std::to_string(it->second) + " robots" : "none");
+    }
   }
   fmt::print(
       "(latency: a robot tile's stamp to the fused tile on a reader; offered: robot tiles "
@@ -599,6 +677,13 @@ void AddBenchCapacityCommand(CLI::App& app, int* exit_code) {
                    "simple discovery, a Fast DDS discovery server (`fastdds discovery`), or both "
                    "at each fleet size")
       ->check(CLI::IsMember({"simple", "server", "both"}))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--shards", args->shards,
+          "shard servers per stage, each fusing a strip of the buildings (docs/shards.md), "
+          "shard i on core --server-core + i (1, 2, 4 or 8; one stage each)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
   command->add_option("--out", args->out_dir, "where the stores, CSV and JSON go")
       ->capture_default_str();

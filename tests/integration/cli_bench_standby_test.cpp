@@ -45,19 +45,46 @@ TEST(CliBenchStandbyTest, AFailoverLeavesEveryReaderOnTheStandbysLatestTiles) {
 
 TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
   const std::string out = testing::FreshTempDir("bench_capacity");
-  // Once with simple discovery, once through a Fast DDS discovery server.
-  const auto run = testing::RunFleetmap(
-      {"bench", "capacity", "--robots", "4", "--stage", "3", "--settle", "1", "--steps", "6",
-       "--size", "20", "--server-core", "-1", "--discovery", "both", "--out", out},
-      seconds(240));
+  // With simple discovery and through a Fast DDS discovery server; one server, then two shards
+  // (docs/shards.md: two buildings, one in each shard's strip).
+  const auto run = testing::RunFleetmap({"bench",
+                                         "capacity",
+                                         "--robots",
+                                         "16",
+                                         "--stage",
+                                         "3",
+                                         "--settle",
+                                         "1",
+                                         "--steps",
+                                         "6",
+                                         "--size",
+                                         "20",
+                                         "--server-core",
+                                         "-1",
+                                         "--discovery",
+                                         "both",
+                                         "--shards",
+                                         "1",
+                                         "2",
+                                         "--out",
+                                         out},
+                                        seconds(240));
   ASSERT_EQ(run.exit_code, 0) << run.output();
   EXPECT_NE(run.out.find("largest fleet with fusion p99"), std::string::npos) << run.output();
   const nlohmann::json stages = ReadJson(out + "/capacity.json");
-  ASSERT_TRUE(stages.is_array() && stages.size() == 2) << stages.dump();
+  ASSERT_TRUE(stages.is_array() && stages.size() == 4) << stages.dump();
   EXPECT_EQ(stages[0]["discovery"], "simple");
-  EXPECT_EQ(stages[1]["discovery"], "server");
+  EXPECT_EQ(stages[2]["discovery"], "server");
   for (const nlohmann::json& stage : stages) {
-    EXPECT_EQ(stage["robots"], 4);
+    if (stage["shards"] == 2) {
+      ASSERT_EQ(stage["shard_cores"].size(), 2u) << stage.dump();
+      // Each shard fused its own building.
+      EXPECT_GT(stage["shard_cores"][0].get<double>(), 0.0) << stage.dump();
+      EXPECT_GT(stage["shard_cores"][1].get<double>(), 0.0) << stage.dump();
+    } else {
+      EXPECT_EQ(stage["shards"], 1);
+    }
+    EXPECT_EQ(stage["robots"], 16);
     EXPECT_FALSE(stage["joined_s"].is_null()) << "every robot's tiles were fused: " << stage.dump();
     EXPECT_GT(stage["offered_tiles_per_s"].get<double>(), 0.0);
     EXPECT_GT(stage["fused_tiles_per_s"].get<double>(), 0.0);
