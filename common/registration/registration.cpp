@@ -662,10 +662,12 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   result.peak_ratio = ratio;
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
-  const Transform2 grid_transform =
-      Pose2{grid_a_from_b.tx, grid_a_from_b.ty, grid_a_from_b.yaw}.ToTransform();
-  result.a_from_b = Pose2::FromTransform(a.origin().ToTransform() * grid_transform *
-                                         b.origin().ToTransform().inverse());
+  const auto to_map = [&](const GridTransform& t) {
+    return Pose2::FromTransform(a.origin().ToTransform() * Pose2{t.tx, t.ty, t.yaw}.ToTransform() *
+                                b.origin().ToTransform().inverse());
+  };
+  result.a_from_b = to_map(grid_a_from_b);
+  for (const Verified& v : verified) result.finalists.push_back(to_map(v.t));
 
   // Verification of the winner, both ways, on every cell.
   const DriftCorrection& drift = verified.front().verdict.drift;

@@ -7,6 +7,7 @@
 // Register() is a pure function of its inputs: any thread may call it, concurrently too.
 
 #include <string>
+#include <vector>
 
 #include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
@@ -124,6 +125,10 @@ struct Registration {
   // How well the best clearly different placement verifies, as a fraction of the best's (1 when
   // a turned placement explains B's walls about as well: a symmetry).
   double peak_ratio = 0.0;
+  // The finalists (refined and verified at full resolution, clearly different), best first:
+  // the first is a_from_b. For diagnostics: the pair benchmark reads them to tell a right
+  // placement that was never a finalist from one that was outranked.
+  std::vector<Pose2> finalists;
 };
 
 // Estimates a_from_b. Errors (kInvalidArgument): options invalid, an empty map, a map without
