@@ -1,6 +1,8 @@
 #include "common/registration/confidence_calibration.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <utility>
 
 #include "common/core/check.hpp"
@@ -29,28 +31,51 @@ ConfidenceCalibration ConfidenceCalibration::Fit(std::vector<Sample> samples, in
     double correct = 0.0;
     double count = 0.0;
     double mean() const { return correct / count; }
+    void Absorb(const Block& other) {
+      score_sum += other.score_sum;
+      correct += other.correct;
+      count += other.count;
+    }
   };
-  // Groups of at least min_per_knot samples (the last group takes the remainder).
-  const size_t group = static_cast<size_t>(std::max(1, min_per_knot));
+  // One block per distinct score (pairs that score alike cannot be told apart).
   std::vector<Block> blocks;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    if (i % group == 0 && samples.size() - i >= group) blocks.emplace_back();
-    if (blocks.empty()) blocks.emplace_back();
-    blocks.back().score_sum += samples[i].score;
-    blocks.back().correct += samples[i].correct ? 1.0 : 0.0;
-    blocks.back().count += 1.0;
+  double last_score = 0.0;
+  for (const Sample& sample : samples) {
+    if (blocks.empty() || sample.score != last_score) blocks.emplace_back();
+    last_score = sample.score;
+    blocks.back().Absorb({sample.score, sample.correct ? 1.0 : 0.0, 1.0});
   }
-  // Pool adjacent violators: merge while a block's rate is below its predecessor's.
+  // The isotonic regression (pool adjacent violators): merge while a block's rate is not above
+  // its predecessor's. On single samples, not on fixed groups: a group boundary that cuts
+  // through the scores where wrong placements give way to right ones, or one near miss among
+  // right placements, would otherwise pool a whole range of scores into one rate.
   std::vector<Block> pooled;
   for (const Block& b : blocks) {
     pooled.push_back(b);
     while (pooled.size() > 1 && pooled[pooled.size() - 2].mean() >= pooled.back().mean()) {
       const Block last = pooled.back();
       pooled.pop_back();
-      pooled.back().score_sum += last.score_sum;
-      pooled.back().correct += last.correct;
-      pooled.back().count += last.count;
+      pooled.back().Absorb(last);
     }
+  }
+  // No knot rests on fewer than min_per_knot samples: the smallest block joins the neighbour
+  // whose rate is nearer to its own (merging neighbours keeps the rates monotone).
+  const double least = std::max(1, min_per_knot);
+  while (pooled.size() > 1) {
+    size_t small = 0;
+    for (size_t k = 1; k < pooled.size(); ++k) {
+      if (pooled[k].count < pooled[small].count) small = k;
+    }
+    if (pooled[small].count >= least) break;
+    size_t into = small == 0 ? 1 : small - 1;
+    if (small > 0 && small + 1 < pooled.size() &&
+        std::abs(pooled[small + 1].mean() - pooled[small].mean()) <
+            std::abs(pooled[small - 1].mean() - pooled[small].mean())) {
+      into = small + 1;
+    }
+    const size_t first = std::min(small, into);
+    pooled[first].Absorb(pooled[first + 1]);
+    pooled.erase(pooled.begin() + static_cast<ptrdiff_t>(first) + 1);
   }
   std::vector<Knot> knots;
   for (const Block& b : pooled) {
