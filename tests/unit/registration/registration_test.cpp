@@ -337,9 +337,10 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
 TEST(RegistrationTest, PlacesDriftedCropsOfRealMapsThatARigidVerificationRefuses) {
   const auto maps = RealMaps();
   ASSERT_FALSE(maps.empty()) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
-  const RegistrationOptions rigid;  // the default
-  RegistrationOptions drift_tolerant;
-  drift_tolerant.max_drift_per_m = 0.03;
+  RegistrationOptions rigid;
+  rigid.max_drift_per_m = 0.0;
+  const RegistrationOptions drift_tolerant;  // the default, 3 cm per metre
+  ASSERT_EQ(drift_tolerant.max_drift_per_m, 0.03);
   constexpr double kBend = 0.1 * kDegree;
   int cases = 0, placed_rigid = 0, placed_with_drift = 0, wrong = 0;
   for (const auto& [name, map] : maps) {
