@@ -738,8 +738,13 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(" is below ")
                          .append(Num(options.min_score));
   } else if (result.confidence < options.min_confidence) {
-    // Two decimals, as confidences are quoted, unless that would print the bar twice.
-    const int digits = Fixed(result.confidence, 2) == Fixed(options.min_confidence, 2) ? 4 : 2;
+    // Two decimals, as confidences are quoted, unless that would misquote the bar (0.999 as
+    // 1.00) or print the confidence as high as the bar.
+    const double bar_2 = std::round(100.0 * options.min_confidence) / 100.0;
+    const int digits = std::abs(bar_2 - options.min_confidence) < 1e-9 &&
+                               Fixed(result.confidence, 2) != Fixed(options.min_confidence, 2)
+                           ? 2
+                           : 4;
     result.why_not = std::string("confidence ")
                          .append(Fixed(result.confidence, digits))
                          .append(" below the placement bar ")

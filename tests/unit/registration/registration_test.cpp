@@ -236,6 +236,12 @@ TEST(RegistrationTest, FoundOnlyAtThePlacementBar) {
   const PoseError guess = ErrorOf(b, barred->a_from_b, truth);  // the best guess is kept
   EXPECT_LE(guess.translation, 3.0 * b.resolution() + 1e-9);
   EXPECT_LE(guess.yaw, 2.0 * kDegree);
+  // A bar that two decimals would round (0.999 to "1.00") is quoted as it is.
+  options.min_confidence = 0.999;
+  const StatusOr<Registration> high_bar = Register(a, b, options);
+  ASSERT_TRUE(high_bar.ok()) << high_bar.status();
+  EXPECT_FALSE(high_bar->found);  // no calibration claims 0.999
+  EXPECT_THAT(high_bar->why_not, ::testing::HasSubstr("below the placement bar 0.9990"));
 
   options.min_confidence = 1.5;
   EXPECT_FALSE(options.Validate().ok());
