@@ -161,7 +161,7 @@ void AddRegisterCommand(CLI::App& app, int* exit_code) {
   command
       ->add_option("--max-drift-per-m", options->max_drift_per_m,
                    "Verify allowing each 3 m block of B to shift by this much per metre from "
-                   "where the maps agree (drift; 0: rigid, the server's default; measured at 0.03)")
+                   "where the maps agree (drift; 0: rigid; the server's default, 0.03)")
       ->check(CLI::Range(0.0, 0.2))
       ->capture_default_str();
   // Read as text and checked here and in RunRegister, so that any bad value exits 2 with the

@@ -69,7 +69,11 @@ nlohmann::json ToJson(const MethodOutcome& o) {
           {"seconds", o.seconds},
           {"confidence", o.confidence},
           {"score", o.score},
-          {"why_not", o.why_not}};
+          {"why_not", o.why_not},
+          {"agreeing_cells", o.agreeing_cells},
+          {"contradicting_cells", o.contradicting_cells},
+          {"peak_ratio", o.peak_ratio},
+          {"right_finalist", o.right_finalist}};
 }
 
 }  // namespace

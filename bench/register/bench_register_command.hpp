@@ -31,8 +31,8 @@ struct BenchRegisterOptions {
   std::string csv_path;   // empty: none
   std::string json_path;  // empty: none
   bool skip_mexplore = false;
-  // The registration's drift bound (RegistrationOptions::max_drift_per_m); 0 verifies rigidly,
-  // the verification before issue 31's drift model, for a side-by-side figure.
+  // The registration's drift bound (RegistrationOptions::max_drift_per_m, 0.03 by default); 0
+  // verifies rigidly, for a side-by-side figure.
   double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;
   bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)
 };

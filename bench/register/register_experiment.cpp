@@ -131,6 +131,14 @@ PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid
     outcome.fleetmap.confidence = r->confidence;
     outcome.fleetmap.score = r->score;
     outcome.fleetmap.why_not = r->why_not;
+    outcome.fleetmap.agreeing_cells = r->agreeing_cells;
+    outcome.fleetmap.contradicting_cells = r->contradicting_cells;
+    outcome.fleetmap.peak_ratio = r->peak_ratio;
+    for (size_t k = 0; k < r->finalists.size() && outcome.fleetmap.right_finalist < 0; ++k) {
+      MethodOutcome finalist;
+      Judge(truth, at, r->finalists[k], options, &finalist);
+      if (finalist.right) outcome.fleetmap.right_finalist = static_cast<int>(k);
+    }
     Judge(truth, at, r->a_from_b, options, &outcome.fleetmap);
   }
   if (options.run_mexplore) {

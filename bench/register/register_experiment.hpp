@@ -60,6 +60,12 @@ struct MethodOutcome {
   double confidence = 0.0;  // fleetmap: Registration::confidence; m-explore: match confidence
   double score = 0.0;       // fleetmap: Registration::score (the uncalibrated evidence)
   std::string why_not;      // fleetmap: why it was refused
+  // fleetmap: the evidence behind the score, and the rank among Registration::finalists of the
+  // first right one (-1: none was right), which tells the stage that failed.
+  int agreeing_cells = 0;
+  int contradicting_cells = 0;
+  double peak_ratio = 0.0;
+  int right_finalist = -1;
 };
 
 struct PairOutcome {

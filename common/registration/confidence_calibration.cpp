@@ -1,6 +1,8 @@
 #include "common/registration/confidence_calibration.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <utility>
 
 #include "common/core/check.hpp"
@@ -29,28 +31,51 @@ ConfidenceCalibration ConfidenceCalibration::Fit(std::vector<Sample> samples, in
     double correct = 0.0;
     double count = 0.0;
     double mean() const { return correct / count; }
+    void Absorb(const Block& other) {
+      score_sum += other.score_sum;
+      correct += other.correct;
+      count += other.count;
+    }
   };
-  // Groups of at least min_per_knot samples (the last group takes the remainder).
-  const size_t group = static_cast<size_t>(std::max(1, min_per_knot));
+  // One block per distinct score (pairs that score alike cannot be told apart).
   std::vector<Block> blocks;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    if (i % group == 0 && samples.size() - i >= group) blocks.emplace_back();
-    if (blocks.empty()) blocks.emplace_back();
-    blocks.back().score_sum += samples[i].score;
-    blocks.back().correct += samples[i].correct ? 1.0 : 0.0;
-    blocks.back().count += 1.0;
+  double last_score = 0.0;
+  for (const Sample& sample : samples) {
+    if (blocks.empty() || sample.score != last_score) blocks.emplace_back();
+    last_score = sample.score;
+    blocks.back().Absorb({sample.score, sample.correct ? 1.0 : 0.0, 1.0});
   }
-  // Pool adjacent violators: merge while a block's rate is below its predecessor's.
+  // The isotonic regression (pool adjacent violators): merge while a block's rate is not above
+  // its predecessor's. On single samples, not on fixed groups: a group boundary that cuts
+  // through the scores where wrong placements give way to right ones, or one near miss among
+  // right placements, would otherwise pool a whole range of scores into one rate.
   std::vector<Block> pooled;
   for (const Block& b : blocks) {
     pooled.push_back(b);
     while (pooled.size() > 1 && pooled[pooled.size() - 2].mean() >= pooled.back().mean()) {
       const Block last = pooled.back();
       pooled.pop_back();
-      pooled.back().score_sum += last.score_sum;
-      pooled.back().correct += last.correct;
-      pooled.back().count += last.count;
+      pooled.back().Absorb(last);
     }
+  }
+  // No knot rests on fewer than min_per_knot samples: the smallest block joins the neighbour
+  // whose rate is nearer to its own (merging neighbours keeps the rates monotone).
+  const double least = std::max(1, min_per_knot);
+  while (pooled.size() > 1) {
+    size_t small = 0;
+    for (size_t k = 1; k < pooled.size(); ++k) {
+      if (pooled[k].count < pooled[small].count) small = k;
+    }
+    if (pooled[small].count >= least) break;
+    size_t into = small == 0 ? 1 : small - 1;
+    if (small > 0 && small + 1 < pooled.size() &&
+        std::abs(pooled[small + 1].mean() - pooled[small].mean()) <
+            std::abs(pooled[small - 1].mean() - pooled[small].mean())) {
+      into = small + 1;
+    }
+    const size_t first = std::min(small, into);
+    pooled[first].Absorb(pooled[first + 1]);
+    pooled.erase(pooled.begin() + static_cast<ptrdiff_t>(first) + 1);
   }
   std::vector<Knot> knots;
   for (const Block& b : pooled) {
@@ -73,29 +98,25 @@ const ConfidenceCalibration& ConfidenceCalibration::Default() {
   // common/sim and warehouse, office rows, corridors of bench/register/repeated_terrain, at 20-70 %
   // overlap, each pair plain and with B drifted, labelled by whether its placement is right); the
   // real maps played no part. Refitted when the calibration set gained repeated structure and
-  // drift (issue 31), and again when the drifted pairs were judged where B overlaps A (a drifted
-  // pair's right placement had been labelled wrong by the drift at B's centre).
-  static const ConfidenceCalibration calibration({{0.0208, 0.3054},
-                                                  {0.3957, 0.3571},
-                                                  {0.6642, 0.6905},
-                                                  {0.8271, 0.7951},
-                                                  {0.9361, 0.8934},
-                                                  {0.9962, 0.9974}});
+  // drift (issue 31), when the drifted pairs were judged where B overlaps A, and when the fit
+  // became the isotonic regression of the pairs themselves (2026-12-07).
+  static const ConfidenceCalibration calibration({{0.0022, 0.3233},
+                                                  {0.2525, 0.3625},
+                                                  {0.7038, 0.6600},
+                                                  {0.8297, 0.8553},
+                                                  {0.9067, 0.8676},
+                                                  {0.9502, 0.9000},
+                                                  {0.9959, 0.9974}});
   return calibration;
 }
 
 const ConfidenceCalibration& ConfidenceCalibration::DriftTolerant() {
   // Fitted the same way with the drift-tolerant verification (`--max-drift-per-m 0.03`, the
-  // RegistrationOptions value that turns it on): it forgives drift to wrong placements too and
-  // the near misses of drifted pairs (3.0-3.1 cells where 3 is right) score high, so the
-  // placement bar 0.95 sits at a score of about 0.993 here (about 0.978 for the rigid one).
-  static const ConfidenceCalibration calibration({{0.0000, 0.2317},
-                                                  {0.0046, 0.2640},
-                                                  {0.2469, 0.3049},
-                                                  {0.7463, 0.5488},
-                                                  {0.9610, 0.5952},
-                                                  {0.9918, 0.9286},
-                                                  {0.9963, 0.9980}});
+  // RegistrationOptions default): the placement bar 0.95 sits at a score of about 0.978 (0.974
+  // for the rigid one). With the fit on fixed groups of 20 pairs it sat at 0.993, which is why
+  // this verification was once an option only.
+  static const ConfidenceCalibration calibration(
+      {{0.0294, 0.2697}, {0.8005, 0.5395}, {0.9955, 0.9912}});
   return calibration;
 }
 

@@ -31,10 +31,11 @@ class ConfidenceCalibration {
   // least one (checked: a broken table is a bug).
   explicit ConfidenceCalibration(std::vector<Knot> knots);
 
-  // Isotonic regression of `correct` on `score`. Samples are first pooled in groups of at least
-  // `min_per_knot` consecutive scores, so no knot rests on a handful of pairs; each knot's
-  // probability is (correct + 0.5) / (count + 1), which never claims certainty from finite data.
-  // Needs at least one sample.
+  // Isotonic regression of `correct` on `score` (pool adjacent violators on the samples
+  // themselves), then blocks of fewer than `min_per_knot` samples merged with the neighbour of
+  // nearer rate, so no knot rests on a handful of pairs; one knot per block at its mean score,
+  // with probability (correct + 0.5) / (count + 1), which never claims certainty from finite
+  // data. Needs at least one sample.
   static ConfidenceCalibration Fit(std::vector<Sample> samples, int min_per_knot);
 
   // The calibration Register uses with the rigid verification, the default

@@ -27,6 +27,11 @@ constexpr double kCandidateFloor = 0.5;
 constexpr double kDistinctRatio = 0.7;
 // Candidates that get the fine refinement stages after a first verification.
 constexpr size_t kFullyRefined = 4;
+// ... and beyond those, every candidate whose first verification reaches this share of the
+// best's: below it a candidate can be neither a shifted twin (max_peak_ratio, 85 % of the best's
+// value) nor a turned one (half the best's agreeing cells at nearly its consistency, about 35 %
+// of its value), even allowing for the coarser refinement it was screened at.
+constexpr double kRivalShare = 0.35;
 
 std::string Num(double value) {
   char buffer[32];
@@ -607,14 +612,22 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
     return l.verdict.value > r.verdict.value;
   };
   // Every candidate gets the wide stage and a first verification; the best kFullyRefined of
-  // them the fine stages and the final one.
+  // them the fine stages and the final one, and so does every other that could still be a twin
+  // of the best (kRivalShare): on repeated structure the copy that makes the best placement
+  // ambiguous may screen fifth or sixth, and a twin left out is a wrong placement accepted.
   std::vector<Verified> screened;
   for (const Candidate& peak : peaks) {
     const GridTransform t = refine_wide(to_grid(peak));
     screened.push_back({t, verifier.Verify(t)});
   }
   std::sort(screened.begin(), screened.end(), by_value);
-  if (screened.size() > kFullyRefined) screened.resize(kFullyRefined);
+  const double rival_floor = kRivalShare * std::max(0.0, screened.front().verdict.value);
+  size_t finalists = std::min(kFullyRefined, screened.size());
+  while (finalists < screened.size() && screened[finalists].verdict.value >= rival_floor &&
+         rival_floor > 0.0) {
+    ++finalists;
+  }
+  screened.resize(finalists);
   std::vector<Verified> verified;
   for (const Verified& s : screened) {
     Verified v;
@@ -662,10 +675,12 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   result.peak_ratio = ratio;
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
-  const Transform2 grid_transform =
-      Pose2{grid_a_from_b.tx, grid_a_from_b.ty, grid_a_from_b.yaw}.ToTransform();
-  result.a_from_b = Pose2::FromTransform(a.origin().ToTransform() * grid_transform *
-                                         b.origin().ToTransform().inverse());
+  const auto to_map = [&](const GridTransform& t) {
+    return Pose2::FromTransform(a.origin().ToTransform() * Pose2{t.tx, t.ty, t.yaw}.ToTransform() *
+                                b.origin().ToTransform().inverse());
+  };
+  result.a_from_b = to_map(grid_a_from_b);
+  for (const Verified& v : verified) result.finalists.push_back(to_map(v.t));
 
   // Verification of the winner, both ways, on every cell.
   const DriftCorrection& drift = verified.front().verdict.drift;
@@ -723,8 +738,13 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(" is below ")
                          .append(Num(options.min_score));
   } else if (result.confidence < options.min_confidence) {
-    // Two decimals, as confidences are quoted, unless that would print the bar twice.
-    const int digits = Fixed(result.confidence, 2) == Fixed(options.min_confidence, 2) ? 4 : 2;
+    // Two decimals, as confidences are quoted, unless that would misquote the bar (0.999 as
+    // 1.00) or print the confidence as high as the bar.
+    const double bar_2 = std::round(100.0 * options.min_confidence) / 100.0;
+    const int digits = std::abs(bar_2 - options.min_confidence) < 1e-9 &&
+                               Fixed(result.confidence, 2) != Fixed(options.min_confidence, 2)
+                           ? 2
+                           : 4;
     result.why_not = std::string("confidence ")
                          .append(Fixed(result.confidence, digits))
                          .append(" below the placement bar ")

@@ -7,6 +7,7 @@
 // Register() is a pure function of its inputs: any thread may call it, concurrently too.
 
 #include <string>
+#include <vector>
 
 #include "common/core/options_printer.hpp"
 #include "common/core/status.hpp"
@@ -63,12 +64,11 @@ struct RegistrationOptions {
   // Drift (docs/registration.md, *Drift*): the finalists are verified with each block of B,
   // drift_block_m square, shifted on A by up to max_drift_per_m of the block's distance from the
   // centre of the rigid agreement, and never more than max_drift_cells. The placement stays one
-  // rigid transform; 0 for either bound verifies rigidly, the default: measured on the pair
-  // benchmark, the drift-tolerant verification with its own calibration places fewer pairs at
-  // the placement bar (docs/results.md), so it is an option (0.03 is the value it was measured
-  // and calibrated at).
+  // rigid transform; 0 for either bound verifies rigidly (ConfidenceCalibration::Default()).
+  // 0.03 (3 cm per metre: a 2 % scale error and a heading that creeps) is the value the
+  // drift-tolerant calibration was fitted at; on by default since 2026-12-07 (docs/results.md).
   double drift_block_m = 3.0;
-  double max_drift_per_m = 0.0;
+  double max_drift_per_m = 0.03;
   int max_drift_cells = 8;
   // Verification at full resolution: occupied cells agree when the other map has an occupied cell
   // within tolerance_cells; they contradict when they land on a free cell with none within it.
@@ -104,7 +104,8 @@ struct Registration {
   // also when it is refused (then a hint only).
   Pose2 a_from_b;
   // The estimated probability that a_from_b is right (within 3 cells at B's known centroid and
-  // 2 degrees): `score` through ConfidenceCalibration::Default(), fitted on synthetic pairs.
+  // 2 degrees): `score` through ConfidenceCalibration::DriftTolerant() (Default() when the
+  // verification is rigid), fitted on synthetic pairs.
   double confidence = 0.0;
   // The evidence in [0, 1]: consistency (agreeing / (agreeing + contradicting) occupied cells,
   // both ways) times distinctness (1 - second candidate's verification / best's, scaled). 0 when
@@ -124,6 +125,10 @@ struct Registration {
   // How well the best clearly different placement verifies, as a fraction of the best's (1 when
   // a turned placement explains B's walls about as well: a symmetry).
   double peak_ratio = 0.0;
+  // The finalists (refined and verified at full resolution, clearly different), best first:
+  // the first is a_from_b. For diagnostics: the pair benchmark reads them to tell a right
+  // placement that was never a finalist from one that was outranked.
+  std::vector<Pose2> finalists;
 };
 
 // Estimates a_from_b. Errors (kInvalidArgument): options invalid, an empty map, a map without

@@ -108,14 +108,16 @@ TEST(CliRegisterTest, RefusesABadMinConfidenceWithExitTwo) {
   }
 }
 
-// The drift-tolerant verification (docs/registration.md, Drift): off by default; on, a map on
-// itself needs no block to move, and a bound outside [0, 0.2] is a usage error.
+// The drift-tolerant verification (docs/registration.md, Drift): on by default, where a map on
+// itself needs no block to move by more than a cell; 0 verifies rigidly, and a bound outside
+// [0, 0.2] is a usage error.
 TEST(CliRegisterTest, TakesTheDriftBoundAndReportsTheLargestShift) {
   const std::string map = DataPath("real/aws_small_house.yaml");
-  process::CommandResult run = RunFleetmap({"register", map, map, "--json"});
+  process::CommandResult run =
+      RunFleetmap({"register", map, map, "--json", "--max-drift-per-m", "0"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["drift_m"], 0.0);
-  run = RunFleetmap({"register", map, map, "--json", "--max-drift-per-m", "0.03"});
+  run = RunFleetmap({"register", map, map, "--json"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json json = nlohmann::json::parse(run.out);
   EXPECT_EQ(json["found"], true);

@@ -31,6 +31,39 @@ TEST(ConfidenceCalibrationTest, FitIsMonotoneAndMatchesTheRates) {
   EXPECT_LT(c.Probability(0.95), 1.0);  // finite data never claims certainty
 }
 
+TEST(ConfidenceCalibrationTest, FitPoolsWhereTheRatesChangeNotOnAFixedGrid) {
+  // 30 wrong placements, then 30 right ones: two blocks whatever their sizes. Pooled on a fixed
+  // grid of 20, the second group would mix 10 of each and put a knot of rate 1/2 between them.
+  std::vector<ConfidenceCalibration::Sample> samples;
+  for (int i = 0; i < 30; ++i) samples.push_back({0.10 + 0.01 * i, false});
+  for (int i = 0; i < 30; ++i) samples.push_back({0.60 + 0.01 * i, true});
+  const ConfidenceCalibration c = ConfidenceCalibration::Fit(samples, 20);
+  ASSERT_EQ(c.knots().size(), 2u);
+  EXPECT_NEAR(c.knots()[0].probability, 0.5 / 31.0, 1e-9);
+  EXPECT_NEAR(c.knots()[1].score, 0.745, 1e-9);
+  EXPECT_NEAR(c.knots()[1].probability, 30.5 / 31.0, 1e-9);
+}
+
+TEST(ConfidenceCalibrationTest, OneNearMissAmongRightPlacementsStaysInTheirBlock) {
+  // Wrong placements below 0.9, right ones above, and one wrong at 0.985 among the right ones
+  // (a placement 3.1 cells off where 3 is right). The near miss is pooled with the right
+  // placements around it, small blocks join the neighbour of nearer rate, and the scores just
+  // above the wrong ones keep the high rate: the fit must not pull everything from 0.9 to 0.99
+  // down to the wrong placements' rate.
+  std::vector<ConfidenceCalibration::Sample> samples;
+  for (int i = 0; i < 60; ++i) samples.push_back({0.30 + 0.01 * i, false});
+  for (int i = 0; i < 100; ++i) samples.push_back({0.9001 + 0.00099 * i, true});
+  samples.push_back({0.985, false});
+  const ConfidenceCalibration c = ConfidenceCalibration::Fit(samples, 20);
+  for (size_t k = 1; k < c.knots().size(); ++k) {
+    EXPECT_GT(c.knots()[k].score, c.knots()[k - 1].score);
+    EXPECT_GE(c.knots()[k].probability, c.knots()[k - 1].probability);
+  }
+  EXPECT_LT(c.Probability(0.5), 0.05);
+  EXPECT_GT(c.Probability(0.96), 0.95);
+  EXPECT_LT(c.Probability(0.999), 1.0);
+}
+
 TEST(ConfidenceCalibrationTest, BothDefaultsAreProbabilitiesThatGrowWithTheScore) {
   for (const ConfidenceCalibration* c :
        {&ConfidenceCalibration::Default(), &ConfidenceCalibration::DriftTolerant()}) {

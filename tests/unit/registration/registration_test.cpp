@@ -236,6 +236,12 @@ TEST(RegistrationTest, FoundOnlyAtThePlacementBar) {
   const PoseError guess = ErrorOf(b, barred->a_from_b, truth);  // the best guess is kept
   EXPECT_LE(guess.translation, 3.0 * b.resolution() + 1e-9);
   EXPECT_LE(guess.yaw, 2.0 * kDegree);
+  // A bar that two decimals would round (0.999 to "1.00") is quoted as it is.
+  options.min_confidence = 0.999;
+  const StatusOr<Registration> high_bar = Register(a, b, options);
+  ASSERT_TRUE(high_bar.ok()) << high_bar.status();
+  EXPECT_FALSE(high_bar->found);  // no calibration claims 0.999
+  EXPECT_THAT(high_bar->why_not, ::testing::HasSubstr("below the placement bar 0.9990"));
 
   options.min_confidence = 1.5;
   EXPECT_FALSE(options.Validate().ok());
@@ -337,9 +343,10 @@ TEST(RegistrationTest, RecoversKnownTransformsOnCropsOfRealMaps) {
 TEST(RegistrationTest, PlacesDriftedCropsOfRealMapsThatARigidVerificationRefuses) {
   const auto maps = RealMaps();
   ASSERT_FALSE(maps.empty()) << "no real map in " << FLEETMAP_SHARED_MAPS_DIR;
-  const RegistrationOptions rigid;  // the default
-  RegistrationOptions drift_tolerant;
-  drift_tolerant.max_drift_per_m = 0.03;
+  RegistrationOptions rigid;
+  rigid.max_drift_per_m = 0.0;
+  const RegistrationOptions drift_tolerant;  // the default, 3 cm per metre
+  ASSERT_EQ(drift_tolerant.max_drift_per_m, 0.03);
   constexpr double kBend = 0.1 * kDegree;
   int cases = 0, placed_rigid = 0, placed_with_drift = 0, wrong = 0;
   for (const auto& [name, map] : maps) {
