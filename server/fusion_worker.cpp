@@ -50,6 +50,10 @@ StatusOr<std::unique_ptr<FusionWorker>> FusionWorker::Create(
                                                         participant, self.thread_.wake_up()));
   self.registrations_ =
       std::make_unique<RegistrationRunner>(map.placement.registration, self.thread_.wake_up());
+  if (options.shard && options.shard->plan.regions().size() > 1) {
+    FLEETMAP_ASSIGN_OR_RETURN(self.shard_frames_,
+                              ShardFrames::Create(participant, self.thread_.wake_up()));
+  }
   return worker;
 }
 
@@ -184,9 +188,9 @@ void FusionWorker::HandleAdmissions() {
 }
 
 void FusionWorker::HandleFrameNotes() {
-  for (const RobotFrameNote& note : frame_notes_.Drain()) {
+  for (const RobotFrameNote& note : frame_notes_.Drain())
     map_.Join(note.robot, note.fleet_from_map);
-  }
+  if (shard_frames_) shard_frames_->FollowInto(map_);
 }
 
 void FusionWorker::HandleGrids() {

@@ -27,6 +27,7 @@
 #include "server/registration_runner.hpp"
 #include "server/robot_registry.hpp"
 #include "server/session_keeper.hpp"
+#include "server/shard_frames.hpp"
 #include "server/tile_intake.hpp"
 
 namespace fleetmap::server {
@@ -166,6 +167,7 @@ class FusionWorker {
   fusion::FleetMap map_;  // worker thread only
   std::shared_ptr<RobotRegistry> registry_;
   std::unique_ptr<TileIntake> intake_;                 // worker thread only
+  std::unique_ptr<ShardFrames> shard_frames_;          // a shard of several: others' placements
   std::unique_ptr<FleetPublisher> publisher_;          // worker thread only
   std::unique_ptr<FleetMapStore> store_;               // worker thread only; may be null
   std::unique_ptr<SessionKeeper> sessions_;            // worker thread only

@@ -61,7 +61,7 @@ Status ServerOptions::Validate() const {
 StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) {
   FLEETMAP_RETURN_IF_ERROR(options.Validate());
   if (options.shard) {
-    options.map.region = options.shard->region().Tiles(options.map.fusion.tile_size);
+    options.map.shard = options.shard;
     options.worker.shard = options.shard;
   }
   std::unique_ptr<ServerNode> node(new ServerNode(std::move(options)));

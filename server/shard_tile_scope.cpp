@@ -9,13 +9,8 @@ ShardTileScope::ShardTileScope(ShardAssignment shard, double tile_size)
   }
 }
 
-transport::TileRegionSelection ShardTileScope::Selection(
-    const std::set<RobotId>& whole_robots) const {
-  transport::TileRegionSelection selection;
-  selection.own = own_;
-  selection.others = others_;
-  for (const RobotId& robot : whole_robots) selection.whole_robots.insert(robot.value);
-  return selection;
+transport::TileRegionSelection ShardTileScope::Selection() const {
+  return transport::TileRegionSelection{own_, others_};
 }
 
 ShardTileScope::Outside ShardTileScope::NoteOutside(const RobotId& robot, const TileId& tile,

@@ -11,12 +11,12 @@
 
 namespace fleetmap::server {
 
-// What a shard's server reads of rt/fleetmap/robot_tiles (docs/shards.md), and what it says of
-// the tiles no shard fuses. It reads its own tiles, the tiles of robots that send in their own
-// map frame (their tile keys say nothing of the fleet frame: the fleet map carries them and keeps
-// its part), and the tiles on no shard's region, which it reports once a minute per robot; the
-// other shards' tiles reach it only from writers that do not filter (another vendor's), and are
-// dropped quietly. DDS-free; not thread-safe: the fusion worker's.
+// What a shard's server reads of rt/fleetmap/robot_tiles by region (docs/shards.md), and what it
+// says of the tiles no shard fuses. It reads its own tiles and the tiles on no shard's region,
+// which it reports once a minute per robot; the other shards' tiles reach it only from writers
+// that do not filter (another vendor's), and are dropped quietly. (The tiles of robots that send
+// in their own map frame it reads whole, robot by robot: TileIntake.) DDS-free; not
+// thread-safe: the fusion worker's.
 class ShardTileScope {
  public:
   ShardTileScope(ShardAssignment shard, double tile_size);
@@ -24,8 +24,8 @@ class ShardTileScope {
   const ShardAssignment& shard() const { return shard_; }
   const TileBox& own_tiles() const { return own_; }
   bool Owns(const TileId& tile) const { return own_.Contains(tile); }
-  // The reader's filter, with these robots taken whole.
-  transport::TileRegionSelection Selection(const std::set<RobotId>& whole_robots) const;
+  // The reader's filter: its own tiles, and the other shards' to tell tiles on no region.
+  transport::TileRegionSelection Selection() const;
 
   struct Outside {
     bool on_no_shard = false;  // else another shard's

@@ -21,8 +21,11 @@ StatusOr<std::unique_ptr<TileIntake>> TileIntake::Create(
   std::unique_ptr<TileIntake> self(new TileIntake(std::move(registry), held, std::move(refused)));
   self->unclaimed_wait_ = unclaimed_wait;
   std::optional<transport::TileRegionSelection> region;
-  if (shard) region = shard->Selection({});
+  if (shard) region = shard->Selection();
   self->shard_ = std::move(shard);
+  self->participant_ = &participant;
+  self->wake_up_ = wake_up;
+  self->limits_ = admission.DecodeLimits();
   FLEETMAP_ASSIGN_OR_RETURN(
       self->reader_,
       transport::VectorTileReader::Create(participant, transport::kRobotTilesTopic,
@@ -36,9 +39,21 @@ TileIntake::~TileIntake() = default;
 void TileIntake::Drain(fusion::FleetMap& map) {
   const Timestamp now = Clock::now();
   const auto steady = std::chrono::steady_clock::now();
-  if (shard_) FollowMapFrameRobots();
   for (transport::TileEvent& event : reader_->Drain(kEventsPerDrain)) {
+    // A shard takes a map-frame robot's tiles from that robot's own reader only.
+    if (shard_ && whole_robots_.count(event.tile.robot_id) > 0) continue;
     Offer(std::move(event), map, now, steady);
+  }
+  if (shard_) {
+    if (const Status followed = FollowMapFrameRobots(); !followed.ok() && !said_full_) {
+      spdlog::warn("server: {}", followed.message());  // once: the next robots find it full too
+      said_full_ = true;
+    }
+    for (auto& [robot, reader] : whole_robots_) {
+      for (transport::TileEvent& event : reader->Drain(kEventsPerDrain)) {
+        Offer(std::move(event), map, now, steady);
+      }
+    }
   }
   ReleaseHeld(map, steady);
 }
@@ -112,14 +127,20 @@ void TileIntake::Offer(transport::TileEvent event, fusion::FleetMap& map, Timest
   }
 }
 
-void TileIntake::FollowMapFrameRobots() {
-  std::set<RobotId> whole = registry_->MapFrameRobots();
-  if (whole == whole_robots_) return;
-  if (const Status changed = reader_->SetRegion(shard_->Selection(whole)); !changed.ok()) {
-    spdlog::warn("server: {}", changed.message());
-    return;
+Status TileIntake::FollowMapFrameRobots() {
+  for (const RobotId& robot : registry_->MapFrameRobots()) {
+    if (whole_robots_.count(robot) > 0) continue;
+    if (whole_robots_.size() >= kMaxWholeRobots) {
+      return ResourceExhaustedError(fmt::format(
+          "this shard reads {} robots at unknown poses already; robot {}'s tiles outside its "
+          "region are not read",
+          kMaxWholeRobots, robot.value));
+    }
+    FLEETMAP_ASSIGN_OR_RETURN(whole_robots_[robot], transport::VectorTileReader::CreateForRobot(
+                                                        *participant_, transport::kRobotTilesTopic,
+                                                        robot, wake_up_, limits_));
   }
-  whole_robots_ = std::move(whole);
+  return Status::Ok();
 }
 
 void TileIntake::ReleaseHeld(fusion::FleetMap& map, std::chrono::steady_clock::time_point steady) {

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -48,6 +49,8 @@ class TileIntake {
   uint64_t tiles_of_other_shards() const { return shard_ ? shard_->other_shards_tiles() : 0; }
 
   static constexpr size_t kEventsPerDrain = 512;
+  // Robots at unknown poses a shard reads whole, a reader each (ids are free to claim).
+  static constexpr size_t kMaxWholeRobots = 256;
 
  private:
   TileIntake(std::shared_ptr<RobotRegistry> registry, const HeldTiles::Limits& held,
@@ -57,9 +60,10 @@ class TileIntake {
   void Offer(transport::TileEvent event, fusion::FleetMap& map, Timestamp now,
              std::chrono::steady_clock::time_point steady);
   void ReleaseHeld(fusion::FleetMap& map, std::chrono::steady_clock::time_point steady);
-  // A shard reads the tiles of the robots that send in their own map frame whole: its filter
-  // follows them as they join.
-  void FollowMapFrameRobots();
+  // A shard reads the tiles of each robot that sends in its own map frame through a reader of
+  // its own (their tile keys say nothing of the fleet frame): made as the robot joins, it gets
+  // the robot's whole history from its writer.
+  Status FollowMapFrameRobots();
 
   std::shared_ptr<RobotRegistry> registry_;
   HeldTiles held_;  // tiles whose robot's status has not come yet
@@ -67,7 +71,11 @@ class TileIntake {
   std::chrono::milliseconds unclaimed_wait_{};
   std::unique_ptr<transport::VectorTileReader> reader_;
   std::optional<ShardTileScope> shard_;
-  std::set<RobotId> whole_robots_;  // what the shard's filter takes whole now
+  std::map<RobotId, std::unique_ptr<transport::VectorTileReader>> whole_robots_;  // a shard's
+  transport::Participant* participant_ = nullptr;  // the caller's; for the readers of whole robots
+  std::shared_ptr<WakeUp> wake_up_;
+  transport::TileDecodeLimits limits_;
+  bool said_full_ = false;
 };
 
 }  // namespace fleetmap::server

@@ -38,7 +38,16 @@ StatusOr<ShardPlan> LoadShardPlan(const std::string& path) {
     }
     regions.push_back(ShardRegion{name, corners[0], corners[1], corners[2], corners[3]});
   }
-  StatusOr<ShardPlan> plan = ShardPlan::Create(std::move(regions));
+  std::map<RobotId, std::string> homes;
+  if (const YAML::Node robots = root["robots"]) {
+    if (!robots.IsMap()) {
+      return InvalidArgumentError(path + ": `robots` must map robot names to shards");
+    }
+    for (const auto& entry : robots) {
+      homes[RobotId{entry.first.as<std::string>("")}] = entry.second.as<std::string>("");
+    }
+  }
+  StatusOr<ShardPlan> plan = ShardPlan::Create(std::move(regions), std::move(homes));
   if (!plan.ok()) return InvalidArgumentError(path + ": " + plan.status().message());
   return plan;
 }

@@ -5,6 +5,8 @@
 //   shards:
 //     west: [0.0, 0.0, 60.0, 40.0]     # X0 Y0 X1 Y1: the region, metres in the fleet frame
 //     east: [60.0, 0.0, 120.0, 40.0]
+//   robots:                            # optional: the shard that places a robot at an unknown
+//     delta: east                      # pose (its home); the others follow. Default: the first.
 //
 // Listed in the order of the file; regions must not overlap (docs/shards.md).
 

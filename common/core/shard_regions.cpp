@@ -30,7 +30,8 @@ TileBox ShardRegion::Tiles(double tile_size) const {
                  FirstTileCentredFrom(max_y, tile_size) - 1};
 }
 
-StatusOr<ShardPlan> ShardPlan::Create(std::vector<ShardRegion> regions) {
+StatusOr<ShardPlan> ShardPlan::Create(std::vector<ShardRegion> regions,
+                                      std::map<RobotId, std::string> homes) {
   if (regions.empty()) return InvalidArgumentError("a shard plan needs at least one shard");
   for (size_t i = 0; i < regions.size(); ++i) {
     const ShardRegion& region = regions[i];
@@ -61,8 +62,21 @@ StatusOr<ShardPlan> ShardPlan::Create(std::vector<ShardRegion> regions) {
       }
     }
   }
+  for (const auto& [robot, shard] : homes) {
+    if (!IsValidRobotName(robot.value)) {
+      return InvalidArgumentError("\"" + robot.value + "\" is not a valid robot name");
+    }
+    const bool listed = std::any_of(regions.begin(), regions.end(), [&](const ShardRegion& region) {
+      return region.name == shard;
+    });
+    if (!listed) {
+      return InvalidArgumentError("robot " + robot.value + " is homed on shard " + shard +
+                                  ", which is not listed");
+    }
+  }
   ShardPlan plan;
   plan.regions_ = std::move(regions);
+  plan.homes_ = std::move(homes);
   return plan;
 }
 
@@ -71,6 +85,11 @@ const ShardRegion* ShardPlan::Find(const std::string& name) const {
     if (region.name == name) return &region;
   }
   return nullptr;
+}
+
+const std::string& ShardPlan::HomeOf(const RobotId& robot) const {
+  const auto home = homes_.find(robot);
+  return home != homes_.end() ? home->second : regions_.front().name;
 }
 
 const ShardRegion* ShardPlan::OwnerOf(const TileId& tile, double tile_size) const {

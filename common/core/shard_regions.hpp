@@ -6,6 +6,7 @@
 // may fall inside a tile (that tile goes to the shard holding its centre).
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,16 +43,23 @@ struct ShardRegion {
 class ShardPlan {
  public:
   // Errors name the shard: a name that is not a ROS name token or is listed twice, a region
-  // that is not finite or has no area, two regions that overlap.
-  static StatusOr<ShardPlan> Create(std::vector<ShardRegion> regions);
+  // that is not finite or has no area, two regions that overlap, a robot homed on a shard that
+  // is not listed. `homes`: the shard that places each robot at an unknown pose (robots not
+  // listed: the first shard).
+  static StatusOr<ShardPlan> Create(std::vector<ShardRegion> regions,
+                                    std::map<RobotId, std::string> homes = {});
 
   const std::vector<ShardRegion>& regions() const { return regions_; }
   const ShardRegion* Find(const std::string& name) const;
   // The shard owning `tile` (nullptr: the tile lies on no shard's region).
   const ShardRegion* OwnerOf(const TileId& tile, double tile_size) const;
+  // The shard that places `robot` when its frame is not known (its home): the other shards
+  // follow its placement (docs/shards.md).
+  const std::string& HomeOf(const RobotId& robot) const;
 
  private:
   std::vector<ShardRegion> regions_;
+  std::map<RobotId, std::string> homes_;
 };
 
 // The shard one server runs: its own region and the plan it belongs to (tiles on no shard's
@@ -61,6 +69,8 @@ struct ShardAssignment {
   std::string name;
 
   const ShardRegion& region() const { return *plan.Find(name); }
+  // Whether this shard places `robot` when its frame is not known.
+  bool IsHomeOf(const RobotId& robot) const { return plan.HomeOf(robot) == name; }
 };
 
 }  // namespace fleetmap

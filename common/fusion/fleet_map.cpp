@@ -38,10 +38,7 @@ void FleetMapOptions::Describe(OptionsPrinter& out) const {
   out.Nested("fusion", fusion);
   out.Nested("admission", admission);
   out.Nested("placement", placement);
-  if (region) {
-    out.Add("region_tiles", fmt::format("({}, {})..({}, {})", region->min_x, region->min_y,
-                                        region->max_x, region->max_y));
-  }
+  if (shard) out.Add("shard", shard->name);
 }
 
 StatusOr<FleetMap> FleetMap::Create(const FleetMapOptions& options) {
@@ -52,6 +49,9 @@ StatusOr<FleetMap> FleetMap::Create(const FleetMapOptions& options) {
 
 FleetMap::FleetMap(const FleetMapOptions& options, TileFusion fusion)
     : options_(options),
+      region_(options.shard
+                  ? std::optional<TileBox>(options.shard->region().Tiles(options.fusion.tile_size))
+                  : std::nullopt),
       fusion_(std::move(fusion)),
       map_frames_(options.fusion.tile_size),
       placer_(options.placement),
@@ -68,8 +68,8 @@ std::optional<TileAdmission::Refused> FleetMap::Offer(
     return TileAdmission::Refused{
         Refusal::kOutsideRegion,
         fmt::format("tile ({}, {}) of robot {} lies outside this shard's tiles ({}, {})..({}, {})",
-                    tile.tile.x, tile.tile.y, tile.robot_id.value, options_.region->min_x,
-                    options_.region->min_y, options_.region->max_x, options_.region->max_y)};
+                    tile.tile.x, tile.tile.y, tile.robot_id.value, region_->min_x, region_->min_y,
+                    region_->max_x, region_->max_y)};
   }
   TileAdmission::Verdict verdict =
       admission_.Admit(tile, origin.wire_bytes, origin.source, now, steady_now);
@@ -153,7 +153,8 @@ void FleetMap::ApplyMapFrameTile(const RobotId& robot, const TileId& tile,
   FuseMapFrameTilesAgain(robot, map_frames_.UpdateTile(robot, tile, std::move(map), stamp));
   // A robot given a frame before its first map-frame tile came: carried there at once.
   if (!map_frames_.placement(robot)) {
-    if (const std::optional<Pose2> given = PlacementOf(robot); given && placer_.IsGiven(robot)) {
+    if (const std::optional<Pose2> given = PlacementOf(robot);
+        given && (placer_.IsGiven(robot) || placer_.IsFollowed(robot))) {
       MoveMapFrame(robot, *given);
     }
   }
@@ -226,6 +227,17 @@ void FleetMap::Join(const RobotId& robot, std::optional<Pose2> fleet_from_map) {
   }
 }
 
+void FleetMap::Follow(const RobotFrame& frame) {
+  if (PlacesHere(frame.robot) || !frame.placed() || frame.state == RobotFrame::State::kGiven) {
+    return;
+  }
+  placer_.Follow(frame);
+  if (map_frames_.Knows(frame.robot) &&
+      map_frames_.placement(frame.robot) != frame.fleet_from_map) {
+    MoveMapFrame(frame.robot, frame.fleet_from_map);
+  }
+}
+
 void FleetMap::MoveMapFrame(const RobotId& robot, const Pose2& fleet_from_map) {
   FuseMapFrameTilesAgain(robot, map_frames_.Place(robot, fleet_from_map));
 }
@@ -247,7 +259,7 @@ std::optional<registration::PlacementJob> FleetMap::NextRegistration(
   const std::vector<RobotId> robots = map_frames_.robots();
   // With no frame known yet, the first robot with a map anchors the fleet frame; never on a
   // shard's map: the shards' regions are drawn in a fleet frame that exists already.
-  if (!options_.region && !placer_.AnyPlaced() && fusion_.contribution_count() == 0) {
+  if (!options_.shard && !placer_.AnyPlaced() && fusion_.contribution_count() == 0) {
     for (const RobotId& robot : robots) {
       if (map_frames_.tile_count(robot) == 0) continue;
       MoveMapFrame(robot, placer_.Anchor(robot).fleet_from_map);
@@ -261,7 +273,7 @@ std::optional<registration::PlacementJob> FleetMap::NextRegistration(
   std::rotate(turn.begin(), std::upper_bound(turn.begin(), turn.end(), last_registered_),
               turn.end());
   for (const RobotId& robot : turn) {
-    if (map_frames_.tile_count(robot) == 0) continue;
+    if (map_frames_.tile_count(robot) == 0 || !PlacesHere(robot)) continue;
     if (std::optional<registration::PlacementJob> job = RegistrationFor(robot, now)) {
       last_registered_ = robot;
       placer_.Submitted(*job, now);
@@ -361,7 +373,12 @@ void FleetMap::FuseChanged() {
 
 FleetMapChanges FleetMap::TakeChanged() {
   FuseChanged();
-  for (RobotFrame& frame : placer_.TakeChangedFrames()) changes_.frames.push_back(std::move(frame));
+  for (RobotFrame& frame : placer_.TakeChangedFrames()) {
+    // A shard writes the rows of the robots it places (and given ones, which every shard
+    // knows): a reader takes each row from one writer, and the home shard's is the one.
+    if (!PlacesHere(frame.robot) && frame.state != RobotFrame::State::kGiven) continue;
+    changes_.frames.push_back(std::move(frame));
+  }
   for (Notice& notice : placer_.TakeNotices()) changes_.notices.push_back(std::move(notice));
   return std::exchange(changes_, {});
 }

@@ -32,9 +32,11 @@ struct FleetMapOptions {
   AdmissionOptions admission;
   // How robots whose tiles come in their own map frame are placed.
   registration::PlacementOptions placement;
-  // A shard's server (docs/shards.md): only these fleet tiles are fused; robot tiles elsewhere
-  // are refused (kOutsideRegion), and what map-frame robots carry elsewhere is left out.
-  std::optional<TileBox> region;
+  // A shard's server (docs/shards.md): only the region's fleet tiles are fused (robot tiles
+  // elsewhere are refused, kOutsideRegion, and what map-frame robots carry elsewhere is left
+  // out); robots at unknown poses are placed by their home shard only, the others follow it
+  // (Follow), and the fleet frame is never anchored on a robot.
+  std::optional<ShardAssignment> shard;
 
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
@@ -118,6 +120,10 @@ class FleetMap {
   // --- Frames.
   // A robot joined: its map frame is given (fleet_from_map) or must be placed (nullopt).
   void Join(const RobotId& robot, std::optional<Pose2> fleet_from_map);
+  // A shard: the frame another shard's server wrote for a robot (rt/fleetmap/robot_frames).
+  // A robot homed on another shard takes its placement from there; the others' rows are this
+  // fleet map's own business and ignored.
+  void Follow(const RobotFrame& frame);
   // The registration to run next, if one is due (the robots in turn); the first robot with a map
   // anchors the fleet frame instead. Run it beside (RunPlacementJob), hand the result to Placed.
   std::optional<registration::PlacementJob> NextRegistration(
@@ -189,8 +195,10 @@ class FleetMap {
   // frames table.
   void FuseChanged();
   void Say(Notice::Level level, std::string text);
-  bool InRegion(const TileId& tile) const {
-    return !options_.region || options_.region->Contains(tile);
+  bool InRegion(const TileId& tile) const { return !region_ || region_->Contains(tile); }
+  // Whether this fleet map places `robot` when its frame is not known (always, unsharded).
+  bool PlacesHere(const RobotId& robot) const {
+    return !options_.shard || options_.shard->IsHomeOf(robot);
   }
 
   // The registration due for `robot`, if any: its own map on the fleet map, its group's merged
@@ -202,6 +210,7 @@ class FleetMap {
   vector_map::VectorMap GroupMap(const registration::PlacementGroup& group) const;
 
   FleetMapOptions options_;
+  std::optional<TileBox> region_;  // a shard's tiles
   TileFusion fusion_;
   MapFrameRobots map_frames_;
   registration::Placer placer_;

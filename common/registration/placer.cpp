@@ -97,6 +97,16 @@ void Placer::Unplaced(const RobotId& robot) {
   Set(std::move(frame));
 }
 
+void Placer::Follow(const RobotFrame& frame) {
+  followed_.insert(frame.robot);
+  const auto it = frames_.find(frame.robot);
+  if (it != frames_.end() && it->second.state == frame.state &&
+      it->second.fleet_from_map == frame.fleet_from_map) {
+    return;
+  }
+  Set(frame);
+}
+
 void Placer::Given(const RobotId& robot, const Pose2& fleet_from_map) {
   const auto it = frames_.find(robot);
   if (it != frames_.end() && it->second.state == RobotFrame::State::kGiven &&
@@ -128,7 +138,7 @@ Placer::Decision Placer::Anchor(const RobotId& robot) {
 
 bool Placer::Due(const RegistrationKey& key, uint64_t map_changes, uint64_t target_changes,
                  std::chrono::steady_clock::time_point now) const {
-  if (busy_ || IsGiven(key.robot)) return false;
+  if (busy_ || IsGiven(key.robot) || IsFollowed(key.robot)) return false;
   const auto frame = frames_.find(key.robot);
   const bool placed = frame != frames_.end() && frame->second.placed();
   const auto attempt = attempts_.find(key);

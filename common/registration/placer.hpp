@@ -100,6 +100,10 @@ class Placer {
   void Given(const RobotId& robot, const Pose2& fleet_from_map);
   // The first robot: its map frame is the fleet frame.
   Decision Anchor(const RobotId& robot);
+  // A robot whose frame another server decides (a shard's robot homed on another shard,
+  // docs/shards.md): its row as that server wrote it. Never registered here.
+  void Follow(const RobotFrame& frame);
+  bool IsFollowed(const RobotId& robot) const { return followed_.count(robot) > 0; }
 
   // Whether this registration (RegistrationKey: whose map, on what) is due. A placed robot is
   // checked when its map changed since the last check and the check period passed; an unplaced
@@ -177,6 +181,7 @@ class Placer {
 
   PlacementOptions options_;
   std::map<RobotId, RobotFrame> frames_;
+  std::set<RobotId> followed_;             // rows another server decides
   std::map<RobotId, Standing> standings_;  // robots not trusted, or no longer
   std::map<RegistrationKey, Attempt> attempts_;
   std::map<RobotId, Follower> followers_;

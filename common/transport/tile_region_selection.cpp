@@ -8,9 +8,6 @@ namespace fleetmap::transport {
 namespace {
 
 constexpr std::string_view kBoxTag = "box:";
-constexpr std::string_view kRobotsTag = "robots:";
-constexpr std::string_view kEverything = "all";
-constexpr size_t kMaxParameterLength = 255;  // DDS carries parameters as string_255
 
 std::optional<int32_t> ParseInt(std::string_view text) {
   int32_t value = 0;
@@ -35,9 +32,8 @@ std::optional<TileBox> ParseBox(std::string_view text) {
 
 }  // namespace
 
-bool TileRegionSelection::Passes(std::string_view robot, const TileId& tile) const {
-  if (everything || own.Contains(tile)) return true;
-  if (whole_robots.count(std::string(robot)) > 0) return true;
+bool TileRegionSelection::Passes(const TileId& tile) const {
+  if (own.Contains(tile)) return true;
   for (const TileBox& other : others) {
     if (other.Contains(tile)) return false;  // that shard's
   }
@@ -51,20 +47,6 @@ std::vector<std::string> TileRegionSelection::ToParameters() const {
     parameters.push_back(std::string(kBoxTag) + std::to_string(other.min_x) + "," +
                          std::to_string(other.max_x) + "," + std::to_string(other.min_y) + "," +
                          std::to_string(other.max_y));
-  }
-  std::string robots;
-  for (const std::string& robot : whole_robots) {
-    if (!robots.empty() && robots.size() + 1 + robot.size() > kMaxParameterLength) {
-      parameters.push_back(std::move(robots));
-      robots.clear();
-    }
-    robots += robots.empty() ? std::string(kRobotsTag) + robot : "," + robot;
-  }
-  if (!robots.empty()) parameters.push_back(std::move(robots));
-  if (everything || parameters.size() > kMaxParameters) {
-    // Too many robots to name: the reader takes every tile and the server sorts them.
-    parameters.resize(4);
-    parameters.emplace_back(kEverything);
   }
   return parameters;
 }
@@ -84,19 +66,10 @@ StatusOr<TileRegionSelection> TileRegionSelection::FromParameters(
   selection.own = TileBox{bounds[0], bounds[2], bounds[1], bounds[3]};
   for (size_t i = 4; i < parameters.size(); ++i) {
     const std::string_view parameter = parameters[i];
-    if (parameter == kEverything) {
-      selection.everything = true;
-    } else if (parameter.substr(0, kBoxTag.size()) == kBoxTag) {
+    if (parameter.substr(0, kBoxTag.size()) == kBoxTag) {
       const std::optional<TileBox> box = ParseBox(parameter.substr(kBoxTag.size()));
       if (!box) return InvalidArgumentError("\"" + parameters[i] + "\" is not box:A,B,C,D");
       selection.others.push_back(*box);
-    } else if (parameter.substr(0, kRobotsTag.size()) == kRobotsTag) {
-      std::string_view names = parameter.substr(kRobotsTag.size());
-      while (!names.empty()) {
-        const size_t comma = std::min(names.find(','), names.size());
-        if (comma > 0) selection.whole_robots.emplace(names.substr(0, comma));
-        names.remove_prefix(std::min(names.size(), comma + 1));
-      }
     } else {
       return InvalidArgumentError("unknown tile region filter parameter \"" + parameters[i] + "\"");
     }

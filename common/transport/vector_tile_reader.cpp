@@ -166,8 +166,16 @@ StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::Create(
   return self;
 }
 
-Status VectorTileReader::SetRegion(const TileRegionSelection& region) {
-  return endpoint_->SetFilterParameters(region.ToParameters());
+StatusOr<std::unique_ptr<VectorTileReader>> VectorTileReader::CreateForRobot(
+    Participant& participant, const std::string& topic_name, const RobotId& robot,
+    std::shared_ptr<WakeUp> wake_up, const TileDecodeLimits& limits) {
+  std::unique_ptr<VectorTileReader> self(new VectorTileReader());
+  self->listener_ = std::make_unique<Listener>(participant, topic_name, std::move(wake_up), limits);
+  FLEETMAP_ASSIGN_OR_RETURN(self->endpoint_,
+                            ReaderEndpoint::Create(participant, topic_name, VectorTileTypeSupport(),
+                                                   VectorTileQos().reader, self->listener_.get(),
+                                                   ContentFilter::OnlyRobot(robot.value)));
+  return self;
 }
 
 VectorTileReader::~VectorTileReader() { endpoint_.reset(); }

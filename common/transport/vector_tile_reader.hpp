@@ -46,9 +46,11 @@ class VectorTileReader {
       std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {},
       const std::optional<TileRegionSelection>& region = std::nullopt);
   ~VectorTileReader();
-  // A reader created with a region takes this one from now on (the writers learn it through
-  // discovery, so tiles already on their way may still come).
-  Status SetRegion(const TileRegionSelection& region);
+  // A reader of one robot's tiles only (the robot-id filter, evaluated by the writers): matched,
+  // the robot's writer hands it the robot's whole kept history.
+  static StatusOr<std::unique_ptr<VectorTileReader>> CreateForRobot(
+      Participant& participant, const std::string& topic_name, const RobotId& robot,
+      std::shared_ptr<WakeUp> wake_up = nullptr, const TileDecodeLimits& limits = {});
 
   // At most `max_events`, the writers' participants served in turn (FairSampleQueue): what one
   // participant floods waits behind the others' tiles, not in front of them.

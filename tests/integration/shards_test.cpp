@@ -271,5 +271,58 @@ TEST(ShardsTest, BadShardOptionsExitTwoNamingTheProblem) {
   }
 }
 
+// The cells [x0, x0 + w) of every row of `g`, as a map with its corner at `origin`.
+grid::OccupancyGrid Columns(const grid::OccupancyGrid& g, int x0, int w, const Pose2& origin) {
+  grid::OccupancyGrid out(w, g.height(), g.resolution(), origin);
+  for (int y = 0; y < g.height(); ++y) {
+    for (int x = 0; x < w; ++x) out.at(x, y) = g.at(x0 + x, y);
+  }
+  return out;
+}
+
+// A robot at an unknown pose whose map spans two shards: its home shard (east, where the fleet
+// map it overlaps lies) places it by registration and alone writes its robot_frames row; the
+// other shard (west) follows that row and fuses the part of the robot's map in its region.
+TEST(ShardsTest, ARobotAtAnUnknownPoseIsPlacedByItsHomeShardAndFollowedByTheOther) {
+  const auto house =
+      grid::LoadMap(std::string(FLEETMAP_TEST_DATA_DIR) + "/maps/real/aws_small_house.yaml");
+  ASSERT_TRUE(house.ok()) << house.status();
+  // alpha maps the right 60 % of the house at x 40 m on (east's tiles 4 and up), its frame
+  // given; beta the left 60 %, in a frame of its own, truly at x 32-44 m: tile 3 is west's.
+  const grid::OccupancyGrid& g = house->grid;
+  const int w = g.width() * 3 / 5;
+  const Pose2 alpha_origin{40.0, 7.5, 0.0};
+  const std::string alpha_map = TempPath("house_alpha.yaml");
+  ASSERT_TRUE(grid::SaveMap(Columns(g, g.width() - w, w, alpha_origin), alpha_map).ok());
+  const std::string beta_map = TempPath("house_beta.yaml");
+  ASSERT_TRUE(grid::SaveMap(Columns(g, 0, w, Pose2{-70.0, 15.0, 0.0}), beta_map).ok());
+  const std::string shards = TempPath("homes.yaml");
+  std::ofstream(shards) << "shards:\n  west: [-1000, -1000, 40, 1000]\n"
+                           "  east: [40, -1000, 1000, 1000]\nrobots:\n  beta: east\n";
+
+  FleetOnDomain fleet(RandomDomainId());
+  Subprocess& west = fleet.Start(Server("west", {"--shards", shards, "--shard", "west"}));
+  Subprocess& east = fleet.Start(Server("east", {"--shards", shards, "--shard", "east"}));
+  ASSERT_TRUE(fleet.Follow([&] { return fleet.servers().size() == 2; })) << west.Output();
+  fleet.Start({testing::kAgentBinary, "--robot-id", "alpha", "--map", alpha_map, "--fleet-from-map",
+               "0", "0", "0"});
+  ASSERT_TRUE(fleet.Follow([&] { return fleet.TileWriter(4, 1) == "east"; }))
+      << fleet.Seen() << east.Output();
+  fleet.Start({testing::kAgentBinary, "--robot-id", "beta", "--map", beta_map, "--unplaced"});
+
+  // West fuses beta's part once east placed beta: a fused tile of column 3 only beta maps.
+  const auto west_has_beta = [&] {
+    for (int y = 0; y <= 2; ++y) {
+      if (fleet.TileWriter(3, y) == "west") return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(fleet.Follow(west_has_beta)) << fleet.Seen() << east.Output() << west.Output();
+  EXPECT_TRUE(east.WaitForOutput("robot beta placed", kDeadline)) << east.Output();
+  EXPECT_EQ(west.Output().find("robot beta placed"), std::string::npos)
+      << "only the home shard registers beta:\n"
+      << west.Output();
+}
+
 }  // namespace
 }  // namespace fleetmap

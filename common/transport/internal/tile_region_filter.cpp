@@ -17,7 +17,7 @@ class TileRegionFilter final : public dds::IContentFilter {
   bool evaluate(const SerializedPayload& payload, const FilterSampleInfo& /*sample_info*/,
                 const GUID_t& /*reader_guid*/) const override {
     const std::optional<TileSampleKey> key = ReadTileSampleKey(payload);
-    return !key || selection_.Passes(key->robot, key->tile);
+    return !key || selection_.Passes(key->tile);
   }
 
   void set_selection(TileRegionSelection selection) { selection_ = std::move(selection); }

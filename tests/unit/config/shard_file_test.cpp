@@ -23,6 +23,17 @@ TEST(ShardFileTest, ReadsTheShardsInTheFilesOrder) {
   EXPECT_EQ(plan->regions()[0].name, "west");
   EXPECT_EQ(plan->regions()[0].max_x, 30.5);
   EXPECT_EQ(plan->regions()[1].name, "east");
+  EXPECT_EQ(plan->HomeOf(RobotId{"anyone"}), "west");
+}
+
+TEST(ShardFileTest, ReadsTheRobotsHomes) {
+  StatusOr<ShardPlan> plan = LoadShardPlan(
+      Write("homes",
+            "shards:\n  west: [0, 0, 30, 60]\n  east: [30, 0, 60, 60]\nrobots:\n  delta: east\n"));
+  ASSERT_TRUE(plan.ok()) << plan.status();
+  EXPECT_EQ(plan->HomeOf(RobotId{"delta"}), "east");
+  EXPECT_FALSE(
+      LoadShardPlan(Write("badhome", "shards:\n  west: [0, 0, 1, 1]\nrobots: [x]\n")).ok());
 }
 
 TEST(ShardFileTest, ErrorsNameTheFileAndTheEntry) {

@@ -33,6 +33,22 @@ TEST(ShardPlanTest, NeighboursOwnDisjointTilesAndATileOnNoRegionHasNoOwner) {
   EXPECT_EQ(plan->Find("north"), nullptr);
 }
 
+TEST(ShardPlanTest, ARobotIsHomedOnItsListedShardElseOnTheFirst) {
+  StatusOr<ShardPlan> plan =
+      ShardPlan::Create({ShardRegion{"west", 0, 0, 30, 60}, ShardRegion{"east", 30, 0, 60, 60}},
+                        {{RobotId{"delta"}, "east"}});
+  ASSERT_TRUE(plan.ok()) << plan.status();
+  EXPECT_EQ(plan->HomeOf(RobotId{"delta"}), "east");
+  EXPECT_EQ(plan->HomeOf(RobotId{"alpha"}), "west");
+  EXPECT_TRUE((ShardAssignment{*plan, "east"}.IsHomeOf(RobotId{"delta"})));
+  EXPECT_FALSE((ShardAssignment{*plan, "west"}.IsHomeOf(RobotId{"delta"})));
+  StatusOr<ShardPlan> unknown =
+      ShardPlan::Create({ShardRegion{"west", 0, 0, 30, 60}}, {{RobotId{"delta"}, "north"}});
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.status().message().find("robot delta is homed on shard north"),
+            std::string::npos);
+}
+
 TEST(ShardPlanTest, RefusesOverlapsBadNamesTwinsAndRegionsWithoutArea) {
   const auto error = [](std::vector<ShardRegion> regions) {
     StatusOr<ShardPlan> plan = ShardPlan::Create(std::move(regions));

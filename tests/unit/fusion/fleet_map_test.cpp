@@ -267,11 +267,21 @@ TEST(FleetMapTest, ARotatedGivenFrameCarriesMapFrameTilesAtThatAngle) {
 namespace fleetmap::fusion {
 namespace {
 
+// Two shards of 2 m tiles: west holds tiles (0..1, 0..1), east (2..3, 0..1); robots at unknown
+// poses are placed by west, but beta's home is east.
+ShardAssignment ShardOfTwo(const std::string& name) {
+  return ShardAssignment{
+      ShardPlan::Create({ShardRegion{"west", 0, 0, 4, 4}, ShardRegion{"east", 4, 0, 8, 4}},
+                        {{RobotId{"beta"}, "east"}})
+          .value(),
+      name};
+}
+
 // A shard's fleet map (docs/shards.md): its region's tiles only. A fleet-frame tile elsewhere is
 // refused naming the region; a map-frame robot's map is carried and only the region's part fused.
 TEST(FleetMapTest, AShardFusesItsRegionsTilesOnly) {
   FleetMapOptions options = Options();
-  options.region = TileBox{0, 0, 1, 1};
+  options.shard = ShardOfTwo("west");
   FleetMap map = MakeMap(options);
   Offer(map, Tile("alpha", {1, 1}), From("alpha", "p1"));
   const auto refused = map.Offer(Tile("alpha", {2, 0}), From("alpha", "p1"), Clock::now(), kSteady);
@@ -292,7 +302,7 @@ TEST(FleetMapTest, AShardFusesItsRegionsTilesOnly) {
   EXPECT_EQ(CellAt(map, 3.0, 1.0), grid::kOccupiedValue);
   EXPECT_EQ(CellAt(map, 5.0, 1.0), grid::kUnknownValue);
   for (const FusedTile& fused : changes.fused) {
-    EXPECT_TRUE(options.region->Contains(fused.tile)) << fused.tile.x << "," << fused.tile.y;
+    EXPECT_TRUE((TileBox{0, 0, 1, 1}.Contains(fused.tile))) << fused.tile.x << "," << fused.tile.y;
   }
 }
 
@@ -300,7 +310,7 @@ TEST(FleetMapTest, AShardFusesItsRegionsTilesOnly) {
 // shard's map by registration, never taken as the fleet frame itself.
 TEST(FleetMapTest, AShardNeverAnchorsTheFleetFrameOnARobot) {
   FleetMapOptions options = Options();
-  options.region = TileBox{0, 0, 1, 1};
+  options.shard = ShardOfTwo("west");
   FleetMap map = MakeMap(options);
   map.Join(RobotId{"alpha"}, std::nullopt);
   Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1", /*in_map_frame=*/true));
@@ -308,6 +318,49 @@ TEST(FleetMapTest, AShardNeverAnchorsTheFleetFrameOnARobot) {
   map.NextRegistration(kSteady);
   EXPECT_EQ(map.FrameOf(RobotId{"alpha"})->state, RobotFrame::State::kUnplaced);
   EXPECT_EQ(map.fusion().contribution_count(), 0u);
+}
+
+// A robot at an unknown pose homed on another shard: this shard never registers it nor writes its
+// row, takes its placement from the home shard's row, and fuses the part of its map in its region.
+TEST(FleetMapTest, AShardFollowsThePlacementOfARobotHomedOnAnotherShard) {
+  FleetMapOptions options = Options();
+  options.shard = ShardOfTwo("west");
+  FleetMap map = MakeMap(options);
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));  // the fleet map to register on
+  map.Join(RobotId{"beta"}, std::nullopt);
+  Offer(map, Tile("beta", {0, 0}, 1.4), From("beta", "p2", /*in_map_frame=*/true));
+  Offer(map, Tile("beta", {1, 0}, 1.4), From("beta", "p2", /*in_map_frame=*/true));
+  FuseAll(map);
+  EXPECT_FALSE(map.NextRegistration(kSteady).has_value()) << "east places beta";
+  FleetMapChanges changes = map.TakeChanged();
+  for (const RobotFrame& frame : changes.frames) EXPECT_NE(frame.robot.value, "beta");
+
+  // East placed beta 2 m east: its tile (0, 0) lands on west's tile (1, 0), its tile (1, 0) on
+  // east's (2, 0).
+  RobotFrame placed;
+  placed.robot = RobotId{"beta"};
+  placed.state = RobotFrame::State::kPlaced;
+  placed.fleet_from_map = Pose2{2.0, 0.0, 0.0};
+  placed.confidence = 0.99;
+  map.Follow(placed);
+  FuseAll(map);
+  changes = map.TakeChanged();
+  EXPECT_TRUE(HasContribution(changes, "beta", {1, 0}, true));
+  EXPECT_FALSE(HasContribution(changes, "beta", {2, 0}, true));
+  for (const RobotFrame& frame : changes.frames) EXPECT_NE(frame.robot.value, "beta");
+  EXPECT_EQ(map.PlacementOf(RobotId{"beta"}), (Pose2{2.0, 0.0, 0.0}));
+  EXPECT_EQ(CellAt(map, 3.0, 1.4), grid::kOccupiedValue);
+  EXPECT_FALSE(map.NextRegistration(kSteady).has_value()) << "a followed robot is not checked";
+
+  // East, the home, ignores what another shard might write of beta; alpha is west's own.
+  FleetMap east = MakeMap([] {
+    FleetMapOptions east_options = Options();
+    east_options.shard = ShardOfTwo("east");
+    return east_options;
+  }());
+  east.Join(RobotId{"beta"}, std::nullopt);
+  east.Follow(placed);
+  EXPECT_EQ(east.FrameOf(RobotId{"beta"})->state, RobotFrame::State::kUnplaced);
 }
 
 }  // namespace

@@ -69,11 +69,10 @@ TEST(ShardTileScopeTest, ReportsATileOnNoRegionOnceAMinutePerRobot) {
   EXPECT_TRUE(west.NoteOutside(RobotId{"alpha"}, TileId{8, 0}, start + seconds(60)).report_now);
   EXPECT_EQ(west.orphan_tiles(), 4u);
   EXPECT_EQ(west.other_shards_tiles(), 1u);
-  // Its filter: its own tiles, the other shard's to tell tiles on no region, whole robots.
-  const transport::TileRegionSelection selection = west.Selection({RobotId{"lost"}});
+  // Its filter: its own tiles, and the other shard's to tell tiles on no region.
+  const transport::TileRegionSelection selection = west.Selection();
   EXPECT_EQ(selection.own, west.own_tiles());
   EXPECT_EQ(selection.others, std::vector<TileBox>{(TileBox{3, 0, 5, 5})});
-  EXPECT_EQ(selection.whole_robots, std::set<std::string>{"lost"});
 }
 
 }  // namespace

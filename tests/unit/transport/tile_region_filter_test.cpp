@@ -42,55 +42,32 @@ TEST(ReadTileSampleKeyTest, RefusesAPayloadTooShortForTheTileKey) {
   EXPECT_EQ(ReadTileSampleKey(SerializedPayload_t()), std::nullopt);
 }
 
-TEST(TileRegionSelectionTest, PassesItsOwnTilesWholeRobotsAndTilesOnNoRegion) {
+TEST(TileRegionSelectionTest, PassesItsOwnTilesAndTilesOnNoRegion) {
   TileRegionSelection selection;
   selection.own = TileBox{0, 0, 2, 5};
   selection.others = {TileBox{3, 0, 5, 5}};
-  selection.whole_robots = {"lost"};
-  EXPECT_TRUE(selection.Passes("alpha", TileId{2, 5}));
-  EXPECT_FALSE(selection.Passes("alpha", TileId{3, 0}));  // the other shard's
-  EXPECT_TRUE(selection.Passes("lost", TileId{3, 0}));    // a map-frame robot, whole
-  EXPECT_TRUE(selection.Passes("alpha", TileId{9, 0}));   // on no region: reported
+  EXPECT_TRUE(selection.Passes(TileId{2, 5}));
+  EXPECT_FALSE(selection.Passes(TileId{3, 0}));  // the other shard's
+  EXPECT_TRUE(selection.Passes(TileId{9, 0}));   // on no region: reported
   // Not knowing the other shards, it cannot tell a tile on no region from theirs: it takes none.
   selection.others.clear();
-  EXPECT_FALSE(selection.Passes("alpha", TileId{9, 0}));
+  EXPECT_FALSE(selection.Passes(TileId{9, 0}));
 }
 
 TEST(TileRegionSelectionTest, ParametersRoundTripAndRefuseWhatTheyDoNotKnow) {
   TileRegionSelection selection;
   selection.own = TileBox{-4, -1, 2, 5};
   selection.others = {TileBox{3, -1, 5, 5}, TileBox{-9, -9, -5, -2}};
-  selection.whole_robots = {"alpha", "beta"};
   StatusOr<TileRegionSelection> back =
       TileRegionSelection::FromParameters(selection.ToParameters());
   ASSERT_TRUE(back.ok()) << back.status();
   EXPECT_EQ(back->own, selection.own);
   EXPECT_EQ(back->others, selection.others);
-  EXPECT_EQ(back->whole_robots, selection.whole_robots);
-  EXPECT_FALSE(back->everything);
 
   EXPECT_FALSE(TileRegionSelection::FromParameters({"0", "1", "2"}).ok());
   EXPECT_FALSE(TileRegionSelection::FromParameters({"0", "1", "x", "3"}).ok());
   EXPECT_FALSE(TileRegionSelection::FromParameters({"0", "1", "2", "3", "box:1,2,3"}).ok());
-  EXPECT_FALSE(TileRegionSelection::FromParameters({"0", "1", "2", "3", "shards:7"}).ok());
-}
-
-TEST(TileRegionSelectionTest, ManyWholeRobotsFitTheParametersDdsCarriesOrTakeEverything) {
-  TileRegionSelection selection;
-  selection.own = TileBox{0, 0, 1, 1};
-  for (int i = 0; i < 300; ++i) selection.whole_robots.insert("robot_" + std::to_string(i));
-  std::vector<std::string> parameters = selection.ToParameters();
-  ASSERT_LE(parameters.size(), TileRegionSelection::kMaxParameters);
-  for (const std::string& parameter : parameters) EXPECT_LE(parameter.size(), 255u);
-  EXPECT_EQ(TileRegionSelection::FromParameters(parameters)->whole_robots.size(), 300u);
-
-  for (int i = 300; i < 5000; ++i) selection.whole_robots.insert("robot_" + std::to_string(i));
-  parameters = selection.ToParameters();
-  ASSERT_LE(parameters.size(), TileRegionSelection::kMaxParameters);
-  StatusOr<TileRegionSelection> back = TileRegionSelection::FromParameters(parameters);
-  ASSERT_TRUE(back.ok());
-  EXPECT_TRUE(back->everything);
-  EXPECT_TRUE(back->Passes("anyone", TileId{40, 40}));
+  EXPECT_FALSE(TileRegionSelection::FromParameters({"0", "1", "2", "3", "robots:a"}).ok());
 }
 
 }  // namespace
