@@ -62,15 +62,18 @@ StatusOr<ShardPlan> ShardPlan::Create(std::vector<ShardRegion> regions,
       }
     }
   }
-  for (const auto& [robot, shard] : homes) {
-    if (!IsValidRobotName(robot.value)) {
-      return InvalidArgumentError("\"" + robot.value + "\" is not a valid robot name");
+  for (const auto& home : homes) {
+    // Named, not bound: clang does not let a lambda capture a structured binding.
+    const std::string& robot = home.first.value;
+    const std::string& shard = home.second;
+    if (!IsValidRobotName(robot)) {
+      return InvalidArgumentError("\"" + robot + "\" is not a valid robot name");
     }
     const bool listed = std::any_of(regions.begin(), regions.end(), [&](const ShardRegion& region) {
       return region.name == shard;
     });
     if (!listed) {
-      return InvalidArgumentError("robot " + robot.value + " is homed on shard " + shard +
+      return InvalidArgumentError("robot " + robot + " is homed on shard " + shard +
                                   ", which is not listed");
     }
   }
