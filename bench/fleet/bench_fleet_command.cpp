@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -79,6 +80,23 @@ std::vector<double> LatenciesBetween(const FleetRunResult& run, double from_s, d
   return window;
 }
 
+// The `count` latest updates received from `from_s` to `to_s`, latest first, each as its time
+// into the run and its latency: where a tail comes from (the flood's start, its end, all along).
+nlohmann::json LatestBetween(const FleetRunResult& run, double from_s, double to_s, size_t count) {
+  std::vector<size_t> window;
+  for (size_t i = 0; i < run.latencies_ms.size(); ++i) {
+    if (run.latency_at_s[i] >= from_s && run.latency_at_s[i] < to_s) window.push_back(i);
+  }
+  const auto later = [&](size_t a, size_t b) { return run.latencies_ms[a] > run.latencies_ms[b]; };
+  std::sort(window.begin(), window.end(), later);
+  window.resize(std::min(window.size(), count));
+  nlohmann::json latest = nlohmann::json::array();
+  for (size_t i : window) {
+    latest.push_back({{"at_s", run.latency_at_s[i]}, {"ms", run.latencies_ms[i]}});
+  }
+  return latest;
+}
+
 // Honest robots' latency is "recovered" this long after a flood ends (issue 30's target).
 constexpr double kRecoverySeconds = 5.0;
 
@@ -123,7 +141,10 @@ void PrintHostileTable(const std::vector<Row>& rows, const HostileAttack& attack
         {"ids_per_participant", flood.ids},
         {"flood_s", {started, stopped}},
         {"latency_ms_during",
-         {{"p50", p(during, 50).value_or(-1)}, {"p99", p(during, 99).value_or(-1)}}},
+         {{"p50", p(during, 50).value_or(-1)},
+          {"p99", p(during, 99).value_or(-1)},
+          {"updates", during.size()},
+          {"latest", LatestBetween(attacked, started, stopped, 8)}}},
         {"latency_ms_after",
          {{"p50", p(after, 50).value_or(-1)}, {"p99", p(after, 99).value_or(-1)}}},
         {"server_peak_rss_bytes", attacked.server_peak_rss_bytes},

@@ -356,6 +356,7 @@ std::optional<registration::PlacementJob> FleetMap::RegistrationFor(
 
 void FleetMap::FuseChanged() {
   StatusOr<std::vector<FusedTile>> fused = fusion_.FuseChanged();
+  admission_.SetSharedBytes(fusion_.SharedEvidenceBytes());
   for (TrustReport& report : fusion_.TakeTrustChanges()) {
     placer_.SetStanding(
         report.robot,

@@ -16,6 +16,12 @@ NewestEvidence::NewestEvidence(grid::OccupancyGrid empty)
   std::fill(cells_.mutable_data().begin(), cells_.mutable_data().end(), grid::kUnknownValue);
 }
 
+size_t NewestEvidence::HeldBytes() const {
+  return cells_.data().capacity() + dates_.capacity() * sizeof(uint32_t) + holders_.capacity() +
+         runner_up_values_.capacity() + runner_up_dates_.capacity() * sizeof(uint32_t) +
+         to_settle_.capacity() * sizeof(size_t);
+}
+
 void NewestEvidence::Set(size_t i, const Fused& fused) {
   cells_.mutable_data()[i] = ValueOf(fused.best);
   dates_[i] = DateOf(fused.best);

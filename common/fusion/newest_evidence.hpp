@@ -45,6 +45,8 @@ class NewestEvidence {
 
   // The fused cells and their evidence dates (0: unknown).
   const grid::OccupancyGrid& cells() const { return cells_; }
+  // The memory it holds: 11 bytes a cell (440 KB for a 10 m tile of 5 cm cells).
+  size_t HeldBytes() const;
   const std::vector<uint32_t>& dates() const { return dates_; }
   // The cells and dates of `contributions` without `slot`: what the set says when that
   // contribution is left out. `contributions` is the set (with or without `slot`).

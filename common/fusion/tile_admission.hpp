@@ -86,6 +86,8 @@ class TileAdmission {
 
   size_t tiles_held(const RobotId& robot) const;
   const TileBudget& budget() const { return budget_; }
+  // See TileBudget::SetSharedBytes.
+  void SetSharedBytes(uint64_t bytes) { budget_.SetSharedBytes(bytes); }
 
  private:
   struct RobotQuota {

@@ -124,7 +124,8 @@ std::optional<std::vector<RobotId>> TileBudget::NewerToEvict(const Robot& robot,
   }
   std::sort(newer.begin(), newer.end(),
             [](const auto& a, const auto& b) { return a.first > b.first; });
-  uint64_t total = total_.bytes + extra;
+  // The shared memory stays as it is: what evicting a robot frees of it is not known here.
+  uint64_t total = held_bytes() + extra;
   std::vector<RobotId> evict;
   for (const auto& [order, id] : newer) {
     if (total <= options_.max_memory_bytes) break;
@@ -185,15 +186,16 @@ std::variant<TileBudget::Charged, TileBudget::Refused> TileBudget::Charge(
                     TileName(tile), who, robot.host, Mb(share(options_.robots_per_host)))};
   }
   Charged charged;
-  if (total_.bytes + added > options_.max_memory_bytes) {
+  if (held_bytes() + added > options_.max_memory_bytes) {
     std::optional<std::vector<RobotId>> evict = NewerToEvict(robot, added);
     if (!evict) {
       return Refused{
           Refusal::kMemoryBudget,
           fmt::format("{} of robot {}: all robots' tiles hold {:.0f} MB of the "
-                      "server's {:.0f} MB, and the robots claimed after {} do not "
-                      "hold enough to make room",
-                      TileName(tile), who, Mb(total_.bytes), Mb(options_.max_memory_bytes), who)};
+                      "server's {:.0f} MB ({:.0f} MB of it for tiles robots share), and the "
+                      "robots claimed after {} do not hold enough to make room",
+                      TileName(tile), who, Mb(held_bytes()), Mb(options_.max_memory_bytes),
+                      Mb(shared_bytes_), who)};
     }
     charged.evict = std::move(*evict);
   }

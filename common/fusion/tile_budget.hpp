@@ -90,7 +90,12 @@ class TileBudget {
   std::vector<TileId> TilesOf(const RobotId& robot) const;
   TileCost robot_cost(const RobotId& robot) const;
   uint64_t participant_bytes(const std::string& participant) const;
-  uint64_t held_bytes() const { return total_.bytes; }
+  // The memory the fusion holds for tiles several robots share, which no robot pays for alone
+  // (TileFusion::SharedEvidenceBytes()): counted in the global budget, never in a robot's.
+  void SetSharedBytes(uint64_t bytes) { shared_bytes_ = bytes; }
+  uint64_t shared_bytes() const { return shared_bytes_; }
+  // What counts against max_memory_bytes: the robots' tiles and the shared memory.
+  uint64_t held_bytes() const { return total_.bytes + shared_bytes_; }
 
  private:
   struct Robot {
@@ -119,6 +124,7 @@ class TileBudget {
   std::map<std::string, uint64_t> host_bytes_;
   std::map<std::string, Rate> rates_;  // by participant
   TileCost total_;
+  uint64_t shared_bytes_ = 0;
   uint64_t next_order_ = 1;
 };
 

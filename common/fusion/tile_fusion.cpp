@@ -609,4 +609,12 @@ size_t TileFusion::contribution_count() const {
   return count;
 }
 
+uint64_t TileFusion::SharedEvidenceBytes() const {
+  uint64_t bytes = 0;
+  for (const auto& [tile, state] : tiles_) {
+    if (state.newest) bytes += state.newest->HeldBytes();
+  }
+  return bytes;
+}
+
 }  // namespace fleetmap::fusion

@@ -102,6 +102,9 @@ class TileFusion {
   const FusedTile* FindFusedTile(const TileId& tile) const;
   const std::map<TileId, FusedTile>& fused_tiles() const { return vector_tiles_; }
   size_t contribution_count() const;
+  // The memory held for tiles that several trusted robots share (their NewestEvidence), which
+  // no one robot's tiles account for: the memory budget adds it to what the robots hold.
+  uint64_t SharedEvidenceBytes() const;
   // Every (robot, tile) with a contribution.
   std::vector<std::pair<RobotId, TileId>> contributions() const;
   const FusionOptions& options() const { return options_; }

@@ -180,6 +180,31 @@ TEST(FleetMapTest, TheMemoryBudgetEvictsTheRobotClaimedLast) {
   EXPECT_EQ(map.fusion().contribution_count(), 2u);
 }
 
+TEST(FleetMapTest, TheMemoryOfATileRobotsShareCountsAgainstTheGlobalBudget) {
+  FleetMap map = MakeMap();
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  FuseAll(map);
+  map.TakeChanged();
+  // One robot's tile: what it holds is the robot's own cost.
+  EXPECT_EQ(map.admission().budget().shared_bytes(), 0u);
+  const uint64_t alone = map.admission().budget().held_bytes();
+
+  Offer(map, Tile("beta", {0, 0}), From("beta", "p2"));  // agrees: both trusted
+  FuseAll(map);
+  map.TakeChanged();
+  // Two robots on one tile: its evidence of 40 x 40 cells, 11 bytes a cell, belongs to neither.
+  const uint64_t shared = map.admission().budget().shared_bytes();
+  EXPECT_GE(shared, 40u * 40u * 11u);
+  EXPECT_EQ(map.admission().budget().held_bytes(),
+            alone + map.admission().budget().robot_cost(RobotId{"beta"}).bytes + shared);
+
+  // One of them gone: the tile is one robot's again, and the shared memory is handed back.
+  map.Remove(RobotId{"beta"}, TileId{0, 0});
+  map.TakeChanged();
+  EXPECT_EQ(map.admission().budget().shared_bytes(), 0u);
+  EXPECT_EQ(map.admission().budget().held_bytes(), alone);
+}
+
 TEST(FleetMapTest, AGivenFrameIsOneRowOfTheFramesTable) {
   FleetMap map = MakeMap();
   map.Join(RobotId{"alpha"}, Pose2{1.0, 2.0, 0.0});

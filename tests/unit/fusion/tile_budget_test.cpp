@@ -183,6 +183,26 @@ TEST(TileBudgetTest, WhenAllMemoryIsSpentTheNewestRobotsGiveWayFirst) {
   EXPECT_TRUE(budget.TilesOf(RobotId{"newest"}).empty());
 }
 
+TEST(TileBudgetTest, MemoryOfSharedTilesCountsAgainstTheGlobalBudgetOnly) {
+  BudgetOptions options;
+  options.max_bytes_per_robot = 4'000;
+  options.robots_per_participant = 1.0;
+  options.max_memory_bytes = 6'000;
+  TileBudget budget(options, Fusion());
+  const TileBudget::Source old{RobotId{"established"}, "p1", ""};
+  const TileBudget::Source fresh{RobotId{"newest"}, "p2", ""};
+  EXPECT_TRUE(Evicted(budget.Charge(old, {0, 0}, Cost(2000), kSteady)).empty());
+  budget.SetSharedBytes(3'000);
+  EXPECT_EQ(budget.held_bytes(), 5'000u);
+  // 2,000 more would fit the robot's and the participant's budgets, not the global one.
+  const auto refused = RefusalOf(budget.Charge(fresh, {1, 0}, Cost(2000), kSteady));
+  EXPECT_EQ(refused.reason, Refusal::kMemoryBudget);
+  EXPECT_THAT(refused.detail, HasSubstr("for tiles robots share"));
+  budget.SetSharedBytes(1'000);
+  EXPECT_TRUE(Evicted(budget.Charge(fresh, {1, 0}, Cost(2000), kSteady)).empty());
+  EXPECT_EQ(budget.robot_cost(RobotId{"established"}).bytes, 2'000u);
+}
+
 TEST(TileBudgetTest, AParticipantsPaintingRateIsBounded) {
   BudgetOptions options;
   options.max_painted_tiles_per_second = 2.0;
