@@ -40,7 +40,7 @@ class FairTileQueue {
   }
 
   // The next turn: of the robot that used the least fusion time, oldest first, as many items as
-  // its average cost per item fits in `target` (at least one, at most `max_items`; a few while
+  // its cost per item (see Charge) fits in `target` (at least one, at most `max_items`; one while
   // its cost is unknown). Empty when nothing waits. Charge() the turn's cost to `robot` afterwards.
   std::vector<Item> NextTurn(size_t max_items, Duration target, Payer* robot) {
     std::vector<Item> turn;
@@ -81,9 +81,11 @@ class FairTileQueue {
     queue.virtual_time += used;
     if (items == 0) return;
     const Duration per_item = used / static_cast<int64_t>(items);
-    // A moving average: a robot's tiles change cost as its map grows.
+    // Up at once, down slowly: a turn sized by an average of costs that vary (random heavy tiles,
+    // a core shared with other processes) overruns its target by as much as they vary, and every
+    // other payer's update waits for that overrun. Costs still fall as a robot's tiles get cheaper.
     queue.cost_per_item =
-        queue.cost_per_item.count() == 0 ? per_item : (queue.cost_per_item * 3 + per_item) / 4;
+        per_item >= queue.cost_per_item ? per_item : (queue.cost_per_item * 3 + per_item) / 4;
   }
 
   // Drops what waits for `robot`'s `tile` (its robot removed it).
@@ -111,13 +113,14 @@ class FairTileQueue {
   bool empty() const { return size_ == 0; }
 
  private:
-  static constexpr size_t kItemsWhileCostUnknown = 4;
+  // A new payer's first turn is one item: its cost is unknown, and it may be anything.
+  static constexpr size_t kItemsWhileCostUnknown = 1;
 
   struct Robot {
     std::map<Key, Item> pending;
     std::vector<Key> order;     // arrival order of the pending tiles
     Duration virtual_time{0};   // fusion time used, as seen by the scheduler
-    Duration cost_per_item{0};  // moving average of what one item has cost; 0: unknown
+    Duration cost_per_item{0};  // what one item costs (see Charge); 0: unknown
   };
 
   std::map<Payer, Robot> robots_;

@@ -20,8 +20,11 @@ TEST(FairTileQueueTest, ANewerRevisionOfAQueuedTileReplacesIt) {
   queue.Push(RobotId{"alpha"}, {0, 0}, 3);
   EXPECT_EQ(queue.size(), 2u);
   RobotId robot;
-  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{3, 2}));
+  // The first turn is one tile (its cost unknown), in arrival order: the newer revision of (0, 0).
+  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{3}));
   EXPECT_EQ(robot.value, "alpha");
+  queue.Charge(robot, milliseconds(1), 1);
+  EXPECT_EQ(queue.NextTurn(10, kLong, &robot), (std::vector<int>{2}));
   EXPECT_TRUE(queue.empty());
 }
 
@@ -29,9 +32,9 @@ TEST(FairTileQueueTest, AFloodingRobotDoesNotDelayAnotherBeyondOneTurn) {
   FairTileQueue<int> queue;
   for (int i = 0; i < 1000; ++i) queue.Push(RobotId{"flood"}, {i, 0}, i);
   RobotId robot;
-  // The flood's first turn (a few tiles while their cost is unknown) is expensive...
-  ASSERT_EQ(queue.NextTurn(8, kLong, &robot).size(), 4u);
-  queue.Charge(robot, milliseconds(400), 4);
+  // The flood's first turn (one tile while its cost is unknown) is expensive...
+  ASSERT_EQ(queue.NextTurn(8, kLong, &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(100), 1);
   // ...then an honest robot's update arrives: it is served next, not after 992 tiles.
   queue.Push(RobotId{"honest"}, {5, 5}, -1);
   EXPECT_EQ(queue.NextTurn(8, kLong, &robot), (std::vector<int>{-1}));
@@ -81,12 +84,12 @@ TEST(FairTileQueueTest, ExpensiveTilesMakeShortTurns) {
     queue.Push(RobotId{"costly"}, {i, 0}, i);
   }
   RobotId robot;
-  // Unknown cost: a few items.
-  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 4u);
+  // Unknown cost: one item.
+  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 1u);
   const std::string first = robot.value;
-  queue.Charge(robot, milliseconds(first == "cheap" ? 4 : 200), 4);
-  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 4u);
-  queue.Charge(robot, milliseconds(robot.value == "cheap" ? 4 : 200), 4);
+  queue.Charge(robot, milliseconds(first == "cheap" ? 1 : 50), 1);
+  EXPECT_EQ(queue.NextTurn(16, milliseconds(10), &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(robot.value == "cheap" ? 1 : 50), 1);
   // Known costs: 10 items of 1 ms fit in 10 ms, but never less than one item of 50 ms.
   const std::string cheap = "cheap";
   std::map<std::string, size_t> sizes;
@@ -99,6 +102,30 @@ TEST(FairTileQueueTest, ExpensiveTilesMakeShortTurns) {
   }
   EXPECT_EQ(sizes["cheap"], 10u);
   EXPECT_EQ(sizes["costly"], 1u);
+}
+
+TEST(FairTileQueueTest, TurnsFollowARiseInCostAtOnceAndAFallSlowly) {
+  FairTileQueue<int> queue;
+  for (int i = 0; i < 1000; ++i) queue.Push(RobotId{"a"}, {i, 0}, i);
+  RobotId robot;
+  ASSERT_EQ(queue.NextTurn(16, milliseconds(20), &robot).size(), 1u);
+  queue.Charge(robot, milliseconds(2), 1);
+  ASSERT_EQ(queue.NextTurn(16, milliseconds(20), &robot).size(), 10u);
+  // The tiles turn four times as costly: the next turn is sized by that, not by an average.
+  queue.Charge(robot, milliseconds(80), 10);
+  EXPECT_EQ(queue.NextTurn(16, milliseconds(20), &robot).size(), 2u);
+  // Cheap again: the turns grow back over a few turns, not at once.
+  queue.Charge(robot, milliseconds(4), 2);
+  const size_t after_one = queue.NextTurn(16, milliseconds(20), &robot).size();
+  EXPECT_GT(after_one, 2u);
+  EXPECT_LT(after_one, 10u);
+  queue.Charge(robot, milliseconds(2) * static_cast<int>(after_one), after_one);
+  size_t later = 0;
+  for (int turn = 0; turn < 60; ++turn) {
+    later = queue.NextTurn(16, milliseconds(20), &robot).size();
+    queue.Charge(robot, milliseconds(2) * static_cast<int>(later), later);
+  }
+  EXPECT_EQ(later, 10u);
 }
 
 TEST(FairTileQueueTest, ErasedTilesAreNotServed) {
