@@ -7,10 +7,12 @@
 #include <queue>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "common/core/check.hpp"
 #include "common/core/number_format.hpp"
+#include "common/route_graph/internal/segment_memo.hpp"
 #include "common/route_graph/internal/skeleton_graph.hpp"
 
 namespace fleetmap::route_graph {
@@ -48,11 +50,27 @@ grid::CellRect Dilate(const grid::CellRect& rect, int cells) {
   return {rect.x0 - cells, rect.y0 - cells, rect.width + 2 * cells, rect.height + 2 * cells};
 }
 
+// The segment checks of one Extract(): the clearance map's, through the builder's memo.
+class Segments {
+ public:
+  Segments(const ClearanceMap& clearance, internal::SegmentMemo& memo)
+      : clearance_(clearance), memo_(memo) {}
+
+  bool Keeps(const Point2& a, const Point2& b, double required) {
+    return memo_.Keeps(clearance_, a, b, required);
+  }
+  double Clearance(const Point2& a, const Point2& b) { return memo_.Clearance(clearance_, a, b); }
+
+ private:
+  const ClearanceMap& clearance_;
+  internal::SegmentMemo& memo_;
+};
+
 // The graph as it is assembled: nodes by index (deduplicated by position), undirected edges.
 class Assembly {
  public:
-  Assembly(const ClearanceMap& clearance, double lane_spacing)
-      : clearance_(clearance), lane_spacing_(lane_spacing) {}
+  Assembly(Segments& segments, double lane_spacing)
+      : segments_(segments), lane_spacing_(lane_spacing) {}
 
   int AddNode(const Point2& position, RouteNodeKind kind, double node_clearance) {
     const PositionKey key = KeyOf(position);
@@ -83,7 +101,7 @@ class Assembly {
       int next = b;
       if (k < parts) {
         const Point2 point = from + (to - from) * (static_cast<double>(k) / parts);
-        next = AddNode(point, RouteNodeKind::kLane, clearance_.SegmentClearance(point, point));
+        next = AddNode(point, RouteNodeKind::kLane, segments_.Clearance(point, point));
       }
       AddEdge(previous, next);
       previous = next;
@@ -97,7 +115,7 @@ class Assembly {
     edge.start = static_cast<uint32_t>(a);
     edge.end = static_cast<uint32_t>(b);
     edge.length = (nodes_[b].position - nodes_[a].position).norm();
-    edge.clearance = clearance_.SegmentClearance(nodes_[a].position, nodes_[b].position);
+    edge.clearance = segments_.Clearance(nodes_[a].position, nodes_[b].position);
     edges_.push_back(edge);
   }
 
@@ -105,7 +123,7 @@ class Assembly {
   std::vector<RouteEdge>& edges() { return edges_; }
 
  private:
-  const ClearanceMap& clearance_;
+  Segments& segments_;
   double lane_spacing_;
   std::vector<RouteNode> nodes_;
   std::map<PositionKey, int> index_;
@@ -177,10 +195,10 @@ std::vector<Cut> CutPoints(const std::vector<int>& cells, int width, const Clear
 // keeps `required`. Greedy: from each corner, the farthest point ahead it sees, found by doubling
 // the step and then halving it (the neighbouring point is always seen: adjacent skeleton cells).
 std::vector<size_t> Straighten(const std::vector<Point2>& points, size_t first, size_t last,
-                               const ClearanceMap& clearance, double required) {
+                               Segments& segments, double required) {
   std::vector<size_t> corners = {first};
   size_t from = first;
-  auto sees = [&](size_t to) { return clearance.SegmentKeeps(points[from], points[to], required); };
+  auto sees = [&](size_t to) { return segments.Keeps(points[from], points[to], required); };
   while (from < last) {
     if (sees(last)) {
       corners.push_back(last);
@@ -229,7 +247,7 @@ int CountComponents(size_t node_count, const std::vector<RouteEdge>& edges) {
 // clearance, where the graph's way between them is more than `ratio` times longer: across rooms
 // and open space, where the skeleton goes round by the middle. Decided on the graph as it was
 // before any shortcut, so the result does not depend on the order nodes are looked at.
-void AddShortcuts(const ClearanceMap& clearance, double required, double radius, double ratio,
+void AddShortcuts(Segments& segments, double required, double radius, double ratio,
                   Assembly* assembly) {
   const std::vector<RouteNode>& nodes = assembly->nodes();
   std::vector<std::vector<std::pair<int, double>>> adjacency(nodes.size());
@@ -277,13 +295,109 @@ void AddShortcuts(const ClearanceMap& clearance, double required, double radius,
           if (straight > radius || straight < 1e-9) continue;
           const auto found = distance.find(j);
           if (found != distance.end() && found->second <= ratio * straight) continue;
-          if (!clearance.SegmentKeeps(nodes[i].position, nodes[j].position, required)) continue;
+          if (!segments.Keeps(nodes[i].position, nodes[j].position, required)) continue;
           shortcuts.push_back({int(i), j});
         }
       }
     }
   }
   for (const auto& [a, b] : shortcuts) assembly->AddEdge(a, b);
+}
+
+// Merges the nodes joined by an edge shorter than `min_distance`. The node of the more specific
+// kind stays (of two doorways the narrower, of two others the more open), and takes the other's
+// edges when each of them, moved to it, still keeps `required` (else both stay). Shortest edges
+// first, ties by position, so the result does not depend on the order of the nodes, and a merge
+// looks no further than the edges it moves: an update far away changes none. Indices are
+// renumbered.
+void MergeCloseNodes(Segments& segments, double required, double min_distance,
+                     std::vector<RouteNode>* nodes, std::vector<RouteEdge>* edges) {
+  struct Candidate {
+    double length;
+    PositionKey first, second;
+    int a, b;
+  };
+  std::vector<Candidate> candidates;
+  std::vector<std::set<int>> neighbours(nodes->size());
+  for (const RouteEdge& edge : *edges) {
+    const int a = static_cast<int>(edge.start);
+    const int b = static_cast<int>(edge.end);
+    neighbours[a].insert(b);
+    neighbours[b].insert(a);
+    if (edge.length >= min_distance) continue;
+    PositionKey ka = KeyOf((*nodes)[a].position);
+    PositionKey kb = KeyOf((*nodes)[b].position);
+    candidates.push_back({edge.length, std::min(ka, kb), std::max(ka, kb), a, b});
+  }
+  if (candidates.empty()) return;
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.length, x.first, x.second) < std::tie(y.length, y.first, y.second);
+  });
+  // Whether `a` stays when it and `b` merge.
+  auto stays = [&](int a, int b) {
+    const RouteNode& x = (*nodes)[a];
+    const RouteNode& y = (*nodes)[b];
+    if (KindRank(x.kind) != KindRank(y.kind)) return KindRank(x.kind) > KindRank(y.kind);
+    if (x.clearance != y.clearance) {
+      return x.kind == RouteNodeKind::kDoorway ? x.clearance < y.clearance
+                                               : x.clearance > y.clearance;
+    }
+    return KeyOf(x.position) < KeyOf(y.position);
+  };
+  std::vector<bool> alive(nodes->size(), true);
+  for (const Candidate& candidate : candidates) {
+    if (!alive[candidate.a] || !alive[candidate.b]) continue;
+    if (neighbours[candidate.a].count(candidate.b) == 0) continue;
+    const int keep = stays(candidate.a, candidate.b) ? candidate.a : candidate.b;
+    const int drop = keep == candidate.a ? candidate.b : candidate.a;
+    const Point2 at = (*nodes)[keep].position;
+    const bool movable =
+        std::all_of(neighbours[drop].begin(), neighbours[drop].end(), [&](int other) {
+          return other == keep || neighbours[keep].count(other) > 0 ||
+                 segments.Keeps(at, (*nodes)[other].position, required);
+        });
+    if (!movable) continue;
+    for (const int other : neighbours[drop]) {
+      neighbours[other].erase(drop);
+      if (other == keep) continue;
+      neighbours[other].insert(keep);
+      neighbours[keep].insert(other);
+    }
+    neighbours[drop].clear();
+    alive[drop] = false;
+  }
+  std::vector<int> index(nodes->size(), -1);
+  std::vector<RouteNode> kept_nodes;
+  for (size_t i = 0; i < nodes->size(); ++i) {
+    if (!alive[i]) continue;
+    index[i] = static_cast<int>(kept_nodes.size());
+    kept_nodes.push_back((*nodes)[i]);
+  }
+  // The edges that stayed as they were keep their order and figures; moved ones are measured anew.
+  std::vector<RouteEdge> kept_edges;
+  std::set<std::pair<int, int>> present;
+  for (RouteEdge edge : *edges) {
+    const int a = static_cast<int>(edge.start);
+    const int b = static_cast<int>(edge.end);
+    if (!alive[a] || !alive[b]) continue;
+    present.insert({std::min(a, b), std::max(a, b)});
+    edge.start = static_cast<uint32_t>(index[a]);
+    edge.end = static_cast<uint32_t>(index[b]);
+    kept_edges.push_back(edge);
+  }
+  for (size_t a = 0; a < nodes->size(); ++a) {
+    for (const int b : neighbours[a]) {
+      if (static_cast<int>(a) > b || present.count({static_cast<int>(a), b}) > 0) continue;
+      RouteEdge edge;
+      edge.start = static_cast<uint32_t>(index[a]);
+      edge.end = static_cast<uint32_t>(index[b]);
+      edge.length = ((*nodes)[b].position - (*nodes)[a].position).norm();
+      edge.clearance = segments.Clearance((*nodes)[a].position, (*nodes)[b].position);
+      kept_edges.push_back(edge);
+    }
+  }
+  *nodes = std::move(kept_nodes);
+  *edges = std::move(kept_edges);
 }
 
 // Removes the parts of the graph a robot can move less than `min_length` in: their edges' length
@@ -352,6 +466,9 @@ Status RouteGraphOptions::Validate() const {
   if (!std::isfinite(min_part_length) || min_part_length < 0.0) {
     return bad("min_part_length must be >= 0");
   }
+  if (!std::isfinite(min_node_distance) || min_node_distance < 0.0) {
+    return bad("min_node_distance must be >= 0");
+  }
   if (!PositiveFinite(clearance_cap)) return bad("clearance_cap must be > 0");
   if (frame.empty()) return bad("frame must not be empty");
   return Status::Ok();
@@ -359,6 +476,10 @@ Status RouteGraphOptions::Validate() const {
 
 double RouteGraphOptions::ExactClearanceUpTo() const {
   return std::max(clearance_cap, robot_radius + clearance_margin + 1.0);
+}
+
+double RouteGraphOptions::MinNodeDistance() const {
+  return min_node_distance > 0.0 ? min_node_distance : 2.0 * robot_radius;
 }
 
 void RouteGraphOptions::Describe(OptionsPrinter& out) const {
@@ -374,6 +495,7 @@ void RouteGraphOptions::Describe(OptionsPrinter& out) const {
   out.Add("shortcut_radius", shortcut_radius);
   out.Add("shortcut_ratio", shortcut_ratio);
   out.Add("min_part_length", min_part_length);
+  out.Add("min_node_distance", min_node_distance);
   out.Add("frame", frame);
   out.Nested("thresholds", thresholds);
 }
@@ -399,6 +521,7 @@ StatusOr<RouteGraph> RouteGraphBuilder::Build(const grid::OccupancyGrid& grid,
   resolution_ = grid.resolution();
   origin_ = Point2(grid.origin().x, grid.origin().y);
   clearance_ = ClearanceMap(grid, options_.ExactClearanceUpTo(), options_.thresholds);
+  segment_memo_.Clear();
   skeleton_ = Skeleton(clearance_, NodeClearance());
   free_.assign(static_cast<size_t>(grid.cell_count()), 0);
   for (int y = 0; y < grid.height(); ++y) {
@@ -468,7 +591,10 @@ StatusOr<RouteGraph> RouteGraphBuilder::Update(const grid::OccupancyGrid& grid,
   }
   if (boxes.empty()) return *previous_;
   const int reach = static_cast<int>(std::ceil(options_.ExactClearanceUpTo() / resolution_)) + 1;
-  for (const grid::CellRect& box : boxes) clearance_.Update(grid, Dilate(box, reach));
+  for (const grid::CellRect& box : boxes) {
+    clearance_.Update(grid, Dilate(box, reach));
+    segment_memo_.Forget(Dilate(box, reach));
+  }
   // The fitting cells change within the node clearance of a changed cell; a metre more lets the
   // skeleton find the middle of what changed again.
   constexpr double kContext = 1.0;
@@ -491,7 +617,8 @@ RouteGraph RouteGraphBuilder::Extract() {
   auto clearance_of = [&](int cell) {
     return static_cast<double>(clearance_.at(cell % width, cell / width));
   };
-  Assembly assembly(clearance_, options_.lane_spacing);
+  Segments segments(clearance_, segment_memo_);
+  Assembly assembly(segments, options_.lane_spacing);
   for (const internal::SkeletonNode& node : skeleton_graph.nodes) {
     if (node.alive) assembly.AddNode(point_of(node.cell), node.kind, clearance_of(node.cell));
   }
@@ -511,7 +638,7 @@ RouteGraph RouteGraphBuilder::Extract() {
     for (const Cut& cut : cuts) kinds[cut.index] = cut.kind;
     for (size_t piece = 0; piece + 1 < ends.size(); ++piece) {
       const std::vector<size_t> corners =
-          Straighten(points, ends[piece], ends[piece + 1], clearance_, EdgeClearance());
+          Straighten(points, ends[piece], ends[piece + 1], segments, EdgeClearance());
       int previous = -1;
       for (const size_t corner : corners) {
         const int node =
@@ -538,7 +665,7 @@ RouteGraph RouteGraphBuilder::Extract() {
     for (const auto& [distance, index] : nearest) {
       if (joined >= 2 || distance > 2.0 * options_.lane_spacing) break;
       if (index == room) continue;
-      if (!clearance_.SegmentKeeps(centre, assembly.nodes()[index].position, EdgeClearance())) {
+      if (!segments.Keeps(centre, assembly.nodes()[index].position, EdgeClearance())) {
         continue;
       }
       assembly.AddSegment(room, index);
@@ -546,27 +673,28 @@ RouteGraph RouteGraphBuilder::Extract() {
     }
   }
   if (options_.shortcut_radius > 0.0) {
-    AddShortcuts(clearance_, EdgeClearance(), options_.shortcut_radius, options_.shortcut_ratio,
+    AddShortcuts(segments, EdgeClearance(), options_.shortcut_radius, options_.shortcut_ratio,
                  &assembly);
   }
-  // Junctions and dead ends by what the straightened graph has at them.
-  std::vector<int> degree(assembly.nodes().size(), 0);
-  for (const RouteEdge& edge : assembly.edges()) {
-    ++degree[edge.start];
-    ++degree[edge.end];
-  }
-  for (size_t i = 0; i < assembly.nodes().size(); ++i) {
-    RouteNode& node = assembly.nodes()[i];
-    if (node.kind != RouteNodeKind::kJunction && node.kind != RouteNodeKind::kDeadEnd) continue;
-    node.kind = degree[i] >= 3 ? RouteNodeKind::kJunction : RouteNodeKind::kDeadEnd;
-  }
-
   RouteGraph graph;
   graph.frame = options_.frame;
   graph.robot_radius = options_.robot_radius;
   graph.clearance_margin = std::max(options_.clearance_margin, resolution_);
   graph.nodes = std::move(assembly.nodes());
   graph.edges = std::move(assembly.edges());
+  MergeCloseNodes(segments, EdgeClearance(), options_.MinNodeDistance(), &graph.nodes,
+                  &graph.edges);
+  // Junctions and dead ends by what the straightened graph has at them.
+  std::vector<int> degree(graph.nodes.size(), 0);
+  for (const RouteEdge& edge : graph.edges) {
+    ++degree[edge.start];
+    ++degree[edge.end];
+  }
+  for (size_t i = 0; i < graph.nodes.size(); ++i) {
+    RouteNode& node = graph.nodes[i];
+    if (node.kind != RouteNodeKind::kJunction && node.kind != RouteNodeKind::kDeadEnd) continue;
+    node.kind = degree[i] >= 3 ? RouteNodeKind::kJunction : RouteNodeKind::kDeadEnd;
+  }
   DropSmallParts(options_.min_part_length, NodeClearance(), &graph.nodes, &graph.edges);
   std::ostringstream message;
   if (graph.nodes.empty()) {

@@ -22,6 +22,7 @@
 #include "common/grid/cell_rect.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/route_graph/clearance_map.hpp"
+#include "common/route_graph/internal/segment_memo.hpp"
 #include "common/route_graph/route_graph.hpp"
 #include "common/route_graph/skeleton.hpp"
 #include "common/scene/submap_graph.hpp"
@@ -49,12 +50,17 @@ struct RouteGraphOptions {
   // Parts of the graph a robot moves less than this in (edge length plus the widest circle its
   // centre moves in at a node) are dropped: pockets of free space going nowhere.
   double min_part_length = 1.0;
+  // Nodes joined by an edge shorter than this become one (0: the robot's diameter: a robot on
+  // one node covers the other, and a fleet manager gains nothing from both).
+  double min_node_distance = 0.0;
   std::string frame = "map";
   grid::StateThresholds thresholds;
 
   // The clearance the distance transform computes exactly: clearance_cap, or a metre past what
   // the robot needs when that is more.
   double ExactClearanceUpTo() const;
+  // min_node_distance, or the robot's diameter when it is 0.
+  double MinNodeDistance() const;
   Status Validate() const;
   void Describe(OptionsPrinter& out) const;
 };
@@ -95,6 +101,9 @@ class RouteGraphBuilder {
   // Per cell of the last grid built from: 1 where free. What Update compares with.
   std::vector<uint8_t> free_;
   ClearanceMap clearance_;
+  // Segment checks on clearance_ kept across updates (what an update re-traces far from its
+  // window is looked up, not walked again).
+  internal::SegmentMemo segment_memo_;
   Skeleton skeleton_;
   std::vector<Point2> room_centres_;
   std::optional<RouteGraph> previous_;

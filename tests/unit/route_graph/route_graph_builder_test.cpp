@@ -106,6 +106,33 @@ TEST(RouteGraphBuilderTest, TwoRoomsMeetAtADoorwayNode) {
   EXPECT_LE(graph->nodes.size(), 72U / 5U);
 }
 
+TEST(RouteGraphBuilderTest, NodesCloserThanTheRobotsDiameterBecomeOne) {
+  // A tile border 0.2 m past the doorway cuts the curve there too: two nodes 0.2 m apart.
+  const grid::OccupancyGrid grid = TwoRooms(1.0);
+  RouteGraphOptions apart = Options();
+  apart.tile_size = 7.3;
+  apart.min_node_distance = 0.01;
+  const StatusOr<RouteGraph> both = RouteGraphBuilder(apart).Build(grid);
+  ASSERT_TRUE(both.ok()) << both.status();
+  const auto near_door = [](const RouteGraph& graph) {
+    return std::count_if(graph.nodes.begin(), graph.nodes.end(), [](const RouteNode& node) {
+      return (node.position - Point2(7.2, 4.0)).norm() < 0.5;
+    });
+  };
+  ASSERT_EQ(near_door(*both), 2) << "the setting must give two nodes at the door";
+
+  RouteGraphOptions merged = apart;
+  merged.min_node_distance = 0.0;  // the robot's diameter, 0.6 m
+  const StatusOr<RouteGraph> one = RouteGraphBuilder(merged).Build(grid);
+  ASSERT_TRUE(one.ok()) << one.status();
+  EXPECT_EQ(near_door(*one), 1);
+  EXPECT_EQ(CountKind(*one, RouteNodeKind::kDoorway), 1) << "the doorway is the node that stays";
+  EXPECT_EQ(one->nodes.size() + 1, both->nodes.size());
+  for (const RouteEdge& edge : one->edges) EXPECT_GE(edge.length, 0.6) << "edge " << edge.id;
+  EXPECT_TRUE(AllConnected(*one));
+  ExpectEdgesKeepRadius(grid, *one);
+}
+
 TEST(RouteGraphBuilderTest, CrossroadsIsOneJunctionOfFourCorridors) {
   grid::OccupancyGrid grid = SolidGrid(20.0, 20.0);
   Fill(&grid, 1.0, 9.2, 19.0, 10.8);
