@@ -317,8 +317,10 @@ int RunBenchFleet(const BenchFleetArgs& args) {
         Fmt(row.quality.map_score, ""), Fmt(row.quality.occupied_picture_distance, ""),
         Fmt(row.quality.unoccupied_picture_distance, ""));
     json[i]["tile_updates"] = updates;
-    json[i]["latency_ms"] = {
-        {"p50", p50.value_or(-1)}, {"p95", p95.value_or(-1)}, {"p99", p99.value_or(-1)}};
+    json[i]["latency_ms"] = {{"p50", p50.value_or(-1)},
+                             {"p95", p95.value_or(-1)},
+                             {"p99", p99.value_or(-1)},
+                             {"latest", LatestBetween(row.tiles, 0.0, row.tiles.seconds, 12)}};
     json[i]["server_cpu_percent"] = cpu;
     json[i]["server_peak_rss_bytes"] = row.tiles.server_peak_rss_bytes;
     json[i]["ms"] = row.quality.map_score.value_or(-1);
