@@ -37,6 +37,28 @@ std::vector<uint8_t> OccupiedWithin(const grid::OccupancyGrid& cells, int radius
   return near;
 }
 
+// Whether the robot calls free the cells `reach` cells away on both sides of the fleet's wall at
+// (x, y): along one of four directions, at two cells the fleet does not call occupied (across the
+// wall, not along it). Scans that graze a wall clear its near face for a metre or two before
+// their hits on it, but stop at it: what lies behind stays unknown to them. A map shifted or
+// turned over the fleet's rooms, free space painted by a peer, a shelf row taken away: all reach
+// across.
+bool FreeAcross(const grid::OccupancyGrid& robot, const grid::OccupancyGrid& fleet, int x, int y,
+                int reach) {
+  constexpr int kDirections[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+  const auto beside_the_wall_and_free = [&](int cx, int cy) {
+    return robot.Contains(cx, cy) && robot.at(cx, cy) == grid::kFreeValue &&
+           fleet.at(cx, cy) != grid::kOccupiedValue;
+  };
+  for (const auto& [dx, dy] : kDirections) {
+    if (beside_the_wall_and_free(x + dx * reach, y + dy * reach) &&
+        beside_the_wall_and_free(x - dx * reach, y - dy * reach)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
@@ -71,6 +93,7 @@ TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
       if (confirmed != nullptr && (*confirmed)[i] > fleet_date) continue;
       if (robot_wall_near.empty()) robot_wall_near = OccupiedWithin(robot_cells, tolerance_cells);
       if (robot_wall_near[i] != 0) continue;
+      if (!FreeAcross(robot_cells, fleet, x, y, std::max(1, tolerance_cells))) continue;
       ++out.contradicted;
       out.min_x = out.contradicted == 1 ? x : std::min(out.min_x, x);
       out.min_y = out.contradicted == 1 ? y : std::min(out.min_y, y);

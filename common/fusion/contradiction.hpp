@@ -11,9 +11,11 @@ namespace fleetmap::fusion {
 // there. The rule (docs/fleet.md, "Quarantine") is registration's verification turned around:
 // an established occupied cell is contradicted when the robot calls it free, its evidence for the
 // cell is newer than the fleet's (older evidence never erases anything: newer wins), it has no
-// occupied cell within the tolerance (two honest maps of one wall differ by noise and drift), and
-// no robot of another participant has seen the cell free since the fleet's evidence (a door that
-// opened, a shelf that moved: a change two robots see is a change, not a contradiction).
+// occupied cell within the tolerance (two honest maps of one wall differ by noise and drift), its
+// free space reaches across the cell (free cells a tolerance away on both sides: scans grazing a
+// wall clear its near face only), and no robot of another participant has seen the cell free since
+// the fleet's evidence (a door that opened, a shelf that moved: a change two robots see is a
+// change, not a contradiction).
 struct TileContradiction {
   int64_t established_seen = 0;  // established occupied cells the robot knows (free or occupied)
   int64_t contradicted = 0;      // of those, the ones it contradicts

@@ -12,8 +12,8 @@
 
 #include "common/core/check.hpp"
 #include "common/core/number_format.hpp"
-#include "common/route_graph/internal/segment_memo.hpp"
 #include "common/route_graph/internal/skeleton_graph.hpp"
+#include "common/route_graph/segment_memo.hpp"
 
 namespace fleetmap::route_graph {
 namespace {
@@ -53,8 +53,7 @@ grid::CellRect Dilate(const grid::CellRect& rect, int cells) {
 // The segment checks of one Extract(): the clearance map's, through the builder's memo.
 class Segments {
  public:
-  Segments(const ClearanceMap& clearance, internal::SegmentMemo& memo)
-      : clearance_(clearance), memo_(memo) {}
+  Segments(const ClearanceMap& clearance, SegmentMemo& memo) : clearance_(clearance), memo_(memo) {}
 
   bool Keeps(const Point2& a, const Point2& b, double required) {
     return memo_.Keeps(clearance_, a, b, required);
@@ -63,7 +62,7 @@ class Segments {
 
  private:
   const ClearanceMap& clearance_;
-  internal::SegmentMemo& memo_;
+  SegmentMemo& memo_;
 };
 
 // The graph as it is assembled: nodes by index (deduplicated by position), undirected edges.

@@ -22,8 +22,8 @@
 #include "common/grid/cell_rect.hpp"
 #include "common/grid/occupancy_grid.hpp"
 #include "common/route_graph/clearance_map.hpp"
-#include "common/route_graph/internal/segment_memo.hpp"
 #include "common/route_graph/route_graph.hpp"
+#include "common/route_graph/segment_memo.hpp"
 #include "common/route_graph/skeleton.hpp"
 #include "common/scene/submap_graph.hpp"
 
@@ -103,7 +103,7 @@ class RouteGraphBuilder {
   ClearanceMap clearance_;
   // Segment checks on clearance_ kept across updates (what an update re-traces far from its
   // window is looked up, not walked again).
-  internal::SegmentMemo segment_memo_;
+  SegmentMemo segment_memo_;
   Skeleton skeleton_;
   std::vector<Point2> room_centres_;
   std::optional<RouteGraph> previous_;

@@ -47,6 +47,23 @@ TEST(ContradictionTest, TheSameWallWithinTheToleranceAgrees) {
   EXPECT_EQ(CountContradiction(robot, dates, {&fleet.cells, &fleet.dates}, 1).contradicted, kSide);
 }
 
+TEST(ContradictionTest, ScansGrazingAWallClearItsFaceWithoutContradictingIt) {
+  const Fleet fleet;
+  // Scans along the wall clear it up to and including its cells, and see nothing behind it.
+  OccupancyGrid robot = Cells(kUnknownValue);
+  for (int y = 0; y <= 20; ++y) {
+    for (int x = 0; x < kSide; ++x) robot.at(x, y) = kFreeValue;
+  }
+  const std::vector<uint32_t> dates(kSide * kSide, 200);
+  const TileContradiction grazing =
+      CountContradiction(robot, dates, EstablishedCells{&fleet.cells, &fleet.dates}, 2);
+  EXPECT_EQ(grazing.established_seen, kSide);
+  EXPECT_EQ(grazing.contradicted, 0);
+  // The same robot having seen free space behind the wall too: its free space crosses it.
+  for (int x = 0; x < kSide; ++x) robot.at(x, 22) = kFreeValue;
+  EXPECT_EQ(CountContradiction(robot, dates, {&fleet.cells, &fleet.dates}, 2).contradicted, kSide);
+}
+
 TEST(ContradictionTest, OlderFreeEvidenceAndUnknownCellsContradictNothing) {
   const Fleet fleet;
   const OccupancyGrid robot = Cells(kFreeValue);

@@ -1,12 +1,12 @@
 // SegmentMemo: the clearance map's segment checks, remembered until the clearance under them
 // changes; what it forgets and what it keeps.
-#include "common/route_graph/internal/segment_memo.hpp"
+#include "common/route_graph/segment_memo.hpp"
 
 #include <gtest/gtest.h>
 
 #include "tests/unit/route_graph/route_graph_test_maps.hpp"
 
-namespace fleetmap::route_graph::internal {
+namespace fleetmap::route_graph {
 namespace {
 
 using testing::Fill;
@@ -17,9 +17,10 @@ TEST(SegmentMemoTest, AnswersAsTheClearanceMapAndForgetsOnlyWhatAChangeReaches) 
   Fill(&grid, 0.5, 0.5, 19.5, 3.5);  // a hall 19 x 3 m
   ClearanceMap clearance(grid, 3.0);
   SegmentMemo memo;
-  const Point2 west_a(1.5, 2.0), west_b(5.0, 2.0);   // far from the change below
+  const Point2 west_a(1.5, 2.0), west_b(5.0, 2.0);    // far from the change below
   const Point2 east_a(12.0, 2.0), east_b(16.0, 2.0);  // through it
-  EXPECT_EQ(memo.Keeps(clearance, west_a, west_b, 0.5), clearance.SegmentKeeps(west_a, west_b, 0.5));
+  EXPECT_EQ(memo.Keeps(clearance, west_a, west_b, 0.5),
+            clearance.SegmentKeeps(west_a, west_b, 0.5));
   EXPECT_TRUE(memo.Keeps(clearance, east_a, east_b, 0.5));
   EXPECT_DOUBLE_EQ(memo.Clearance(clearance, east_a, east_b),
                    clearance.SegmentClearance(east_a, east_b));
@@ -43,4 +44,4 @@ TEST(SegmentMemoTest, AnswersAsTheClearanceMapAndForgetsOnlyWhatAChangeReaches) 
 }
 
 }  // namespace
-}  // namespace fleetmap::route_graph::internal
+}  // namespace fleetmap::route_graph

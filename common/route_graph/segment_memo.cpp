@@ -1,9 +1,9 @@
-#include "common/route_graph/internal/segment_memo.hpp"
+#include "common/route_graph/segment_memo.hpp"
 
 #include <algorithm>
 #include <limits>
 
-namespace fleetmap::route_graph::internal {
+namespace fleetmap::route_graph {
 
 size_t SegmentMemo::KeyHash::operator()(const Key& key) const {
   uint64_t hash = 0xcbf29ce484222325ULL;
@@ -37,9 +37,8 @@ double SegmentMemo::Remember(const ClearanceMap& clearance, const Key& key, cons
 bool SegmentMemo::Keeps(const ClearanceMap& clearance, const Point2& a, const Point2& b,
                         double required) {
   const Key key = {Bits(a.x()), Bits(a.y()), Bits(b.x()), Bits(b.y()), Bits(required)};
-  const double keeps = Remember(clearance, key, a, b, [&] {
-    return clearance.SegmentKeeps(a, b, required) ? 1.0 : 0.0;
-  });
+  const double keeps = Remember(clearance, key, a, b,
+                                [&] { return clearance.SegmentKeeps(a, b, required) ? 1.0 : 0.0; });
   return keeps > 0.5;
 }
 
@@ -57,4 +56,4 @@ void SegmentMemo::Forget(const grid::CellRect& rect) {
   std::erase_if(entries_, [&](const auto& entry) { return overlaps(entry.second.cells); });
 }
 
-}  // namespace fleetmap::route_graph::internal
+}  // namespace fleetmap::route_graph

@@ -16,7 +16,7 @@
 #include "common/grid/cell_rect.hpp"
 #include "common/route_graph/clearance_map.hpp"
 
-namespace fleetmap::route_graph::internal {
+namespace fleetmap::route_graph {
 
 // Of one clearance map at a time: Forget() what changes under it, Clear() when it is made anew.
 class SegmentMemo {
@@ -49,11 +49,10 @@ class SegmentMemo {
     return bits;
   }
   // What the walk from `a` to `b` reads: the cells of its samples and their 3 x 3 neighbours.
-  static grid::CellRect CellsRead(const ClearanceMap& clearance, const Point2& a,
-                                  const Point2& b);
+  static grid::CellRect CellsRead(const ClearanceMap& clearance, const Point2& a, const Point2& b);
   template <typename Walk>
-  double Remember(const ClearanceMap& clearance, const Key& key, const Point2& a,
-                  const Point2& b, Walk&& walk);
+  double Remember(const ClearanceMap& clearance, const Key& key, const Point2& a, const Point2& b,
+                  Walk&& walk);
 
   // Past this many segments the memo starts again: bounded memory on any map.
   static constexpr size_t kMaxEntries = size_t{1} << 20;
@@ -61,4 +60,4 @@ class SegmentMemo {
   std::unordered_map<Key, Entry, KeyHash> entries_;
 };
 
-}  // namespace fleetmap::route_graph::internal
+}  // namespace fleetmap::route_graph
