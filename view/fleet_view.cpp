@@ -42,6 +42,8 @@ class FleetView::Readers {
                               transport::ObjectModelReader::Create(participant, wake_up));
     FLEETMAP_ASSIGN_OR_RETURN(readers->templates,
                               transport::ObjectTemplateReader::Create(participant, wake_up));
+    FLEETMAP_ASSIGN_OR_RETURN(readers->route_graphs,
+                              transport::RouteGraphReader::Create(participant, wake_up));
     FLEETMAP_ASSIGN_OR_RETURN(readers->servers,
                               transport::FleetServerReader::Create(participant, wake_up));
     return readers;
@@ -57,6 +59,7 @@ class FleetView::Readers {
     submaps.reset();
     objects.reset();
     templates.reset();
+    route_graphs.reset();
     servers.reset();
     participant.reset();
   }
@@ -71,6 +74,9 @@ class FleetView::Readers {
     for (const transport::SubmapEvent& event : submaps->Drain()) model.OnSubmap(event);
     for (const transport::ObjectModelEvent& event : objects->Drain()) model.OnObject(event);
     for (const transport::ObjectTemplateEvent& event : templates->Drain()) model.OnTemplate(event);
+    for (const transport::RouteGraphEvent& event : route_graphs->Drain()) {
+      model.OnRouteGraph(event);
+    }
     for (const transport::FleetServerEvent& event : servers->Drain()) model.OnServer(event, now);
     std::optional<transport::MapMessage> newest;
     for (StatusOr<transport::MapMessage>& map : fused_grid->Drain()) {
@@ -94,6 +100,7 @@ class FleetView::Readers {
   std::unique_ptr<transport::SubmapReader> submaps;
   std::unique_ptr<transport::ObjectModelReader> objects;
   std::unique_ptr<transport::ObjectTemplateReader> templates;
+  std::unique_ptr<transport::RouteGraphReader> route_graphs;
   std::unique_ptr<transport::FleetServerReader> servers;
 
  private:

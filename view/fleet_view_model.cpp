@@ -212,6 +212,11 @@ void FleetViewModel::OnTemplate(const transport::ObjectTemplateEvent& event) {
              transport::kObjectTemplatesTopic);
 }
 
+void FleetViewModel::OnRouteGraph(const transport::RouteGraphEvent& event) {
+  ApplyKeyed(event, event.message.graph_id, route_graphs_, &RouteGraphJson,
+             transport::kRouteGraphTopic);
+}
+
 void FleetViewModel::OnFleetMap(const transport::MapMessage& map) {
   ++maps_received_;
   const grid::OccupancyGrid& grid = map.grid;
@@ -426,6 +431,7 @@ std::string FleetViewModel::FullEvent() const {
               {"submaps", submaps_.All()},
               {"objects", objects_.All()},
               {"templates", templates_.All()},
+              {"route_graphs", route_graphs_.All()},
               {"status", StatusJson()}}
       .dump();
 }
@@ -438,7 +444,8 @@ std::optional<std::string> FleetViewModel::TakeDelta() {
                                {"robots", &robots_},
                                {"submaps", &submaps_},
                                {"objects", &objects_},
-                               {"templates", &templates_}}) {
+                               {"templates", &templates_},
+                               {"route_graphs", &route_graphs_}}) {
     json changes = section->TakeChanges();
     if (changes.empty()) continue;
     delta[name] = std::move(changes);

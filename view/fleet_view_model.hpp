@@ -59,6 +59,8 @@ class FleetViewModel {
   void OnSubmap(const transport::SubmapEvent& event);
   void OnObject(const transport::ObjectModelEvent& event);
   void OnTemplate(const transport::ObjectTemplateEvent& event);
+  // rt/fleetmap/route_graph: the fleet map as a route graph, drawn as a layer.
+  void OnRouteGraph(const transport::RouteGraphEvent& event);
   // rt/fleetmap/servers: which server serves the fleet (docs/standby.md).
   void OnServer(const transport::FleetServerEvent& event, Timestamp now);
   // rt/fleetmap/map: the fused grid the page can lay under the vectors.
@@ -140,6 +142,7 @@ class FleetViewModel {
   JsonDictionary submaps_;
   JsonDictionary objects_;
   JsonDictionary templates_;
+  JsonDictionary route_graphs_;  // by graph id ("fleet", or a shard's)
   struct Server {
     transport::FleetServerMessage last;
     Timestamp heard;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "common/grid/cell_rect.hpp"
@@ -95,6 +96,29 @@ json SubmapJson(const transport::SubmapMessage& node) {
           {"x", Millimetres(pose.x)},
           {"y", Millimetres(pose.y)},
           {"rings", NavigableRings(node)}};
+}
+
+json RouteGraphJson(const transport::RouteGraphMessage& message) {
+  const route_graph::RouteGraph& graph = message.graph;
+  json nodes = json::array();
+  json kinds = json::array();
+  std::map<uint32_t, size_t> index;
+  for (const route_graph::RouteNode& node : graph.nodes) {
+    index[node.id] = kinds.size();
+    AppendPoint(nodes, node.position);
+    kinds.push_back(std::string(route_graph::RouteNodeKindName(node.kind)));
+  }
+  json edges = json::array();
+  for (const route_graph::RouteEdge& edge : graph.edges) {
+    const auto start = index.find(edge.start);
+    const auto end = index.find(edge.end);
+    if (start == index.end() || end == index.end()) continue;  // the reader checked; never here
+    edges.push_back({start->second, end->second});
+  }
+  return {{"id", message.graph_id},    {"revision", message.revision},
+          {"frame", graph.frame},      {"radius", Millimetres(graph.robot_radius)},
+          {"nodes", std::move(nodes)}, {"kinds", std::move(kinds)},
+          {"edges", std::move(edges)}, {"note", graph.message}};
 }
 
 json ObjectJson(const transport::ObjectModelMessage& object) {

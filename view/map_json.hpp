@@ -32,6 +32,11 @@ nlohmann::json SubmapJson(const transport::SubmapMessage& submap);
 // {id, template, w, h, x, y, yaw, sightings}: where the object was last seen, and its extent.
 nlohmann::json ObjectJson(const transport::ObjectModelMessage& object);
 
+// {id, revision, frame, radius, nodes: [x0, y0, ...], kinds: ["doorway", ...], edges: [[start
+// node index, end node index], ...], note}: the route graph (rt/fleetmap/route_graph), its nodes
+// in the order of `kinds`.
+nlohmann::json RouteGraphJson(const transport::RouteGraphMessage& graph);
+
 // {id, objects, w, h}
 nlohmann::json TemplateJson(const transport::ObjectTemplateMessage& object_template);
 

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -337,6 +338,56 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   submaps->reset();
   fused->reset();
   participant->reset();
+}
+
+// The route graph (docs/route-graph.md) of a live server is drawn as a layer: the page's edges are
+// those of the newest revision the server published.
+TEST(ViewBrowserTest, DrawsTheServersRouteGraph) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  process::Subprocess server(
+      {testing::kServerBinary, "--duration", "120", "--route-graph", "--route-graph-radius", "0.2",
+       "--no-object-learning", "--no-extrapolation", "--map-period", "0.5"},
+      env);
+  process::Subprocess agent(
+      {testing::kAgentBinary, "--robot-id", "alpha", "--map", testing::kViewTestMap}, env);
+  testing::ViewProcess view(domain);
+  ASSERT_GT(view.port(), 0) << view.process().Output();
+  auto participant = testing::LoopbackParticipant(domain);
+  ASSERT_TRUE(participant.ok()) << participant.status();
+  auto wake_up = std::make_shared<WakeUp>();
+  auto graphs = transport::RouteGraphReader::Create(**participant, wake_up);
+  ASSERT_TRUE(graphs.ok()) << graphs.status();
+  auto browser = testing::HeadlessChromium::Open(view.url());
+  ASSERT_TRUE(browser.ok()) << browser.status();
+  testing::HeadlessChromium& page = **browser;
+
+  // The newest revision, once the graph has stopped changing.
+  std::optional<transport::RouteGraphMessage> newest;
+  auto last_change = Clock::now();
+  const auto deadline = last_change + kDeadline;
+  while (Clock::now() < deadline && (!newest || Clock::now() - last_change < seconds(3))) {
+    wake_up->WaitFor(milliseconds(100));
+    for (transport::RouteGraphEvent& event : (*graphs)->Drain()) {
+      if (event.kind != transport::RouteGraphEvent::Kind::kSample) continue;
+      newest = std::move(event.message);
+      last_change = Clock::now();
+    }
+  }
+  ASSERT_TRUE(newest.has_value()) << server.Output();
+  ASSERT_FALSE(newest->graph.edges.empty()) << newest->graph.message;
+  const std::string edges_drawn = "Number(document.getElementById('map').dataset.routeEdges) === " +
+                                  std::to_string(newest->graph.edges.size());
+  auto drawn = page.WaitFor(edges_drawn, kDeadline);
+  ASSERT_TRUE(drawn.ok()) << drawn.status();
+  EXPECT_EQ(*drawn, true) << "drawn: "
+                          << Shown(page, "document.getElementById('map').dataset.routeEdges")
+                          << ", published: " << newest->graph.edges.size();
+  EXPECT_EQ(Shown(page, "state.routeGraphs.fleet.revision"), newest->revision);
+  EXPECT_EQ(Shown(page, "state.routeGraphs.fleet.kinds.length"), newest->graph.nodes.size());
+  // One polyline of edges and a dot per node, on the map.
+  EXPECT_EQ(Shown(page, "drawn.routes.fleet.length"), newest->graph.nodes.size() + 1);
 }
 
 // Shards (docs/shards.md): the status line names each shard and its server, and the map outlines

@@ -11,6 +11,7 @@ const COLORS = {
   confirmed: '#2e9e4f',
   retracted: '#d03030',
   object: '#8e44ad',
+  route: '#0097a7',  // the route graph's edges; its doorways in the sub-maps' predicted orange
   quarantine: '#c62828',  // the area a quarantined robot's map contradicts
   // A robot's state is the ring around its dot; the dot, heading and path are the robot's own
   // colour (robotColor).
@@ -57,8 +58,8 @@ const map = L.map('map', {
 });
 map.setView([0, 0], 2);
 // One canvas per layer kind keeps the drawing order: free space, unplaced robots' own maps,
-// sub-maps, obstacles, objects, robots on top.
-const panes = ['free', 'own', 'submaps', 'obstacles', 'objects', 'robots'];
+// sub-maps, obstacles, the route graph, objects, robots on top.
+const panes = ['free', 'own', 'submaps', 'obstacles', 'routes', 'objects', 'robots'];
 const renderers = {};
 panes.forEach((name, i) => {
   map.createPane(name).style.zIndex = 400 + 10 * i;
@@ -69,6 +70,7 @@ const layers = {
   obstacles: L.layerGroup().addTo(map),
   own: L.layerGroup().addTo(map),
   submaps: L.layerGroup().addTo(map),
+  routes: L.layerGroup().addTo(map),
   objects: L.layerGroup().addTo(map),
   robots: L.layerGroup().addTo(map),
 };
@@ -82,6 +84,7 @@ L.control.layers(null, {
   obstacles: layers.obstacles,
   "unplaced robots' own maps": layers.own,
   'sub-maps': layers.submaps,
+  'route graph (rt/fleetmap/route_graph)': layers.routes,
   objects: layers.objects,
   robots: layers.robots,
   'shard regions': shardLayer,
@@ -96,8 +99,8 @@ const ring = (flat) => {
 };
 
 // What is drawn, by key, so that a delta can replace or remove it.
-const drawn = { tiles: {}, ownTiles: {}, robots: {}, submaps: {}, objects: {} };
-let state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
+const drawn = { tiles: {}, ownTiles: {}, robots: {}, submaps: {}, objects: {}, routes: {} };
+let state = { robots: {}, paths: {}, submaps: {}, templates: {}, routeGraphs: {}, status: null };
 const PATH_POINTS = 200;  // as many as the view keeps
 let lastSeq = -1;
 let fitted = false;
@@ -282,6 +285,33 @@ function drawObject(id, object) {
   layers.objects.addLayer(layer);
 }
 
+function removeRouteGraph(id) {
+  if (!drawn.routes[id]) return;
+  drawn.routes[id].forEach((layer) => layers.routes.removeLayer(layer));
+  delete drawn.routes[id];
+}
+
+// The edges as one polyline of segments, the nodes as small dots (doorways larger): a fleet
+// manager's view of where a robot of the graph's radius can go.
+function drawRouteGraph(id, graph) {
+  removeRouteGraph(id);
+  const at = (i) => ll(graph.nodes[2 * i], graph.nodes[2 * i + 1]);
+  const title = `route graph ${id}, revision ${graph.revision}: ${graph.kinds.length} nodes, ` +
+    `${graph.edges.length} edges, radius ${graph.radius} m${graph.note ? ` (${graph.note})` : ''}`;
+  const drawnLayers = [L.polyline(graph.edges.map(([a, b]) => [at(a), at(b)]), {
+    renderer: renderers.routes, color: COLORS.route, weight: 2, opacity: 0.8,
+  }).bindTooltip(title)];
+  graph.kinds.forEach((kind, i) => {
+    const doorway = kind === 'doorway';
+    drawnLayers.push(L.circleMarker(at(i), {
+      renderer: renderers.routes, radius: doorway ? 4 : 2.5, weight: 1, color: COLORS.route,
+      fillColor: doorway ? COLORS.predicted : COLORS.route, fillOpacity: 1,
+    }).bindTooltip(`node ${i}: ${kind}`));
+  });
+  drawnLayers.forEach((layer) => layers.routes.addLayer(layer));
+  drawn.routes[id] = drawnLayers;
+}
+
 function applySection(items, draw, remove, keep) {
   if (!items) return;
   Object.entries(items).forEach(([key, item]) => {
@@ -301,7 +331,8 @@ function clearAll() {
   Object.keys(drawn.robots).forEach(removeRobot);
   Object.keys(drawn.submaps).forEach(removeSubmap);
   Object.keys(drawn.objects).forEach(removeObject);
-  state = { robots: {}, paths: {}, submaps: {}, templates: {}, status: null };
+  Object.keys(drawn.routes).forEach(removeRouteGraph);
+  state = { robots: {}, paths: {}, submaps: {}, templates: {}, routeGraphs: {}, status: null };
 }
 
 // The newest `count` points of a path's runs, oldest run first.
@@ -353,9 +384,13 @@ function apply(event) {
   applyPaths(event.type === 'full' ? event.paths : event.path_points, event.type === 'full');
   applySection(event.submaps, drawSubmap, removeSubmap, state.submaps);
   applySection(event.objects, drawObject, removeObject);
+  applySection(event.route_graphs, drawRouteGraph, removeRouteGraph, state.routeGraphs);
   applySection(event.templates, () => {}, () => {}, state.templates);
   if (event.status) state.status = event.status;
   document.getElementById('map').dataset.drawnTiles = Object.keys(drawn.tiles).length;
+  // Edges drawn over all route graphs (one per shard), for whoever checks the page.
+  document.getElementById('map').dataset.routeEdges = Object.values(state.routeGraphs)
+    .reduce((n, graph) => n + graph.edges.length, 0);
   renderTables();
   renderStatus();
   fitOnce();

@@ -426,6 +426,32 @@ TEST(FleetViewModelTest, PredictionsCarryTheirStateAndOutline) {
   EXPECT_EQ(delta["status"]["submaps"]["confirmed"], 1);
 }
 
+TEST(FleetViewModelTest, TheRouteGraphIsItsNodesAndEdgesByIndexUntilWithdrawn) {
+  FleetViewModel model;
+  transport::RouteGraphEvent event;
+  event.message.revision = 3;
+  event.message.graph.robot_radius = 0.25;
+  event.message.graph.nodes = {{10, Point2(1.0, 2.0), route_graph::RouteNodeKind::kDoorway, 0.4},
+                               {11, Point2(4.0, 2.0), route_graph::RouteNodeKind::kJunction, 0.9},
+                               {12, Point2(4.0, 6.5), route_graph::RouteNodeKind::kDeadEnd, 0.5}};
+  event.message.graph.edges = {{20, 21, 10, 11, 3.0, 0.4}, {22, 23, 11, 12, 4.5, 0.5}};
+  model.OnRouteGraph(event);
+  const json delta = Parse(model.TakeDelta());
+  const json& graph = delta["route_graphs"]["fleet"];
+  EXPECT_EQ(graph["revision"], 3);
+  EXPECT_EQ(graph["radius"], 0.25);
+  EXPECT_EQ(graph["nodes"], json({1.0, 2.0, 4.0, 2.0, 4.0, 6.5}));
+  EXPECT_EQ(graph["kinds"], json({"doorway", "junction", "dead_end"}));
+  EXPECT_EQ(graph["edges"], json({{0, 1}, {1, 2}}));  // node indices, not ids
+  EXPECT_EQ(Parse(model.FullEvent())["route_graphs"]["fleet"], graph);
+
+  transport::RouteGraphEvent withdrawn;
+  withdrawn.kind = transport::RouteGraphEvent::Kind::kRemoved;
+  model.OnRouteGraph(withdrawn);
+  EXPECT_TRUE(Parse(model.TakeDelta())["route_graphs"]["fleet"].is_null());
+  EXPECT_TRUE(Parse(model.FullEvent())["route_graphs"].empty());
+}
+
 TEST(FleetViewModelTest, NoPeerCanMakeTheViewHoldMoreThanItsBounds) {
   ViewModelOptions options;
   options.max_robots = 2;
