@@ -159,12 +159,17 @@ TEST(TileBudgetTest, ParticipantsOfOneHostShareTheHostsBudget) {
   EXPECT_EQ(admitted, 20u);
 }
 
-TEST(TileBudgetTest, WhenAllMemoryIsSpentTheNewestRobotsGiveWayFirst) {
+// Room for one robot's 4,000 bytes and half as much again, all robots together.
+BudgetOptions SixThousandBytesForAll() {
   BudgetOptions options;
   options.max_bytes_per_robot = 4'000;
   options.robots_per_participant = 1.0;
   options.max_memory_bytes = 6'000;
-  TileBudget budget(options, Fusion());
+  return options;
+}
+
+TEST(TileBudgetTest, WhenAllMemoryIsSpentTheNewestRobotsGiveWayFirst) {
+  TileBudget budget(SixThousandBytesForAll(), Fusion());
   const TileBudget::Source old{RobotId{"established"}, "p1", ""};
   const TileBudget::Source mid{RobotId{"second"}, "p2", ""};
   const TileBudget::Source fresh{RobotId{"newest"}, "p3", ""};
@@ -184,11 +189,7 @@ TEST(TileBudgetTest, WhenAllMemoryIsSpentTheNewestRobotsGiveWayFirst) {
 }
 
 TEST(TileBudgetTest, MemoryOfSharedTilesCountsAgainstTheGlobalBudgetOnly) {
-  BudgetOptions options;
-  options.max_bytes_per_robot = 4'000;
-  options.robots_per_participant = 1.0;
-  options.max_memory_bytes = 6'000;
-  TileBudget budget(options, Fusion());
+  TileBudget budget(SixThousandBytesForAll(), Fusion());
   const TileBudget::Source old{RobotId{"established"}, "p1", ""};
   const TileBudget::Source fresh{RobotId{"newest"}, "p2", ""};
   EXPECT_TRUE(Evicted(budget.Charge(old, {0, 0}, Cost(2000), kSteady)).empty());
