@@ -7,6 +7,9 @@
 namespace fleetmap::fusion {
 namespace {
 
+// How far a breach is looked for on each side of a wall cell: walls up to 2 m thick (at 5 cm).
+constexpr int kBreachReachCells = 20;
+
 // Whether each cell has an occupied cell of `cells` within `radius` (a square window), in
 // O(cells): a running count along the rows, then along the columns.
 std::vector<uint8_t> OccupiedWithin(const grid::OccupancyGrid& cells, int radius) {
@@ -37,22 +40,38 @@ std::vector<uint8_t> OccupiedWithin(const grid::OccupancyGrid& cells, int radius
   return near;
 }
 
-// Whether the robot calls free the cells `reach` cells away on both sides of the fleet's wall at
-// (x, y): along one of four directions, at two cells the fleet does not call occupied (across the
-// wall, not along it). Scans that graze a wall clear its near face for a metre or two before
-// their hits on it, but stop at it: what lies behind stays unknown to them. A map shifted or
-// turned over the fleet's rooms, free space painted by a peer, a shelf row taken away: all reach
-// across.
-bool FreeAcross(const grid::OccupancyGrid& robot, const grid::OccupancyGrid& fleet, int x, int y,
-                int reach) {
+// Whether the robot's free space breaches the fleet's wall at (x, y): along one of four
+// directions, walking both ways from the cell, every cell of the fleet's wall is free to the robot
+// until the wall ends within `reach` cells on each side, where the robot calls the cell free or
+// the fleet does (a robot need not have seen behind a wall to open it). Scans that graze a wall
+// clear its near face, not its whole thickness: they stop at it, and what they clear runs along
+// the wall, which does not end within the reach. A map shifted or turned over the fleet's rooms,
+// free space painted by a peer up to or beyond a wall, a shelf row taken away: each opens walls.
+bool Breaches(const grid::OccupancyGrid& robot, const grid::OccupancyGrid& fleet, int x, int y,
+              int reach) {
   constexpr int kDirections[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  const auto beside_the_wall_and_free = [&](int cx, int cy) {
-    return robot.Contains(cx, cy) && robot.at(cx, cy) == grid::kFreeValue &&
-           fleet.at(cx, cy) != grid::kOccupiedValue;
+  // Walks from (x, y) by (dx, dy): the side of a breach when the wall ends within the reach.
+  const auto opens = [&](int dx, int dy, bool* robot_free_beyond) {
+    for (int step = 1; step <= reach; ++step) {
+      const int cx = x + dx * step;
+      const int cy = y + dy * step;
+      if (!robot.Contains(cx, cy)) return false;
+      const bool robot_free = robot.at(cx, cy) == grid::kFreeValue;
+      if (fleet.at(cx, cy) == grid::kOccupiedValue) {
+        if (!robot_free) return false;  // the robot leaves this part of the wall standing
+        continue;
+      }
+      *robot_free_beyond = robot_free;
+      return robot_free || fleet.at(cx, cy) == grid::kFreeValue;
+    }
+    return false;  // still wall: along it, or thicker than the reach
   };
   for (const auto& [dx, dy] : kDirections) {
-    if (beside_the_wall_and_free(x + dx * reach, y + dy * reach) &&
-        beside_the_wall_and_free(x - dx * reach, y - dy * reach)) {
+    bool ahead_free = false;
+    bool behind_free = false;
+    // The robot's own free space on at least one side: it opens the wall from where it is.
+    if (opens(dx, dy, &ahead_free) && opens(-dx, -dy, &behind_free) &&
+        (ahead_free || behind_free)) {
       return true;
     }
   }
@@ -93,7 +112,7 @@ TileContradiction CountContradiction(const grid::OccupancyGrid& robot_cells,
       if (confirmed != nullptr && (*confirmed)[i] > fleet_date) continue;
       if (robot_wall_near.empty()) robot_wall_near = OccupiedWithin(robot_cells, tolerance_cells);
       if (robot_wall_near[i] != 0) continue;
-      if (!FreeAcross(robot_cells, fleet, x, y, std::max(1, tolerance_cells))) continue;
+      if (!Breaches(robot_cells, fleet, x, y, kBreachReachCells)) continue;
       ++out.contradicted;
       out.min_x = out.contradicted == 1 ? x : std::min(out.min_x, x);
       out.min_y = out.contradicted == 1 ? y : std::min(out.min_y, y);

@@ -12,7 +12,7 @@ namespace fleetmap::fusion {
 // an established occupied cell is contradicted when the robot calls it free, its evidence for the
 // cell is newer than the fleet's (older evidence never erases anything: newer wins), it has no
 // occupied cell within the tolerance (two honest maps of one wall differ by noise and drift), its
-// free space reaches across the cell (free cells a tolerance away on both sides: scans grazing a
+// free space breaches the wall there (free through the wall's whole thickness: scans grazing a
 // wall clear its near face only), and no robot of another participant has seen the cell free since
 // the fleet's evidence (a door that opened, a shelf that moved: a change two robots see is a
 // change, not a contradiction).

@@ -48,10 +48,15 @@ TEST(ContradictionTest, TheSameWallWithinTheToleranceAgrees) {
 }
 
 TEST(ContradictionTest, ScansGrazingAWallClearItsFaceWithoutContradictingIt) {
-  const Fleet fleet;
-  // Scans along the wall clear it up to and including its cells, and see nothing behind it.
+  // The fleet's wall is three cells thick (rows 19-21).
+  Fleet fleet;
+  for (int x = 0; x < kSide; ++x) {
+    fleet.cells.at(x, 19) = kOccupiedValue;
+    fleet.cells.at(x, 21) = kOccupiedValue;
+  }
+  // Scans along it clear its near face (row 19) and stop at the wall: behind is unknown to them.
   OccupancyGrid robot = Cells(kUnknownValue);
-  for (int y = 0; y <= 20; ++y) {
+  for (int y = 0; y <= 19; ++y) {
     for (int x = 0; x < kSide; ++x) robot.at(x, y) = kFreeValue;
   }
   const std::vector<uint32_t> dates(kSide * kSide, 200);
@@ -59,9 +64,12 @@ TEST(ContradictionTest, ScansGrazingAWallClearItsFaceWithoutContradictingIt) {
       CountContradiction(robot, dates, EstablishedCells{&fleet.cells, &fleet.dates}, 2);
   EXPECT_EQ(grazing.established_seen, kSide);
   EXPECT_EQ(grazing.contradicted, 0);
-  // The same robot having seen free space behind the wall too: its free space crosses it.
-  for (int x = 0; x < kSide; ++x) robot.at(x, 22) = kFreeValue;
-  EXPECT_EQ(CountContradiction(robot, dates, {&fleet.cells, &fleet.dates}, 2).contradicted, kSide);
+  // Free through the whole wall, unknown behind it: a hole in the fused map, counted whole.
+  for (int y = 20; y <= 21; ++y) {
+    for (int x = 0; x < kSide; ++x) robot.at(x, y) = kFreeValue;
+  }
+  EXPECT_EQ(CountContradiction(robot, dates, {&fleet.cells, &fleet.dates}, 2).contradicted,
+            3 * kSide);
 }
 
 TEST(ContradictionTest, OlderFreeEvidenceAndUnknownCellsContradictNothing) {
