@@ -197,6 +197,9 @@ void WriteSampleSeeds(SeedWriter& seeds) {
   route_graph.edge_end({2});
   route_graph.edge_length({2.2F});
   route_graph.edge_clearance({0.35F});
+  route_graph.node_flags({0, 1});
+  route_graph.edge_flags({3});
+  route_graph.edge_object({7});
   WriteSample(seeds, 10, "route_graph", route_graph);
   WriteSample(seeds, 11, "tf", tf);
 }

@@ -154,6 +154,7 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
     message.stamp = now;
     FLEETMAP_RETURN_IF_ERROR(template_writer_->Write(message).status());
   }
+  std::vector<transport::ObjectModelMessage> objects;
   for (size_t n = 0; n < model.objects.size(); ++n) {
     transport::ObjectModelMessage message;
     message.object_id = ids_(static_cast<uint32_t>(n));
@@ -171,6 +172,7 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
       message.sightings.push_back(sighting);
     }
     FLEETMAP_RETURN_IF_ERROR(object_writer_->Write(message).status());
+    objects.push_back(std::move(message));
   }
   // What the previous run had and this one has not.
   for (uint32_t m = static_cast<uint32_t>(model.templates.size()); m < published_templates_; ++m) {
@@ -185,6 +187,7 @@ Status ObjectLearningWorker::Publish(const object_learning::LearnedModel& model,
   }
   published_templates_ = static_cast<uint32_t>(model.templates.size());
   published_objects_ = static_cast<uint32_t>(model.objects.size());
+  if (listener_) listener_(objects);
   return Status::Ok();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -63,6 +64,11 @@ class ObjectLearningWorker {
       const fusion::FusionOptions& fusion, PublishedIds ids = {});
   ~ObjectLearningWorker();
 
+  // Told the objects of each learning run once they are on the wire (ids as published), on the
+  // worker's thread (e.g. the route graph marks the edges they block). Set before Start().
+  using ObjectsListener = std::function<void(const std::vector<transport::ObjectModelMessage>&)>;
+  void SetListener(ObjectsListener listener) { listener_ = std::move(listener); }
+
   void Start();
   void Stop();
 
@@ -84,7 +90,8 @@ class ObjectLearningWorker {
   const fusion::FusionOptions fusion_;
   std::unique_ptr<transport::ObjectTemplateWriter> template_writer_;  // worker thread
   std::unique_ptr<transport::ObjectModelWriter> object_writer_;       // worker thread
-  PublishedIds ids_;                  // the template and object ids it writes
+  PublishedIds ids_;  // the template and object ids it writes
+  ObjectsListener listener_;
   uint32_t learning_run_ = 0;         // worker thread
   uint32_t published_templates_ = 0;  // worker thread
   uint32_t published_objects_ = 0;    // worker thread

@@ -74,6 +74,12 @@ void PredictionWorker::HandleInputs() {
 }
 
 void PredictionWorker::Apply(const extrapolation::SubmapChange& change) {
+  if (listener_) {
+    const std::optional<scene::DoorEntity> door =
+        tracker_.Door(change.node.source_robot, change.node.source_entity);
+    listener_(change.node, door ? &*door : nullptr,
+              change.kind == extrapolation::SubmapChange::Kind::kWithdraw);
+  }
   scene::SubmapNode node = change.node;
   node.submap.id = ids_(node.submap.id);
   for (scene::SubmapEdge& edge : node.edges) {

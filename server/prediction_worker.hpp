@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -40,6 +41,13 @@ class PredictionWorker {
       PublishedIds ids = {});
   ~PredictionWorker();
 
+  // Told each sub-map the worker wrote (`withdrawn` false) or withdrew, on the worker's thread,
+  // with the tracker's ids, and for a prediction behind a door the door (else null): e.g. the
+  // route graph's rooms and predicted space. Set before Start().
+  using SubmapListener = std::function<void(const scene::SubmapNode& node,
+                                            const scene::DoorEntity* door, bool withdrawn)>;
+  void SetListener(SubmapListener listener) { listener_ = std::move(listener); }
+
   void Start();
   void Stop();
 
@@ -62,6 +70,7 @@ class PredictionWorker {
   extrapolation::PredictionTracker tracker_;  // worker thread only
   PublishedIds ids_;                          // the sub-map ids it writes
   std::unique_ptr<transport::SubmapWriter> writer_;
+  SubmapListener listener_;
   SampleQueue<extrapolation::TrackerInput> inputs_{4096};
 
   mutable std::mutex stats_mutex_;

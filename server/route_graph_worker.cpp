@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -25,13 +26,14 @@ bool SameGraph(const route_graph::RouteGraph& a, const route_graph::RouteGraph& 
   }
   for (size_t i = 0; i < a.nodes.size(); ++i) {
     if (a.nodes[i].id != b.nodes[i].id || a.nodes[i].position != b.nodes[i].position ||
-        a.nodes[i].kind != b.nodes[i].kind) {
+        a.nodes[i].kind != b.nodes[i].kind || a.nodes[i].predicted != b.nodes[i].predicted) {
       return false;
     }
   }
   for (size_t i = 0; i < a.edges.size(); ++i) {
     if (a.edges[i].id != b.edges[i].id || a.edges[i].start != b.edges[i].start ||
-        a.edges[i].end != b.edges[i].end) {
+        a.edges[i].end != b.edges[i].end || a.edges[i].predicted != b.edges[i].predicted ||
+        a.edges[i].blocking_object != b.edges[i].blocking_object) {
       return false;
     }
   }
@@ -94,6 +96,66 @@ void RouteGraphWorker::SubmitMap(grid::OccupancyGrid map) {
   thread_.Wake();
 }
 
+void RouteGraphWorker::SubmitSubmap(const scene::SubmapNode& node, const scene::DoorEntity* door,
+                                    bool withdrawn) {
+  {
+    std::lock_guard lock(mutex_);
+    if (withdrawn) {
+      submaps_.erase(node.submap.id);
+    } else {
+      submaps_[node.submap.id] = {node, door != nullptr ? std::optional(*door) : std::nullopt};
+    }
+    context_changed_ = true;
+  }
+  thread_.Wake();
+}
+
+void RouteGraphWorker::SubmitObjects(const std::vector<transport::ObjectModelMessage>& objects) {
+  std::vector<route_graph::MovableObject> movable;
+  for (const transport::ObjectModelMessage& object : objects) {
+    route_graph::MovableObject entry{object.object_id, object.patch, {}};
+    for (const transport::ObjectSighting& sighting : object.sightings) {
+      entry.sightings.push_back(sighting.fleet_from_object);
+    }
+    movable.push_back(std::move(entry));
+  }
+  {
+    std::lock_guard lock(mutex_);
+    objects_ = std::move(movable);
+    context_changed_ = true;
+  }
+  thread_.Wake();
+}
+
+void RouteGraphWorker::MakeContext(const grid::OccupancyGrid& grid, scene::SubmapGraph* rooms,
+                                   route_graph::RouteOverlay* overlay) {
+  std::vector<route_graph::PredictedSpace> predicted;
+  std::vector<route_graph::MovableObject> objects;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, entry] : submaps_) {
+      const auto& [node, door] = entry;
+      if (node.submap.kind == scene::SubmapKind::kObserved) {
+        rooms->submaps.push_back(node.submap);
+        continue;
+      }
+      // Predictions behind doors still unobserved; not those up stairs (another floor), nor
+      // confirmed ones (observed: the grid has them).
+      if (node.submap.kind != scene::SubmapKind::kPredictedDoor ||
+          node.state != scene::SubmapState::kPredicted) {
+        continue;
+      }
+      route_graph::PredictedSpace space{node.submap, std::nullopt};
+      if (door) space.door = std::array<Point2, 2>{door->hinge, door->latch};
+      predicted.push_back(std::move(space));
+    }
+    objects = objects_;
+    context_changed_ = false;
+  }
+  *overlay =
+      route_graph::RouteOverlay::Make(grid, predicted, objects, builder_.options().thresholds);
+}
+
 RouteGraphStats RouteGraphWorker::stats() const {
   std::lock_guard lock(mutex_);
   return stats_;
@@ -104,11 +166,17 @@ void RouteGraphWorker::HandleMap() {
   {
     std::lock_guard lock(mutex_);
     map.swap(pending_);
+    // Only the sub-maps or objects changed: the same grid again, in their new context.
+    if (!map && context_changed_ && last_) map = *last_;
   }
   if (!map || map->empty()) return;
+  scene::SubmapGraph rooms;
+  route_graph::RouteOverlay overlay;
+  MakeContext(*map, &rooms, &overlay);
+  const route_graph::MapContext context{&rooms, &overlay};
   const bool update = last_ && SameGeometry(*last_, *map);
   StatusOr<route_graph::RouteGraph> graph =
-      update ? builder_.Update(*map, TileRects(*map)) : builder_.Build(*map);
+      update ? builder_.Update(*map, TileRects(*map), context) : builder_.Build(*map, context);
   if (!graph.ok()) {
     spdlog::warn("server: route graph: {}", graph.status().message());
     return;
@@ -117,6 +185,9 @@ void RouteGraphWorker::HandleMap() {
   {
     std::lock_guard lock(mutex_);
     ++(update ? stats_.updates : stats_.builds);
+    stats_.rooms = rooms.submaps.size();
+    stats_.predicted_cells = overlay.predicted_cells();
+    stats_.object_cells = overlay.object_cells();
   }
   if (sent_ && SameGraph(*sent_, *graph)) return;
   transport::RouteGraphMessage message;
@@ -134,6 +205,12 @@ void RouteGraphWorker::HandleMap() {
   stats_.revision = revision_;
   stats_.nodes = sent_->nodes.size();
   stats_.edges = sent_->edges.size();
+  stats_.predicted_edges = static_cast<size_t>(
+      std::count_if(sent_->edges.begin(), sent_->edges.end(),
+                    [](const route_graph::RouteEdge& edge) { return edge.predicted; }));
+  stats_.blocked_edges = static_cast<size_t>(
+      std::count_if(sent_->edges.begin(), sent_->edges.end(),
+                    [](const route_graph::RouteEdge& edge) { return edge.blocking_object; }));
 }
 
 }  // namespace fleetmap::server

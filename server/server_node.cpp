@@ -117,6 +117,16 @@ StatusOr<std::unique_ptr<ServerNode>> ServerNode::Create(ServerOptions options) 
   ObjectLearningWorker* learning = node->learning_worker_.get();
   PredictionWorker* prediction = node->prediction_worker_.get();
   RouteGraphWorker* route_graph = node->route_graph_worker_.get();
+  if (route_graph != nullptr && prediction != nullptr) {
+    prediction->SetListener(
+        [route_graph](const scene::SubmapNode& submap, const scene::DoorEntity* door,
+                      bool withdrawn) { route_graph->SubmitSubmap(submap, door, withdrawn); });
+  }
+  if (route_graph != nullptr && learning != nullptr) {
+    learning->SetListener([route_graph](const std::vector<transport::ObjectModelMessage>& objects) {
+      route_graph->SubmitObjects(objects);
+    });
+  }
   node->fusion_worker_->SetListeners(
       [prediction, route_graph](const grid::OccupancyGrid& fused) {
         if (prediction != nullptr) prediction->SubmitMap(fused);
@@ -177,8 +187,8 @@ Status ServerNode::Run(const std::atomic<bool>& stop) {
   // Readers and writers go before the participant that owns their topics.
   fusion_worker_.reset();
   prediction_worker_.reset();
-  route_graph_worker_.reset();
   learning_worker_.reset();
+  route_graph_worker_.reset();
   entity_reader_.reset();
   for (auto& [robot, record] : robots_) record.map_feed.reset();
   status_reader_.reset();
@@ -529,6 +539,14 @@ void ServerNode::PrintSummary(const FusionStats& fusion) const {
         "confirmed, {} retracted), {} sub-map samples published\n",
         tracker.entities, rejected_entities_, tracker.places, tracker.predictions,
         tracker.confirmed, tracker.retracted, prediction.submaps_published);
+  }
+  if (route_graph_worker_) {
+    const RouteGraphStats graph = route_graph_worker_->stats();
+    fmt::print(
+        "route graph: revision {}, {} nodes, {} edges ({} through predicted space, {} blocked by "
+        "learned objects), {} rooms; {} builds, {} updates\n",
+        graph.revision, graph.nodes, graph.edges, graph.predicted_edges, graph.blocked_edges,
+        graph.rooms, graph.builds, graph.updates);
   }
   // Queues that were full dropped their oldest entries: a worker fell behind its inputs.
   fmt::print(

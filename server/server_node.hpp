@@ -126,9 +126,10 @@ class ServerNode {
   std::unique_ptr<transport::RobotStatusReader> status_reader_;
   std::shared_ptr<RobotRegistry> registry_;
   std::unique_ptr<FusionWorker> fusion_worker_;
+  // Before the workers that tell it sub-maps and objects: destroyed after them.
+  std::unique_ptr<RouteGraphWorker> route_graph_worker_;    // null when disabled
   std::unique_ptr<ObjectLearningWorker> learning_worker_;   // null when disabled
   std::unique_ptr<PredictionWorker> prediction_worker_;     // null when disabled
-  std::unique_ptr<RouteGraphWorker> route_graph_worker_;    // null when disabled
   std::unique_ptr<transport::EntityReader> entity_reader_;  // null when prediction is disabled
   // Entities of robots whose status (and so fleet_from_map) has not arrived yet, by robot, with
   // the writer that sent each: only the owner's are used once a status claims the robot.

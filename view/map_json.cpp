@@ -109,16 +109,21 @@ json RouteGraphJson(const transport::RouteGraphMessage& message) {
     kinds.push_back(std::string(route_graph::RouteNodeKindName(node.kind)));
   }
   json edges = json::array();
+  json predicted = json::array();  // indices into `edges`
+  json blocked = json::array();    // [index into `edges`, object id]
   for (const route_graph::RouteEdge& edge : graph.edges) {
     const auto start = index.find(edge.start);
     const auto end = index.find(edge.end);
     if (start == index.end() || end == index.end()) continue;  // the reader checked; never here
+    if (edge.predicted) predicted.push_back(edges.size());
+    if (edge.blocking_object) blocked.push_back({edges.size(), *edge.blocking_object});
     edges.push_back({start->second, end->second});
   }
-  return {{"id", message.graph_id},    {"revision", message.revision},
-          {"frame", graph.frame},      {"radius", Millimetres(graph.robot_radius)},
-          {"nodes", std::move(nodes)}, {"kinds", std::move(kinds)},
-          {"edges", std::move(edges)}, {"note", graph.message}};
+  return {{"id", message.graph_id},        {"revision", message.revision},
+          {"frame", graph.frame},          {"radius", Millimetres(graph.robot_radius)},
+          {"nodes", std::move(nodes)},     {"kinds", std::move(kinds)},
+          {"edges", std::move(edges)},     {"predicted", std::move(predicted)},
+          {"blocked", std::move(blocked)}, {"note", graph.message}};
 }
 
 json ObjectJson(const transport::ObjectModelMessage& object) {

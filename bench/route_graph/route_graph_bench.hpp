@@ -46,6 +46,7 @@ struct RouteGraphBenchRow {
   double median_nearest_ratio = 0.0;  // joined at the nearest node seen
   double build_ms = 0.0;
   double update_ms = 0.0;
+  double update_object_ms = 0.0;      // the same change, the box a learned movable object (overlay)
   double build_ms_per_hectare = 0.0;  // build time scaled to a 100 x 100 m map at 0.05 m
 
   double routes_clear_percent() const;

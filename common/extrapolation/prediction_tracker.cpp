@@ -92,6 +92,15 @@ StatusOr<PredictionTracker> PredictionTracker::Create(const PredictionOptions& o
   return PredictionTracker(options);
 }
 
+std::optional<scene::DoorEntity> PredictionTracker::Door(const RobotId& robot,
+                                                         const std::string& entity_id) const {
+  const auto found = entities_.find(KeyOf(robot, entity_id));
+  if (found == entities_.end()) return std::nullopt;
+  const auto* door = std::get_if<scene::DoorEntity>(&found->second.entity);
+  if (door == nullptr) return std::nullopt;
+  return *door;
+}
+
 TrackerUpdate PredictionTracker::Handle(std::vector<TrackerInput> inputs, Timestamp now) {
   TrackerUpdate update;
   if (inputs.empty()) return update;

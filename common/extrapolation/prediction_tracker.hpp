@@ -116,6 +116,9 @@ class PredictionTracker {
   TrackerUpdate Handle(std::vector<TrackerInput> inputs, Timestamp now);
 
   TrackerStats stats() const { return stats_; }
+  // The door robot `robot` reported as `entity_id` (fleet frame), if it did and it is a door:
+  // where a sub-map predicted behind it is entered.
+  std::optional<scene::DoorEntity> Door(const RobotId& robot, const std::string& entity_id) const;
 
  private:
   struct Prediction {

@@ -34,6 +34,8 @@ struct RouteNode {
   Point2 position = Point2::Zero();  // map frame, metres
   RouteNodeKind kind = RouteNodeKind::kLane;
   double clearance = 0.0;  // metres from the node to the nearest non-free cell (capped)
+  // The node stands on free space the server predicts and no robot has observed yet.
+  bool predicted = false;
 };
 
 // An undirected straight edge. `id` names it from `start` to `end`, `reverse_id` from `end` to
@@ -45,6 +47,12 @@ struct RouteEdge {
   uint32_t end = 0;
   double length = 0.0;     // metres
   double clearance = 0.0;  // the narrowest clearance along the edge, metres (capped)
+  // The edge crosses free space the server predicts and no robot has observed yet: a robot
+  // sent along it confirms the prediction (or finds the way shut) on the way.
+  bool predicted = false;
+  // The learned movable object (rt/fleetmap/objects id) the edge runs through: the way is there
+  // once the object is moved. Clearances are measured as if it were gone.
+  std::optional<uint32_t> blocking_object;
 };
 
 struct RouteGraph {

@@ -50,6 +50,32 @@ grid::CellRect Dilate(const grid::CellRect& rect, int cells) {
   return {rect.x0 - cells, rect.y0 - cells, rect.width + 2 * cells, rect.height + 2 * cells};
 }
 
+// `grid` with the overlay's cells free, or nothing when the overlay is empty (the caller then
+// builds on `grid` itself, without a copy).
+grid::OccupancyGrid OpenedGrid(const grid::OccupancyGrid& grid, const RouteOverlay& overlay) {
+  if (overlay.empty()) return {};
+  grid::OccupancyGrid opened = grid;
+  overlay.Open(&opened);
+  return opened;
+}
+
+// The blocks (`block` cells square, aligned to the grid) holding any of `cells` (indices of a
+// grid `width` x `height`), one rectangle each.
+std::vector<grid::CellRect> BlocksHolding(const std::vector<int64_t>& cells, int width, int height,
+                                          int block) {
+  std::set<std::pair<int, int>> blocks;
+  for (const int64_t cell : cells) {
+    blocks.insert({static_cast<int>(cell % width) / block, static_cast<int>(cell / width) / block});
+  }
+  std::vector<grid::CellRect> rects;
+  for (const auto& [bx, by] : blocks) {
+    const int x0 = bx * block;
+    const int y0 = by * block;
+    rects.push_back({x0, y0, std::min(block, width - x0), std::min(block, height - y0)});
+  }
+  return rects;
+}
+
 // The segment checks of one Extract(): the clearance map's, through the builder's memo.
 class Segments {
  public:
@@ -511,54 +537,62 @@ double RouteGraphBuilder::NodeClearance() const {
 double RouteGraphBuilder::EdgeClearance() const { return NodeClearance() - resolution_; }
 
 StatusOr<RouteGraph> RouteGraphBuilder::Build(const grid::OccupancyGrid& grid,
-                                              const scene::SubmapGraph* rooms) {
+                                              const MapContext& context) {
   if (grid.empty()) return InvalidArgumentError("route graph: the grid is empty");
   if (std::abs(grid.origin().yaw) > 1e-9) {
     return InvalidArgumentError("route graph: the grid's origin is rotated (yaw " +
                                 std::to_string(grid.origin().yaw) + " rad); it must be 0");
   }
-  resolution_ = grid.resolution();
-  origin_ = Point2(grid.origin().x, grid.origin().y);
-  clearance_ = ClearanceMap(grid, options_.ExactClearanceUpTo(), options_.thresholds);
+  overlay_ = context.overlay != nullptr ? *context.overlay : RouteOverlay();
+  const grid::OccupancyGrid opened = OpenedGrid(grid, overlay_);
+  const grid::OccupancyGrid& source = overlay_.empty() ? grid : opened;
+  resolution_ = source.resolution();
+  origin_ = Point2(source.origin().x, source.origin().y);
+  clearance_ = ClearanceMap(source, options_.ExactClearanceUpTo(), options_.thresholds);
   segment_memo_.Clear();
   skeleton_ = Skeleton(clearance_, NodeClearance());
-  free_.assign(static_cast<size_t>(grid.cell_count()), 0);
-  for (int y = 0; y < grid.height(); ++y) {
-    for (int x = 0; x < grid.width(); ++x) {
-      free_[static_cast<size_t>(y) * grid.width() + x] =
-          grid.StateAt(x, y, options_.thresholds) == grid::CellState::kFree ? 1 : 0;
+  free_.assign(static_cast<size_t>(source.cell_count()), 0);
+  for (int y = 0; y < source.height(); ++y) {
+    for (int x = 0; x < source.width(); ++x) {
+      free_[static_cast<size_t>(y) * source.width() + x] =
+          source.StateAt(x, y, options_.thresholds) == grid::CellState::kFree ? 1 : 0;
     }
   }
-  room_centres_.clear();
-  if (rooms != nullptr) {
-    for (const scene::Submap& submap : rooms->submaps) {
-      if (submap.kind != scene::SubmapKind::kObserved) continue;
-      const Transform2 map_from_submap = submap.map_from_submap.ToTransform();
-      double best = -1.0;
-      Point2 centre = Point2::Zero();
-      const grid::OccupancyGrid& cells = submap.navigable;
-      for (int y = 0; y < cells.height(); ++y) {
-        for (int x = 0; x < cells.width(); ++x) {
-          if (cells.StateAt(x, y) != grid::CellState::kFree) continue;
-          const grid::CellIndex cell = clearance_.CellOf(map_from_submap * cells.CellCenter(x, y));
-          if (!clearance_.Contains(cell.x, cell.y)) continue;
-          const double value = clearance_.at(cell.x, cell.y);
-          if (value > best) {
-            best = value;
-            centre = clearance_.CellCenter(cell.x, cell.y);
-          }
-        }
-      }
-      if (best >= NodeClearance()) room_centres_.push_back(centre);
-    }
-  }
+  FindRoomCentres(context.rooms);
   RouteGraph graph = Extract();
+  MarkOverlay(&graph);
   AssignIds(&graph);
   return graph;
 }
 
+void RouteGraphBuilder::FindRoomCentres(const scene::SubmapGraph* rooms) {
+  room_centres_.clear();
+  if (rooms == nullptr) return;
+  for (const scene::Submap& submap : rooms->submaps) {
+    if (submap.kind != scene::SubmapKind::kObserved) continue;
+    const Transform2 map_from_submap = submap.map_from_submap.ToTransform();
+    double best = -1.0;
+    Point2 centre = Point2::Zero();
+    const grid::OccupancyGrid& cells = submap.navigable;
+    for (int y = 0; y < cells.height(); ++y) {
+      for (int x = 0; x < cells.width(); ++x) {
+        if (cells.StateAt(x, y) != grid::CellState::kFree) continue;
+        const grid::CellIndex cell = clearance_.CellOf(map_from_submap * cells.CellCenter(x, y));
+        if (!clearance_.Contains(cell.x, cell.y)) continue;
+        const double value = clearance_.at(cell.x, cell.y);
+        if (value > best) {
+          best = value;
+          centre = clearance_.CellCenter(cell.x, cell.y);
+        }
+      }
+    }
+    if (best >= NodeClearance()) room_centres_.push_back(centre);
+  }
+}
+
 StatusOr<RouteGraph> RouteGraphBuilder::Update(const grid::OccupancyGrid& grid,
-                                               const std::vector<grid::CellRect>& changed) {
+                                               const std::vector<grid::CellRect>& changed,
+                                               const MapContext& context) {
   if (!previous_) return InvalidArgumentError("route graph: Update before any Build");
   if (grid.width() != clearance_.width() || grid.height() != clearance_.height() ||
       !grid::SameResolution(grid.resolution(), resolution_) ||
@@ -566,18 +600,27 @@ StatusOr<RouteGraph> RouteGraphBuilder::Update(const grid::OccupancyGrid& grid,
     return InvalidArgumentError(
         "route graph: Update with a grid of another geometry than the last Build");
   }
+  RouteOverlay overlay = context.overlay != nullptr ? *context.overlay : RouteOverlay();
+  std::vector<grid::CellRect> windows = changed;
+  const std::vector<grid::CellRect> overlay_changes =
+      BlocksHolding(overlay.Differences(overlay_), grid.width(), grid.height(),
+                    std::max(1, static_cast<int>(std::lround(options_.tile_size / resolution_))));
+  windows.insert(windows.end(), overlay_changes.begin(), overlay_changes.end());
+  overlay_ = std::move(overlay);
+  const grid::OccupancyGrid opened = OpenedGrid(grid, overlay_);
+  const grid::OccupancyGrid& source = overlay_.empty() ? grid : opened;
   // The cells whose state changed, per rectangle: their bounding box.
   std::vector<grid::CellRect> boxes;
-  for (const grid::CellRect& rect : changed) {
-    int x0 = grid.width();
-    int y0 = grid.height();
+  for (const grid::CellRect& rect : windows) {
+    int x0 = source.width();
+    int y0 = source.height();
     int x1 = -1;
     int y1 = -1;
-    for (int y = std::max(rect.y0, 0); y < std::min(rect.y0 + rect.height, grid.height()); ++y) {
-      for (int x = std::max(rect.x0, 0); x < std::min(rect.x0 + rect.width, grid.width()); ++x) {
+    for (int y = std::max(rect.y0, 0); y < std::min(rect.y0 + rect.height, source.height()); ++y) {
+      for (int x = std::max(rect.x0, 0); x < std::min(rect.x0 + rect.width, source.width()); ++x) {
         const uint8_t free =
-            grid.StateAt(x, y, options_.thresholds) == grid::CellState::kFree ? 1 : 0;
-        uint8_t& known = free_[static_cast<size_t>(y) * grid.width() + x];
+            source.StateAt(x, y, options_.thresholds) == grid::CellState::kFree ? 1 : 0;
+        uint8_t& known = free_[static_cast<size_t>(y) * source.width() + x];
         if (free == known) continue;
         known = free;
         x0 = std::min(x0, x);
@@ -588,22 +631,55 @@ StatusOr<RouteGraph> RouteGraphBuilder::Update(const grid::OccupancyGrid& grid,
     }
     if (x1 >= x0) boxes.push_back({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
   }
-  if (boxes.empty()) return *previous_;
-  const int reach = static_cast<int>(std::ceil(options_.ExactClearanceUpTo() / resolution_)) + 1;
-  for (const grid::CellRect& box : boxes) {
-    clearance_.Update(grid, Dilate(box, reach));
-    segment_memo_.Forget(Dilate(box, reach));
+  const std::vector<Point2> old_room_centres = room_centres_;
+  if (!boxes.empty()) {
+    const int reach = static_cast<int>(std::ceil(options_.ExactClearanceUpTo() / resolution_)) + 1;
+    for (const grid::CellRect& box : boxes) {
+      clearance_.Update(source, Dilate(box, reach));
+      segment_memo_.Forget(Dilate(box, reach));
+    }
+    // The fitting cells change within the node clearance of a changed cell; a metre more lets
+    // the skeleton find the middle of what changed again.
+    constexpr double kContext = 1.0;
+    const int region = static_cast<int>(std::ceil((NodeClearance() + kContext) / resolution_)) + 1;
+    for (const grid::CellRect& box : boxes) {
+      skeleton_.Update(clearance_, NodeClearance(), Dilate(box, region));
+    }
   }
-  // The fitting cells change within the node clearance of a changed cell; a metre more lets the
-  // skeleton find the middle of what changed again.
-  constexpr double kContext = 1.0;
-  const int region = static_cast<int>(std::ceil((NodeClearance() + kContext) / resolution_)) + 1;
-  for (const grid::CellRect& box : boxes) {
-    skeleton_.Update(clearance_, NodeClearance(), Dilate(box, region));
+  FindRoomCentres(context.rooms);
+  if (boxes.empty() && overlay_changes.empty() && room_centres_ == old_room_centres) {
+    return *previous_;
   }
   RouteGraph graph = Extract();
+  MarkOverlay(&graph);
   AssignIds(&graph);
   return graph;
+}
+
+void RouteGraphBuilder::MarkOverlay(RouteGraph* graph) const {
+  if (overlay_.empty()) return;
+  const int width = clearance_.width();
+  auto cell_index = [&](const Point2& point) -> std::optional<int64_t> {
+    const grid::CellIndex cell = clearance_.CellOf(point);
+    if (!clearance_.Contains(cell.x, cell.y)) return std::nullopt;
+    return static_cast<int64_t>(cell.y) * width + cell.x;
+  };
+  for (RouteNode& node : graph->nodes) {
+    const std::optional<int64_t> cell = cell_index(node.position);
+    node.predicted = cell && overlay_.Predicted(*cell);
+  }
+  // Each edge is looked at every quarter cell, as its clearance was proven.
+  for (RouteEdge& edge : graph->edges) {
+    const Point2 a = graph->nodes[edge.start].position;
+    const Point2 b = graph->nodes[edge.end].position;
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (resolution_ / 4))));
+    for (int step = 0; step <= steps; ++step) {
+      const std::optional<int64_t> cell = cell_index(a + (b - a) * (step / double(steps)));
+      if (!cell) continue;
+      if (overlay_.Predicted(*cell)) edge.predicted = true;
+      if (!edge.blocking_object) edge.blocking_object = overlay_.ObjectAt(*cell);
+    }
+  }
 }
 
 RouteGraph RouteGraphBuilder::Extract() {

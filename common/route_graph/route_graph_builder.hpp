@@ -23,6 +23,7 @@
 #include "common/grid/occupancy_grid.hpp"
 #include "common/route_graph/clearance_map.hpp"
 #include "common/route_graph/route_graph.hpp"
+#include "common/route_graph/route_overlay.hpp"
 #include "common/route_graph/segment_memo.hpp"
 #include "common/route_graph/skeleton.hpp"
 #include "common/scene/submap_graph.hpp"
@@ -65,24 +66,35 @@ struct RouteGraphOptions {
   void Describe(OptionsPrinter& out) const;
 };
 
+// What a graph is built from beside the grid; each part optional.
+struct MapContext {
+  // Observed sub-maps (rooms) in the grid's frame: each room gets a room-centre node.
+  const scene::SubmapGraph* rooms = nullptr;
+  // Predicted free space and learned movable objects on the grid's cells: the robot may plan
+  // through them, and the nodes and edges on them are marked (RouteNode::predicted,
+  // RouteEdge::predicted, RouteEdge::blocking_object).
+  const RouteOverlay* overlay = nullptr;
+};
+
 class RouteGraphBuilder {
  public:
   // `options` must be valid (Validate()).
   explicit RouteGraphBuilder(RouteGraphOptions options);
 
-  // The graph of `grid` (yaw 0; kInvalidArgument otherwise, or for an empty grid). Rooms of
-  // `rooms` (observed sub-maps, in the grid's frame) get a room-centre node. Ids carry over from
-  // the previous graph where the geometry is the same.
-  StatusOr<RouteGraph> Build(const grid::OccupancyGrid& grid,
-                             const scene::SubmapGraph* rooms = nullptr);
+  // The graph of `grid` (yaw 0; kInvalidArgument otherwise, or for an empty grid) and its
+  // context (rooms, overlay: on `grid`'s cells). Ids carry over from the previous graph where the
+  // geometry is the same.
+  StatusOr<RouteGraph> Build(const grid::OccupancyGrid& grid, const MapContext& context = {});
 
   // The graph after the cells in `changed` (rectangles of the grid, e.g. changed tiles) changed:
   // `grid` has the geometry of the last Build. Only a window around the cells of `changed` whose
-  // state (free or not) differs from the last build's is recomputed; none, and the graph is the
-  // same, ids and all.
+  // state (free or not) differs from the last build's is recomputed, and around the cells whose
+  // overlay differs from the last one's; none, and the graph is the same, ids and all. The
+  // context is this update's (no rooms: no room centres).
   // kInvalidArgument before any Build or for a grid of another geometry.
   StatusOr<RouteGraph> Update(const grid::OccupancyGrid& grid,
-                              const std::vector<grid::CellRect>& changed);
+                              const std::vector<grid::CellRect>& changed,
+                              const MapContext& context = {});
 
   const RouteGraphOptions& options() const { return options_; }
   // The clearances of the last build (for checks and planners on the same grid).
@@ -93,6 +105,10 @@ class RouteGraphBuilder {
 
  private:
   RouteGraph Extract();
+  // The observed rooms' most open cells that give a node the clearance it needs.
+  void FindRoomCentres(const scene::SubmapGraph* rooms);
+  // Marks the nodes and edges on the overlay's cells (edges' ends are node indices still).
+  void MarkOverlay(RouteGraph* graph) const;
   void AssignIds(RouteGraph* graph);
 
   RouteGraphOptions options_;
@@ -106,6 +122,7 @@ class RouteGraphBuilder {
   SegmentMemo segment_memo_;
   Skeleton skeleton_;
   std::vector<Point2> room_centres_;
+  RouteOverlay overlay_;  // of the last build or update
   std::optional<RouteGraph> previous_;
   uint32_t next_id_ = 0;
 };

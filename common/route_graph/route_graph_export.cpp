@@ -27,8 +27,12 @@ nlohmann::json EdgeFeature(const RouteGraph& graph, const RouteEdge& edge, bool 
       {"overridable", true},
       {"metadata",
        {{"length", RoundToDecimals(edge.length, kDecimals)},
-        {"clearance", RoundToDecimals(edge.clearance, kDecimals)}}},
+        {"clearance", RoundToDecimals(edge.clearance, kDecimals)},
+        {"predicted", edge.predicted}}},
   };
+  if (edge.blocking_object) {
+    properties["metadata"]["blocked_by_object"] = *edge.blocking_object;
+  }
   nlohmann::json line = nlohmann::json::array();
   line.push_back({Coordinate(from->position.x()), Coordinate(from->position.y())});
   line.push_back({Coordinate(to->position.x()), Coordinate(to->position.y())});
@@ -51,7 +55,8 @@ nlohmann::json Nav2RouteGeoJson(const RouteGraph& graph) {
           {"frame", graph.frame},
           {"metadata",
            {{"kind", std::string(RouteNodeKindName(node.kind))},
-            {"clearance", RoundToDecimals(node.clearance, kDecimals)}}}}},
+            {"clearance", RoundToDecimals(node.clearance, kDecimals)},
+            {"predicted", node.predicted}}}}},
         {"geometry",
          {{"type", "Point"},
           {"coordinates", {Coordinate(node.position.x()), Coordinate(node.position.y())}}}},
@@ -85,8 +90,13 @@ std::string RmfNavGraphYaml(const RouteGraph& graph, const std::string& level) {
     const size_t start = *graph.NodeIndex(edge.start);
     const size_t end = *graph.NodeIndex(edge.end);
     for (const auto& [from, to] : {std::pair{start, end}, std::pair{end, start}}) {
-      out << YAML::Flow << YAML::BeginSeq << from << to << YAML::BeginMap << YAML::EndMap
-          << YAML::EndSeq;
+      // rmf_fleet_adapter reads the properties it knows and passes over the others.
+      out << YAML::Flow << YAML::BeginSeq << from << to << YAML::BeginMap;
+      if (edge.predicted) out << YAML::Key << "fleetmap_predicted" << YAML::Value << true;
+      if (edge.blocking_object) {
+        out << YAML::Key << "fleetmap_blocked_by_object" << YAML::Value << *edge.blocking_object;
+      }
+      out << YAML::EndMap << YAML::EndSeq;
     }
   }
   out << YAML::EndSeq;

@@ -6,10 +6,13 @@
 //    `startid`, `endid` and `cost`. nav2 edges are directed: each undirected edge is written twice
 //    (`id` from start to end, `reverse_id` back); ids are unique across nodes and edges, as
 //    nav2_route requires. `cost` is the edge's length in metres, `overridable` so that nav2's edge
-//    scorers may weigh it; fleetmap's extras sit in `metadata` (kind, clearance, length).
+//    scorers may weigh it; fleetmap's extras sit in `metadata` (kind, clearance, length,
+//    `predicted`, and `blocked_by_object` with the object's id on an edge a movable object blocks).
 //  - Open-RMF's nav graph YAML for one level, as rmf_fleet_adapter's parse_graph reads it:
 //    `levels: {<level>: {vertices: [[x, y, {name}]], lanes: [[v0, v1, {}]]}}`, vertices indexed by
-//    their place in the list, each lane one way (so two per edge), names `n<id>` (stable).
+//    their place in the list, each lane one way (so two per edge), names `n<id>` (stable); a lane
+//    through predicted space has `fleetmap_predicted: true`, one a learned object blocks
+//    `fleetmap_blocked_by_object: <id>` (properties parse_graph passes over).
 // Coordinates are map-frame metres rounded to 0.1 mm.
 
 #include <string>

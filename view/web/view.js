@@ -298,9 +298,24 @@ function drawRouteGraph(id, graph) {
   const at = (i) => ll(graph.nodes[2 * i], graph.nodes[2 * i + 1]);
   const title = `route graph ${id}, revision ${graph.revision}: ${graph.kinds.length} nodes, ` +
     `${graph.edges.length} edges, radius ${graph.radius} m${graph.note ? ` (${graph.note})` : ''}`;
-  const drawnLayers = [L.polyline(graph.edges.map(([a, b]) => [at(a), at(b)]), {
-    renderer: renderers.routes, color: COLORS.route, weight: 2, opacity: 0.8,
-  }).bindTooltip(title)];
+  // Edges through predicted space dashed in the predictions' orange, edges a learned movable
+  // object blocks in the objects' purple: a fleet manager may plan on them, knowing why not yet.
+  const predicted = new Set(graph.predicted || []);
+  const blocked = new Map((graph.blocked || []).map(([edge, object]) => [edge, object]));
+  const plain = graph.edges.filter((_, k) => !predicted.has(k) && !blocked.has(k));
+  const line = (edges, style) => L.polyline(edges.map(([a, b]) => [at(a), at(b)]), {
+    renderer: renderers.routes, weight: 2, opacity: 0.8, ...style,
+  });
+  const drawnLayers = [line(plain, { color: COLORS.route }).bindTooltip(title)];
+  predicted.forEach((k) => {
+    if (blocked.has(k)) return;
+    drawnLayers.push(line([graph.edges[k]], { color: COLORS.predicted, dashArray: '6 4' })
+      .bindTooltip(`edge ${k}: through predicted space`));
+  });
+  blocked.forEach((object, k) => {
+    drawnLayers.push(line([graph.edges[k]], { color: COLORS.object, dashArray: '2 4' })
+      .bindTooltip(`edge ${k}: blocked by object ${object}`));
+  });
   graph.kinds.forEach((kind, i) => {
     const doorway = kind === 'doorway';
     drawnLayers.push(L.circleMarker(at(i), {
@@ -389,8 +404,13 @@ function apply(event) {
   if (event.status) state.status = event.status;
   document.getElementById('map').dataset.drawnTiles = Object.keys(drawn.tiles).length;
   // Edges drawn over all route graphs (one per shard), for whoever checks the page.
-  document.getElementById('map').dataset.routeEdges = Object.values(state.routeGraphs)
-    .reduce((n, graph) => n + graph.edges.length, 0);
+  const graphs = Object.values(state.routeGraphs);
+  const mapElement = document.getElementById('map');
+  mapElement.dataset.routeEdges = graphs.reduce((n, graph) => n + graph.edges.length, 0);
+  mapElement.dataset.routePredictedEdges =
+    graphs.reduce((n, graph) => n + (graph.predicted || []).length, 0);
+  mapElement.dataset.routeBlockedEdges =
+    graphs.reduce((n, graph) => n + (graph.blocked || []).length, 0);
   renderTables();
   renderStatus();
   fitOnce();

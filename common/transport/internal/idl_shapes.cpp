@@ -222,6 +222,9 @@ const CdrShape& RouteGraphShape() {
                                  Sequence("edge_end", 4),
                                  Sequence("edge_length", 4),
                                  Sequence("edge_clearance", 4),
+                                 Sequence("node_flags", 1),
+                                 Sequence("edge_flags", 1),
+                                 Sequence("edge_object", 4),
                                  String("note")};
   return shape;
 }

@@ -464,6 +464,9 @@ StatusOr<ObjectModelMessage> FromIdl(const ObjectModel_& sample) {
 
 // A route graph on the wire: bounded, ids unique across nodes and edges, edges between its nodes.
 constexpr size_t kMaxRouteGraphElements = 1'000'000;
+// RouteGraph.idl's node_flags and edge_flags bits.
+constexpr uint8_t kRoutePredicted = 1;
+constexpr uint8_t kRouteBlockedByObject = 2;
 
 StatusOr<RouteGraph_> ToIdl(const RouteGraphMessage& message) {
   FLEETMAP_RETURN_IF_ERROR(CheckId(message.graph_id, "RouteGraph graph_id"));
@@ -485,6 +488,7 @@ StatusOr<RouteGraph_> ToIdl(const RouteGraphMessage& message) {
     sample.node_y().push_back(node.position.y());
     sample.node_kind().push_back(static_cast<uint8_t>(node.kind));
     sample.node_clearance().push_back(static_cast<float>(node.clearance));
+    sample.node_flags().push_back(node.predicted ? kRoutePredicted : 0);
   }
   for (const route_graph::RouteEdge& edge : graph.edges) {
     sample.edge_id().push_back(edge.id);
@@ -493,6 +497,10 @@ StatusOr<RouteGraph_> ToIdl(const RouteGraphMessage& message) {
     sample.edge_end().push_back(edge.end);
     sample.edge_length().push_back(static_cast<float>(edge.length));
     sample.edge_clearance().push_back(static_cast<float>(edge.clearance));
+    sample.edge_flags().push_back(
+        static_cast<uint8_t>((edge.predicted ? kRoutePredicted : 0) |
+                             (edge.blocking_object ? kRouteBlockedByObject : 0)));
+    sample.edge_object().push_back(edge.blocking_object.value_or(0));
   }
   sample.note(graph.message.substr(0, kMaxReasonLength));
   return sample;
@@ -504,12 +512,14 @@ StatusOr<RouteGraphMessage> FromIdl(const RouteGraph_& sample) {
   const size_t nodes = sample.node_id().size();
   const size_t edges = sample.edge_id().size();
   if (sample.node_x().size() != nodes || sample.node_y().size() != nodes ||
-      sample.node_kind().size() != nodes || sample.node_clearance().size() != nodes) {
+      sample.node_kind().size() != nodes || sample.node_clearance().size() != nodes ||
+      sample.node_flags().size() != nodes) {
     return InvalidArgumentError(name + ": node arrays of different lengths");
   }
   if (sample.edge_reverse_id().size() != edges || sample.edge_start().size() != edges ||
       sample.edge_end().size() != edges || sample.edge_length().size() != edges ||
-      sample.edge_clearance().size() != edges) {
+      sample.edge_clearance().size() != edges || sample.edge_flags().size() != edges ||
+      sample.edge_object().size() != edges) {
     return InvalidArgumentError(name + ": edge arrays of different lengths");
   }
   if (nodes + edges > kMaxRouteGraphElements) {
@@ -545,6 +555,11 @@ StatusOr<RouteGraphMessage> FromIdl(const RouteGraph_& sample) {
     node.position = Point2(sample.node_x()[k], sample.node_y()[k]);
     node.kind = static_cast<route_graph::RouteNodeKind>(sample.node_kind()[k]);
     node.clearance = sample.node_clearance()[k];
+    if ((sample.node_flags()[k] & ~kRoutePredicted) != 0) {
+      return InvalidArgumentError(name + ": node " + std::to_string(node.id) +
+                                  " has unknown flags");
+    }
+    node.predicted = (sample.node_flags()[k] & kRoutePredicted) != 0;
     graph.nodes.push_back(node);
     ids.push_back(node.id);
   }
@@ -559,6 +574,13 @@ StatusOr<RouteGraphMessage> FromIdl(const RouteGraph_& sample) {
     edge.end = sample.edge_end()[k];
     edge.length = sample.edge_length()[k];
     edge.clearance = sample.edge_clearance()[k];
+    const uint8_t flags = sample.edge_flags()[k];
+    if ((flags & ~(kRoutePredicted | kRouteBlockedByObject)) != 0) {
+      return InvalidArgumentError(name + ": edge " + std::to_string(edge.id) +
+                                  " has unknown flags");
+    }
+    edge.predicted = (flags & kRoutePredicted) != 0;
+    if ((flags & kRouteBlockedByObject) != 0) edge.blocking_object = sample.edge_object()[k];
     if (!graph.FindNode(edge.start) || !graph.FindNode(edge.end)) {
       return InvalidArgumentError(name + ": edge " + std::to_string(edge.id) +
                                   " joins a node it does not have");

@@ -228,7 +228,7 @@ TEST(RouteGraphBuilderTest, RoomsOfTheSubmapGraphGetACentreNode) {
   room.navigable = grid::OccupancyGrid(120, 120, 0.05, Pose2{1.0, 1.0, 0.0}, grid::kFreeValue);
   rooms.submaps.push_back(room);
   RouteGraphBuilder builder(Options());
-  const StatusOr<RouteGraph> graph = builder.Build(grid, &rooms);
+  const StatusOr<RouteGraph> graph = builder.Build(grid, {.rooms = &rooms});
   ASSERT_TRUE(graph.ok());
   std::vector<Point2> centres;
   for (const RouteNode& node : graph->nodes) {

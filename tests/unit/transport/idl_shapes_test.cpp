@@ -181,6 +181,9 @@ TEST(IdlShapesTest, RouteGraphShapeMatchesGeneratedCode) {
   graph.edge_end({2});
   graph.edge_length({3.2F});
   graph.edge_clearance({0.35F});
+  graph.node_flags({0, 1});
+  graph.edge_flags({3});
+  graph.edge_object({9});
   graph.note("two parts");
   ExpectShapeMatches(graph, RouteGraphShape());
 }

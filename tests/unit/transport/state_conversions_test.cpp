@@ -214,8 +214,8 @@ TEST(StateConversionsTest, RouteGraphRoundTripsAndRefusesEdgesToNowhereAndShared
   message.graph.robot_radius = 0.3;
   message.graph.clearance_margin = 0.05;
   message.graph.nodes = {{1, Point2(0.5, -1.0), route_graph::RouteNodeKind::kDoorway, 0.4},
-                         {2, Point2(3.5, 2.0), route_graph::RouteNodeKind::kJunction, 0.8}};
-  message.graph.edges = {{3, 4, 1, 2, 5.0, 0.38}};
+                         {2, Point2(3.5, 2.0), route_graph::RouteNodeKind::kJunction, 0.8, true}};
+  message.graph.edges = {{3, 4, 1, 2, 5.0, 0.38, true, 17u}, {5, 6, 2, 1, 4.0, 0.5}};
   message.graph.message = "a note";
   StatusOr<RouteGraphMessage> back = FromIdl(*ToIdl(message));
   ASSERT_TRUE(back.ok()) << back.status();
@@ -224,9 +224,15 @@ TEST(StateConversionsTest, RouteGraphRoundTripsAndRefusesEdgesToNowhereAndShared
   ASSERT_EQ(back->graph.nodes.size(), 2u);
   EXPECT_EQ(back->graph.nodes[0].kind, route_graph::RouteNodeKind::kDoorway);
   EXPECT_EQ(back->graph.nodes[1].position, Point2(3.5, 2.0));
-  ASSERT_EQ(back->graph.edges.size(), 1u);
+  EXPECT_FALSE(back->graph.nodes[0].predicted);
+  EXPECT_TRUE(back->graph.nodes[1].predicted);
+  ASSERT_EQ(back->graph.edges.size(), 2u);
   EXPECT_EQ(back->graph.edges[0].reverse_id, 4u);
   EXPECT_FLOAT_EQ(static_cast<float>(back->graph.edges[0].length), 5.0F);
+  EXPECT_TRUE(back->graph.edges[0].predicted);
+  EXPECT_EQ(back->graph.edges[0].blocking_object, std::optional<uint32_t>(17u));
+  EXPECT_FALSE(back->graph.edges[1].predicted);
+  EXPECT_EQ(back->graph.edges[1].blocking_object, std::nullopt);
   EXPECT_EQ(back->graph.message, "a note");
 
   auto sample = *ToIdl(message);
@@ -240,6 +246,12 @@ TEST(StateConversionsTest, RouteGraphRoundTripsAndRefusesEdgesToNowhereAndShared
   EXPECT_FALSE(FromIdl(sample).ok());
   sample = *ToIdl(message);
   sample.node_x({0.5});
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample = *ToIdl(message);
+  sample.edge_flags({3, 4});  // a bit no reader knows
+  EXPECT_FALSE(FromIdl(sample).ok());
+  sample = *ToIdl(message);
+  sample.edge_object({17});
   EXPECT_FALSE(FromIdl(sample).ok());
 }
 

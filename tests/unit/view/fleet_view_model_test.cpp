@@ -434,7 +434,7 @@ TEST(FleetViewModelTest, TheRouteGraphIsItsNodesAndEdgesByIndexUntilWithdrawn) {
   event.message.graph.nodes = {{10, Point2(1.0, 2.0), route_graph::RouteNodeKind::kDoorway, 0.4},
                                {11, Point2(4.0, 2.0), route_graph::RouteNodeKind::kJunction, 0.9},
                                {12, Point2(4.0, 6.5), route_graph::RouteNodeKind::kDeadEnd, 0.5}};
-  event.message.graph.edges = {{20, 21, 10, 11, 3.0, 0.4}, {22, 23, 11, 12, 4.5, 0.5}};
+  event.message.graph.edges = {{20, 21, 10, 11, 3.0, 0.4}, {22, 23, 11, 12, 4.5, 0.5, true, 7u}};
   model.OnRouteGraph(event);
   const json delta = Parse(model.TakeDelta());
   const json& graph = delta["route_graphs"]["fleet"];
@@ -443,6 +443,8 @@ TEST(FleetViewModelTest, TheRouteGraphIsItsNodesAndEdgesByIndexUntilWithdrawn) {
   EXPECT_EQ(graph["nodes"], json({1.0, 2.0, 4.0, 2.0, 4.0, 6.5}));
   EXPECT_EQ(graph["kinds"], json({"doorway", "junction", "dead_end"}));
   EXPECT_EQ(graph["edges"], json({{0, 1}, {1, 2}}));  // node indices, not ids
+  EXPECT_EQ(graph["predicted"], json({1}));           // edge indices
+  EXPECT_EQ(graph["blocked"], json({{1, 7}}));        // edge index, object id
   EXPECT_EQ(Parse(model.FullEvent())["route_graphs"]["fleet"], graph);
 
   transport::RouteGraphEvent withdrawn;
