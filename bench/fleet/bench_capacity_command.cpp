@@ -66,6 +66,9 @@ struct CapacityArgs {
   // Shard servers per stage (docs/shards.md), each fusing a strip of the buildings' columns,
   // shard i pinned to core (server_core + i) mod cores; 1: one server.
   std::vector<int> shards = {1};
+  // Robots per load-generator participant (an agent process holds one robot: 1). Fewer robots
+  // per participant, more participants: how discovery grows is measured with 1.
+  int robots_per_participant = kRobotsPerParticipant;
   std::string out_dir = "out/bench-capacity";
 };
 
@@ -191,10 +194,15 @@ std::optional<double> StatusMb(pid_t pid, const std::string& key) {
 
 struct StageOutcome {
   int robots = 0;
+  int participants = 0;           // the load generator's (the server's and the reader's aside)
   std::string discovery;          // "simple" or "server"
   std::optional<double> join_mb;  // loopback bytes until every robot joined (with first tiles)
-  double offered_per_s = 0.0;     // robot tile updates sent per second
-  double fused_per_s = 0.0;       // fused tile updates received per second
+  // CPU seconds from the stage's start to the join: the discovery server's process (with
+  // --discovery server), and the load generator's participants (this process).
+  std::optional<double> discovery_server_cpu_s;
+  std::optional<double> participants_cpu_s;
+  double offered_per_s = 0.0;  // robot tile updates sent per second
+  double fused_per_s = 0.0;    // fused tile updates received per second
   double p50_ms = 0.0;
   double p99_ms = 0.0;
   size_t latencies = 0;
@@ -206,18 +214,22 @@ struct StageOutcome {
   double server_peak_mb = 0.0;
 };
 
-// N robots of the load generator: one participant, status writer and tile writer per 16 robots,
-// dealt round so that the eight robots of a building are eight participants' (eight agents that
-// confirm each other's walls, as on a real floor).
+// N robots of the load generator: one participant, status writer and tile writer per
+// `robots_per_participant` robots (16 by default), dealt round so that the eight robots of a
+// building are eight participants' (eight agents that confirm each other's walls, as on a real
+// floor).
 class LoadGenerator {
  public:
   static StatusOr<std::unique_ptr<LoadGenerator>> Create(int domain, int robots,
+                                                         int robots_per_participant,
                                                          const TileStream& stream, double rate,
                                                          const std::string& discovery_server) {
     std::unique_ptr<LoadGenerator> self(new LoadGenerator(stream, rate));
-    // At most 16 robots each, and at least as many participants as robots share a building.
-    const int participants = std::max((robots + kRobotsPerParticipant - 1) / kRobotsPerParticipant,
-                                      std::min(robots, kRobotsPerBuilding));
+    // At most robots_per_participant each, and at least as many participants as robots share a
+    // building.
+    const int participants =
+        std::max((robots + robots_per_participant - 1) / robots_per_participant,
+                 std::min(robots, kRobotsPerBuilding));
     for (int index = 0; index < participants; ++index) {
       transport::ParticipantOptions options;
       options.domain_id = domain;
@@ -237,6 +249,8 @@ class LoadGenerator {
     self->robots_ = robots;
     return self;
   }
+
+  int participants() const { return static_cast<int>(groups_.size()); }
 
   ~LoadGenerator() {
     for (Group& group : groups_) {
@@ -354,14 +368,17 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   const int domain = process::RandomDomainId();
   std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
                                             {"FLEETMAP_LOCALHOST_ONLY", "1"}};
-  // A Fast DDS discovery server of its own (server id 0), on a port no other stage uses.
+  // A Fast DDS discovery server of its own (server id 0), on a port no other stage uses. The
+  // server's own binary, not the `fastdds discovery` wrapper: a signal to the wrapper (Python)
+  // leaves its child running, and the CPU measured must be the server's.
   std::unique_ptr<process::Subprocess> discovery;
   std::string discovery_list;
   if (discovery_server) {
     const int port = 11811 + domain;
     discovery_list = fmt::format("127.0.0.1:{}", port);
-    discovery = std::make_unique<process::Subprocess>(std::vector<std::string>{
-        "/usr/bin/fastdds", "discovery", "-i", "0", "-l", "127.0.0.1", "-p", std::to_string(port)});
+    discovery = std::make_unique<process::Subprocess>(
+        std::vector<std::string>{"/usr/bin/fast-discovery-server", "-i", "0", "-l", "127.0.0.1",
+                                 "-p", std::to_string(port)});
     if (!discovery->WaitForOutput("Server is running", seconds(20))) {
       return UnavailableError("the Fast DDS discovery server did not start: " +
                               discovery->Output());
@@ -427,9 +444,12 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
                             transport::VectorTileReader::Create(
                                 *reader_participant, transport::kFusedTilesTopic, wake_up));
   const std::optional<uint64_t> loopback_at_start = LoopbackBytesSent();
-  FLEETMAP_ASSIGN_OR_RETURN(
-      std::unique_ptr<LoadGenerator> generator,
-      LoadGenerator::Create(domain, robots, stream, args.rate, discovery_list));
+  const std::optional<double> own_cpu_at_start = CpuSeconds(getpid());
+  const std::optional<double> discovery_cpu_at_start =
+      discovery ? CpuSeconds(discovery->pid()) : std::nullopt;
+  FLEETMAP_ASSIGN_OR_RETURN(std::unique_ptr<LoadGenerator> generator,
+                            LoadGenerator::Create(domain, robots, args.robots_per_participant,
+                                                  stream, args.rate, discovery_list));
 
   // Every building's tiles: a building is fused once a fused tile inside it arrived.
   std::set<std::pair<int, int>> buildings_waiting;
@@ -443,6 +463,7 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
 
   StageOutcome outcome;
   outcome.robots = robots;
+  outcome.participants = generator->participants();
   outcome.discovery = discovery_server ? "server" : "simple";
   outcome.shards = shards;
   const auto started = SteadyClock::now();
@@ -452,7 +473,8 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   uint64_t fused_since = 0;
   std::vector<double> latencies;
   NewRevisions new_revisions;  // each fused revision is timed once
-  const auto join_limit = seconds(60);
+  // A minute, or longer for many participants (each one's discovery takes its time).
+  const auto join_limit = seconds(std::max(60, outcome.participants / 2));
   // How many robots the server says joined: discovery and the status's claim, done.
   size_t joined_robots = 0;
   SteadyClock::time_point next_log_check{};
@@ -480,6 +502,14 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
       if (const auto bytes = LoopbackBytesSent(); bytes && loopback_at_start) {
         outcome.join_mb = static_cast<double>(*bytes - *loopback_at_start) / 1e6;
       }
+      if (const auto cpu = CpuSeconds(getpid()); cpu && own_cpu_at_start) {
+        outcome.participants_cpu_s = *cpu - *own_cpu_at_start;
+      }
+      if (discovery_cpu_at_start) {
+        if (const auto cpu = CpuSeconds(discovery->pid())) {
+          outcome.discovery_server_cpu_s = *cpu - *discovery_cpu_at_start;
+        }
+      }
     }
     const bool settled =
         outcome.joined_s &&
@@ -492,7 +522,8 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
           "  {} robots, {} discovery, {} server(s): {}; measuring {:.0f} s\n", robots,
           outcome.discovery, shards,
           outcome.joined_s ? fmt::format("all fused after {:.1f} s", *outcome.joined_s)
-                           : fmt::format("{} of {} joined after 60 s", joined_robots, robots),
+                           : fmt::format("{} of {} joined after {} s", joined_robots, robots,
+                                         std::chrono::duration_cast<seconds>(join_limit).count()),
           args.stage_s);
     }
     if (measuring_since && now - *measuring_since >= std::chrono::duration<double>(args.stage_s)) {
@@ -519,7 +550,10 @@ StatusOr<StageOutcome> RunStage(const CapacityArgs& args, int robots, const Tile
   reader_participant.reset();
   for (auto& server : servers) server->Signal(SIGINT);
   for (auto& server : servers) server->Wait(seconds(60));
-  if (discovery) discovery->Signal(SIGINT);
+  if (discovery) {
+    discovery->Signal(SIGINT);
+    discovery->Wait(seconds(10));
+  }
   return outcome;
 }
 
@@ -569,27 +603,35 @@ int RunBenchCapacity(const CapacityArgs& args) {
 
   nlohmann::json json = nlohmann::json::array();
   std::string csv =
-      "robots,discovery,shards,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,latencies,"
-      "joined_s,join_mb,server_cores,shard_cores,server_rss_mb,server_peak_mb\n";
+      "robots,participants,discovery,shards,offered_tiles_per_s,fused_tiles_per_s,p50_ms,p99_ms,"
+      "latencies,joined_s,join_mb,participants_cpu_s,discovery_server_cpu_s,server_cores,"
+      "shard_cores,server_rss_mb,server_peak_mb\n";
   fmt::print("\nfleet capacity of one server core{}: robots explore at {} updates/s each ({})\n",
              args.server_core >= 0 ? fmt::format(" (core {})", args.server_core) : "", args.rate,
              args.map_path.empty() ? fmt::format("a {:.0f} m simulated office", args.size)
                                    : args.map_path);
-  fmt::print("{:>7} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>12} {:>7} {:>8}\n",
-             "robots", "discovery", "shards", "offered/s", "fused/s", "p50 ms", "p99 ms",
-             "joined s", "join MB", "cores", "per shard", "RSS MB", "peak MB");
+  fmt::print(
+      "{:>7} {:>6} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>12} "
+      "{:>7} {:>8}\n",
+      "robots", "parts", "discovery", "shards", "offered/s", "fused/s", "p50 ms", "p99 ms",
+      "joined s", "join MB", "parts s", "disc. s", "cores", "per shard", "RSS MB", "peak MB");
   std::map<std::pair<std::string, int>, int> largest;
   for (const StageOutcome& o : outcomes) {
     std::string per_shard;
     for (const double cores : o.shard_cores) {
       per_shard += (per_shard.empty() ? "" : "+") + Fixed(cores, 2);
     }
+    const auto shown = [](const std::optional<double>& v, int decimals) {
+      return v ? Fixed(*v, decimals) : std::string("-");
+    };
     fmt::print(
-        "{:>7} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>6} {:>12} {:>7} {:>8}\n",
-        o.robots, o.discovery, o.shards, Fixed(o.offered_per_s, 0), Fixed(o.fused_per_s, 0),
-        Fixed(o.p50_ms, 1), Fixed(o.p99_ms, 1), o.joined_s ? Fixed(*o.joined_s, 1) : "-",
-        o.join_mb ? Fixed(*o.join_mb, 1) : "-", Fixed(o.server_cores, 2),
-        o.shards > 1 ? per_shard : "-", Fixed(o.server_rss_mb, 0), Fixed(o.server_peak_mb, 0));
+        "{:>7} {:>6} {:>10} {:>7} {:>10} {:>10} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>6} {:>12} "
+        "{:>7} {:>8}\n",
+        o.robots, o.participants, o.discovery, o.shards, Fixed(o.offered_per_s, 0),
+        Fixed(o.fused_per_s, 0), Fixed(o.p50_ms, 1), Fixed(o.p99_ms, 1), shown(o.joined_s, 1),
+        shown(o.join_mb, 1), shown(o.participants_cpu_s, 1), shown(o.discovery_server_cpu_s, 2),
+        Fixed(o.server_cores, 2), o.shards > 1 ? per_shard : "-", Fixed(o.server_rss_mb, 0),
+        Fixed(o.server_peak_mb, 0));
     if (o.p99_ms <= kP99TargetMs && o.joined_s && o.latencies > 0) {
       largest[{o.discovery, o.shards}] = o.robots;
     }
@@ -597,6 +639,7 @@ int RunBenchCapacity(const CapacityArgs& args) {
       return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
     };
     json.push_back({{"robots", o.robots},
+                    {"participants", o.participants},
                     {"discovery", o.discovery},
                     {"shards", o.shards},
                     {"shard_cores", o.shard_cores},
@@ -607,14 +650,20 @@ int RunBenchCapacity(const CapacityArgs& args) {
                     {"latencies", o.latencies},
                     {"joined_s", optional(o.joined_s)},
                     {"join_mb", optional(o.join_mb)},
+                    {"participants_cpu_s", optional(o.participants_cpu_s)},
+                    {"discovery_server_cpu_s", optional(o.discovery_server_cpu_s)},
                     {"server_cores", o.server_cores},
                     {"server_rss_mb", o.server_rss_mb},
                     {"server_peak_mb", o.server_peak_mb}});
-    csv += fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.robots, o.discovery, o.shards,
-        Fixed(o.offered_per_s, 1), Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2), Fixed(o.p99_ms, 2),
-        o.latencies, o.joined_s ? Fixed(*o.joined_s, 2) : "", o.join_mb ? Fixed(*o.join_mb, 2) : "",
-        Fixed(o.server_cores, 3), per_shard, Fixed(o.server_rss_mb, 1), Fixed(o.server_peak_mb, 1));
+    const auto cell = [](const std::optional<double>& v) {
+      return v ? Fixed(*v, 3) : std::string();
+    };
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", o.robots,
+                       o.participants, o.discovery, o.shards, Fixed(o.offered_per_s, 1),
+                       Fixed(o.fused_per_s, 1), Fixed(o.p50_ms, 2), Fixed(o.p99_ms, 2), o.latencies,
+                       cell(o.joined_s), cell(o.join_mb), cell(o.participants_cpu_s),
+                       cell(o.discovery_server_cpu_s), Fixed(o.server_cores, 3), per_shard,
+                       Fixed(o.server_rss_mb, 1), Fixed(o.server_peak_mb, 1));
   }
   for (const bool discovery_server : discovery_servers) {
     const std::string kind = discovery_server ? "server" : "simple";
@@ -684,6 +733,12 @@ void AddBenchCapacityCommand(CLI::App& app, int* exit_code) {
           "shard servers per stage, each fusing a strip of the buildings (docs/shards.md), "
           "shard i on core --server-core + i (1, 2, 4 or 8; one stage each)")
       ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->capture_default_str();
+  command
+      ->add_option("--robots-per-participant", args->robots_per_participant,
+                   "robots per load-generator participant (1: a participant per robot, as agents "
+                   "are; how discovery grows with participants)")
+      ->check(CLI::Range(1, kRobotsPerParticipant))
       ->capture_default_str();
   command->add_option("--out", args->out_dir, "where the stores, CSV and JSON go")
       ->capture_default_str();

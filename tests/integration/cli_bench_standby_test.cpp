@@ -85,6 +85,7 @@ TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
       EXPECT_EQ(stage["shards"], 1);
     }
     EXPECT_EQ(stage["robots"], 16);
+    EXPECT_EQ(stage["participants"], 8) << "16 a participant, but 8 robots share a building";
     EXPECT_FALSE(stage["joined_s"].is_null()) << "every robot's tiles were fused: " << stage.dump();
     EXPECT_GT(stage["offered_tiles_per_s"].get<double>(), 0.0);
     EXPECT_GT(stage["fused_tiles_per_s"].get<double>(), 0.0);
@@ -93,6 +94,46 @@ TEST(CliBenchStandbyTest, ACapacityStageFusesEveryRobotAndReportsItsLatency) {
     EXPECT_GT(stage["server_cores"].get<double>(), 0.0);
     EXPECT_GT(stage["server_rss_mb"].get<double>(), 0.0);
   }
+}
+
+// How discovery grows: a participant per robot, as agent processes are, through a discovery
+// server whose CPU the stage reports.
+TEST(CliBenchStandbyTest, ACapacityStageWithAParticipantPerRobotReportsDiscoveryCosts) {
+  const std::string out = testing::FreshTempDir("bench_capacity_participants");
+  const auto run = testing::RunFleetmap({"bench",
+                                         "capacity",
+                                         "--robots",
+                                         "12",
+                                         "--robots-per-participant",
+                                         "1",
+                                         "--stage",
+                                         "2",
+                                         "--settle",
+                                         "0",
+                                         "--steps",
+                                         "4",
+                                         "--size",
+                                         "20",
+                                         "--rate",
+                                         "0.5",
+                                         "--server-core",
+                                         "-1",
+                                         "--discovery",
+                                         "server",
+                                         "--out",
+                                         out},
+                                        seconds(240));
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const nlohmann::json stages = ReadJson(out + "/capacity.json");
+  ASSERT_TRUE(stages.is_array() && stages.size() == 1) << stages.dump();
+  const nlohmann::json& stage = stages[0];
+  EXPECT_EQ(stage["participants"], 12);
+  ASSERT_FALSE(stage["joined_s"].is_null()) << stage.dump();
+  EXPECT_GT(stage["join_mb"].get<double>(), 0.0);
+  EXPECT_GT(stage["participants_cpu_s"].get<double>(), 0.0);
+  EXPECT_GT(stage["discovery_server_cpu_s"].get<double>(), 0.0) << stage.dump();
+  EXPECT_EQ(testing::RunFleetmap({"bench", "capacity", "--robots-per-participant", "0"}).exit_code,
+            2);
 }
 
 TEST(CliBenchStandbyTest, BadOptionsExitTwo) {
