@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -21,6 +22,8 @@
 #include <thread>
 
 #include "common/core/wake_up.hpp"
+#include "common/extrapolation/entities_json.hpp"
+#include "common/grid/map_io.hpp"
 #include "common/scene/submap_node.hpp"
 #include "common/transport/keyed_state_topic.hpp"
 #include "common/transport/participant.hpp"
@@ -388,6 +391,85 @@ TEST(ViewBrowserTest, DrawsTheServersRouteGraph) {
   EXPECT_EQ(Shown(page, "state.routeGraphs.fleet.kinds.length"), newest->graph.nodes.size());
   // One polyline of edges and a dot per node, on the map.
   EXPECT_EQ(Shown(page, "drawn.routes.fleet.length"), newest->graph.nodes.size() + 1);
+}
+
+// A room predicted behind a closed door (docs/route-graph.md, *Predicted space*): the page draws
+// the edges into it apart from the observed ones, as many as the server marked predicted.
+TEST(ViewBrowserTest, DrawsTheRouteGraphsPredictedEdgesApart) {
+  const int domain = process::RandomDomainId();
+  const std::map<std::string, std::string> env = {{"FLEETMAP_DOMAIN", std::to_string(domain)},
+                                                  {"FLEETMAP_LOCALHOST_ONLY", "1"}};
+  // A 3.8 m room, x in [0, 4), with a closed door in its east wall at y in [1.5, 2.4]; east of
+  // it nothing is known.
+  const std::string folder = ::testing::TempDir() + "/view_predicted_" + std::to_string(domain);
+  std::filesystem::create_directories(folder);
+  grid::OccupancyGrid map(160, 80, 0.05, Pose2{}, grid::kUnknownValue);
+  for (int y = 0; y < 80; ++y) {
+    for (int x = 0; x < 81; ++x) {
+      const bool inside = x >= 2 && x < 79 && y >= 2 && y < 78;
+      map.at(x, y) = inside ? grid::kFreeValue : grid::kOccupiedValue;
+    }
+  }
+  const std::string map_path = folder + "/room.yaml";
+  ASSERT_TRUE(grid::SaveMap(map, map_path).ok());
+  scene::Entities entities;
+  entities.doors.push_back({"door_east", {4.0, 1.5}, {4.0, 2.4}, {1.0, 0.0}, false});
+  const std::string entities_path = folder + "/entities.json";
+  std::ofstream(entities_path) << extrapolation::EntitiesToJson(entities);
+
+  process::Subprocess server(
+      {testing::kServerBinary, "--duration", "120", "--route-graph", "--route-graph-radius", "0.25",
+       "--no-object-learning", "--map-period", "0.5"},
+      env);
+  process::Subprocess agent({testing::kAgentBinary, "--robot-id", "alpha", "--map", map_path,
+                             "--entities", entities_path},
+                            env);
+  testing::ViewProcess view(domain);
+  ASSERT_GT(view.port(), 0) << view.process().Output();
+  auto participant = testing::LoopbackParticipant(domain);
+  ASSERT_TRUE(participant.ok()) << participant.status();
+  auto wake_up = std::make_shared<WakeUp>();
+  auto graphs = transport::RouteGraphReader::Create(**participant, wake_up);
+  ASSERT_TRUE(graphs.ok()) << graphs.status();
+  auto browser = testing::HeadlessChromium::Open(view.url());
+  ASSERT_TRUE(browser.ok()) << browser.status();
+  testing::HeadlessChromium& page = **browser;
+
+  // The newest revision with predicted edges, once the graph has stopped changing.
+  std::optional<transport::RouteGraphMessage> newest;
+  auto last_change = Clock::now();
+  const auto deadline = last_change + kDeadline;
+  const auto predicted_edges = [](const route_graph::RouteGraph& graph) {
+    return std::count_if(graph.edges.begin(), graph.edges.end(),
+                         [](const route_graph::RouteEdge& edge) { return edge.predicted; });
+  };
+  while (Clock::now() < deadline && (!newest || predicted_edges(newest->graph) == 0 ||
+                                     Clock::now() - last_change < seconds(3))) {
+    wake_up->WaitFor(milliseconds(100));
+    for (transport::RouteGraphEvent& event : (*graphs)->Drain()) {
+      if (event.kind != transport::RouteGraphEvent::Kind::kSample) continue;
+      newest = std::move(event.message);
+      last_change = Clock::now();
+    }
+  }
+  ASSERT_TRUE(newest.has_value()) << server.Output();
+  const auto predicted = predicted_edges(newest->graph);
+  ASSERT_GT(predicted, 0) << server.Output();
+  const std::string drawn_all =
+      "Number(document.getElementById('map').dataset.routePredictedEdges) === " +
+      std::to_string(predicted) +
+      " && state.routeGraphs.fleet.revision === " + std::to_string(newest->revision);
+  auto drawn = page.WaitFor(drawn_all, kDeadline);
+  ASSERT_TRUE(drawn.ok()) << drawn.status();
+  EXPECT_EQ(*drawn, true) << "drawn: "
+                          << Shown(page,
+                                   "document.getElementById('map').dataset.routePredictedEdges")
+                          << ", published: " << predicted;
+  EXPECT_EQ(Shown(page, "document.getElementById('map').dataset.routeBlockedEdges"), "0");
+  // The observed edges as one polyline, each predicted edge a dashed line of its own, a dot per
+  // node.
+  EXPECT_EQ(Shown(page, "drawn.routes.fleet.length"),
+            newest->graph.nodes.size() + 1 + static_cast<size_t>(predicted));
 }
 
 // Shards (docs/shards.md): the status line names each shard and its server, and the map outlines
