@@ -17,7 +17,7 @@ int RunTerrain(const TerrainCommandOptions& options, std::ostream& out, std::ost
   const std::optional<sim::TerrainKind> kind = sim::TerrainKindFromName(options.kind);
   if (!kind) {
     err << "fleetmap terrain: --kind '" << options.kind
-        << "' is unknown: use maze, office or unstructured\n";
+        << "' is unknown: use maze, office, unstructured or warehouse\n";
     return kExitBadInput;
   }
   const StatusOr<sim::TerrainGenerator> generator =
@@ -59,7 +59,7 @@ void AddTerrainCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<TerrainCommandOptions>();
   CLI::App* command =
       app.add_subcommand("terrain", "Generate a simulated terrain and its ground-truth grid");
-  command->add_option("--kind", options->kind, "maze, office or unstructured")
+  command->add_option("--kind", options->kind, "maze, office, unstructured or warehouse")
       ->capture_default_str();
   command->add_option("--size", options->size, "side of the square terrain (m), 5..400")
       ->capture_default_str();

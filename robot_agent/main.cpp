@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   std::string sim_kind;
   fleetmap::agent::SimOptions sim;
   app.add_option("--sim", sim_kind,
-                 "built-in robot exploring a terrain: office, maze, unstructured")
+                 "built-in robot exploring a terrain: office, maze, unstructured, warehouse")
       ->excludes(map_option)
       ->excludes(topic_option);
   app.add_option("--sim-size", sim.size, "simulated terrain side, metres")
@@ -128,7 +128,8 @@ int main(int argc, char** argv) {
     const auto kind = fleetmap::sim::TerrainKindFromName(sim_kind);
     if (!kind) {
       spdlog::error(
-          "fleetmap-agent: --sim \"{}\" is not a terrain kind (office, maze, unstructured)",
+          "fleetmap-agent: --sim \"{}\" is not a terrain kind (office, maze, unstructured, "
+          "warehouse)",
           sim_kind);
       return 2;
     }

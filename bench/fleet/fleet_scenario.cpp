@@ -10,7 +10,7 @@
 namespace fleetmap::bench {
 
 void AddFleetScenarioOptions(CLI::App* command, FleetScenarioArgs* args) {
-  command->add_option("--terrain", args->terrain, "office, maze or unstructured");
+  command->add_option("--terrain", args->terrain, "office, maze, unstructured or warehouse");
   command->add_option("--size", args->size, "terrain side, metres");
   command->add_option("--seed", args->seed, "terrain seed");
   command->add_option("--duration", args->duration_s, "seconds per run");

@@ -38,7 +38,7 @@ int RunSim(const SimArgs& args) {
   const auto kind = sim::TerrainKindFromName(args.scenario.terrain);
   if (!kind) {
     std::cerr << "fleetmap sim: --terrain \"" << args.scenario.terrain
-              << "\" is not a terrain kind (office, maze, unstructured)\n";
+              << "\" is not a terrain kind (office, maze, unstructured, warehouse)\n";
     return cli::kExitBadInput;
   }
   FleetSimOptions fleet = ScenarioFleetOptions(*kind, args.scenario);

@@ -32,40 +32,6 @@ void AddWallWithGaps(double y, double x0, double x1, const std::vector<double>& 
   if (x1 > cursor) terrain->walls.push_back({{cursor, y}, {x1, y}, kWall, ObstacleKind::kWall});
 }
 
-// Rows of racks along x at one period, split by a cross aisle; pillars on a lattice along the
-// front and back aisles; pallets in the aisles.
-void Warehouse(double size, sim::Random* random, Terrain* terrain) {
-  const double depth = random->Uniform(0.9, 1.2);    // rack depth
-  const double period = random->Uniform(3.0, 3.8);   // rack + aisle
-  const double margin = random->Uniform(2.5, 3.5);   // front / back aisles and the side aisles
-  const double cross = random->Uniform(0.35, 0.65);  // where the cross aisle runs (share of x)
-  const double cross_width = random->Uniform(2.5, 3.5);
-  const double x0 = margin, x1 = size - margin;
-  const double cross_x = x0 + cross * (x1 - x0 - cross_width);
-  std::vector<double> row_ys;
-  for (double y = margin; y + depth <= size - margin; y += period) row_ys.push_back(y);
-  for (const double y : row_ys) {
-    AddBox(x0, y, cross_x, y + depth, ObstacleKind::kFurniture, terrain);
-    AddBox(cross_x + cross_width, y, x1, y + depth, ObstacleKind::kFurniture, terrain);
-  }
-  // Pillars every 6 m along the front and back aisles, 0.4 m square.
-  for (double x = x0; x <= x1; x += 6.0) {
-    for (const double y : {margin / 2.0, size - margin / 2.0}) {
-      AddBox(x - 0.2, y - 0.2, x + 0.2, y + 0.2, ObstacleKind::kWall, terrain);
-    }
-  }
-  // A few pallets, each in a random aisle between two rows, against a rack.
-  const int pallets = random->UniformInt(2, 5);
-  for (int k = 0; k + 1 < static_cast<int>(row_ys.size()) && k < pallets; ++k) {
-    const int row = random->UniformInt(0, static_cast<int>(row_ys.size()) - 2);
-    const double y = row_ys[row] + depth + 0.1;
-    const double x = random->Uniform(x0, x1 - 1.2);
-    const double side = random->Uniform(0.8, 1.2);
-    AddBox(x, y, x + side, y + side * 0.8, ObstacleKind::kFurniture, terrain);
-  }
-  terrain->start = {size / 2.0, margin / 2.0 + 0.8, 0.0};
-}
-
 // Two bands of identical rooms on either side of a corridor; a west corridor joins the bands.
 void OfficeRows(double size, sim::Random* random, Terrain* terrain) {
   const double room_width = random->Uniform(3.2, 4.5);
@@ -155,7 +121,7 @@ sim::Terrain RepeatedTerrain(RepeatedKind kind, double size, uint32_t seed) {
   sim::AddBoundary(size, kBoundary, &terrain);
   switch (kind) {
     case RepeatedKind::kWarehouse:
-      Warehouse(size, &random, &terrain);
+      sim::AddWarehouse(size, &random, &terrain);
       break;
     case RepeatedKind::kOfficeRows:
       OfficeRows(size, &random, &terrain);

@@ -10,12 +10,15 @@ std::string_view TerrainKindName(TerrainKind kind) {
       return "office";
     case TerrainKind::kUnstructured:
       return "unstructured";
+    case TerrainKind::kWarehouse:
+      return "warehouse";
   }
   return "?";
 }
 
 std::optional<TerrainKind> TerrainKindFromName(std::string_view name) {
-  for (TerrainKind kind : {TerrainKind::kMaze, TerrainKind::kOffice, TerrainKind::kUnstructured}) {
+  for (TerrainKind kind : {TerrainKind::kMaze, TerrainKind::kOffice, TerrainKind::kUnstructured,
+                           TerrainKind::kWarehouse}) {
     if (TerrainKindName(kind) == name) return kind;
   }
   return std::nullopt;

@@ -19,9 +19,9 @@
 
 namespace fleetmap::sim {
 
-enum class TerrainKind : uint8_t { kMaze, kOffice, kUnstructured };
+enum class TerrainKind : uint8_t { kMaze, kOffice, kUnstructured, kWarehouse };
 
-// "maze", "office", "unstructured".
+// "maze", "office", "unstructured", "warehouse".
 std::string_view TerrainKindName(TerrainKind kind);
 std::optional<TerrainKind> TerrainKindFromName(std::string_view name);
 

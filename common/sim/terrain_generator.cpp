@@ -397,7 +397,47 @@ void GenerateUnstructured(const TerrainOptions& options, Random* random, Terrain
   }
 }
 
+void GenerateWarehouse(const TerrainOptions& options, Random* random, Terrain* terrain) {
+  AddWarehouse(options.size, random, terrain);
+}
+
 }  // namespace
+
+void AddWarehouse(double size, Random* random, Terrain* terrain) {
+  const auto add_box = [terrain](double x0, double y0, double x1, double y1, ObstacleKind kind) {
+    terrain->polygons.push_back({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, kind});
+  };
+  const double depth = random->Uniform(0.9, 1.2);    // rack depth
+  const double period = random->Uniform(3.0, 3.8);   // rack + aisle
+  const double margin = random->Uniform(2.5, 3.5);   // front / back aisles and the side aisles
+  const double cross = random->Uniform(0.35, 0.65);  // where the cross aisle runs (share of x)
+  const double cross_width = random->Uniform(2.5, 3.5);
+  const double x0 = margin, x1 = size - margin;
+  const double cross_x = x0 + cross * (x1 - x0 - cross_width);
+  std::vector<double> row_ys;
+  for (double y = margin; y + depth <= size - margin; y += period) row_ys.push_back(y);
+  for (const double y : row_ys) {
+    add_box(x0, y, cross_x, y + depth, ObstacleKind::kFurniture);
+    add_box(cross_x + cross_width, y, x1, y + depth, ObstacleKind::kFurniture);
+  }
+  // Pillars every 6 m along the front and back aisles, 0.4 m square.
+  for (double x = x0; x <= x1; x += 6.0) {
+    for (const double y : {margin / 2.0, size - margin / 2.0}) {
+      add_box(x - 0.2, y - 0.2, x + 0.2, y + 0.2, ObstacleKind::kWall);
+    }
+  }
+  // A few pallets, each in a random aisle between two rows, against a rack: the only thing that
+  // tells two aisles apart.
+  const int pallets = random->UniformInt(2, 5);
+  for (int k = 0; k + 1 < static_cast<int>(row_ys.size()) && k < pallets; ++k) {
+    const int row = random->UniformInt(0, static_cast<int>(row_ys.size()) - 2);
+    const double y = row_ys[row] + depth + 0.1;
+    const double x = random->Uniform(x0, x1 - 1.2);
+    const double side = random->Uniform(0.8, 1.2);
+    add_box(x, y, x + side, y + side * 0.8, ObstacleKind::kFurniture);
+  }
+  terrain->start = {size / 2.0, margin / 2.0 + 0.8, 0.0};
+}
 
 StatusOr<TerrainGenerator> TerrainGenerator::Create(const TerrainOptions& options) {
   if (!(options.size >= kMinTerrainSize && options.size <= kMaxTerrainSize)) {
@@ -431,6 +471,9 @@ Terrain TerrainGenerator::Generate() const {
       break;
     case TerrainKind::kUnstructured:
       GenerateUnstructured(options_, &random, &terrain);
+      break;
+    case TerrainKind::kWarehouse:
+      GenerateWarehouse(options_, &random, &terrain);
       break;
   }
   return terrain;

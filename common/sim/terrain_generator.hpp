@@ -6,7 +6,10 @@
 //  - office: bands of two rows of rooms around a corridor, vertical corridors joining the bands,
 //    every room with a door to its corridor, some doors between neighbouring rooms, furniture;
 //  - unstructured: irregular rubble blobs, diagonal walls and curved walls, scattered with a
-//    clearance between any two obstacles so that the free space stays connected.
+//    clearance between any two obstacles so that the free space stays connected;
+//  - warehouse: rows of solid shelf racks of one depth at one period, split by a cross aisle,
+//    pillars along the front and back aisles, a few pallets in the aisles: repeated structure,
+//    where a map fits one rack period over as well as in its own place.
 // Same options (seed included) -> the same Terrain, bit for bit (see random.hpp).
 //
 // Thread-safety: a TerrainGenerator is immutable; Generate() may run concurrently.
@@ -14,6 +17,7 @@
 #include <cstdint>
 
 #include "common/core/status.hpp"
+#include "common/sim/random.hpp"
 #include "common/sim/terrain.hpp"
 
 namespace fleetmap::sim {
@@ -35,6 +39,10 @@ struct TerrainOptions {
 // side runs the full edge, so the corner cells are covered too). For terrains made elsewhere
 // too (bench/register's repeated structures).
 void AddBoundary(double size, double thickness, Terrain* terrain);
+
+// The warehouse's racks, pillars and pallets (not its boundary) on the square [0, size]^2, drawn
+// from `random`; sets terrain->start in the front aisle. Also bench/register's repeated terrain.
+void AddWarehouse(double size, Random* random, Terrain* terrain);
 
 class TerrainGenerator {
  public:

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <deque>
 #include <vector>
 
@@ -82,7 +83,7 @@ TEST_P(TerrainKinds, BoundaryIsClosedAndFreeSpaceIsConnected) {
 
 INSTANTIATE_TEST_SUITE_P(All, TerrainKinds,
                          ::testing::Values(TerrainKind::kMaze, TerrainKind::kOffice,
-                                           TerrainKind::kUnstructured));
+                                           TerrainKind::kUnstructured, TerrainKind::kWarehouse));
 
 TEST(TerrainGeneratorTest, OfficeHasRoomsWithDoors) {
   const Terrain terrain =
@@ -90,6 +91,31 @@ TEST(TerrainGeneratorTest, OfficeHasRoomsWithDoors) {
   EXPECT_GT(terrain.doors.size(), 10u);
   EXPECT_GT(terrain.polygons.size(), 5u);
   for (const Door& door : terrain.doors) EXPECT_TRUE(door.open);
+}
+
+TEST(TerrainGeneratorTest, WarehouseRacksRepeatAtOnePeriod) {
+  const Terrain terrain =
+      TerrainGenerator::Create({.kind = TerrainKind::kWarehouse, .size = 40.0, .seed = 2})
+          ->Generate();
+  // The racks: furniture boxes starting at the west side aisle, one per row (the cross aisle
+  // splits each row in two; the east halves and the pallets start further east).
+  std::vector<double> rows;
+  double west = 1e9;
+  for (const SolidPolygon& box : terrain.polygons) {
+    if (box.kind == ObstacleKind::kFurniture) west = std::min(west, box.points[0].x());
+  }
+  for (const SolidPolygon& box : terrain.polygons) {
+    if (box.kind == ObstacleKind::kFurniture && box.points[0].x() == west) {
+      rows.push_back(box.points[0].y());
+    }
+  }
+  std::sort(rows.begin(), rows.end());
+  ASSERT_GE(rows.size(), 8u) << "a 40 m warehouse holds rows of racks every 3-3.8 m";
+  const double period = rows[1] - rows[0];
+  EXPECT_GE(period, 3.0);
+  EXPECT_LE(period, 3.8);
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_NEAR(rows[i] - rows[i - 1], period, 1e-9);
+  EXPECT_EQ(TerrainKindName(terrain.kind), "warehouse");
 }
 
 TEST(TerrainGeneratorTest, RefusesBadOptionsNamingThem) {
@@ -105,7 +131,8 @@ TEST(TerrainGeneratorTest, RefusesBadOptionsNamingThem) {
 }
 
 TEST(TerrainGeneratorTest, KindNamesRoundTrip) {
-  for (TerrainKind kind : {TerrainKind::kMaze, TerrainKind::kOffice, TerrainKind::kUnstructured}) {
+  for (TerrainKind kind : {TerrainKind::kMaze, TerrainKind::kOffice, TerrainKind::kUnstructured,
+                           TerrainKind::kWarehouse}) {
     EXPECT_EQ(TerrainKindFromName(TerrainKindName(kind)), kind);
   }
   EXPECT_FALSE(TerrainKindFromName("cave").has_value());
