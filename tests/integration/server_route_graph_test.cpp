@@ -164,7 +164,9 @@ TEST_F(RouteGraphServerTest, ARoomPredictedBehindAClosedDoorIsReachedByPredicted
   for (const route_graph::RouteEdge& edge : predicted->graph.edges) {
     const double a = predicted->graph.FindNode(edge.start)->position.x();
     const double b = predicted->graph.FindNode(edge.end)->position.x();
-    if (std::max(a, b) < 3.8) EXPECT_FALSE(edge.predicted) << "edge " << edge.id;
+    if (std::max(a, b) < 3.8) {
+      EXPECT_FALSE(edge.predicted) << "edge " << edge.id;
+    }
   }
 
   // `fleetmap route-graph --live` writes the fleet's graph for nav2_route, marks and all.

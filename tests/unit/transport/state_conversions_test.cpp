@@ -213,9 +213,10 @@ TEST(StateConversionsTest, RouteGraphRoundTripsAndRefusesEdgesToNowhereAndShared
   message.revision = 7;
   message.graph.robot_radius = 0.3;
   message.graph.clearance_margin = 0.05;
-  message.graph.nodes = {{1, Point2(0.5, -1.0), route_graph::RouteNodeKind::kDoorway, 0.4},
+  message.graph.nodes = {{1, Point2(0.5, -1.0), route_graph::RouteNodeKind::kDoorway, 0.4, false},
                          {2, Point2(3.5, 2.0), route_graph::RouteNodeKind::kJunction, 0.8, true}};
-  message.graph.edges = {{3, 4, 1, 2, 5.0, 0.38, true, 17u}, {5, 6, 2, 1, 4.0, 0.5}};
+  message.graph.edges = {{3, 4, 1, 2, 5.0, 0.38, true, 17u},
+                         {5, 6, 2, 1, 4.0, 0.5, false, std::nullopt}};
   message.graph.message = "a note";
   StatusOr<RouteGraphMessage> back = FromIdl(*ToIdl(message));
   ASSERT_TRUE(back.ok()) << back.status();

@@ -431,10 +431,12 @@ TEST(FleetViewModelTest, TheRouteGraphIsItsNodesAndEdgesByIndexUntilWithdrawn) {
   transport::RouteGraphEvent event;
   event.message.revision = 3;
   event.message.graph.robot_radius = 0.25;
-  event.message.graph.nodes = {{10, Point2(1.0, 2.0), route_graph::RouteNodeKind::kDoorway, 0.4},
-                               {11, Point2(4.0, 2.0), route_graph::RouteNodeKind::kJunction, 0.9},
-                               {12, Point2(4.0, 6.5), route_graph::RouteNodeKind::kDeadEnd, 0.5}};
-  event.message.graph.edges = {{20, 21, 10, 11, 3.0, 0.4}, {22, 23, 11, 12, 4.5, 0.5, true, 7u}};
+  event.message.graph.nodes = {
+      {10, Point2(1.0, 2.0), route_graph::RouteNodeKind::kDoorway, 0.4, false},
+      {11, Point2(4.0, 2.0), route_graph::RouteNodeKind::kJunction, 0.9, false},
+      {12, Point2(4.0, 6.5), route_graph::RouteNodeKind::kDeadEnd, 0.5, false}};
+  event.message.graph.edges = {{20, 21, 10, 11, 3.0, 0.4, false, std::nullopt},
+                               {22, 23, 11, 12, 4.5, 0.5, true, 7u}};
   model.OnRouteGraph(event);
   const json delta = Parse(model.TakeDelta());
   const json& graph = delta["route_graphs"]["fleet"];
