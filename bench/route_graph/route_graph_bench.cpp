@@ -216,25 +216,33 @@ StatusOr<RouteGraphBenchRow> MeasureRouteGraphBench(const std::string& yaml_path
   // One tile changed: a box put down at its most open cell, then taken away; each update timed.
   const std::optional<TileChange> change = PickTileChange(grid, clearance, graph_options.tile_size);
   if (change) {
-    std::vector<double> update_times;
     const grid::OccupancyGrid original = grid;
-    for (int run = 0; run < options.runs; ++run) {
-      for (const bool put : {true, false}) {
-        for (int y = change->box.y0; y < change->box.y0 + change->box.height; ++y) {
-          for (int x = change->box.x0; x < change->box.x0 + change->box.width; ++x) {
-            grid.at(x, y) = put ? grid::kOccupiedValue : original.at(x, y);
+    // Puts the box down and takes it away options.runs times, each update timed; with `object`,
+    // the box is a learned movable object, in the overlay while it stands (the server's overlay,
+    // docs/route-graph.md: the update opens its cells and marks the edges through it).
+    const auto time_updates =
+        [&](const std::optional<route_graph::MovableObject>& object) -> StatusOr<double> {
+      std::vector<double> times;
+      for (int run = 0; run < options.runs; ++run) {
+        for (const bool put : {true, false}) {
+          for (int y = change->box.y0; y < change->box.y0 + change->box.height; ++y) {
+            for (int x = change->box.x0; x < change->box.x0 + change->box.width; ++x) {
+              grid.at(x, y) = put ? grid::kOccupiedValue : original.at(x, y);
+            }
           }
+          const auto start = std::chrono::steady_clock::now();
+          const route_graph::RouteOverlay overlay =
+              put && object ? route_graph::RouteOverlay::Make(grid, {}, {*object})
+                            : route_graph::RouteOverlay();
+          StatusOr<RouteGraph> updated =
+              builder.Update(grid, {change->tile}, {.overlay = &overlay});
+          times.push_back(Milliseconds(std::chrono::steady_clock::now() - start));
+          if (!updated.ok()) return updated.status().WithContext(yaml_path);
         }
-        const auto start = std::chrono::steady_clock::now();
-        StatusOr<RouteGraph> updated = builder.Update(grid, {change->tile});
-        update_times.push_back(Milliseconds(std::chrono::steady_clock::now() - start));
-        if (!updated.ok()) return updated.status().WithContext(yaml_path);
       }
-    }
-    row.update_ms = Median(update_times);
-
-    // The same box as a learned movable object (the server's overlay, docs/route-graph.md): the
-    // update opens its cells and marks the edges through it, then the object goes.
+      return Median(times);
+    };
+    FLEETMAP_ASSIGN_OR_RETURN(row.update_ms, time_updates(std::nullopt));
     route_graph::MovableObject box;
     box.patch.width = change->box.width;
     box.patch.height = change->box.height;
@@ -245,23 +253,7 @@ StatusOr<RouteGraphBenchRow> MeasureRouteGraphBench(const std::string& yaml_path
                                        change->box.y0 + change->box.height - 1);
     const Point2 centre = 0.5 * (corner + far);
     box.sightings = {Pose2{centre.x(), centre.y(), 0.0}};
-    std::vector<double> object_times;
-    for (int run = 0; run < options.runs; ++run) {
-      for (const bool put : {true, false}) {
-        for (int y = change->box.y0; y < change->box.y0 + change->box.height; ++y) {
-          for (int x = change->box.x0; x < change->box.x0 + change->box.width; ++x) {
-            grid.at(x, y) = put ? grid::kOccupiedValue : original.at(x, y);
-          }
-        }
-        const auto start = std::chrono::steady_clock::now();
-        const route_graph::RouteOverlay overlay =
-            put ? route_graph::RouteOverlay::Make(grid, {}, {box}) : route_graph::RouteOverlay();
-        StatusOr<RouteGraph> updated = builder.Update(grid, {change->tile}, {.overlay = &overlay});
-        object_times.push_back(Milliseconds(std::chrono::steady_clock::now() - start));
-        if (!updated.ok()) return updated.status().WithContext(yaml_path);
-      }
-    }
-    row.update_object_ms = Median(object_times);
+    FLEETMAP_ASSIGN_OR_RETURN(row.update_object_ms, time_updates(box));
   }
   return row;
 }

@@ -343,6 +343,26 @@ TEST(ViewBrowserTest, ShowsTheLiveFleetAsAPersonWouldSeeIt) {
   participant->reset();
 }
 
+// The newest route graph `reader` receives once it satisfies `wanted` and has not changed for 3 s,
+// or the last one by the deadline (nothing if none came).
+template <typename Wanted>
+std::optional<transport::RouteGraphMessage> SettledRouteGraph(transport::RouteGraphReader& reader,
+                                                              WakeUp& wake_up, Wanted wanted) {
+  std::optional<transport::RouteGraphMessage> newest;
+  auto last_change = Clock::now();
+  const auto deadline = last_change + kDeadline;
+  while (Clock::now() < deadline &&
+         (!newest || !wanted(*newest) || Clock::now() - last_change < seconds(3))) {
+    wake_up.WaitFor(milliseconds(100));
+    for (transport::RouteGraphEvent& event : reader.Drain()) {
+      if (event.kind != transport::RouteGraphEvent::Kind::kSample) continue;
+      newest = std::move(event.message);
+      last_change = Clock::now();
+    }
+  }
+  return newest;
+}
+
 // The route graph (docs/route-graph.md) of a live server is drawn as a layer: the page's edges are
 // those of the newest revision the server published.
 TEST(ViewBrowserTest, DrawsTheServersRouteGraph) {
@@ -367,17 +387,8 @@ TEST(ViewBrowserTest, DrawsTheServersRouteGraph) {
   testing::HeadlessChromium& page = **browser;
 
   // The newest revision, once the graph has stopped changing.
-  std::optional<transport::RouteGraphMessage> newest;
-  auto last_change = Clock::now();
-  const auto deadline = last_change + kDeadline;
-  while (Clock::now() < deadline && (!newest || Clock::now() - last_change < seconds(3))) {
-    wake_up->WaitFor(milliseconds(100));
-    for (transport::RouteGraphEvent& event : (*graphs)->Drain()) {
-      if (event.kind != transport::RouteGraphEvent::Kind::kSample) continue;
-      newest = std::move(event.message);
-      last_change = Clock::now();
-    }
-  }
+  const std::optional<transport::RouteGraphMessage> newest = SettledRouteGraph(
+      **graphs, *wake_up, [](const transport::RouteGraphMessage&) { return true; });
   ASSERT_TRUE(newest.has_value()) << server.Output();
   ASSERT_FALSE(newest->graph.edges.empty()) << newest->graph.message;
   const std::string edges_drawn = "Number(document.getElementById('map').dataset.routeEdges) === " +
@@ -436,22 +447,14 @@ TEST(ViewBrowserTest, DrawsTheRouteGraphsPredictedEdgesApart) {
   testing::HeadlessChromium& page = **browser;
 
   // The newest revision with predicted edges, once the graph has stopped changing.
-  std::optional<transport::RouteGraphMessage> newest;
-  auto last_change = Clock::now();
-  const auto deadline = last_change + kDeadline;
   const auto predicted_edges = [](const route_graph::RouteGraph& graph) {
     return std::count_if(graph.edges.begin(), graph.edges.end(),
                          [](const route_graph::RouteEdge& edge) { return edge.predicted; });
   };
-  while (Clock::now() < deadline && (!newest || predicted_edges(newest->graph) == 0 ||
-                                     Clock::now() - last_change < seconds(3))) {
-    wake_up->WaitFor(milliseconds(100));
-    for (transport::RouteGraphEvent& event : (*graphs)->Drain()) {
-      if (event.kind != transport::RouteGraphEvent::Kind::kSample) continue;
-      newest = std::move(event.message);
-      last_change = Clock::now();
-    }
-  }
+  const std::optional<transport::RouteGraphMessage> newest =
+      SettledRouteGraph(**graphs, *wake_up, [&](const transport::RouteGraphMessage& message) {
+        return predicted_edges(message.graph) > 0;
+      });
   ASSERT_TRUE(newest.has_value()) << server.Output();
   const auto predicted = predicted_edges(newest->graph);
   ASSERT_GT(predicted, 0) << server.Output();
