@@ -65,6 +65,8 @@ for events in 2 5; do
   run "objects_small$events" "$fleetmap" bench objects --small-pieces 20 --seed 1 \
     --speck-events "$events" --out "$out/objects_small$events"
 done
+run objects_contrast "$fleetmap" bench objects --contrast --data-sets 3 --starts 20 \
+  --out "$out/objects_contrast"
 run register "$fleetmap" bench register --maps "$maps" --pairs-per-overlap 12 --seed 1 \
   --json "$out/register.json" --csv "$out/register.csv"
 run route_graph "$fleetmap" bench route-graph --maps "$maps" --runs 5 \

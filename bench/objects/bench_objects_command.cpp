@@ -9,7 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
+#include <utility>
+#include <vector>
 
+#include "bench/objects/contrast_experiment.hpp"
 #include "bench/objects/object_experiment.hpp"
 #include "bench/objects/real_plan_experiment.hpp"
 #include "bench/objects/real_plan_series.hpp"
@@ -51,6 +54,27 @@ nlohmann::json ToJson(const ModelComparison& c) {
           {"seconds_starts", c.seconds_starts},
           {"seconds_selection", c.seconds_selection},
           {"seconds_cross_validation", c.seconds_cross_validation}};
+}
+
+nlohmann::json ToJson(const ContrastModel& m) {
+  return {{"good", m.good},
+          {"near_best", m.near_best},
+          {"test_log_likelihood", m.test_log_likelihood},
+          {"train_log_likelihood", m.train_log_likelihood},
+          {"seconds", m.seconds}};
+}
+
+// Writes each (path, contents) atomically; on the first failure prints its message (which names
+// the file) and returns false.
+bool WriteOutputs(const std::vector<std::pair<std::string, std::string>>& files,
+                  std::ostream& err) {
+  for (const auto& [path, contents] : files) {
+    if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
+      err << "fleetmap bench objects: " << written.message() << "\n";
+      return false;
+    }
+  }
+  return true;
 }
 
 // The floor YAML files named by `inputs`: files as given, directories' *.yaml sorted by name.
@@ -207,16 +231,106 @@ int RunRealPlans(const BenchObjectsOptions& options, std::ostream& out, std::ost
                                  {"memory_budget_mb", learn.memory_budget_mb},
                                  {"machine", MachineDescription()},
                                  {"floors", rows}};
-    for (const auto& [path, contents] :
-         {std::pair{options.out_dir + "/real_plans.json", json.dump(2) + "\n"},
-          std::pair{options.out_dir + "/real_plans.csv", csv.str()}}) {
-      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
-        err << name << written.message() << "\n";
-        return cli::kExitBadInput;
-      }
+    if (!WriteOutputs({{options.out_dir + "/real_plans.json", json.dump(2) + "\n"},
+                       {options.out_dir + "/real_plans.csv", csv.str()}},
+                      err)) {
+      return cli::kExitBadInput;
     }
   }
   return cli::kExitOk;
+}
+
+// The flat/hierarchical contrast: prints its table as each condition finishes (progress on
+// `err`), writes DIR/contrast.md, .csv and .json.
+int RunContrast(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
+  const std::string name = "fleetmap bench objects: ";
+  if (options.contrast_data_sets < 1 || options.contrast_data_sets > 100) {
+    err << name << "--data-sets " << options.contrast_data_sets << " must be in [1, 100]\n";
+    return cli::kExitBadInput;
+  }
+  std::vector<ContrastCondition> conditions;
+  for (const ContrastCondition& c : ContrastConditions()) {
+    const auto& wanted = options.contrast_conditions;
+    if (wanted.empty() || std::find(wanted.begin(), wanted.end(), c.name) != wanted.end()) {
+      conditions.push_back(c);
+    }
+  }
+  if (conditions.size() < std::max<size_t>(1, options.contrast_conditions.size())) {
+    std::string known;
+    for (const ContrastCondition& c : ContrastConditions()) known += " '" + c.name + "'";
+    err << name << "--condition names an unknown condition; known:" << known << "\n";
+    return cli::kExitBadInput;
+  }
+  std::ostringstream report;
+  report << "Flat against hierarchical EM (the object-learning paper's contrast): good starts of "
+         << options.starts << " random starts per model on each of " << options.contrast_data_sets
+         << " simulated data sets (data seeds " << options.seed << "-"
+         << options.seed + options.contrast_data_sets - 1
+         << "), both models from the same starts at the true (N, M). good: the true partition "
+            "(IsGoodSolution); best optimum: within "
+         << Fixed(ContrastRunOptions{}.near_best_nats, 0)
+         << " nats of the best start's training log-likelihood; test log-lik: leave one map "
+            "out, summed over the data sets.\n\n"
+         << "| condition | what differs from the paper's set-up | objects, shapes | snapshots | "
+            "good: hierarchical / flat | best optimum: hierarchical / flat | test log-lik: "
+            "hierarchical - flat | s: hierarchical / flat |\n"
+            "|---|---|---|---|---|---|---|---|\n";
+  out << report.str();
+  nlohmann::json rows = nlohmann::json::array();
+  std::ostringstream csv;
+  csv << "condition,data_sets,maps,snapshots,objects,shapes,starts,hierarchical_good,flat_good,"
+         "hierarchical_near_best,flat_near_best,hierarchical_test_log_likelihood,"
+         "flat_test_log_likelihood,hierarchical_seconds,flat_seconds\n";
+  for (size_t i = 0; i < conditions.size(); ++i) {
+    err << name << "contrast " << i + 1 << "/" << conditions.size() << ": " << conditions[i].name
+        << "\n";
+    ContrastRunOptions run;
+    run.first_seed = options.seed;
+    run.data_sets = options.contrast_data_sets;
+    run.starts = options.starts;
+    const StatusOr<ContrastRow> row = RunContrastCondition(conditions[i], run);
+    if (!row.ok()) {
+      err << name << "condition '" << conditions[i].name << "': " << row.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    std::ostringstream line;
+    const ContrastModel& h = row->hierarchical;
+    const ContrastModel& f = row->flat;
+    line << "| " << row->condition << " | " << row->changed << " | " << row->true_objects << ", "
+         << row->true_templates << " | " << row->snapshots << " | " << h.good << " / " << f.good
+         << " of " << row->starts << " | " << h.near_best << " / " << f.near_best << " | "
+         << Fixed(h.test_log_likelihood - f.test_log_likelihood, 1) << " | " << Fixed(h.seconds, 1)
+         << " / " << Fixed(f.seconds, 1) << " |\n";
+    out << line.str() << std::flush;
+    report << line.str();
+    rows.push_back({{"condition", row->condition},
+                    {"changed", row->changed},
+                    {"data_sets", row->data_sets},
+                    {"maps", row->maps},
+                    {"snapshots", row->snapshots},
+                    {"true_objects", row->true_objects},
+                    {"true_templates", row->true_templates},
+                    {"starts", row->starts},
+                    {"hierarchical", ToJson(row->hierarchical)},
+                    {"flat", ToJson(row->flat)}});
+    csv << row->condition << "," << row->data_sets << "," << row->maps << "," << row->snapshots
+        << "," << row->true_objects << "," << row->true_templates << "," << row->starts << ","
+        << h.good << "," << f.good << "," << h.near_best << "," << f.near_best << ","
+        << Fixed(h.test_log_likelihood, 3) << "," << Fixed(f.test_log_likelihood, 3) << ","
+        << Fixed(h.seconds, 3) << "," << Fixed(f.seconds, 3) << "\n";
+  }
+  if (options.out_dir.empty()) return cli::kExitOk;
+  const nlohmann::json json = {{"starts_per_data_set", options.starts},
+                               {"near_best_nats", ContrastRunOptions{}.near_best_nats},
+                               {"data_sets", options.contrast_data_sets},
+                               {"first_seed", options.seed},
+                               {"machine", MachineDescription()},
+                               {"conditions", rows}};
+  const bool written = WriteOutputs({{options.out_dir + "/contrast.md", report.str()},
+                                     {options.out_dir + "/contrast.csv", csv.str()},
+                                     {options.out_dir + "/contrast.json", json.dump(2) + "\n"}},
+                                    err);
+  return written ? cli::kExitOk : cli::kExitBadInput;
 }
 
 }  // namespace
@@ -262,15 +376,13 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
     }
     const std::string report = SmallPieceReport(small, *result);
     out << report;
-    if (!options.out_dir.empty()) {
-      const Status written = WriteFileAtomically(options.out_dir + "/small_pieces.md", report);
-      if (!written.ok()) {
-        err << "fleetmap bench objects: " << written.message() << "\n";
-        return cli::kExitBadInput;
-      }
+    if (!options.out_dir.empty() &&
+        !WriteOutputs({{options.out_dir + "/small_pieces.md", report}}, err)) {
+      return cli::kExitBadInput;
     }
     return cli::kExitOk;
   }
+  if (options.contrast) return RunContrast(options, out, err);
   if (options.skip_sim)
     return options.floors.empty() ? cli::kExitOk : RunRealPlans(options, out, err);
   ObjectDatasetOptions dataset_options;
@@ -348,13 +460,10 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
           << c->chosen_templates << "," << Fixed(c->seconds_starts, 3) << ","
           << Fixed(c->seconds_selection, 3) << "," << Fixed(c->seconds_cross_validation, 3) << "\n";
     }
-    for (const auto& [path, contents] :
-         {std::pair{options.out_dir + "/results.json", json.dump(2) + "\n"},
-          std::pair{options.out_dir + "/results.csv", csv.str()}}) {
-      if (const Status written = WriteFileAtomically(path, contents); !written.ok()) {
-        err << "fleetmap bench objects: " << written.message() << "\n";
-        return cli::kExitBadInput;
-      }
+    if (!WriteOutputs({{options.out_dir + "/results.json", json.dump(2) + "\n"},
+                       {options.out_dir + "/results.csv", csv.str()}},
+                      err)) {
+      return cli::kExitBadInput;
     }
   }
   if (!options.floors.empty()) return RunRealPlans(options, out, err);
@@ -403,6 +512,13 @@ void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
       ->add_option("--isolation-radius", options->isolation_radius,
                    "small pieces: isolation radius (m; 0: recurrence only)")
       ->capture_default_str();
+  command->add_flag("--contrast", options->contrast,
+                    "flat against hierarchical EM over conditions (only this benchmark)");
+  command
+      ->add_option("--data-sets", options->contrast_data_sets, "contrast: data seeds per condition")
+      ->capture_default_str();
+  command->add_option("--condition", options->contrast_conditions,
+                      "contrast: conditions to run (default: all)");
   command->add_option("--memory-budget", options->memory_budget_mb,
                       "the learner's memory budget on real plans, MB (0: default)");
   command->callback(

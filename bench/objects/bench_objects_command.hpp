@@ -17,6 +17,10 @@
 // With `--small-pieces N` (and only that): small objects against SLAM specks on N map pairs
 // (small_piece_experiment.hpp): recall of pieces of 4-7 cells, precision, false objects per
 // 100 m2 of noise-only pairs; DIR/small_pieces.md.
+//
+// With `--contrast` (and only that): the paper's flat/hierarchical contrast searched over
+// conditions (contrast_experiment.hpp), good starts of each model per condition over
+// `--data-sets` simulated data sets; DIR/contrast.md, contrast.csv, contrast.json.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -48,6 +52,11 @@ struct BenchObjectsOptions {
   double speck_events = 5.0;      // per 100 m2 per map
   double isolation_radius = 0.5;  // SnapshotOptions::isolation_radius_m
   bool small_in_one_map = false;  // SmallPieceOptions::small_in_one_map
+  // The flat/hierarchical contrast (contrast_experiment.hpp): every condition on this many data
+  // seeds from --seed, --starts starts each. When set, only this benchmark runs.
+  bool contrast = false;
+  int contrast_data_sets = 3;
+  std::vector<std::string> contrast_conditions;  // names; empty: all
 };
 
 // Bad options print a message naming the option and return cli::kExitBadInput.

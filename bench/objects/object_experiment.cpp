@@ -1,5 +1,6 @@
 #include "bench/objects/object_experiment.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -124,6 +125,50 @@ bool IsGoodSolution(const ObjectDataset& data, const std::vector<int>& snapshot_
   return SamePartition(classes, templates);
 }
 
+RandomStarts RunRandomStarts(const ObjectDataset& data, const ol::EmProblem& problem,
+                             int num_objects, int num_templates, bool hierarchical, int starts,
+                             const ol::LearnOptions& options) {
+  RandomStarts result;
+  const auto start_time = std::chrono::steady_clock::now();
+  ol::LearnOptions single = options;
+  single.hierarchical = hierarchical;
+  single.restarts = 1;
+  for (int i = 0; i < starts; ++i) {
+    single.seed = options.seed + static_cast<uint32_t>(i);
+    const ol::EmResult run = ol::BestOfRestarts(problem, num_objects, num_templates, single);
+    result.train_log_likelihood.push_back(run.log_likelihood);
+    result.good += IsGoodSolution(data, run.snapshot_object, run.object_template, hierarchical);
+  }
+  result.seconds = Seconds(start_time);
+  return result;
+}
+
+int NearBest(const std::vector<double>& log_likelihoods, double tolerance) {
+  if (log_likelihoods.empty()) return 0;
+  const double best = *std::max_element(log_likelihoods.begin(), log_likelihoods.end());
+  return static_cast<int>(std::count_if(log_likelihoods.begin(), log_likelihoods.end(),
+                                        [&](double ll) { return ll >= best - tolerance; }));
+}
+
+int ObjectsToLearn(const ObjectDataset& data, const ol::EmProblem& problem) {
+  return std::max(data.true_objects, problem.max_per_map());
+}
+
+double LeaveOneMapOutLogLikelihood(const ol::EmProblem& problem, int num_objects, int num_templates,
+                                   const ol::LearnOptions& options) {
+  double sum = 0.0;
+  for (size_t t = 0; t < problem.maps.size(); ++t) {
+    if (problem.maps[t].empty()) continue;
+    const ol::EmProblem train = WithoutMap(problem, static_cast<int>(t));
+    if (train.snapshots.size() < static_cast<size_t>(num_objects)) continue;
+    const ol::EmResult model = ol::BestOfRestarts(train, num_objects, num_templates, options);
+    std::vector<scene::Patch> held_out;
+    for (int s : problem.maps[t]) held_out.push_back(problem.snapshots[s]);
+    sum += ol::HeldOutLogLikelihood(held_out, model.objects, options.em);
+  }
+  return sum;
+}
+
 ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts,
                                            const ol::LearnOptions& options) {
   ObjectExperimentResult result;
@@ -134,7 +179,7 @@ ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts
   result.true_objects = data.true_objects;
   result.true_templates = data.true_templates;
   const ol::EmProblem problem = ol::MakeEmProblem(data.snapshots);
-  const int n = std::max(data.true_objects, problem.max_per_map());
+  const int n = ObjectsToLearn(data, problem);
   const int m = data.true_templates;
 
   for (const bool hierarchical : {true, false}) {
@@ -143,28 +188,13 @@ ObjectExperimentResult RunObjectExperiment(const ObjectDataset& data, int starts
     c.starts = starts;
     ol::LearnOptions run_options = options;
     run_options.hierarchical = hierarchical;
-    // The random starts: one EM run each, from the same seeds for both models.
+    const RandomStarts random_starts =
+        RunRandomStarts(data, problem, n, m, hierarchical, starts, run_options);
+    c.good = random_starts.good;
+    c.train_log_likelihood = random_starts.train_log_likelihood;
+    c.seconds_starts = random_starts.seconds;
     auto start_time = std::chrono::steady_clock::now();
-    ol::LearnOptions single = run_options;
-    single.restarts = 1;
-    for (int i = 0; i < starts; ++i) {
-      single.seed = options.seed + static_cast<uint32_t>(i);
-      const ol::EmResult run = ol::BestOfRestarts(problem, n, m, single);
-      c.train_log_likelihood.push_back(run.log_likelihood);
-      c.good += IsGoodSolution(data, run.snapshot_object, run.object_template, hierarchical);
-    }
-    c.seconds_starts = Seconds(start_time);
-    // Leave one map out: train on the others at the true (N, M), score the held-out map.
-    start_time = std::chrono::steady_clock::now();
-    for (size_t t = 0; t < problem.maps.size(); ++t) {
-      if (problem.maps[t].empty()) continue;
-      const ol::EmProblem train = WithoutMap(problem, static_cast<int>(t));
-      if (train.snapshots.size() < static_cast<size_t>(n)) continue;
-      const ol::EmResult model = ol::BestOfRestarts(train, n, m, run_options);
-      std::vector<scene::Patch> held_out;
-      for (int s : problem.maps[t]) held_out.push_back(problem.snapshots[s]);
-      c.test_log_likelihood += ol::HeldOutLogLikelihood(held_out, model.objects, options.em);
-    }
+    c.test_log_likelihood = LeaveOneMapOutLogLikelihood(problem, n, m, run_options);
     c.seconds_cross_validation = Seconds(start_time);
     // Model selection.
     start_time = std::chrono::steady_clock::now();

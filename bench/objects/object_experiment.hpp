@@ -10,6 +10,7 @@
 
 #include "common/core/status.hpp"
 #include "common/grid/occupancy_grid.hpp"
+#include "common/object_learning/em_problem.hpp"
 #include "common/object_learning/object_learner.hpp"
 #include "common/object_learning/snapshot_extractor.hpp"
 #include "common/sim/mapping_sessions.hpp"
@@ -73,6 +74,32 @@ struct ObjectExperimentResult {
   ModelComparison hierarchical;
   ModelComparison flat;
 };
+
+// `starts` single EM runs of one model at (num_objects, num_templates), from the seeds
+// options.seed, options.seed + 1, ...: how many reach the good solution (IsGoodSolution), the
+// training log-likelihood of each and their time together.
+struct RandomStarts {
+  int good = 0;
+  std::vector<double> train_log_likelihood;
+  double seconds = 0.0;
+};
+RandomStarts RunRandomStarts(const ObjectDataset& data, const object_learning::EmProblem& problem,
+                             int num_objects, int num_templates, bool hierarchical, int starts,
+                             const object_learning::LearnOptions& options);
+
+// How many of `log_likelihoods` are within `tolerance` nats of the largest: the starts that
+// reached an optimum as good as the best any start found (the paper's "equally good model").
+int NearBest(const std::vector<double>& log_likelihoods, double tolerance);
+
+// Leave one map out: for each map with snapshots, train on the others at (num_objects,
+// num_templates) (options.restarts starts, the best kept) and score the held-out map's snapshots;
+// the sum over the maps. Snapshots are extracted once from all maps (differencing needs them).
+double LeaveOneMapOutLogLikelihood(const object_learning::EmProblem& problem, int num_objects,
+                                   int num_templates, const object_learning::LearnOptions& options);
+
+// The number of objects EM is run with on `data`: the true count, or more if one map shows more
+// snapshots (mutual exclusion needs an object for each).
+int ObjectsToLearn(const ObjectDataset& data, const object_learning::EmProblem& problem);
 
 // Runs `starts` random starts of each model at the true (N, M), leave-one-map-out cross
 // validation of each at the true (N, M), and model selection with each.

@@ -128,6 +128,42 @@ TEST(CliObjectsTest, BadInputNamesTheFileAndExitsTwo) {
   std::filesystem::remove_all(dir);
 }
 
+// The flat/hierarchical contrast at a small size: one condition, one data set, two starts; the
+// table, the CSV and the JSON agree. On data seed 1 both starts of both models reach the true
+// partition and the same optimum (docs/results.md: 19 of 20 each).
+TEST(CliObjectsTest, TheContrastBenchmarkReportsGoodStartsOfBothModels) {
+  const std::string dir = TempDir("contrast");
+  const process::CommandResult run =
+      RunFleetmap({"bench", "objects", "--contrast", "--condition", "paper", "--data-sets", "1",
+                   "--starts", "2", "--out", dir});
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_THAT(run.err, HasSubstr("contrast 1/1: paper"));  // progress
+  EXPECT_THAT(run.out, HasSubstr("| paper | none: 2 chairs, a bin, a box"));
+  const nlohmann::json json = nlohmann::json::parse(ReadFile(dir + "/contrast.json"));
+  ASSERT_EQ(json["conditions"].size(), 1u);
+  const nlohmann::json& row = json["conditions"][0];
+  EXPECT_EQ(row["condition"], "paper");
+  EXPECT_EQ(row["starts"].get<int>(), 2);
+  for (const char* model : {"hierarchical", "flat"}) {
+    EXPECT_EQ(row[model]["train_log_likelihood"].size(), 2u) << model;
+    EXPECT_EQ(row[model]["near_best"].get<int>(), 2) << model;
+    EXPECT_EQ(row[model]["good"].get<int>(), 2) << model;
+    EXPECT_NE(row[model]["test_log_likelihood"].get<double>(), 0.0) << model;
+  }
+  EXPECT_THAT(ReadFile(dir + "/contrast.csv"), HasSubstr("\npaper,1,9,"));
+  EXPECT_THAT(ReadFile(dir + "/contrast.md"), HasSubstr("| paper |"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CliObjectsTest, AnUnknownContrastConditionIsNamedWithTheKnownOnes) {
+  const process::CommandResult run =
+      RunFleetmap({"bench", "objects", "--contrast", "--condition", "upside-down"});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_THAT(run.err, HasSubstr("unknown condition"));
+  EXPECT_THAT(run.err, HasSubstr("'many-of-few'"));
+  EXPECT_EQ(RunFleetmap({"bench", "objects", "--contrast", "--data-sets", "0"}).exit_code, 2);
+}
+
 // An output that cannot be written is an error naming the file (it used to be ignored, exit 0).
 // model.json is a non-empty directory, so the rename over it fails even for root.
 TEST(CliObjectsTest, UnwritableOutputNamesTheFileAndExitsTwo) {
