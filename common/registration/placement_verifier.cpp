@@ -42,6 +42,26 @@ std::vector<std::pair<int, int>> ShiftsWithin(int radius) {
   return shifts;
 }
 
+// B's grid metres to A's under `t`, each point moved by its block's drift shift (none when
+// `drift` is empty). The returned move refers to `t` and `drift`, which must outlive it.
+auto BToA(const GridTransform& t, const DriftCorrection& drift) {
+  return [&t, &drift](const Point2& p) {
+    return drift.empty() ? t.Apply(p) : Point2(t.Apply(p) + drift.ShiftAt(p));
+  };
+}
+
+// A's grid metres to B's: the inverse of BToA (the drift shift turned into B's frame).
+auto AToB(const GridTransform& t, const DriftCorrection& drift) {
+  const GridTransform b_from_a = t.Inverse();
+  const double c = std::cos(t.yaw), s = std::sin(t.yaw);
+  return [b_from_a, c, s, &drift](const Point2& p) {
+    const Point2 q = b_from_a.Apply(p);
+    if (drift.empty()) return q;
+    const Point2 d = drift.ShiftAt(q);
+    return Point2(q - Point2(c * d.x() + s * d.y(), -s * d.x() + c * d.y()));
+  };
+}
+
 }  // namespace
 
 GridTransform GridTransform::Inverse() const {
@@ -101,14 +121,17 @@ int64_t PlacementVerifier::Side::Index(const Point2& p) const {
   return static_cast<int64_t>(y) * width + x;
 }
 
-void PlacementVerifier::Tally::Add(const Side& to, int64_t index, double weight) {
-  if (index < 0) return;
+int PlacementVerifier::Side::Judge(int64_t index) const {
+  if (index < 0) return 0;
   const size_t k = static_cast<size_t>(index);
-  if (to.near_occupied[k]) {
-    agree += weight;
-  } else if (to.state[k] == kFree) {
-    contradict += weight;
-  }
+  if (near_occupied[k]) return 1;
+  return state[k] == kFree ? -1 : 0;
+}
+
+void PlacementVerifier::Tally::Add(const Side& to, int64_t index, double weight) {
+  const int judged = to.Judge(index);
+  if (judged > 0) agree += weight;
+  if (judged < 0) contradict += weight;
 }
 
 PlacementVerifier::PlacementVerifier(const grid::OccupancyGrid& a, const grid::OccupancyGrid& b,
@@ -274,20 +297,36 @@ Evidence PlacementVerifier::CompareCells(const Side& from, const Side& to, Move 
 }
 
 Evidence PlacementVerifier::BInA(const GridTransform& t, const DriftCorrection& drift) const {
-  return CompareCells(b_, a_, [&](const Point2& p) {
-    return drift.empty() ? t.Apply(p) : Point2(t.Apply(p) + drift.ShiftAt(p));
-  });
+  return CompareCells(b_, a_, BToA(t, drift));
 }
 
 Evidence PlacementVerifier::AInB(const GridTransform& t, const DriftCorrection& drift) const {
-  const GridTransform b_from_a = t.Inverse();
-  const double c = std::cos(t.yaw), s = std::sin(t.yaw);
-  return CompareCells(a_, b_, [&](const Point2& p) {
-    const Point2 q = b_from_a.Apply(p);
-    if (drift.empty()) return q;
-    const Point2 d = drift.ShiftAt(q);
-    return Point2(q - Point2(c * d.x() + s * d.y(), -s * d.x() + c * d.y()));
-  });
+  return CompareCells(a_, b_, AToB(t, drift));
+}
+
+template <typename MoveFirst, typename MoveSecond>
+void PlacementVerifier::CountDisagreements(const Side& from, const Side& to, MoveFirst first,
+                                           MoveSecond second, Discrimination* d) {
+  for (int y = 0; y < from.height; ++y) {
+    for (int x = 0; x < from.width; ++x) {
+      if (from.state[static_cast<size_t>(y) * from.width + x] != kOccupied) continue;
+      const Point2 p((x + 0.5) * from.res, (y + 0.5) * from.res);
+      const int under_first = to.Judge(to.Index(first(p)));
+      const int under_second = to.Judge(to.Index(second(p)));
+      if (under_first > 0 && under_second < 0) ++d->for_first;
+      if (under_second > 0 && under_first < 0) ++d->for_second;
+    }
+  }
+}
+
+Discrimination PlacementVerifier::Discriminate(const GridTransform& first,
+                                               const DriftCorrection& first_drift,
+                                               const GridTransform& second,
+                                               const DriftCorrection& second_drift) const {
+  Discrimination d;
+  CountDisagreements(b_, a_, BToA(first, first_drift), BToA(second, second_drift), &d);
+  CountDisagreements(a_, b_, AToB(first, first_drift), AToB(second, second_drift), &d);
+  return d;
 }
 
 }  // namespace fleetmap::registration

@@ -79,6 +79,13 @@ struct Evidence {
   int64_t contradict = 0;       // `from` occupied cells on a free `to` cell with none near
 };
 
+// Where two placements disagree: occupied cells (of either map, every cell) that one placement
+// lays on the other map's walls and the other on its free space with no wall near.
+struct Discrimination {
+  int64_t for_first = 0;   // agree under the first placement, contradict under the second
+  int64_t for_second = 0;  // the reverse
+};
+
 class PlacementVerifier {
  public:
   struct Verdict {
@@ -103,6 +110,12 @@ class PlacementVerifier {
   // shift (none when `drift` is empty).
   Evidence BInA(const GridTransform& t, const DriftCorrection& drift) const;
   Evidence AInB(const GridTransform& t, const DriftCorrection& drift) const;
+  // Two placements compared only where they disagree (each with its drift correction): the
+  // evidence that tells a placement from its twin on repeated structure, which the whole-map
+  // figures dilute with the walls both explain (a warehouse's racks against its pallets).
+  Discrimination Discriminate(const GridTransform& first, const DriftCorrection& first_drift,
+                              const GridTransform& second,
+                              const DriftCorrection& second_drift) const;
 
  private:
   static constexpr uint8_t kUnknown = 0, kFree = 1, kOccupied = 2;
@@ -114,6 +127,9 @@ class PlacementVerifier {
     std::vector<Point2> occupied_points;
     double occupied_weight = 1.0;  // cells per sample
     int64_t Index(const Point2& p) const;
+    // An occupied cell of the other map landing at `index`: +1 on a wall (within the tolerance),
+    // -1 on free space with none near, 0 on unknown or off the grid.
+    int Judge(int64_t index) const;
   };
   struct Tally {
     double agree = 0.0, contradict = 0.0;
@@ -128,6 +144,9 @@ class PlacementVerifier {
   // `moved` takes a `from` grid point to the `to` grid.
   template <typename Move>
   static Evidence CompareCells(const Side& from, const Side& to, Move moved);
+  template <typename MoveFirst, typename MoveSecond>
+  static void CountDisagreements(const Side& from, const Side& to, MoveFirst first,
+                                 MoveSecond second, Discrimination* d);
   // The shift (A's grid metres) of each block, chosen as the one that verifies best within what
   // drift allows at the block's distance from `anchor` (A's grid metres).
   Verdict ShiftBlocks(const GridTransform& t, const Point2& anchor) const;

@@ -5,9 +5,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,22 @@ std::string Fixed(double value, int digits) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
   return buffer;
+}
+
+// What the cells where the best placement and its twin disagree say, for a refusal.
+std::string TellingApart(const std::optional<Discrimination>& untold, double resolution,
+                         const RegistrationOptions& options) {
+  if (!untold) return "";
+  const Discrimination& d = *untold;
+  return std::string("; where the two disagree, ")
+      .append(Num(d.for_first * resolution))
+      .append(" m of walls favour the best and ")
+      .append(Num(d.for_second * resolution))
+      .append(" m the other (")
+      .append(Num(options.symmetry_telling_m))
+      .append(" m needed, at most ")
+      .append(Num(100.0 * options.symmetry_telling_ratio))
+      .append(" % against)");
 }
 
 // A grid reduced by an integer factor: a coarse cell is occupied when any of its cells is.
@@ -400,6 +418,11 @@ Status RegistrationOptions::Validate() const {
         "registration symmetry_min_yaw_deg must be in [0, 180], symmetry_min_agreement and "
         "symmetry_max_consistency_drop in [0, 1]");
   }
+  if (!(symmetry_telling_m >= 0.0 && symmetry_telling_m <= 100.0) ||
+      !(symmetry_telling_ratio >= 0.0 && symmetry_telling_ratio <= 1.0)) {
+    return InvalidArgumentError(
+        "registration symmetry_telling_m must be in [0, 100] and symmetry_telling_ratio in [0, 1]");
+  }
   if (min_agreeing_cells < 1) return InvalidArgumentError("registration min_agreeing_cells < 1");
   if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) {
     return InvalidArgumentError("registration min_overlap must be in [0, 1]");
@@ -440,6 +463,8 @@ void RegistrationOptions::Describe(OptionsPrinter& out) const {
   out.Add("symmetry_min_yaw_deg", symmetry_min_yaw_deg);
   out.Add("symmetry_min_agreement", symmetry_min_agreement);
   out.Add("symmetry_max_consistency_drop", symmetry_max_consistency_drop);
+  out.Add("symmetry_telling_m", symmetry_telling_m);
+  out.Add("symmetry_telling_ratio", symmetry_telling_ratio);
   out.Add("drift_block_m", drift_block_m);
   out.Add("max_drift_per_m", max_drift_per_m);
   out.Add("max_drift_cells", max_drift_cells);
@@ -646,32 +671,50 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   }
   std::sort(verified.begin(), verified.end(), by_value);
   const GridTransform grid_a_from_b = verified.front().t;
+
   // Ambiguity: a clearly different placement that verifies nearly as well (a mirror of a
-  // symmetric arena, a corridor, repeated rooms) makes the match ambiguous.
-  const double best_value = verified.front().verdict.value;
-  double ratio = best_value > 0.0 ? 0.0 : 1.0;
-  if (best_value > 0.0 && verified.size() > 1) {
-    ratio = std::clamp(verified[1].verdict.value / best_value, 0.0, 1.0);
-  }
+  // symmetric arena, a corridor, repeated rooms) makes the match ambiguous: a twin.
   // A turned placement that explains a good share of B's walls as consistently as the best one
   // means the structure repeats under a rotation (a point-symmetric arena's mirror, which may
-  // even overlap A more than the truth, so its value ratio says nothing): ambiguous, whatever
-  // the values. Shifts at the same yaw are left to the value ratio: sliding along one long wall
+  // even overlap A more than the truth, so its value ratio says nothing): a twin, whatever the
+  // values. Shifts at the same yaw are left to the value ratio: sliding along one long wall
   // keeps much of the agreement without being another explanation of B.
   const auto consistency = [](const PlacementVerifier::Verdict& v) {
     return v.agree + v.contradict > 0.0 ? v.agree / (v.agree + v.contradict) : 0.0;
   };
+  const PlacementVerifier::Verdict& best = verified.front().verdict;
+  const auto turned_like_best = [&](const Verified& other) {
+    return std::abs(NormalizeAngle(other.t.yaw - verified.front().t.yaw)) >
+               options.symmetry_min_yaw_deg * kDegree &&
+           other.verdict.agree >= options.symmetry_min_agreement * best.agree &&
+           consistency(other.verdict) >= consistency(best) - options.symmetry_max_consistency_drop;
+  };
+  // A twin is told apart, and left out, by the cells where the two placements disagree: enough
+  // of them favour the best, few the twin (RegistrationOptions::symmetry_telling_m).
+  const double telling_cells = options.symmetry_telling_m > 0.0
+                                   ? std::ceil(options.symmetry_telling_m / a.resolution())
+                                   : std::numeric_limits<double>::infinity();
+  const double best_value = best.value;
+  double ratio = best_value > 0.0 ? 0.0 : 1.0;
   bool turned_twin = false;
-  for (size_t k = 1; k < verified.size(); ++k) {
-    const PlacementVerifier::Verdict& other = verified[k].verdict;
-    turned_twin = turned_twin ||
-                  (std::abs(NormalizeAngle(verified[k].t.yaw - verified.front().t.yaw)) >
-                       options.symmetry_min_yaw_deg * kDegree &&
-                   other.agree >= options.symmetry_min_agreement * verified.front().verdict.agree &&
-                   consistency(other) >= consistency(verified.front().verdict) -
-                                             options.symmetry_max_consistency_drop);
+  std::optional<Discrimination> untold;  // the first twin not told apart, for the refusal
+  for (size_t k = 1; k < verified.size() && best_value > 0.0; ++k) {
+    const double value_ratio = std::clamp(verified[k].verdict.value / best_value, 0.0, 1.0);
+    const bool turned = turned_like_best(verified[k]);
+    if (!turned && value_ratio < options.max_peak_ratio) {
+      ratio = std::max(ratio, value_ratio);  // not a twin; it only makes the best less distinct
+      continue;
+    }
+    const Discrimination d = verifier.Discriminate(verified.front().t, best.drift, verified[k].t,
+                                                   verified[k].verdict.drift);
+    if (d.for_first >= telling_cells &&
+        d.for_second <= options.symmetry_telling_ratio * d.for_first) {
+      continue;
+    }
+    ratio = std::max(ratio, turned ? 1.0 : value_ratio);
+    turned_twin = turned_twin || turned;
+    if (!untold) untold = d;
   }
-  if (turned_twin) ratio = 1.0;
   result.peak_ratio = ratio;
 
   // a_from_b in the map frames: map_a_from_grid_a * grid_a_from_grid_b * grid_b_from_map_b.
@@ -726,12 +769,15 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(" % of the occupied cells in the overlap land on free cells");
   } else if (turned_twin) {
     result.why_not =
-        "ambiguous: a placement turned against the best explains B's walls about as "
-        "consistently (the structure repeats under a rotation)";
+        std::string(
+            "ambiguous: a placement turned against the best explains B's walls about as "
+            "consistently (the structure repeats under a rotation)")
+            .append(TellingApart(untold, a.resolution(), options));
   } else if (result.peak_ratio >= options.max_peak_ratio) {
     result.why_not = std::string("ambiguous: a clearly different placement verifies ")
                          .append(Num(100.0 * result.peak_ratio))
-                         .append(" % of the best (symmetric or repeated structure)");
+                         .append(" % of the best (symmetric or repeated structure)")
+                         .append(TellingApart(untold, a.resolution(), options));
   } else if (result.score < options.min_score) {
     result.why_not = std::string("score ")
                          .append(Num(result.score))

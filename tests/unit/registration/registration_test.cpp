@@ -131,7 +131,7 @@ TEST(RegistrationTest, RefusesTwoIdenticalRoomsSideBySide) {
 
 // tb3_world's case: an arena that is the same turned by 180 degrees about its centre, so a crop
 // of it fits both where it was cut and at the mirror place; both verify alike.
-TEST(RegistrationTest, RefusesACropOfAPointSymmetricArena) {
+grid::OccupancyGrid PointSymmetricArena() {
   grid::OccupancyGrid arena(200, 120, 0.05);
   Room(arena, 0, 0, 199, 119);
   const auto fill_twice = [&arena](int x0, int y0, int x1, int y1) {
@@ -142,14 +142,40 @@ TEST(RegistrationTest, RefusesACropOfAPointSymmetricArena) {
   fill_twice(60, 70, 90, 72);  // shelf
   fill_twice(88, 72, 90, 100);
   fill_twice(20, 90, 22, 110);  // a short wall
-  const grid::OccupancyGrid a = arena;
+  return arena;
+}
+
+TEST(RegistrationTest, RefusesACropOfAPointSymmetricArena) {
+  const grid::OccupancyGrid arena = PointSymmetricArena();
   Transform2 truth;
   const grid::OccupancyGrid b =
       Turn(Crop(arena, 0, 0, 130, 120), 33.0 * kDegree, Pose2{12.0, -4.0, 0.2}, &truth);
-  const StatusOr<Registration> r = Register(a, b, {});
+  const StatusOr<Registration> r = Register(arena, b, {});
   ASSERT_TRUE(r.ok()) << r.status();
   EXPECT_FALSE(r->found) << r->a_from_b;
   EXPECT_THAT(r->why_not, ::testing::HasSubstr("ambiguous"));
+  // Nothing tells the two apart: the refusal says how little does.
+  EXPECT_THAT(r->why_not, ::testing::HasSubstr("where the two disagree, 0 m of walls favour"));
+}
+
+// The same arena with one pillar the turned copy does not have (a warehouse's racks repeat under
+// a half turn, its pallets do not): the cells where the two placements disagree tell them apart.
+TEST(RegistrationTest, PlacesACropOfASymmetricArenaByWhatBreaksTheSymmetry) {
+  grid::OccupancyGrid arena = PointSymmetricArena();
+  Fill(arena, 50, 45, 57, 52, grid::kOccupiedValue);  // a 0.4 m pillar, once
+  Transform2 truth;
+  const grid::OccupancyGrid b =
+      Turn(Crop(arena, 0, 0, 130, 120), 33.0 * kDegree, Pose2{12.0, -4.0, 0.2}, &truth);
+  const StatusOr<Registration> r = Register(arena, b, {});
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_THAT(*r, IsNearTruth(b, truth));
+  // Without the test on the disagreeing cells the half turn is still a twin.
+  RegistrationOptions never_told_apart;
+  never_told_apart.symmetry_telling_m = 0.0;
+  const StatusOr<Registration> refused = Register(arena, b, never_told_apart);
+  ASSERT_TRUE(refused.ok()) << refused.status();
+  EXPECT_FALSE(refused->found) << refused->a_from_b;
+  EXPECT_THAT(refused->why_not, ::testing::HasSubstr("ambiguous"));
 }
 
 TEST(RegistrationTest, RefusesMapsThatDoNotOverlap) {
