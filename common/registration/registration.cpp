@@ -689,8 +689,9 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
            other.verdict.agree >= options.symmetry_min_agreement * best.agree &&
            consistency(other.verdict) >= consistency(best) - options.symmetry_max_consistency_drop;
   };
-  // A twin is told apart, and left out, by the cells where the two placements disagree: enough
-  // of them favour the best, few the twin (RegistrationOptions::symmetry_telling_m).
+  // A rival is told apart, and left out (of the ambiguity test and of the score's
+  // distinctness), by the cells where the two placements disagree: enough of them favour the
+  // best, few the rival (RegistrationOptions::symmetry_telling_m).
   const double telling_cells = options.symmetry_telling_m > 0.0
                                    ? std::ceil(options.symmetry_telling_m / a.resolution())
                                    : std::numeric_limits<double>::infinity();
@@ -701,8 +702,11 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
   for (size_t k = 1; k < verified.size() && best_value > 0.0; ++k) {
     const double value_ratio = std::clamp(verified[k].verdict.value / best_value, 0.0, 1.0);
     const bool turned = turned_like_best(verified[k]);
-    if (!turned && value_ratio < options.max_peak_ratio) {
-      ratio = std::max(ratio, value_ratio);  // not a twin; it only makes the best less distinct
+    // A rival verifying at kDistinctRatio of the best or less leaves the best fully distinct
+    // (the score's distinctness): only closer ones, and turned twins, are judged where they
+    // disagree with the best.
+    if (!turned && value_ratio <= kDistinctRatio) {
+      ratio = std::max(ratio, value_ratio);
       continue;
     }
     const Discrimination d = verifier.Discriminate(verified.front().t, best.drift, verified[k].t,

@@ -61,11 +61,13 @@ struct RegistrationOptions {
   double symmetry_min_yaw_deg = 10.0;
   double symmetry_min_agreement = 0.5;
   double symmetry_max_consistency_drop = 0.1;
-  // ... unless the two are told apart where they disagree (PlacementVerifier::Discriminate): at
-  // least symmetry_telling_m of walls (occupied cells of either map, times the resolution) that
-  // the best lays on the other map's walls and the twin on its free space, and at most
-  // symmetry_telling_ratio of that the other way round. A warehouse turned half a turn is its
-  // racks again, but not its pallets and pillars. 0 m: a turned twin is never told apart.
+  // A rival of the best (a turned twin as above, or any candidate verifying above 70 % of the
+  // best's value) is told apart, and left out of both tests and of the score, where the two
+  // disagree (PlacementVerifier::Discriminate): at least symmetry_telling_m of walls (occupied
+  // cells of either map, times the resolution) that the best lays on the other map's walls and
+  // the rival on its free space, and at most symmetry_telling_ratio of that the other way
+  // round. A warehouse turned half a turn is its racks again, but not its pallets and pillars.
+  // 0 m: no rival is ever told apart.
   double symmetry_telling_m = 2.0;
   double symmetry_telling_ratio = 0.25;
   // Drift (docs/registration.md, *Drift*): the finalists are verified with each block of B,
