@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bench/register/growing_experiment.hpp"
 #include "bench/register/register_experiment.hpp"
 #include "bench/report/bench_command.hpp"
 #include "bench/report/report_format.hpp"
@@ -76,12 +77,79 @@ nlohmann::json ToJson(const MethodOutcome& o) {
           {"right_finalist", o.right_finalist}};
 }
 
+std::string RuleCells(const RuleSummary& rule, int pairs) {
+  return Percent(rule.placed, pairs) + " | " + std::to_string(rule.wrong) + " | " +
+         (rule.placed > 0 ? Fixed(rule.mean_step, 2) : std::string("-"));
+}
+
+// `--growing N`: the placer's sequential test on growing maps (growing_experiment.hpp).
+int ReportGrowing(const BenchRegisterOptions& options, const RegisterBenchOptions& pairs,
+                  const std::vector<SourceMap>& maps, ProgressLine* progress, std::ostream& out,
+                  std::ostream& err) {
+  GrowingBenchOptions growing;
+  growing.pairs = pairs;
+  growing.steps = options.growing_steps;
+  const GrowingBenchRun run = RunGrowingBench(maps, growing, progress);
+  const auto& rule = growing.sequential;
+  out << "The sequential test on growing maps: " << run.pairs.size() << " pairs from "
+      << maps.size() << " source maps (" << options.pairs_per_overlap
+      << " per map and overlap, seed " << options.seed << ")";
+  if (run.not_generated > 0) out << ", " << run.not_generated << " could not be generated";
+  out << ". B grows in " << growing.steps << " steps (after 1/" << growing.steps << ", 2/"
+      << growing.steps
+      << ", ... of its drive), each registered on A and fed to the placer's PlacementEvidence. "
+         "Bar only: placed when "
+      << growing.bar_only.confirmations << " registrations in a row find the same placement at "
+      << Fixed(pairs.registration.min_confidence, 2) << ". Sequential: also when "
+      << rule.sequential_wins << " registrations in a row of the grown map find it verified at "
+      << Fixed(rule.sequential_confidence, 2) << " or more. Wrong: placed more than "
+      << Fixed(pairs.max_translation_cells, 0) << " cells or " << Fixed(pairs.max_yaw_deg, 0)
+      << " deg off. " << MachineDescription()
+      << ".\n\n"
+         "| pairs from | pairs | bar only: placed | wrong | mean step | sequential: placed | "
+         "wrong | mean step |\n|---|---|---|---|---|---|---|---|\n";
+  for (const GrowingSummaryRow& row : SummarizeGrowing(run.pairs)) {
+    out << "| " << (row.group.empty() ? "every pair" : row.group) << " | " << row.pairs << " | "
+        << RuleCells(row.bar_only, row.pairs) << " | " << RuleCells(row.sequential, row.pairs)
+        << " |\n";
+  }
+  std::vector<double> seconds;
+  for (const GrowingPairOutcome& p : run.pairs) {
+    seconds.insert(seconds.end(), p.seconds.begin(), p.seconds.end());
+  }
+  out << "\nMedian registration " << Fixed(Median(seconds), 3) << " s over " << seconds.size()
+      << ".\n";
+  if (!options.csv_path.empty()) {
+    std::ostringstream csv;
+    csv << "map,group,target_overlap,step,confidence,verified,right,bar_only_placed_at,"
+           "bar_only_right,sequential_placed_at,sequential_right\n";
+    for (const GrowingPairOutcome& p : run.pairs) {
+      for (size_t k = 0; k < p.confidence.size(); ++k) {
+        csv << p.map << "," << p.group << "," << Fixed(p.target_overlap, 2) << "," << k + 1 << ","
+            << Fixed(p.confidence[k], 4) << "," << int{p.verified[k]} << "," << int{p.right[k]}
+            << "," << p.bar_only.placed_at << "," << p.bar_only.right << ","
+            << p.sequential.placed_at << "," << p.sequential.right << "\n";
+      }
+    }
+    if (const Status written = WriteFileAtomically(options.csv_path, csv.str()); !written.ok()) {
+      err << "fleetmap bench register: " << written.message() << "\n";
+      return cli::kExitBadInput;
+    }
+  }
+  return cli::kExitOk;
+}
+
 }  // namespace
 
 int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std::ostream& err) {
   if (options.pairs_per_overlap < 1 || options.pairs_per_overlap > 1000) {
     err << "fleetmap bench register: --pairs-per-overlap " << options.pairs_per_overlap
         << " must be in [1, 1000]\n";
+    return cli::kExitBadInput;
+  }
+  if (options.growing_steps != 0 && (options.growing_steps < 2 || options.growing_steps > 20)) {
+    err << "fleetmap bench register: --growing " << options.growing_steps
+        << " must be in [2, 20] (steps of B's growth)\n";
     return cli::kExitBadInput;
   }
   if (options.synthetic_maps < 0 || options.synthetic_maps > 200) {
@@ -123,6 +191,9 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   bench_options.drift = !options.no_drift;
   bench_options.registration.max_drift_per_m = options.max_drift_per_m;
   ProgressLine progress(err, {.terminal = options.err_is_terminal});
+  if (options.growing_steps > 0) {
+    return ReportGrowing(options, bench_options, *maps, &progress, out, err);
+  }
   const RegisterBenchRun run = RunRegisterBench(*maps, bench_options, &progress);
   const std::vector<SummaryRow> rows = Summarize(run.pairs);
   const std::vector<ReliabilityBin> bins = Reliability(run.pairs);
@@ -305,6 +376,11 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
   command->add_option("--seed", options->seed, "pair generator seed")->capture_default_str();
   command->add_option("--csv", options->csv_path, "write one row per pair and method");
   command->add_option("--json", options->json_path, "write the summary, reliability and pairs");
+  command->add_option("--growing", options->growing_steps,
+                      "instead of the pairs: B grows in this many steps, each registered, and "
+                      "the placer's sequential test (bar only, and with verified wins under it) "
+                      "says when it would place the robot, and whether rightly (m-explore not "
+                      "run)");
   command->add_flag("--skip-mexplore", options->skip_mexplore,
                     "run fleetmap only (for the calibration fit)");
   command->callback([options, exit_code] {

@@ -10,7 +10,8 @@
 // %, median and worst time per pair; then the reliability of fleetmap's confidence.
 // `--synthetic K` uses K synthetic terrains (common/sim's kinds and the repeated ones) instead
 // of DIR and prints the isotonic fit of the confidence calibration (how its default knots were
-// made). Progress goes to stderr.
+// made). `--growing N` grows each B in N steps and reports when the placer's sequential test
+// would place it (growing_experiment.hpp). Progress goes to stderr.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -31,6 +32,8 @@ struct BenchRegisterOptions {
   std::string csv_path;   // empty: none
   std::string json_path;  // empty: none
   bool skip_mexplore = false;
+  // > 1: the sequential test on growing maps (growing_experiment.hpp) instead of the pairs.
+  int growing_steps = 0;
   // The registration's drift bound (RegistrationOptions::max_drift_per_m, 0.03 by default); 0
   // verifies rigidly, for a side-by-side figure.
   double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;

@@ -156,6 +156,22 @@ grid::OccupancyGrid RegionMap(const grid::OccupancyGrid& map, const Mask& region
   return out;
 }
 
+// B's cells whose source cell (where the truth lays them) lies in `region`; the rest unknown.
+grid::OccupancyGrid SeenPart(const MapPair& pair, const grid::OccupancyGrid& source,
+                             const Mask& region) {
+  grid::OccupancyGrid part = pair.b;
+  for (int y = 0; y < part.height(); ++y) {
+    for (int x = 0; x < part.width(); ++x) {
+      const std::optional<grid::CellIndex> cell =
+          source.CellAt(pair.a_from_b * part.CellCenter(x, y));
+      if (!cell || !region[static_cast<size_t>(cell->y) * source.width() + cell->x]) {
+        part.at(x, y) = grid::kUnknownValue;
+      }
+    }
+  }
+  return part;
+}
+
 double Overlap(const Mask& a, const Mask& b) {
   size_t in_b = 0, shared = 0;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -332,6 +348,11 @@ StatusOr<MapPair> MakeMapPair(const grid::OccupancyGrid& source, double target_o
         const Pose2 origin{source.origin().x + offset(rng), source.origin().y + offset(rng),
                            angle(rng)};
         pair.b = TurnIntoNewFrame(b_in_source, pair.yaw_b, origin, &pair.a_from_b);
+        for (int k = 1; k < options.growth_steps; ++k) {
+          const size_t driven = from_b.size() * static_cast<size_t>(k) / options.growth_steps;
+          pair.b_growing.push_back(
+              SeenPart(pair, source, ExploredRegion(source, known, from_b, driven, options, rng)));
+        }
         return pair;
       }
       (overlap > target_overlap ? lo : hi) = q;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "common/core/status.hpp"
 #include "common/core/types.hpp"
@@ -36,6 +37,9 @@ struct MapPairOptions {
   int max_specks = 12;
   // B's frame: its origin lies up to this far (metres) from A's, with any yaw.
   double max_origin_offset = 500.0;
+  // > 1: B also as the robot saw it after 1 / growth_steps, 2 / growth_steps, ... of its drive
+  // (MapPair::b_growing), for the sequential test on growing maps.
+  int growth_steps = 0;
 };
 
 struct MapPair {
@@ -44,6 +48,10 @@ struct MapPair {
   Transform2 a_from_b = Transform2::Identity();  // the truth: p_a = a_from_b * p_b
   double overlap = 0.0;  // achieved: share of B's known cells also known in A
   double yaw_b = 0.0;    // how far B's cells were turned (radians)
+  // With MapPairOptions::growth_steps > 1: B after k / growth_steps of its drive, k = 1 ..
+  // growth_steps - 1, in B's frame (the same a_from_b), each with a ragged frontier of its own;
+  // B itself is the last step.
+  std::vector<grid::OccupancyGrid> b_growing;
 };
 
 // One pair from `source` at `target_overlap` (in (0, 1)). kNotFound when no crop within the

@@ -24,40 +24,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Where a placement is judged: a point of the registered B (map frame), where the truth lays it
-// on A, and how the truth's yaw reads there.
-struct JudgePoint {
-  Point2 b;
-  Point2 a;
-  double yaw = 0.0;
-};
-
-// A plain pair is rigid, so it is judged at B's known centroid. A drifted B has no rigid truth:
-// it is judged where it overlaps A, the overlap's centroid carried by the warp (and the warp's
-// turn there), since a rigid placement can be right there and nowhere else far from it.
-JudgePoint PlainJudgePoint(const MapPair& pair, const Point2& centroid_b) {
-  return {centroid_b, pair.a_from_b * centroid_b, Pose2::FromTransform(pair.a_from_b).yaw};
-}
-
-JudgePoint DriftedJudgePoint(const MapPair& pair, const Point2& pivot, double scale,
-                             double bend_per_metre) {
-  const Point2 overlap = OverlapCentroid(pair);
-  const WarpedPoint warped = WarpPoint(pair.b, pivot, scale, bend_per_metre, overlap);
-  return {warped.point, pair.a_from_b * overlap,
-          Pose2::FromTransform(pair.a_from_b).yaw - warped.turn};
-}
-
-// Errors of an estimate at the judge point, in cells and degrees.
-void Judge(const MapPair& pair, const JudgePoint& at, const Pose2& estimate,
-           const RegisterBenchOptions& options, MethodOutcome* outcome) {
-  const Point2 d = estimate.ToTransform() * at.b - at.a;
-  outcome->translation_error_cells = d.norm() / pair.b.resolution();
-  outcome->yaw_error_deg = std::abs(NormalizeAngle(estimate.yaw - at.yaw)) / kDegree;
-  outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
-                   outcome->yaw_error_deg <= options.max_yaw_deg;
-  outcome->success = outcome->found && outcome->right;
-}
-
 MethodSummary SummarizeMethod(const std::vector<const MethodOutcome*>& outcomes) {
   MethodSummary s;
   std::vector<double> seconds;
@@ -153,6 +119,28 @@ PairOutcome RegisterPair(const grid::OccupancyGrid& a, const grid::OccupancyGrid
 }
 
 }  // namespace
+
+JudgePoint PlainJudgePoint(const MapPair& pair, const Point2& centroid_b) {
+  return {centroid_b, pair.a_from_b * centroid_b, Pose2::FromTransform(pair.a_from_b).yaw};
+}
+
+JudgePoint DriftedJudgePoint(const MapPair& pair, const Point2& pivot, double scale,
+                             double bend_per_metre) {
+  const Point2 overlap = OverlapCentroid(pair);
+  const WarpedPoint warped = WarpPoint(pair.b, pivot, scale, bend_per_metre, overlap);
+  return {warped.point, pair.a_from_b * overlap,
+          Pose2::FromTransform(pair.a_from_b).yaw - warped.turn};
+}
+
+void Judge(const MapPair& pair, const JudgePoint& at, const Pose2& estimate,
+           const RegisterBenchOptions& options, MethodOutcome* outcome) {
+  const Point2 d = estimate.ToTransform() * at.b - at.a;
+  outcome->translation_error_cells = d.norm() / pair.b.resolution();
+  outcome->yaw_error_deg = std::abs(NormalizeAngle(estimate.yaw - at.yaw)) / kDegree;
+  outcome->right = outcome->translation_error_cells <= options.max_translation_cells &&
+                   outcome->yaw_error_deg <= options.max_yaw_deg;
+  outcome->success = outcome->found && outcome->right;
+}
 
 StatusOr<std::vector<SourceMap>> SyntheticSourceMaps(int count, uint32_t seed) {
   return TerrainMaps(count, seed * 7919u, false, "synthetic");

@@ -50,6 +50,28 @@ struct RegisterBenchOptions {
   double max_yaw_deg = 2.0;
 };
 
+// Where a placement is judged: a point of the registered B (map frame), where the truth lays it
+// on A, and how the truth's yaw reads there.
+struct JudgePoint {
+  Point2 b;
+  Point2 a;
+  double yaw = 0.0;
+};
+
+struct MethodOutcome;
+
+// A plain pair is rigid, so it is judged at B's known centroid. A drifted B has no rigid truth:
+// it is judged where it overlaps A, the overlap's centroid carried by the warp (and the warp's
+// turn there), since a rigid placement can be right there and nowhere else far from it.
+JudgePoint PlainJudgePoint(const MapPair& pair, const Point2& centroid_b);
+JudgePoint DriftedJudgePoint(const MapPair& pair, const Point2& pivot, double scale,
+                             double bend_per_metre);
+
+// Errors of an estimate at the judge point, in cells and degrees, into `outcome` (right,
+// success).
+void Judge(const MapPair& pair, const JudgePoint& at, const Pose2& estimate,
+           const RegisterBenchOptions& options, MethodOutcome* outcome);
+
 struct MethodOutcome {
   bool found = false;
   bool success = false;  // found, and within the tolerances of the truth

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -22,15 +23,22 @@ struct RegistrationKey {
 
 // The sequential test that places an unplaced robot (docs/registration.md, "Evidence over time").
 // Each registration of the robot's map on one target (the fleet map, or another robot's) votes
-// for where the map sits. The robot is placed when the same placement has won `confirmations`
-// registrations in a row, each at the placement bar: on repeated structure (rooms of one plan,
-// shelf rows) an early map fits several places, and only the right one keeps winning as the map
-// grows. A registration at the bar that finds another placement starts the count again at 1; one
-// below the bar resets it to 0 and says why. Not thread-safe: the placer owns it.
+// for where the map sits. The robot is placed when the same placement has won
+// - `confirmations` registrations in a row at the placement bar, or
+// - `sequential_wins` registrations in a row of its growing map, each verified (no
+//   contradiction, no ambiguity) at `sequential_confidence` or more, the map grown between them.
+// On repeated structure (rooms of one plan, shelf rows) an early map fits several places, and only
+// the right one keeps winning as the map grows; two robots' maps carry independent SLAM noise,
+// so a right placement often verifies for a long while just under the bar that one look needs.
+// A winner elsewhere starts the count again at 1; a refusal, or a confidence below
+// `sequential_confidence`, resets it to 0 and says why. Not thread-safe: the placer owns it.
 class PlacementEvidence {
  public:
   struct Options {
     int confirmations = 2;
+    // The second way to be placed; 0 turns it off.
+    int sequential_wins = 3;
+    double sequential_confidence = 0.8;
     // Two placements are the same when they put the robot's map centre this close (metres) and
     // differ by at most this many degrees (PlacementOptions' revise_distance and revise_yaw_deg).
     double same_distance = 0.15;
@@ -41,14 +49,17 @@ class PlacementEvidence {
   struct Vote {
     Pose2 target_from_map;  // the best placement, also when refused
     Point2 map_centre = Point2::Zero();
-    bool at_bar = false;  // found, at the placement bar's confidence
+    bool at_bar = false;    // found, at the placement bar's confidence
+    bool verified = false;  // passed the verification (Registration::verified); implied by at_bar
     double confidence = 0.0;
-    std::string why_not;  // when not at the bar
+    std::string why_not;       // when not at the bar
+    uint64_t map_changes = 0;  // the revision of the robot's map that was registered
   };
 
   struct Verdict {
     bool place = false;
     int streak = 0;   // registrations in a row that found this placement at the bar
+    int wins = 0;     // ... verified at sequential_confidence or more, each on a grown map
     std::string why;  // while not placed: why it waits, for people (robot_frames, the log)
   };
 
@@ -56,7 +67,8 @@ class PlacementEvidence {
 
   Verdict Observe(const RegistrationKey& key, const Vote& vote);
   // Whether the robot waits for a confirmation of this kind of registration: one found a
-  // placement at the bar that has not won often enough yet.
+  // placement at the bar that has not won often enough yet (a map that stopped growing is
+  // registered again for it; the sequential wins need a grown map).
   bool Pending(const RegistrationKey& key) const;
   // The robot was placed, or left: its count starts again.
   void Forget(const RobotId& robot);
@@ -65,6 +77,8 @@ class PlacementEvidence {
   struct Leader {
     Pose2 target_from_map;
     int streak = 0;
+    int wins = 0;
+    uint64_t map_changes = 0;  // of the last win counted
   };
 
   bool Same(const Pose2& a, const Pose2& b, const Point2& centre) const;

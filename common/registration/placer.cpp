@@ -184,12 +184,20 @@ std::optional<Placer::Decision> Placer::DecideOne(const PlacementResult& result,
   if (frame == frames_.end()) return std::nullopt;  // not a robot of the table
   // found: verified and at the placement bar (RegistrationOptions::min_confidence).
   const bool at_bar = found.found;
-  const std::string& why_not = found.why_not;
+  std::string why_not = found.why_not;
+  bool place = at_bar;
+  std::string sequence;  // how the sequential test placed it, for the notice
   if (!frame->second.placed()) {
     // The sequential test: placed only when the same placement keeps winning.
-    const PlacementEvidence::Verdict verdict = evidence_.Observe(
-        job.key(), {found.a_from_b, result.map_centre, at_bar, found.confidence, why_not});
-    if (!verdict.place) {
+    const PlacementEvidence::Verdict verdict =
+        evidence_.Observe(job.key(), {found.a_from_b, result.map_centre, at_bar, found.verified,
+                                      found.confidence, why_not, job.map_changes});
+    place = verdict.place;
+    if (place && !at_bar) {
+      sequence = fmt::format(", found {} times in a row at {:.2f} or more", verdict.wins,
+                             options_.sequential_confidence);
+    }
+    if (!place) {
       Waiting(job.robot,
               (job.target_robot.value.empty() ? "on the fleet map: "
                                               : "on robot " + job.target_robot.value + ": ") +
@@ -199,9 +207,10 @@ std::optional<Placer::Decision> Placer::DecideOne(const PlacementResult& result,
             fmt::format("robot {} on {}: {}", job.robot.value, against, verdict.why));
         return std::nullopt;
       }
+      why_not = verdict.why;
     }
   }
-  if (!at_bar) {
+  if (!place) {
     // Every try at debug level; at info, what keeps a robot unplaced, every 10 s at most.
     auto& last = last_refusal_notice_[job.robot];
     const bool tell = !frame->second.placed() && now - last >= kRefusalNoticePeriod;
@@ -261,10 +270,10 @@ std::optional<Placer::Decision> Placer::DecideOne(const PlacementResult& result,
     }
     if (!with_group.empty()) with_group += ")";
     Say(Notice::Level::kInfo,
-        fmt::format("robot {} placed on {}{} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}, "
+        fmt::format("robot {} placed on {}{} at ({:.2f}, {:.2f}, {:.1f} deg), confidence {:.2f}{}, "
                     "overlap {:.2f} ({} ms)",
                     job.robot.value, against, with_group, fleet_from_map.x, fleet_from_map.y,
-                    Degrees(fleet_from_map.yaw), found.confidence, found.overlap,
+                    Degrees(fleet_from_map.yaw), found.confidence, sequence, found.overlap,
                     result.took.count()));
   }
   ++placed.placements;
@@ -377,6 +386,10 @@ Status PlacementOptions::Validate() const {
     return InvalidArgumentError("placement periods must not be negative (tf_period > 0)");
   }
   if (confirmations < 1) return InvalidArgumentError("placement confirmations must be >= 1");
+  if (sequential_wins < 0 || !(sequential_confidence >= 0.0 && sequential_confidence <= 1.0)) {
+    return InvalidArgumentError(
+        "placement sequential_wins must be >= 0 and sequential_confidence in [0, 1]");
+  }
   if (!(revise_distance > 0.0) || !(revise_yaw_deg > 0.0)) {
     return InvalidArgumentError("placement revise_distance and revise_yaw_deg must be > 0");
   }
@@ -390,6 +403,8 @@ void PlacementOptions::Describe(OptionsPrinter& out) const {
   out.Add("revise_distance", revise_distance);
   out.Add("revise_yaw_deg", revise_yaw_deg);
   out.Add("confirmations", confirmations);
+  out.Add("sequential_wins", sequential_wins);
+  out.Add("sequential_confidence", sequential_confidence);
   out.Add("tf_period", tf_period);
 }
 

@@ -38,6 +38,12 @@ struct PlacementOptions {
   // same target) found the same placement at the bar: the sequential test of PlacementEvidence.
   // A robot whose map stopped growing is registered again after retry_period to confirm.
   int confirmations = 2;
+  // Or when this many registrations in a row of its grown map found the same placement verified
+  // (no contradiction, no ambiguity) at sequential_confidence or more: the robot maps of two
+  // robots carry independent SLAM noise, so a right placement can verify a long while just under
+  // the bar one look needs. 0 turns it off.
+  int sequential_wins = 3;
+  double sequential_confidence = 0.8;
   // The placed frames go out on rt/tf this often (tf2 listeners forget a transform after about
   // 10 s); the server sends them.
   std::chrono::milliseconds tf_period{500};
@@ -87,7 +93,8 @@ class Placer {
  public:
   explicit Placer(const PlacementOptions& options)
       : options_(options),
-        evidence_({options.confirmations, options.revise_distance, options.revise_yaw_deg}) {}
+        evidence_({options.confirmations, options.sequential_wins, options.sequential_confidence,
+                   options.revise_distance, options.revise_yaw_deg}) {}
 
   // A robot's map frame to place (or move) at fleet_from_map.
   struct Decision {

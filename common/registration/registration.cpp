@@ -788,6 +788,7 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(" is below ")
                          .append(Num(options.min_score));
   } else if (result.confidence < options.min_confidence) {
+    result.verified = true;
     // Two decimals, as confidences are quoted, unless that would misquote the bar (0.999 as
     // 1.00) or print the confidence as high as the bar.
     const double bar_2 = std::round(100.0 * options.min_confidence) / 100.0;
@@ -800,6 +801,7 @@ StatusOr<Registration> Register(const grid::OccupancyGrid& a, const grid::Occupa
                          .append(" below the placement bar ")
                          .append(Fixed(options.min_confidence, digits));
   } else {
+    result.verified = true;
     result.found = true;
   }
   return result;

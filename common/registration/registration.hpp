@@ -109,6 +109,9 @@ struct Registration {
   // ambiguity, score) and its confidence reaches RegistrationOptions::min_confidence. The server
   // places a robot exactly when this is true.
   bool found = false;
+  // The placement passed every check of the verification; only its confidence may be below the
+  // bar. The placer's sequential test counts such placements when they keep winning.
+  bool verified = false;
   // Takes a point in B's map frame to A's map frame: p_a = a_from_b * p_b. The best hypothesis,
   // also when it is refused (then a hint only).
   Pose2 a_from_b;

@@ -82,6 +82,46 @@ TEST(MapPairGeneratorTest, CropsAreExplorationLikeNotRectangles) {
   EXPECT_GT(a.unknown, 0);
 }
 
+TEST(MapPairGeneratorTest, GrowsBInItsOwnFrameAsTheRobotDrove) {
+  const grid::OccupancyGrid house = House();
+  ASSERT_FALSE(house.empty());
+  MapPairOptions options;
+  options.growth_steps = 4;
+  std::mt19937 rng(5);
+  StatusOr<MapPair> pair = MakeMapPair(house, 0.5, options, rng);
+  for (int retry = 0; retry < 4 && !pair.ok(); ++retry)
+    pair = MakeMapPair(house, 0.5, options, rng);
+  ASSERT_TRUE(pair.ok()) << pair.status();
+  ASSERT_EQ(pair->b_growing.size(), 3u);
+  int64_t previous = 0;
+  for (const grid::OccupancyGrid& step : pair->b_growing) {
+    // B's grid and frame, fewer known cells, each of them B's own (B's frame: the same truth).
+    ASSERT_EQ(step.width(), pair->b.width());
+    ASSERT_EQ(step.height(), pair->b.height());
+    EXPECT_EQ(step.origin().translation(), pair->b.origin().translation());
+    const grid::StateCounts counts = step.CountStates();
+    const int64_t known = counts.free + counts.occupied;
+    EXPECT_GT(known, previous);
+    previous = known;
+    for (int y = 0; y < step.height(); ++y) {
+      for (int x = 0; x < step.width(); ++x) {
+        if (step.at(x, y) != grid::kUnknownValue) {
+          ASSERT_EQ(step.at(x, y), pair->b.at(x, y));
+        }
+      }
+    }
+  }
+  const grid::StateCounts full = pair->b.CountStates();
+  EXPECT_LT(previous, full.free + full.occupied);
+  // Without growth_steps the same draw makes the same pair, and no steps.
+  std::mt19937 again(5);
+  StatusOr<MapPair> plain = MakeMapPair(house, 0.5, {}, again);
+  for (int retry = 0; retry < 4 && !plain.ok(); ++retry) plain = MakeMapPair(house, 0.5, {}, again);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(plain->b_growing.empty());
+  EXPECT_EQ(plain->b.data(), pair->b.data());
+}
+
 TEST(MapPairGeneratorTest, TurnsIntoANewFrameByAQuarterExactly) {
   grid::OccupancyGrid map(4, 2, 0.5, Pose2{1.0, 2.0, 0.0});
   map.at(0, 0) = grid::kOccupiedValue;

@@ -23,6 +23,17 @@ PlacementEvidence::Vote At(double x, double y, double yaw, bool at_bar = true) {
   return vote;
 }
 
+// A placement that passed the verification at `confidence`, under the bar, on map revision
+// `map_changes`.
+PlacementEvidence::Vote Verified(double x, double confidence, uint64_t map_changes) {
+  PlacementEvidence::Vote vote = At(x, 2.0, 0.0, /*at_bar=*/false);
+  vote.verified = true;
+  vote.confidence = confidence;
+  vote.why_not = "confidence below the placement bar 0.95";
+  vote.map_changes = map_changes;
+  return vote;
+}
+
 TEST(PlacementEvidenceTest, OnePlacementAtTheBarWaitsForASecondThatFindsTheSame) {
   PlacementEvidence evidence({});
   const auto first = evidence.Observe(kOnFleet, At(10.0, 2.0, 0.5));
@@ -79,6 +90,55 @@ TEST(PlacementEvidenceTest, TargetsAndGroupMapsCountApartAndOneConfirmationPlace
   one_shot.confirmations = 1;
   PlacementEvidence immediate(one_shot);
   EXPECT_TRUE(immediate.Observe(kOnFleet, At(10.0, 2.0, 0.0)).place);
+}
+
+TEST(PlacementEvidenceTest, AVerifiedPlacementUnderTheBarPlacesWhenItKeepsWinningAsTheMapGrows) {
+  PlacementEvidence evidence({});  // 3 wins at 0.8 or more
+  const auto first = evidence.Observe(kOnFleet, Verified(10.0, 0.86, 1));
+  EXPECT_FALSE(first.place);
+  EXPECT_EQ(first.wins, 1);
+  EXPECT_THAT(first.why, HasSubstr("confidence below the placement bar"));
+  EXPECT_THAT(first.why, HasSubstr("waiting for 2 more registration(s)"));
+  // Registered again on the same map: no new evidence, no win.
+  EXPECT_EQ(evidence.Observe(kOnFleet, Verified(10.0, 0.86, 1)).wins, 1);
+  EXPECT_FALSE(evidence.Observe(kOnFleet, Verified(10.02, 0.84, 2)).place);
+  const auto third = evidence.Observe(kOnFleet, Verified(10.0, 0.90, 3));
+  EXPECT_TRUE(third.place);
+  EXPECT_EQ(third.wins, 3);
+  EXPECT_EQ(third.streak, 0);  // never at the bar
+}
+
+TEST(PlacementEvidenceTest, AWinUnderTheFloorOrARefusalOrAnotherPlaceBreaksTheSequence) {
+  PlacementEvidence evidence({});
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 1)).place);
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 2)).place);
+  // Verified, but at 0.6: the count starts again, and the robot says why it waits.
+  const auto weak = evidence.Observe(kOnFleet, Verified(10.0, 0.6, 3));
+  EXPECT_EQ(weak.wins, 0);
+  EXPECT_THAT(weak.why, HasSubstr("confidence below"));
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 4)).place);
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 5)).place);
+  // A refusal (contradiction, ambiguity: not verified) at any confidence resets too.
+  PlacementEvidence::Vote refused = Verified(10.0, 0.9, 6);
+  refused.verified = false;
+  EXPECT_EQ(evidence.Observe(kOnFleet, refused).wins, 0);
+  // The next room along the corridor wins: counting again from 1.
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 7)).place);
+  ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 8)).place);
+  const auto moved = evidence.Observe(kOnFleet, Verified(16.0, 0.9, 9));
+  EXPECT_EQ(moved.wins, 1);
+  EXPECT_THAT(moved.why, HasSubstr("the best placement moved"));
+  // A wait under the bar is no confirmation the same map is registered again for.
+  EXPECT_FALSE(evidence.Pending(kOnFleet));
+
+  PlacementEvidence::Options off;
+  off.sequential_wins = 0;
+  PlacementEvidence bar_only(off);
+  for (uint64_t revision = 1; revision <= 10; ++revision) {
+    const auto verdict = bar_only.Observe(kOnFleet, Verified(10.0, 0.94, revision));
+    EXPECT_FALSE(verdict.place);
+    EXPECT_EQ(verdict.wins, 0);
+  }
 }
 
 }  // namespace
