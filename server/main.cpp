@@ -146,6 +146,17 @@ int main(int argc, char** argv) {
                  "docs/registration.md, Drift)")
       ->check(CLI::Range(0.0, 0.2))
       ->capture_default_str();
+  app.add_option("--placement-sequential-wins", options.map.placement.sequential_wins,
+                 "also place a robot when this many registrations in a row of its grown map "
+                 "found the same placement verified at --placement-sequential-confidence or "
+                 "more, under the bar (0: only at the bar; docs/registration.md, Evidence over "
+                 "time)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--placement-sequential-confidence", options.map.placement.sequential_confidence,
+                 "least confidence of a verified placement that counts as one of those wins")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   double check_period_s = 5.0;
   app.add_option("--placement-check-period", check_period_s,
                  "a placed robot's placement is checked against the rest of the fleet at most "

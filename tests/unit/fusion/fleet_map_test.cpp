@@ -3,6 +3,7 @@
 // hands over.
 #include "common/fusion/fleet_map.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -271,6 +272,75 @@ TEST(FleetMapTest, ARegistrationResultPlacesTheRobotAndMovesItsTiles) {
   EXPECT_TRUE(HasContribution(changes, "beta", {2, 0}, true));
   EXPECT_EQ(CellAt(map, 5.0, 1.4), grid::kOccupiedValue);
   EXPECT_EQ(CellAt(map, 1.0, 1.0), grid::kOccupiedValue);  // alpha's, untouched by beta
+}
+
+// What a registration that passed the verification under the bar says: beta's map 4 m east.
+registration::PlacementResult VerifiedUnderTheBar(const registration::PlacementJob& job) {
+  registration::PlacementResult result;
+  result.job = job;
+  registration::Registration verified;
+  verified.verified = true;
+  verified.a_from_b = Pose2{4.0, 0.0, 0.0};
+  verified.confidence = 0.88;
+  verified.overlap = 0.5;
+  verified.why_not = "confidence 0.88 below the placement bar 0.95";
+  result.registration = verified;
+  return result;
+}
+
+TEST(FleetMapTest, APlacementVerifiedUnderTheBarPlacesOnceItKeepsWinningAsTheMapGrows) {
+  for (const int wins : {3, 0}) {
+    SCOPED_TRACE(wins);
+    FleetMapOptions options = Options();
+    options.placement.confirmations = 2;
+    options.placement.sequential_wins = wins;
+    FleetMap map = MakeMap(options);
+    Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+    map.Join(RobotId{"beta"}, std::nullopt);
+    auto now = kSteady;
+    for (int revision = 0; revision < 4; ++revision) {
+      // Beta's map grows by a tile, then is registered again.
+      Offer(map, Tile("beta", {revision, 0}, 1.4), From("beta", "p2", /*in_map_frame=*/true));
+      FuseAll(map);
+      now += seconds(2);
+      std::optional<registration::PlacementJob> job = map.NextRegistration(now);
+      ASSERT_TRUE(job.has_value()) << "revision " << revision;
+      map.Placed(VerifiedUnderTheBar(*job), now);
+      const RobotFrame frame = *map.FrameOf(RobotId{"beta"});
+      const bool placed = frame.state == RobotFrame::State::kPlaced;
+      // Placed on the third win with the sequential test; never at 0.88 without it.
+      EXPECT_EQ(placed, wins == 3 && revision >= 2) << "revision " << revision;
+      if (wins == 3 && revision < 2) {
+        EXPECT_THAT(frame.waiting_reason,
+                    ::testing::HasSubstr(std::to_string(revision + 1) + " time(s) in a row"));
+      }
+      if (placed) {
+        EXPECT_EQ(frame.fleet_from_map, (Pose2{4.0, 0.0, 0.0}));
+        break;
+      }
+    }
+  }
+}
+
+TEST(FleetMapTest, TheSameMapRegisteredAgainAddsNoWin) {
+  FleetMapOptions options = Options();
+  options.placement.confirmations = 2;
+  FleetMap map = MakeMap(options);
+  Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
+  map.Join(RobotId{"beta"}, std::nullopt);
+  Offer(map, Tile("beta", {0, 0}, 1.4), From("beta", "p2", /*in_map_frame=*/true));
+  FuseAll(map);
+  std::optional<registration::PlacementJob> job = map.NextRegistration(kSteady);
+  ASSERT_TRUE(job.has_value());
+  // Three results of one revision of beta's map: one win, not three.
+  for (int k = 0; k < 3; ++k) {
+    map.Placed(VerifiedUnderTheBar(*job), kSteady + seconds(k));
+    if (k < 2) {
+      std::optional<registration::PlacementJob> again = map.NextRegistration(kSteady);
+      EXPECT_FALSE(again.has_value()) << "nothing changed and nothing to confirm at the bar";
+    }
+  }
+  EXPECT_EQ(map.FrameOf(RobotId{"beta"})->state, RobotFrame::State::kUnplaced);
 }
 
 TEST(FleetMapTest, ARotatedGivenFrameCarriesMapFrameTilesAtThatAngle) {
