@@ -121,14 +121,16 @@ int ReportGrowing(const BenchRegisterOptions& options, const RegisterBenchOption
       << ".\n";
   if (!options.csv_path.empty()) {
     std::ostringstream csv;
-    csv << "map,group,target_overlap,step,confidence,verified,right,bar_only_placed_at,"
-           "bar_only_right,sequential_placed_at,sequential_right\n";
+    csv << "map,group,target_overlap,step,confidence,verified,right,error_cells,score,overlap,"
+           "peak_ratio,bar_only_placed_at,bar_only_right,sequential_placed_at,sequential_right\n";
     for (const GrowingPairOutcome& p : run.pairs) {
       for (size_t k = 0; k < p.confidence.size(); ++k) {
         csv << p.map << "," << p.group << "," << Fixed(p.target_overlap, 2) << "," << k + 1 << ","
             << Fixed(p.confidence[k], 4) << "," << int{p.verified[k]} << "," << int{p.right[k]}
-            << "," << p.bar_only.placed_at << "," << p.bar_only.right << ","
-            << p.sequential.placed_at << "," << p.sequential.right << "\n";
+            << "," << Fixed(p.error_cells[k], 2) << "," << Fixed(p.score[k], 4) << ","
+            << Fixed(p.overlap[k], 3) << "," << Fixed(p.peak_ratio[k], 3) << ","
+            << p.bar_only.placed_at << "," << p.bar_only.right << "," << p.sequential.placed_at
+            << "," << p.sequential.right << "\n";
       }
     }
     if (const Status written = WriteFileAtomically(options.csv_path, csv.str()); !written.ok()) {

@@ -60,6 +60,10 @@ GrowingPairOutcome RunSteps(const grid::OccupancyGrid& a,
     outcome.confidence.push_back(vote.confidence);
     outcome.verified.push_back(vote.verified ? 1 : 0);
     outcome.right.push_back(judged.right ? 1 : 0);
+    outcome.error_cells.push_back(judged.translation_error_cells);
+    outcome.score.push_back(r.ok() ? r->score : 0.0);
+    outcome.overlap.push_back(r.ok() ? r->overlap : 0.0);
+    outcome.peak_ratio.push_back(r.ok() ? r->peak_ratio : 0.0);
     bar_only.Observe(static_cast<int>(k) + 1, vote, judged.right);
     sequential.Observe(static_cast<int>(k) + 1, vote, judged.right);
   }

@@ -3,8 +3,9 @@
 // The placer's sequential test on growing maps (issue 31, item 3): robot B's map as it grows
 // (MapPair::b_growing, then B), each step registered on A as the server registers an unplaced
 // robot's map on the fleet map, and the votes fed to the server's own PlacementEvidence under
-// two rules side by side: the bar alone (two registrations in a row at the placement bar) and
-// the default (also three verified wins in a row at 0.8 or more on a grown map). Reports for
+// two rules side by side: the bar alone (two registrations in a row at the placement bar, the
+// server's default) and the sequential one (also three verified wins in a row at 0.8 or more on
+// a grown map: PlacementOptions::sequential_wins, off by default). Reports for
 // each rule whether and at which step the robot would be placed, and whether rightly. Used by
 // `fleetmap bench register --growing N`.
 
@@ -21,9 +22,8 @@ namespace fleetmap::bench {
 struct GrowingBenchOptions {
   RegisterBenchOptions pairs;  // overlaps (of the full-grown B), pairs per overlap, seed, drift
   int steps = 5;               // registrations per pair, B after 1/steps, 2/steps, ... of its drive
-  registration::PlacementEvidence::Options bar_only;  // sequential_wins = 0
-  registration::PlacementEvidence::Options sequential;
-  GrowingBenchOptions() { bar_only.sequential_wins = 0; }
+  registration::PlacementEvidence::Options bar_only;  // the server's default
+  registration::PlacementEvidence::Options sequential{.sequential_wins = 3};
 };
 
 // One rule's outcome on one growing pair.
@@ -41,6 +41,10 @@ struct GrowingPairOutcome {
   std::vector<double> confidence;
   std::vector<uint8_t> verified;
   std::vector<uint8_t> right;
+  std::vector<double> error_cells;  // of the best guess, at the judge point
+  std::vector<double> score;
+  std::vector<double> overlap;     // Registration::overlap
+  std::vector<double> peak_ratio;  // Registration::peak_ratio
   RuleOutcome bar_only;
   RuleOutcome sequential;
   std::vector<double> seconds;  // per registration

@@ -24,20 +24,22 @@ struct RegistrationKey {
 // The sequential test that places an unplaced robot (docs/registration.md, "Evidence over time").
 // Each registration of the robot's map on one target (the fleet map, or another robot's) votes
 // for where the map sits. The robot is placed when the same placement has won
-// - `confirmations` registrations in a row at the placement bar, or
+// - `confirmations` registrations in a row at the placement bar, or (off unless
+//   `sequential_wins` > 0)
 // - `sequential_wins` registrations in a row of its growing map, each verified (no
 //   contradiction, no ambiguity) at `sequential_confidence` or more, the map grown between them.
 // On repeated structure (rooms of one plan, shelf rows) an early map fits several places, and only
-// the right one keeps winning as the map grows; two robots' maps carry independent SLAM noise,
-// so a right placement often verifies for a long while just under the bar that one look needs.
-// A winner elsewhere starts the count again at 1; a refusal, or a confidence below
-// `sequential_confidence`, resets it to 0 and says why. Not thread-safe: the placer owns it.
+// the right one keeps winning as the map grows. The second way places the simulated fleet's
+// robots several times sooner, where two robots' independent SLAM noise holds a right placement
+// just under the bar; on growing pairs of repeated terrains most of what it adds is wrong, so it
+// is off by default. A winner elsewhere starts the count again at 1; a refusal, or a confidence
+// below what counts, resets it to 0 and says why. Not thread-safe: the placer owns it.
 class PlacementEvidence {
  public:
   struct Options {
     int confirmations = 2;
-    // The second way to be placed; 0 turns it off.
-    int sequential_wins = 3;
+    // The second way to be placed; 0 (the default) turns it off.
+    int sequential_wins = 0;
     double sequential_confidence = 0.8;
     // Two placements are the same when they put the robot's map centre this close (metres) and
     // differ by at most this many degrees (PlacementOptions' revise_distance and revise_yaw_deg).

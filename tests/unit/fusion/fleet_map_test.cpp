@@ -325,6 +325,7 @@ TEST(FleetMapTest, APlacementVerifiedUnderTheBarPlacesOnceItKeepsWinningAsTheMap
 TEST(FleetMapTest, TheSameMapRegisteredAgainAddsNoWin) {
   FleetMapOptions options = Options();
   options.placement.confirmations = 2;
+  options.placement.sequential_wins = 3;
   FleetMap map = MakeMap(options);
   Offer(map, Tile("alpha", {0, 0}), From("alpha", "p1"));
   map.Join(RobotId{"beta"}, std::nullopt);

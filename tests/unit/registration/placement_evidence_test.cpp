@@ -92,8 +92,15 @@ TEST(PlacementEvidenceTest, TargetsAndGroupMapsCountApartAndOneConfirmationPlace
   EXPECT_TRUE(immediate.Observe(kOnFleet, At(10.0, 2.0, 0.0)).place);
 }
 
+PlacementEvidence::Options Sequential() {
+  PlacementEvidence::Options options;
+  options.sequential_wins = 3;
+  options.sequential_confidence = 0.8;
+  return options;
+}
+
 TEST(PlacementEvidenceTest, AVerifiedPlacementUnderTheBarPlacesWhenItKeepsWinningAsTheMapGrows) {
-  PlacementEvidence evidence({});  // 3 wins at 0.8 or more
+  PlacementEvidence evidence(Sequential());
   const auto first = evidence.Observe(kOnFleet, Verified(10.0, 0.86, 1));
   EXPECT_FALSE(first.place);
   EXPECT_EQ(first.wins, 1);
@@ -109,7 +116,7 @@ TEST(PlacementEvidenceTest, AVerifiedPlacementUnderTheBarPlacesWhenItKeepsWinnin
 }
 
 TEST(PlacementEvidenceTest, AWinUnderTheFloorOrARefusalOrAnotherPlaceBreaksTheSequence) {
-  PlacementEvidence evidence({});
+  PlacementEvidence evidence(Sequential());
   ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 1)).place);
   ASSERT_FALSE(evidence.Observe(kOnFleet, Verified(10.0, 0.9, 2)).place);
   // Verified, but at 0.6: the count starts again, and the robot says why it waits.
@@ -131,9 +138,7 @@ TEST(PlacementEvidenceTest, AWinUnderTheFloorOrARefusalOrAnotherPlaceBreaksTheSe
   // A wait under the bar is no confirmation the same map is registered again for.
   EXPECT_FALSE(evidence.Pending(kOnFleet));
 
-  PlacementEvidence::Options off;
-  off.sequential_wins = 0;
-  PlacementEvidence bar_only(off);
+  PlacementEvidence bar_only({});  // the default: the bar alone
   for (uint64_t revision = 1; revision <= 10; ++revision) {
     const auto verdict = bar_only.Observe(kOnFleet, Verified(10.0, 0.94, revision));
     EXPECT_FALSE(verdict.place);
