@@ -47,6 +47,26 @@ TEST(ServerOptionsTest, PlacesAtTheRegistrationPlacementBar) {
   EXPECT_FALSE(bad.Validate().ok());
 }
 
+// The sequential wins under the bar are off unless the operator asks, and checked when asked.
+TEST(ServerOptionsTest, PlacesUnderTheBarOnlyWhenAskedAndChecksTheAsking) {
+  const ServerOptions options;
+  EXPECT_EQ(options.map.placement.sequential_wins, 0);
+  EXPECT_TRUE(Contains(DescribeOptions(options), "sequential_wins: 0\n"))
+      << DescribeOptions(options);
+  ServerOptions negative;
+  negative.map.placement.sequential_wins = -1;
+  EXPECT_FALSE(negative.Validate().ok());
+  ServerOptions above_one;
+  above_one.map.placement.sequential_wins = 3;
+  above_one.map.placement.sequential_confidence = 1.5;
+  const Status refused = above_one.Validate();
+  EXPECT_FALSE(refused.ok());
+  EXPECT_TRUE(Contains(std::string(refused.message()), "sequential_confidence"));
+  ServerOptions asked;
+  asked.map.placement.sequential_wins = 3;
+  EXPECT_TRUE(asked.Validate().ok());
+}
+
 TEST(ServerOptionsTest, APartSwitchedOffIsNotChecked) {
   ServerOptions options;
   options.prediction.enabled = false;
