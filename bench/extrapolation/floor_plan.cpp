@@ -78,6 +78,7 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
   };
   std::vector<uint8_t> second_doorway;  // per room
   std::vector<DoorPlan> door_plans;
+  std::vector<Rect> between_rooms;  // the open doorways between neighbouring rooms
   // A rectangle between two ordinates given in either order.
   const auto across = [](double x0, double x1, double a, double b, int32_t label) {
     return Rect{x0, std::min(a, b), x1, std::max(a, b), label};
@@ -139,6 +140,7 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
         const double y = side.room_face + sign * offset;
         const int32_t owner = random.Bernoulli(0.5) ? room : room + 1;
         rects.push_back(across(x1, spans[i + 1].first, y, y + sign * w, owner));
+        between_rooms.push_back(rects.back());
         second_doorway[room] = second_doorway[room + 1] = 1;
         ++plan.connecting_doorways;
       }
@@ -171,6 +173,7 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
   plan.truth =
       grid::OccupancyGrid(width_cells, height_cells, r, Pose2{-m, -m, 0.0}, grid::kOccupiedValue);
   plan.labels.assign(static_cast<size_t>(plan.truth.cell_count()), kPlanOutside);
+  plan.between_rooms.assign(plan.labels.size(), 0);
   for (int y = 0; y < height_cells; ++y) {
     for (int x = 0; x < width_cells; ++x) {
       const Point2 c = plan.truth.CellCenter(x, y);
@@ -183,6 +186,11 @@ StatusOr<FloorPlan> GenerateFloorPlan(const FloorPlanOptions& options, uint32_t 
       }
       plan.labels[static_cast<size_t>(y) * width_cells + x] = label;
       if (label >= kPlanCorridor) plan.truth.at(x, y) = grid::kFreeValue;
+      for (const Rect& rect : between_rooms) {
+        if (c.x() >= rect.x0 && c.x() < rect.x1 && c.y() >= rect.y0 && c.y() < rect.y1) {
+          plan.between_rooms[static_cast<size_t>(y) * width_cells + x] = 1;
+        }
+      }
     }
   }
 

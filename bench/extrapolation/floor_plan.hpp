@@ -56,6 +56,10 @@ struct FloorPlan {
   // Free on the rooms, the corridor and the doorways; occupied on walls and outside.
   grid::OccupancyGrid truth;
   std::vector<int32_t> labels;  // per cell (row-major): a room index or kPlan*
+  // Per cell (row-major): 1 on an open doorway through the wall between two neighbouring rooms.
+  // It is labelled one of the two rooms (the generator's coin flip), so scoring counts it for
+  // neither: a prediction there is unscored and it is not in a room's recall.
+  std::vector<uint8_t> between_rooms;
   std::vector<PlanDoor> doors;  // one per room, onto the corridor, in room order
   int32_t rooms = 0;
   int32_t connecting_doorways = 0;

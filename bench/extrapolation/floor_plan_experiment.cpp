@@ -42,7 +42,8 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
       int64_t near_room = 0;
       for (int y = 0; y < truth.height(); ++y) {
         for (int x = 0; x < truth.width(); ++x) {
-          near_room += plan.labels[static_cast<size_t>(y) * truth.width() + x] == door.room &&
+          const size_t i = static_cast<size_t>(y) * truth.width() + x;
+          near_room += plan.labels[i] == door.room && !plan.between_rooms[i] &&
                        (truth.CellCenter(x, y) - centre).norm() <= options.recall_radius;
         }
       }
@@ -79,10 +80,12 @@ StatusOr<std::vector<PlanDoorResult>> RunHiddenRoomExperiment(
               if (in_map.StateAt(x, y) != grid::CellState::kFree) continue;
               const Point2 c = in_map.CellCenter(x, y);
               const std::optional<grid::CellIndex> cell = truth.CellAt(c);
-              const int32_t label =
-                  cell ? plan.labels[static_cast<size_t>(cell->y) * truth.width() + cell->x]
-                       : kPlanOutside;
-              if (label == door.room) {
+              const size_t i =
+                  cell ? static_cast<size_t>(cell->y) * truth.width() + cell->x : size_t{0};
+              const int32_t label = cell ? plan.labels[i] : kPlanOutside;
+              if (cell && plan.between_rooms[i]) {
+                ++score.unscored;
+              } else if (label == door.room) {
                 ++score.true_free;
                 score.near_true += (c - centre).norm() <= options.recall_radius;
               } else if (label == kPlanUnknown) {

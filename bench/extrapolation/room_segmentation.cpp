@@ -249,6 +249,7 @@ FloorPlan PlanForRoom(const grid::OccupancyGrid& map, const RoomSegmentation& se
   origin.y = corner.y() - half.y();
   plan.truth = grid::OccupancyGrid(cw, ch, r, origin, grid::kOccupiedValue);
   plan.labels.assign(static_cast<size_t>(plan.truth.cell_count()), kPlanOutside);
+  plan.between_rooms.assign(plan.labels.size(), 0);  // a real map has no drawn doorways
   std::vector<size_t> leaf;
   std::vector<uint8_t> is_leaf(static_cast<size_t>(map.cell_count()), 0);
   for (size_t i : doorway.leaf_cells) is_leaf[i] = 1;

@@ -96,6 +96,59 @@ std::vector<std::string> FloorFiles(const std::vector<std::string>& inputs) {
   return files;
 }
 
+// The speck census (speck_census.hpp) of each map named by --maps, beside the small-piece
+// benchmark's noise-only floors at a few speck densities, so the two can be read together.
+int RunSpeckCensus(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
+  const std::string name = "fleetmap bench objects: ";
+  const std::vector<std::string> floors = FloorFiles(options.floors);
+  if (floors.empty()) {
+    err << name << "--speck-census needs --maps naming at least one map YAML file\n";
+    return cli::kExitBadInput;
+  }
+  out << "Lone clusters of occupied cells in free space (bench/objects/speck_census.hpp), per "
+         "100 m2 of free space.\n\n"
+      << "| map | resolution (m) | free m2 | specks of 1-3 cells | clusters of 4-8 | compact "
+         "(a small object's look) |\n|---|---|---|---|---|---|\n";
+  std::ostringstream csv;
+  csv << "map,resolution_m,free_m2,lone_specks,lone_clusters,lone_compact\n";
+  const auto row = [&](const std::string& map, double resolution, const SpeckCensus& c) {
+    out << "| " << map << " | " << Fixed(resolution, 3) << " | " << Fixed(c.free_area_m2, 0)
+        << " | " << c.lone_specks << " (" << Fixed(c.Per100m2(c.lone_specks), 2) << ") | "
+        << c.lone_clusters << " (" << Fixed(c.Per100m2(c.lone_clusters), 2) << ") | "
+        << c.lone_compact << " (" << Fixed(c.Per100m2(c.lone_compact), 2) << ") |\n";
+    csv << map << "," << resolution << "," << Fixed(c.free_area_m2, 2) << "," << c.lone_specks
+        << "," << c.lone_clusters << "," << c.lone_compact << "\n";
+  };
+  for (const std::string& floor : floors) {
+    StatusOr<grid::LoadedMap> loaded = grid::LoadMap(floor);
+    if (!loaded.ok()) {
+      err << name << loaded.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    row(std::filesystem::path(floor).stem().string(), loaded->grid.resolution(),
+        CountLoneSpecks(loaded->grid));
+  }
+  constexpr int kFloorsPerDensity = 20;
+  for (const double events : {1.0, 2.0, 5.0, 10.0}) {
+    sim::Random random(options.seed);
+    SpeckCensus census;
+    double resolution = 0.0;
+    for (int k = 0; k < kFloorsPerDensity; ++k) {
+      const grid::OccupancyGrid floor = SpeckledFloor(events, &random);
+      resolution = floor.resolution();
+      census.Add(CountLoneSpecks(floor));
+    }
+    row("small-piece noise, " + Fixed(events, 0) + " events / 100 m2 (" +
+            std::to_string(kFloorsPerDensity) + " floors)",
+        resolution, census);
+  }
+  if (!options.out_dir.empty() &&
+      !WriteOutputs({{options.out_dir + "/speck_census.csv", csv.str()}}, err)) {
+    return cli::kExitBadInput;
+  }
+  return cli::kExitOk;
+}
+
 // The real-plan benchmark (issue 22): prints its table, writes its files under options.out_dir.
 int RunRealPlans(const BenchObjectsOptions& options, std::ostream& out, std::ostream& err) {
   const std::string name = "fleetmap bench objects: ";
@@ -383,6 +436,7 @@ int RunBenchObjects(const BenchObjectsOptions& options, std::ostream& out, std::
     return cli::kExitOk;
   }
   if (options.contrast) return RunContrast(options, out, err);
+  if (options.speck_census) return RunSpeckCensus(options, out, err);
   if (options.skip_sim)
     return options.floors.empty() ? cli::kExitOk : RunRealPlans(options, out, err);
   ObjectDatasetOptions dataset_options;
@@ -512,6 +566,9 @@ void AddBenchObjectsCommand(CLI::App& app, int* exit_code) {
       ->add_option("--isolation-radius", options->isolation_radius,
                    "small pieces: isolation radius (m; 0: recurrence only)")
       ->capture_default_str();
+  command->add_flag("--speck-census", options->speck_census,
+                    "count the lone specks of the --maps and of the small-piece benchmark's "
+                    "noise (only this benchmark)");
   command->add_flag("--contrast", options->contrast,
                     "flat against hierarchical EM over conditions (only this benchmark)");
   command

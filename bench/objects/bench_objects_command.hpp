@@ -18,6 +18,10 @@
 // (small_piece_experiment.hpp): recall of pieces of 4-7 cells, precision, false objects per
 // 100 m2 of noise-only pairs; DIR/small_pieces.md.
 //
+// With `--speck-census --maps MAPS` (and only that): how speckled each map is (speck_census.hpp),
+// beside the small-piece benchmark's synthetic noise at 1, 2, 5 and 10 events per 100 m2, so its
+// speck densities can be read against real maps; DIR/speck_census.csv.
+//
 // With `--contrast` (and only that): the paper's flat/hierarchical contrast searched over
 // conditions (contrast_experiment.hpp), good starts of each model per condition over
 // `--data-sets` simulated data sets; DIR/contrast.md, contrast.csv, contrast.json.
@@ -52,6 +56,7 @@ struct BenchObjectsOptions {
   double speck_events = 5.0;      // per 100 m2 per map
   double isolation_radius = 0.5;  // SnapshotOptions::isolation_radius_m
   bool small_in_one_map = false;  // SmallPieceOptions::small_in_one_map
+  bool speck_census = false;      // the census of --maps (speck_census.hpp); only this runs
   // The flat/hierarchical contrast (contrast_experiment.hpp): every condition on this many data
   // seeds from --seed, --starts starts each. When set, only this benchmark runs.
   bool contrast = false;

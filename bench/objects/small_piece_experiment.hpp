@@ -19,8 +19,11 @@
 #include <cstdint>
 #include <string>
 
+#include "bench/objects/speck_census.hpp"
 #include "common/core/status.hpp"
+#include "common/grid/occupancy_grid.hpp"
 #include "common/object_learning/learn_options.hpp"
+#include "common/sim/random.hpp"
 
 namespace fleetmap::bench {
 
@@ -44,7 +47,11 @@ struct SmallPieceResult {
   // Noise-only pairs.
   int noise_snapshots = 0;
   double noise_area_m2 = 0.0;  // free floor of both maps of every noise-only pair
+  SpeckCensus noise_census;    // the lone clusters of every noise-only map (speck_census.hpp)
 };
+
+// The benchmark's empty floor with `events_per_100m2` speck events (the noise-only maps).
+grid::OccupancyGrid SpeckledFloor(double events_per_100m2, sim::Random* random);
 
 // Errors: bad options.
 StatusOr<SmallPieceResult> RunSmallPieceExperiment(const SmallPieceOptions& options);

@@ -379,13 +379,15 @@ class Extrapolator {
     }
     if (options_.door_split_between_doors) {
       // Another closed door in the same wall, opening to the same side, leads to another room:
-      // the room behind this one ends, at the latest, halfway between the two doorways.
+      // the room behind this one ends before the other doorway (NeighbourDoorLimits).
+      // A cell any part of which is inside the limits is kept (half a cell's reach).
+      const double half = 0.5 * map_.resolution();
       const std::vector<std::pair<double, double>> limits = NeighbourDoorLimits(door, opening);
       for (int y = 0; y < window.height; ++y) {
         for (int x = 0; x < window.width; ++x) {
           const double s = kx.dot(map_.CellCenter(window.x0 + x, window.y0 + y) - centre);
           uint8_t& c = candidate[static_cast<size_t>(y) * window.width + x];
-          for (const auto& [lo, hi] : limits) c = c && s > lo && s < hi;
+          for (const auto& [lo, hi] : limits) c = c && s > lo - half && s < hi + half;
         }
       }
     }
@@ -455,8 +457,9 @@ class Extrapolator {
   static constexpr double kSideDepth = 0.3;
 
   // The lateral limits (along the door line from its centre, x as in the kernel frame: opening
-  // turned clockwise) that the other closed doors in the same wall set: (-inf, s / 2) for one at
-  // lateral offset s > 0, (s / 2, inf) for one at s < 0. Same wall: parallel within 10 degrees,
+  // turned clockwise) that the other closed doors in the same wall set: (-inf, l) for one of
+  // width w at lateral offset s > 0, with l = s - w / 2 - door_next_room_clearance (short of its
+  // near jamb), and (-l, inf) for one at s < 0. Same wall: parallel within 10 degrees,
   // centres within 0.5 m across the wall, opening to the same side, doorways apart.
   std::vector<std::pair<double, double>> NeighbourDoorLimits(const scene::DoorEntity& door,
                                                              const Vector2& opening) const {
@@ -477,7 +480,8 @@ class Extrapolator {
       }
       const double s = d.dot(kx);
       if (std::abs(s) <= 0.5 * (door.width() + other.width())) continue;
-      limits.emplace_back(s > 0.0 ? -inf : 0.5 * s, s > 0.0 ? 0.5 * s : inf);
+      const double last = std::abs(s) - 0.5 * other.width() - options_.door_next_room_clearance;
+      limits.emplace_back(s > 0.0 ? -inf : -last, s > 0.0 ? last : inf);
     }
     return limits;
   }
@@ -525,6 +529,7 @@ Status ExtrapolationOptions::Validate() const {
       {"door_submap_distance", o.door_submap_distance},
       {"door_wall_clearance", o.door_wall_clearance},
       {"door_unseen_wall_thickness", o.door_unseen_wall_thickness},
+      {"door_next_room_clearance", o.door_next_room_clearance},
       {"door_continuation_gap", o.door_continuation_gap},
       {"door_min_outer_wall", o.door_min_outer_wall},
       {"stairs_edge_clearance", o.stairs_edge_clearance},
@@ -573,6 +578,7 @@ void ExtrapolationOptions::Describe(OptionsPrinter& out) const {
   out.Add("door_building_outline", door_building_outline);
   out.Add("door_min_outer_wall", door_min_outer_wall);
   out.Add("door_split_between_doors", door_split_between_doors);
+  out.Add("door_next_room_clearance", door_next_room_clearance);
   out.Add("person_sigma_forward", person_sigma_forward);
   out.Add("person_sigma_side", person_sigma_side);
   out.Add("person_skew_forward", person_skew_forward);

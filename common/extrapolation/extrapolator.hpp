@@ -77,8 +77,11 @@ struct ExtrapolationOptions {
   bool door_building_outline = true;
   double door_min_outer_wall = 1.0;
   // Another closed door in the same wall, opening to the same side, leads to another room: a
-  // door's prediction stops halfway between the two doorways (along the wall).
+  // door's prediction stops, along the wall, door_next_room_clearance (metres) short of the other
+  // doorway's near jamb, where the room can first end (the other door's frame and the thinnest
+  // interior wall, 0.05 + 0.15 m, stand between the doorway and this room).
   bool door_split_between_doors = true;
+  double door_next_room_clearance = 0.2;
 
   // People: a skew-normal personal-space kernel in the person's frame (x forward, y left):
   // sigma_forward / sigma_side (metres), skew alpha = (person_skew_forward,

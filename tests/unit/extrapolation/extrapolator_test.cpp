@@ -311,17 +311,23 @@ TEST(ExtrapolatorTest, KnownWallStopsTheDoorPrediction) {
   EXPECT_EQ(beyond_wall(walled->graph.submaps[1]), 0);
 }
 
-// Two closed doors in the corridor's wall lead to two rooms: each door's prediction stops halfway
-// between the doorways (x = 5.575 here), and a door in another wall does not cut it.
+// Two closed doors in the corridor's wall lead to two rooms: a door's prediction stops where its
+// room can first end, 0.2 m short of the other doorway's near jamb (x = 5.9), and a door in another
+// wall does not cut it.
 TEST(ExtrapolatorTest, NextClosedDoorInTheSameWallBoundsThePrediction) {
   const grid::OccupancyGrid map = Corridor();
   scene::Entities alone;
   alone.doors.push_back(Door());  // x in [4, 5]
   scene::Entities two = alone;
-  two.doors.push_back(DoorAt("door_2", 6.2, 7.1, 2.075, false));
-  const auto past_midpoint = [](const scene::Submap& s) {
+  two.doors.push_back(DoorAt("door_2", 5.9, 6.8, 2.075, false));
+  const auto past_limit = [](const scene::Submap& s) {
     int n = 0;
-    for (const Point2& p : FreeCellsInMap(s)) n += p.x() > 5.575 + 0.5 * kRes;
+    for (const Point2& p : FreeCellsInMap(s)) n += p.x() > 5.7 + kRes;  // wholly past it
+    return n;
+  };
+  const auto short_of_it = [](const scene::Submap& s) {  // past halfway (x = 5.425), the old rule
+    int n = 0;
+    for (const Point2& p : FreeCellsInMap(s)) n += p.x() > 5.425 + 0.5 * kRes && p.x() < 5.65;
     return n;
   };
   const auto one = Extrapolate(map, alone);
@@ -332,8 +338,9 @@ TEST(ExtrapolatorTest, NextClosedDoorInTheSameWallBoundsThePrediction) {
       return s.kind == scene::SubmapKind::kPredictedDoor && s.entity_ids.front() == "door_1";
     });
   };
-  EXPECT_GT(past_midpoint(door_1(*one)), 0);  // the test can fail
-  EXPECT_EQ(past_midpoint(door_1(*both)), 0);
+  EXPECT_GT(past_limit(door_1(*one)), 0);  // the test can fail
+  EXPECT_EQ(past_limit(door_1(*both)), 0);
+  EXPECT_GT(short_of_it(door_1(*both)), 0);  // the room may reach past halfway
   EXPECT_GT(FreeCellsInMap(door_1(*both)).size(), 200u);
   // A door on the corridor's other wall (opening the other way) is another wall's door.
   scene::Entities across = alone;
