@@ -105,6 +105,15 @@ int RunSpeckCensus(const BenchObjectsOptions& options, std::ostream& out, std::o
     err << name << "--speck-census needs --maps naming at least one map YAML file\n";
     return cli::kExitBadInput;
   }
+  std::vector<std::pair<std::string, grid::LoadedMap>> maps;  // all read before any output
+  for (const std::string& floor : floors) {
+    StatusOr<grid::LoadedMap> loaded = grid::LoadMap(floor);
+    if (!loaded.ok()) {
+      err << name << loaded.status().message() << "\n";
+      return cli::kExitBadInput;
+    }
+    maps.emplace_back(std::filesystem::path(floor).stem().string(), std::move(*loaded));
+  }
   out << "Lone clusters of occupied cells in free space (bench/objects/speck_census.hpp), per "
          "100 m2 of free space.\n\n"
       << "| map | resolution (m) | free m2 | specks of 1-3 cells | clusters of 4-8 | compact "
@@ -119,14 +128,8 @@ int RunSpeckCensus(const BenchObjectsOptions& options, std::ostream& out, std::o
     csv << map << "," << resolution << "," << Fixed(c.free_area_m2, 2) << "," << c.lone_specks
         << "," << c.lone_clusters << "," << c.lone_compact << "\n";
   };
-  for (const std::string& floor : floors) {
-    StatusOr<grid::LoadedMap> loaded = grid::LoadMap(floor);
-    if (!loaded.ok()) {
-      err << name << loaded.status().message() << "\n";
-      return cli::kExitBadInput;
-    }
-    row(std::filesystem::path(floor).stem().string(), loaded->grid.resolution(),
-        CountLoneSpecks(loaded->grid));
+  for (const auto& [map_name, map] : maps) {
+    row(map_name, map.grid.resolution(), CountLoneSpecks(map.grid));
   }
   constexpr int kFloorsPerDensity = 20;
   for (const double events : {1.0, 2.0, 5.0, 10.0}) {
