@@ -192,6 +192,7 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
   bench_options.run_mexplore = !options.skip_mexplore;
   bench_options.drift = !options.no_drift;
   bench_options.registration.max_drift_per_m = options.max_drift_per_m;
+  bench_options.pairs.wall_noise = options.wall_noise;
   ProgressLine progress(err, {.terminal = options.err_is_terminal});
   if (options.growing_steps > 0) {
     return ReportGrowing(options, bench_options, *maps, &progress, out, err);
@@ -224,6 +225,10 @@ int RunBenchRegister(const BenchRegisterOptions& options, std::ostream& out, std
                           Fixed(100.0 * bench_options.registration.max_drift_per_m, 1) +
                           " cm per metre"
                     : "; fleetmap verifies rigidly (--max-drift-per-m 0)");
+  if (options.wall_noise > 0.0) {
+    source.append("; each map's wall faces moved apart with probability " +
+                  Fixed(options.wall_noise, 2) + " (--wall-noise)");
+  }
   out << "Map registration, " << source << ", " << options.pairs_per_overlap
       << " pairs per map and overlap (seed " << options.seed << "): " << run.pairs.size()
       << " pairs";
@@ -383,6 +388,12 @@ void AddBenchRegisterCommand(CLI::App& app, int* exit_code) {
                       "the placer's sequential test (bar only, and with verified wins under it) "
                       "says when it would place the robot, and whether rightly (m-explore not "
                       "run)");
+  command
+      ->add_option("--wall-noise", options->wall_noise,
+                   "independent noise on each map of a pair: the probability that a wall face "
+                   "cell moves by one cell (two SLAM runs of one wall; 0: the crops share walls)")
+      ->check(CLI::Range(0.0, 0.5))
+      ->capture_default_str();
   command->add_flag("--skip-mexplore", options->skip_mexplore,
                     "run fleetmap only (for the calibration fit)");
   command->callback([options, exit_code] {

@@ -37,6 +37,8 @@ struct BenchRegisterOptions {
   // The registration's drift bound (RegistrationOptions::max_drift_per_m, 0.03 by default); 0
   // verifies rigidly, for a side-by-side figure.
   double max_drift_per_m = registration::RegistrationOptions{}.max_drift_per_m;
+  // MapPairOptions::wall_noise: independent noise on each map's walls (0: crops share them).
+  double wall_noise = 0.0;
   bool err_is_terminal = false;  // progress redrawn in place (else a line every 10 s)
 };
 

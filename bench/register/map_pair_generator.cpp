@@ -124,8 +124,34 @@ Box BoundingBox(const Mask& region, int w, int h) {
   return box;
 }
 
+// MapPairOptions::wall_noise on `map`: moves decided on the map as it was, so one move does not
+// make another face.
+void MoveWallFaces(grid::OccupancyGrid* map, double probability, std::mt19937& rng) {
+  const grid::OccupancyGrid before = *map;
+  const auto state = [&before](int x, int y) {
+    return before.Contains(x, y) ? before.StateAt(x, y) : grid::CellState::kUnknown;
+  };
+  std::bernoulli_distribution move(probability), advance(0.5);
+  constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (int y = 0; y < before.height(); ++y) {
+    for (int x = 0; x < before.width(); ++x) {
+      if (state(x, y) != grid::CellState::kOccupied) continue;
+      for (const auto& [dx, dy] : kSteps) {
+        if (state(x + dx, y + dy) != grid::CellState::kFree || !move(rng)) continue;
+        if (advance(rng)) {
+          map->at(x + dx, y + dy) = grid::kOccupiedValue;
+        } else if (state(x - dx, y - dy) == grid::CellState::kOccupied) {
+          map->at(x, y) = grid::kFreeValue;
+        }
+        break;  // one move per face cell
+      }
+    }
+  }
+}
+
 // The region's cells of `map` (unknown elsewhere) cropped to its bounding box plus a margin, with
-// a few specks: isolated cells of the wrong state.
+// a few specks (isolated cells of the wrong state) and, with MapPairOptions::wall_noise, wall
+// faces moved.
 grid::OccupancyGrid RegionMap(const grid::OccupancyGrid& map, const Mask& region,
                               const MapPairOptions& options, std::mt19937& rng) {
   const int w = map.width(), h = map.height();
@@ -153,6 +179,7 @@ grid::OccupancyGrid RegionMap(const grid::OccupancyGrid& map, const Mask& region
       out.at(x, y) = state == grid::CellState::kFree ? grid::kOccupiedValue : grid::kFreeValue;
     }
   }
+  if (options.wall_noise > 0.0) MoveWallFaces(&out, options.wall_noise, rng);
   return out;
 }
 

@@ -35,6 +35,12 @@ struct MapPairOptions {
   // Isolated noise cells (occupied or free, at random) sprinkled over each crop's bounding box.
   int min_specks = 3;
   int max_specks = 12;
+  // Independent SLAM noise on each robot's map (issue 31): two SLAM runs rasterize the same wall a
+  // cell apart here and there, while two crops of one map share every wall cell. Each wall face
+  // cell (an occupied cell beside a free one) moves by one cell with this probability, drawn for
+  // A and B apart: half of the moves advance the face into the free cell beside it, half recede
+  // it (the face cell turns free where the wall behind it stays closed). 0: crops share walls.
+  double wall_noise = 0.0;
   // B's frame: its origin lies up to this far (metres) from A's, with any yaw.
   double max_origin_offset = 500.0;
   // > 1: B also as the robot saw it after 1 / growth_steps, 2 / growth_steps, ... of its drive

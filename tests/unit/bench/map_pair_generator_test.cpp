@@ -66,6 +66,53 @@ TEST(MapPairGeneratorTest, ReachesTheRequestedOverlapAndKeepsTheTruth) {
   }
 }
 
+// Wall noise moves wall faces of A and B apart, by a cell: two SLAM runs of one wall, not two
+// crops of one map. Noise off draws nothing more, so the pairs of a seed are unchanged.
+TEST(MapPairGeneratorTest, WallNoiseMovesFacesOfEachMapApartByACell) {
+  const grid::OccupancyGrid house = House();
+  ASSERT_FALSE(house.empty());
+  const auto make = [&house](double noise) {
+    MapPairOptions options;
+    options.wall_noise = noise;
+    options.min_specks = options.max_specks = 0;
+    std::mt19937 rng(11);
+    StatusOr<MapPair> pair = MakeMapPair(house, 0.5, options, rng);
+    for (int retry = 0; retry < 4 && !pair.ok(); ++retry) {
+      pair = MakeMapPair(house, 0.5, options, rng);
+    }
+    EXPECT_TRUE(pair.ok()) << pair.status();
+    return pair.ok() ? *pair : MapPair{};
+  };
+  const MapPair clean = make(0.0);
+  const MapPair noisy = make(0.3);
+  ASSERT_FALSE(clean.a.empty());
+  ASSERT_EQ(noisy.a.width(), clean.a.width());  // the same crop: noise comes after it
+  ASSERT_EQ(noisy.a.height(), clean.a.height());
+  int moved = 0, far_moves = 0, occupied = 0;
+  for (int y = 0; y < clean.a.height(); ++y) {
+    for (int x = 0; x < clean.a.width(); ++x) {
+      const grid::CellState was = clean.a.StateAt(x, y), is = noisy.a.StateAt(x, y);
+      occupied += was == grid::CellState::kOccupied;
+      if (was == is) continue;
+      ++moved;
+      EXPECT_NE(is, grid::CellState::kUnknown);  // only free and occupied trade places
+      // A moved cell lies on a face: a cell of the other state beside it.
+      bool on_face = false;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        on_face = on_face || (clean.a.Contains(x + dx, y + dy) &&
+                              clean.a.StateAt(x + dx, y + dy) != grid::CellState::kUnknown &&
+                              clean.a.StateAt(x + dx, y + dy) != was);
+      }
+      far_moves += !on_face;
+    }
+  }
+  EXPECT_GT(moved, occupied / 20);  // about 0.3 of the face cells move
+  EXPECT_LT(moved, occupied);
+  EXPECT_EQ(far_moves, 0);
+  const grid::StateCounts b_clean = clean.b.CountStates(), b_noisy = noisy.b.CountStates();
+  EXPECT_NE(b_noisy.occupied, b_clean.occupied);  // B's walls moved too, on their own draws
+}
+
 TEST(MapPairGeneratorTest, CropsAreExplorationLikeNotRectangles) {
   const grid::OccupancyGrid house = House();
   ASSERT_FALSE(house.empty());
