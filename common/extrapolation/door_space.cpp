@@ -251,4 +251,8 @@ std::vector<uint8_t> DoorSpace::ReachableFromDoorway(const std::vector<uint8_t>&
   return ConnectedToSeeds(opened, w, h, seeds_);
 }
 
+std::vector<uint8_t> DoorSpace::ConnectedToDoorway(const std::vector<uint8_t>& mask) const {
+  return ConnectedToSeeds(mask, window_.width, window_.height, seeds_);
+}
+
 }  // namespace fleetmap::extrapolation

@@ -69,6 +69,10 @@ class DoorSpace {
   // are 4-connected to the doorway through passages at least min_passage_width wide.
   std::vector<uint8_t> ReachableFromDoorway(const std::vector<uint8_t>& candidate) const;
 
+  // The cells of `mask` (window-sized, row-major) 4-connected to the doorway, with no passage
+  // width required: for bounds cut after ReachableFromDoorway.
+  std::vector<uint8_t> ConnectedToDoorway(const std::vector<uint8_t>& mask) const;
+
   // Cells of the window just behind the doorway, where the flood starts (row-major indices).
   const std::vector<int>& seeds() const { return seeds_; }
 

@@ -348,25 +348,6 @@ class Extrapolator {
     space_options.wall_clearance = options_.door_wall_clearance;
     const DoorSpace space(map_, door, opening, window, space_options);
     std::vector<uint8_t> candidate = space.allowed();
-    if (options_.door_building_outline) {
-      if (!outline_) {
-        BuildingOutlineOptions outline_options;
-        outline_options.min_outer_wall = options_.door_min_outer_wall;
-        outline_options.max_face_gap = options_.door_min_passage_width;
-        outline_options.continuation_gap = options_.door_continuation_gap;
-        outline_.emplace(map_, outline_options);
-      }
-      const std::vector<uint8_t> in_building = outline_->AllowedFor(door, opening);
-      for (int y = 0; y < window.height; ++y) {
-        for (int x = 0; x < window.width; ++x) {
-          const int mx = window.x0 + x, my = window.y0 + y;
-          // Off the map: no outline known there, the other rules alone decide.
-          if (!map_.Contains(mx, my)) continue;
-          uint8_t& c = candidate[static_cast<size_t>(y) * window.width + x];
-          c = c && in_building[static_cast<size_t>(my) * map_.width() + mx];
-        }
-      }
-    }
     for (int y = 0; y < window.height; ++y) {
       for (int x = 0; x < window.width; ++x) {
         const Point2 c = map_.CellCenter(window.x0 + x, window.y0 + y);
@@ -377,21 +358,13 @@ class Extrapolator {
         candidate[i] = candidate[i] && conf > options_.p_th && d.norm() <= options_.door_max_range;
       }
     }
-    if (options_.door_split_between_doors) {
-      // Another closed door in the same wall, opening to the same side, leads to another room:
-      // the room behind this one ends before the other doorway (NeighbourDoorLimits).
-      // A cell any part of which is inside the limits is kept (half a cell's reach).
-      const double half = 0.5 * map_.resolution();
-      const std::vector<std::pair<double, double>> limits = NeighbourDoorLimits(door, opening);
-      for (int y = 0; y < window.height; ++y) {
-        for (int x = 0; x < window.width; ++x) {
-          const double s = kx.dot(map_.CellCenter(window.x0 + x, window.y0 + y) - centre);
-          uint8_t& c = candidate[static_cast<size_t>(y) * window.width + x];
-          for (const auto& [lo, hi] : limits) c = c && s > lo - half && s < hi + half;
-        }
-      }
+    // What a person could walk to is judged before the building's bounds cut the room: a bound
+    // cutting across the room makes new corners, and the walkability opening would round them
+    // off, taking cells of the room that neither rule excludes.
+    std::vector<uint8_t> reached = space.ReachableFromDoorway(candidate);
+    if (ApplyBuildingBounds(door, opening, centre, kx, window, &reached)) {
+      reached = space.ConnectedToDoorway(reached);
     }
-    const std::vector<uint8_t> reached = space.ReachableFromDoorway(candidate);
     int64_t free = 0;
     for (int y = 0; y < window.height; ++y) {
       for (int x = 0; x < window.width; ++x) {
@@ -455,6 +428,47 @@ class Extrapolator {
 
   // How far from a separator its sides are looked at (metres; at least four cells).
   static constexpr double kSideDepth = 0.3;
+
+  // Clears the cells of `mask` (window-sized) outside the building's outline or past the next
+  // closed door in the same wall (the options say which rules apply); false when neither does.
+  bool ApplyBuildingBounds(const scene::DoorEntity& door, const Vector2& opening,
+                           const Point2& centre, const Vector2& kx, const LatticeWindow& window,
+                           std::vector<uint8_t>* mask) {
+    if (options_.door_building_outline) {
+      if (!outline_) {
+        BuildingOutlineOptions outline_options;
+        outline_options.min_outer_wall = options_.door_min_outer_wall;
+        outline_options.max_face_gap = options_.door_min_passage_width;
+        outline_options.continuation_gap = options_.door_continuation_gap;
+        outline_.emplace(map_, outline_options);
+      }
+      const std::vector<uint8_t> in_building = outline_->AllowedFor(door, opening);
+      for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+          const int mx = window.x0 + x, my = window.y0 + y;
+          // Off the map: no outline known there, the other rules alone decide.
+          if (!map_.Contains(mx, my)) continue;
+          uint8_t& c = (*mask)[static_cast<size_t>(y) * window.width + x];
+          c = c && in_building[static_cast<size_t>(my) * map_.width() + mx];
+        }
+      }
+    }
+    if (options_.door_split_between_doors) {
+      // Another closed door in the same wall, opening to the same side, leads to another room:
+      // the room behind this one ends before the other doorway (NeighbourDoorLimits).
+      // A cell any part of which is inside the limits is kept (half a cell's reach).
+      const double half = 0.5 * map_.resolution();
+      const std::vector<std::pair<double, double>> limits = NeighbourDoorLimits(door, opening);
+      for (int y = 0; y < window.height; ++y) {
+        for (int x = 0; x < window.width; ++x) {
+          const double s = kx.dot(map_.CellCenter(window.x0 + x, window.y0 + y) - centre);
+          uint8_t& c = (*mask)[static_cast<size_t>(y) * window.width + x];
+          for (const auto& [lo, hi] : limits) c = c && s > lo - half && s < hi + half;
+        }
+      }
+    }
+    return options_.door_building_outline || options_.door_split_between_doors;
+  }
 
   // The lateral limits (along the door line from its centre, x as in the kernel frame: opening
   // turned clockwise) that the other closed doors in the same wall set: (-inf, l) for one of

@@ -374,6 +374,38 @@ std::set<std::pair<int64_t, int64_t>> CellKeys(const std::vector<Point2>& points
   return keys;
 }
 
+// A bound takes exactly the cells it excludes: the walkability opening judges the room before the
+// next door's limit cuts it, so the corners the cut makes are not rounded off.
+TEST(ExtrapolatorTest, TheNextDoorsLimitTakesOnlyTheCellsPastIt) {
+  const grid::OccupancyGrid map = Corridor();
+  scene::Entities alone;
+  alone.doors.push_back(Door());  // x in [4, 5]
+  scene::Entities two = alone;
+  two.doors.push_back(DoorAt("door_2", 5.9, 6.8, 2.075, false));  // limit at x = 5.7
+  const auto one = Extrapolate(map, alone);
+  const auto both = Extrapolate(map, two);
+  ASSERT_TRUE(one.ok() && both.ok());
+  const auto door_1_cells = [](const ExtrapolationResult& r) {
+    const auto s =
+        std::find_if(r.graph.submaps.begin(), r.graph.submaps.end(), [](const auto& submap) {
+          return submap.kind == scene::SubmapKind::kPredictedDoor &&
+                 submap.entity_ids.front() == "door_1";
+        });
+    return FreeCellsInMap(*s);
+  };
+  std::vector<Point2> short_of_limit;
+  int past = 0;
+  for (const Point2& p : door_1_cells(*one)) {
+    if (p.x() < 5.7) {  // the limit lies on a cell edge: the cells short of it
+      short_of_limit.push_back(p);
+    } else {
+      ++past;
+    }
+  }
+  ASSERT_GT(past, 0);  // the limit cuts the room
+  EXPECT_EQ(CellKeys(door_1_cells(*both)), CellKeys(short_of_limit));
+}
+
 TEST(ExtrapolatorTest, DoorPredictionNeverClaimsObservedFreeSpace) {
   const grid::OccupancyGrid map = RoomWithTwoDoors();
   scene::Entities entities;
