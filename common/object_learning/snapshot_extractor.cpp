@@ -139,7 +139,7 @@ std::vector<Region> GrowRegions(Mask mask, int width, int height, int link) {
 }
 
 // Fewer cells than this are never an object for being alone (a 3-cell blob is what a leg seen in
-// one scan, or a speck of noise, leaves); they may still recur.
+// one scan, or a speck of noise, leaves); they recur only when small_region_cells is set to 3.
 constexpr int kMinLoneCells = 4;
 
 // Whether a small region is compact: its bounding box at most 3 cells a side and at least half

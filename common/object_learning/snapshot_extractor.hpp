@@ -39,7 +39,8 @@ struct SnapshotSet {
 };
 
 // Regions larger than the limits are split (region_splitter.hpp); regions below
-// min_region_cells are kept only when they recur (SnapshotOptions::small_region_cells).
+// min_region_cells are kept only when they are compact and recur, or are compact and alone
+// (SnapshotOptions::small_region_cells, isolation_radius_m).
 // Maps before `first_map` are left out (a learner over its memory budget drops the oldest
 // sessions); snapshot map indices stay those of `maps`, and per_map has a 0 for each left out.
 // Errors (kInvalidArgument): fewer than two maps (from first_map on), maps whose size, resolution
